@@ -1,0 +1,66 @@
+//! Errors of the library: what failed, with which value, and why.
+
+use thiserror::Error;
+
+/// Every fallible operation of the library returns this error.
+#[derive(Debug, Clone, Error, PartialEq)]
+pub enum Error {
+    /// A model parameter is outside its admissible range.
+    #[error("parameter {name} = {value} is invalid: {rule}")]
+    InvalidParameter {
+        /// Parameter name as written in the docs (e.g. `mu`, `w0`).
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// The rule it breaks (e.g. "must be > 0").
+        rule: &'static str,
+    },
+    /// The deformation gradient does not describe an admissible deformation.
+    #[error("deformation gradient has det F = {det} (must be > 0); F = {f:?}")]
+    NonPositiveJacobian {
+        /// det F.
+        det: f64,
+        /// The offending F, row by row.
+        f: [[f64; 3]; 3],
+    },
+    /// The activation parameter γ left [0, 1).
+    #[error("activation gamma = {gamma} is outside [0, 1)")]
+    ActivationOutOfRange {
+        /// The offending γ.
+        gamma: f64,
+    },
+    /// A number that must be finite was not.
+    #[error("non-finite {quantity} ({value}) {context}")]
+    NonFinite {
+        /// What was computed (e.g. "strain energy").
+        quantity: &'static str,
+        /// The value (inf or NaN).
+        value: f64,
+        /// Where it came from, with the state that produced it.
+        context: String,
+    },
+    /// A scalar equation had no root where one was required.
+    #[error("no solution of {equation}: {reason}")]
+    NoSolution {
+        /// Which equation (e.g. "implicit activation law at lambda = 0.8").
+        equation: String,
+        /// Why not.
+        reason: String,
+    },
+}
+
+/// Result alias of the library.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Returns `value` if finite, otherwise a [`Error::NonFinite`] naming `quantity` and `context`.
+pub fn finite(value: f64, quantity: &'static str, context: impl FnOnce() -> String) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NonFinite {
+            quantity,
+            value,
+            context: context(),
+        })
+    }
+}
