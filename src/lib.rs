@@ -1,3 +1,32 @@
-//! activemuscle: mechanics of active skeletal muscle (see README.md).
+//! # activemuscle
+//!
+//! Mechanics of active skeletal muscle after Giantesio & Musesti, "A continuum model of skeletal
+//! muscle tissue with loss of activation": a transversely isotropic, incompressible, polyconvex
+//! passive energy; activation by active strain F = F_e F_a with F_a = I − γ m⊗m; γ fitted as a
+//! function of the fibre stretch; loss of activation through a damage d scaling the active stress.
+//!
+//! - [`energy`]: energies written once, generically ([`StrainEnergy`]).
+//! - [`invariants`]: the invariants of C and their exact derivatives in F (framework-owned).
+//! - [`response`]: the one place that seeds dual numbers.
+//! - [`active`]: active strain, active curve, activation laws, frozen/consistent coupling.
+//! - [`material`]: a muscle answering at a point.
+//! - [`uniaxial`]: homogeneous tests along and across the fibres.
+//! - [`oracle`]: the slow reference route (dual numbers over F's nine entries).
+//! - [`fem`]: the axisymmetric mixed finite-element solver.
+
+pub mod active;
+pub mod energy;
 pub mod error;
+pub mod fem;
+pub mod invariants;
+pub mod material;
+pub mod oracle;
+pub mod response;
+pub mod roots;
+pub mod scalar;
+pub mod uniaxial;
+
+pub use energy::{Energy, StrainEnergy};
 pub use error::{Error, Result};
+pub use material::Muscle;
+pub use scalar::Scalar;

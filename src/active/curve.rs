@@ -1,0 +1,116 @@
+//! The active curve (eq. D:pact): the active nominal stress of a tetanised muscle along its fibres,
+//!
+//! P_act(λ) = P_opt exp[−k (λ² − λ_opt²)² / (λ − λ_min)] for λ > λ_min, 0 otherwise.
+//!
+//! Damage d ∈ [0, 1] scales it by (1 − d) (section "Loss of activation"): the caller applies it.
+
+use crate::energy::positive;
+use crate::{Error, Result, Scalar};
+
+/// Parameters of the active curve. Defaults: Table D:paratt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ActiveCurve {
+    lambda_min: f64,
+    lambda_opt: f64,
+    k: f64,
+    p_opt: f64,
+}
+
+/// Above this exponent e^{−x} < 1e-304: the curve and all its derivatives are 0 in f64, and
+/// returning an exact 0 avoids 0·∞ in the derivatives just above λ_min.
+const UNDERFLOW_EXPONENT: f64 = 700.0;
+
+/// 16-point Gauss–Legendre nodes (positive half) and weights on [−1, 1].
+const GAUSS_16: [(f64, f64); 8] = [
+    (0.095_012_509_837_637_44, 0.189_450_610_455_068_5),
+    (0.281_603_550_779_258_9, 0.182_603_415_044_923_6),
+    (0.458_016_777_657_227_4, 0.169_156_519_395_002_5),
+    (0.617_876_244_402_643_7, 0.149_595_988_816_576_7),
+    (0.755_404_408_355_003, 0.124_628_971_255_533_9),
+    (0.865_631_202_387_831_7, 0.095_158_511_682_492_78),
+    (0.944_575_023_073_232_6, 0.062_253_523_938_647_89),
+    (0.989_400_934_991_649_9, 0.027_152_459_411_754_09),
+];
+
+impl ActiveCurve {
+    /// λ_min [-] > 0, λ_opt [-] > λ_min, k [-] > 0, P_opt [kPa] > 0.
+    pub fn new(lambda_min: f64, lambda_opt: f64, k: f64, p_opt: f64) -> Result<Self> {
+        positive("lambda_min", lambda_min)?;
+        positive("lambda_opt", lambda_opt)?;
+        positive("k", k)?;
+        positive("p_opt", p_opt)?;
+        if lambda_opt <= lambda_min {
+            return Err(Error::InvalidParameter {
+                name: "lambda_opt",
+                value: lambda_opt,
+                rule: "must be > lambda_min",
+            });
+        }
+        Ok(Self {
+            lambda_min,
+            lambda_opt,
+            k,
+            p_opt,
+        })
+    }
+
+    /// Table D:paratt: λ_min = 0.6243, λ_opt = 1.1704, k = 0.4342, P_opt = 73.52 kPa.
+    pub fn paper() -> Self {
+        Self {
+            lambda_min: 0.6243,
+            lambda_opt: 1.1704,
+            k: 0.4342,
+            p_opt: 73.52,
+        }
+    }
+
+    /// λ_min [-]: below it the fibres produce no active stress.
+    pub fn lambda_min(&self) -> f64 {
+        self.lambda_min
+    }
+    /// λ_opt [-]: stretch of the peak.
+    pub fn lambda_opt(&self) -> f64 {
+        self.lambda_opt
+    }
+    /// Shape parameter k [-].
+    pub fn k(&self) -> f64 {
+        self.k
+    }
+    /// Peak stress P_opt [kPa].
+    pub fn p_opt(&self) -> f64 {
+        self.p_opt
+    }
+
+    /// P_act(λ) [kPa], generic so that dual numbers give its derivatives (all 0 at and below λ_min).
+    pub fn value<T: Scalar>(&self, lambda: T) -> T {
+        if lambda <= self.lambda_min {
+            return T::zero();
+        }
+        let q = lambda * lambda - self.lambda_opt * self.lambda_opt;
+        let x = q * q * self.k / (lambda - self.lambda_min);
+        if x.re() > UNDERFLOW_EXPONENT {
+            return T::zero();
+        }
+        (-x).exp() * self.p_opt
+    }
+
+    /// ∫_{λ_min}^{λ} P_act(s) ds [kPa] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
+    /// panels of width ≤ 0.05: the integrand is C^∞ (flat to all orders at λ_min), so this is
+    /// exact to rounding.
+    pub fn integral(&self, lambda: f64) -> f64 {
+        if lambda <= self.lambda_min {
+            return 0.0;
+        }
+        let width = lambda - self.lambda_min;
+        let panels = (width / 0.05).ceil().max(1.0) as usize;
+        let h = width / panels as f64;
+        let mut sum = 0.0;
+        for p in 0..panels {
+            let mid = self.lambda_min + (p as f64 + 0.5) * h;
+            for &(x, w) in &GAUSS_16 {
+                sum += w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x));
+            }
+        }
+        sum * 0.5 * h
+    }
+}

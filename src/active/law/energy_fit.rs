@@ -1,0 +1,80 @@
+use super::{check_damage, first_activation_root, implicit_derivatives, ActivationLaw, LawValue, PathPartials};
+use crate::active::curve::ActiveCurve;
+use crate::active::strain::fibre_path_energy;
+use crate::energy::StrainEnergy;
+use crate::{Error, Result};
+use num_dual::{first_derivative, second_derivative};
+
+/// The energy-consistent activation law (Giantesio & Musesti 2017, "Strain-dependent internal
+/// parameters in hyperelastic biological materials"): γ(λ) solves
+///
+/// Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫_{λ_min}^{λ} P_act(s) ds
+///
+/// along the uniaxial fibre path, so that the *consistent* model Ψ(F) = Ŵ(F, γ(λ_f)) reproduces
+/// P_pas + (1 − d) P_act exactly along the fibres (dΨ/dλ = P_pas + (1 − d) P_act there).
+///
+/// Where it is valid: λ > λ_min. For λ ≲ 0.95, Ŵ(λ, γ) − W_pas(λ) first dips below zero as γ
+/// grows (activation relieves the compression) and rises again; the law takes the first root
+/// above γ = 0, which just above λ_min is γ ≈ 0.25, not 0: γ(λ) **jumps** at λ_min from 0 to the
+/// root of Ŵ(λ_min, γ) = W_pas(λ_min). Along the uniaxial path Ψ stays continuous (both branches
+/// have Ψ = W_pas there); off it, Ψ(F) = Ŵ(F, γ(λ_f)) is discontinuous across λ_f = λ_min, so a
+/// body whose fibres cross λ_min is not described by a continuous energy there.
+///
+/// Cost: a quadrature of P_act (≤ 20 panels of 16 points) plus the bracketed Newton solve
+/// (one dual number per step) and three hyper-hyper-duals for exact derivatives.
+#[derive(Debug, Clone)]
+pub struct EnergyLaw<E> {
+    energy: E,
+    curve: ActiveCurve,
+}
+
+impl<E: StrainEnergy> EnergyLaw<E> {
+    /// The energy-consistent law for `energy` and the active curve `curve`.
+    pub fn new(energy: E, curve: ActiveCurve) -> Self {
+        Self { energy, curve }
+    }
+
+    /// Residual in kPa (energy per volume): Ŵ(λ, γ) − W_pas(λ) − (1 − d) ∫ P_act.
+    pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
+        fibre_path_energy(&self.energy, lambda, gamma)
+            - fibre_path_energy(&self.energy, lambda, 0.0)
+            - (1.0 - damage) * self.curve.integral(lambda)
+    }
+}
+
+impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        check_damage(damage)?;
+        if !(lambda > 0.0) || !lambda.is_finite() {
+            return Err(Error::InvalidParameter {
+                name: "fibre stretch",
+                value: lambda,
+                rule: "must be finite and > 0",
+            });
+        }
+        let scale = 1.0 - damage;
+        let work = scale * self.curve.integral(lambda);
+        if work <= 0.0 {
+            return Ok(LawValue::default());
+        }
+        let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+        let passive = fibre_path_energy(&self.energy, lambda, 0.0);
+        let gamma = first_activation_root(
+            || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
+            |g| {
+                let (w, w_g) = first_derivative(|g| fibre_path_energy(&self.energy, num_dual::Dual64::from(lambda), g), g);
+                (w - passive - work, w_g)
+            },
+        )?;
+        let at = PathPartials::at(&self.energy, lambda, gamma)?;
+        let pas = PathPartials::at(&self.energy, lambda, 0.0)?;
+        Ok(implicit_derivatives(
+            gamma,
+            at.w_l - pas.w_l - t,
+            at.w_g,
+            at.w_ll - pas.w_ll - t_l,
+            at.w_lg,
+            at.w_gg,
+        ))
+    }
+}

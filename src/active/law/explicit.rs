@@ -1,0 +1,122 @@
+use super::{check_damage, ActivationLaw, LawValue};
+use crate::active::curve::ActiveCurve;
+use crate::active::strain::check_activation;
+use crate::energy::{positive, GiantesioMusesti};
+use crate::{Error, Result, Scalar};
+use num_dual::second_derivative;
+
+/// The chapter's closed-form activation law (eq. D:gamma), a first fixed-point step for the
+/// exponent of eq. D:eqgammaesplicita with fitted a, b:
+///
+/// γ(λ) = a [ r(g(λ_min), λ_min) λ_min − r(g(λ), λ) λ ] for λ > λ_min, 0 otherwise,
+/// r(g, λ) = sqrt( (1 − 2w0/3) / (g/α + w0/(3λ)) ),
+/// g(λ) = ln α + α(1 − w0/λ) − ½ ln((1 − 2w0/3)/q) + ln{ b (2/μ)[(1 − d) P_act + P_pas]
+///        + sqrt((1 − 2w0/3)/q) [ (1 − 2w0/3)²/q − λ w0/3 ] },  q = 1/α + w0/(3λ),
+///
+/// with P_pas of eq. D:Ppas and the chapter's energy parameters (μ, α, w0). Defaults
+/// a = 1.0133, b = 0.2050.
+///
+/// Valid (within ≈ 1e-3 of the implicit law) on 0.8 ≲ λ ≲ 1.5; fast: one formula, derivatives by
+/// dual numbers. As printed, γ stays positive up to λ ≈ 1.73 (the chapter says 1.6); beyond its
+/// zero crossing this implementation returns γ = 0 ("one can even neglect the activation for
+/// large stretches"), so the law has a kink there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExplicitLaw {
+    a: f64,
+    b: f64,
+    passive: GiantesioMusesti,
+    curve: ActiveCurve,
+}
+
+impl ExplicitLaw {
+    /// a [-] > 0, b [-] > 0, the chapter's energy parameters and the active curve.
+    pub fn new(a: f64, b: f64, passive: GiantesioMusesti, curve: ActiveCurve) -> Result<Self> {
+        Ok(Self {
+            a: positive("a", a)?,
+            b: positive("b", b)?,
+            passive,
+            curve,
+        })
+    }
+
+    /// The chapter's a = 1.0133, b = 0.2050 with its energy and active curve.
+    pub fn paper() -> Self {
+        Self {
+            a: 1.0133,
+            b: 0.2050,
+            passive: GiantesioMusesti::paper(),
+            curve: ActiveCurve::paper(),
+        }
+    }
+
+    /// Fitting parameters (a, b).
+    pub fn coefficients(&self) -> (f64, f64) {
+        (self.a, self.b)
+    }
+
+    /// P_pas(λ) of eq. D:Ppas [kPa].
+    fn passive_stress<T: Scalar>(&self, l: T) -> T {
+        let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
+        let f = 1.0 - 2.0 * w0 / 3.0;
+        let inv = l.recip();
+        let expo = ((l * l * f + inv * (2.0 * w0 / 3.0) - 1.0) * al).exp();
+        ((l * f - inv * inv * (w0 / 3.0)) * expo - inv * inv * inv * f + w0 / 3.0) * (mu / 2.0)
+    }
+
+    /// g(λ) of eq. D:gamma.
+    fn g<T: Scalar>(&self, l: T, active: T) -> T {
+        let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
+        let f = 1.0 - 2.0 * w0 / 3.0;
+        let q = l.recip() * (w0 / 3.0) + 1.0 / al;
+        let ratio = q.recip() * f;
+        let bracket = (active + self.passive_stress(l)) * (self.b * 2.0 / mu) + ratio.sqrt() * (q.recip() * (f * f) - l * (w0 / 3.0));
+        (-l.recip() * w0 + 1.0) * al + al.ln() - ratio.ln() * 0.5 + bracket.ln()
+    }
+
+    /// r(g, λ) λ.
+    fn scaled_root<T: Scalar>(&self, g: T, l: T) -> T {
+        let (al, w0) = (self.passive.alpha(), self.passive.w0());
+        let f = 1.0 - 2.0 * w0 / 3.0;
+        ((g / al + l.recip() * (w0 / 3.0)).recip() * f).sqrt() * l
+    }
+
+    /// γ(λ) on any scalar, clamped at 0 beyond its zero crossing. Errors if the formula leaves
+    /// its domain (a logarithm or square root of a non-positive number) or γ ≥ 1.
+    pub fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+        check_damage(damage)?;
+        let lmin = self.curve.lambda_min();
+        if lambda <= lmin {
+            return Ok(T::zero());
+        }
+        let active = self.curve.value(lambda) * (1.0 - damage);
+        let start = self.scaled_root(self.g(lmin, 0.0), lmin);
+        let gamma = (-self.scaled_root(self.g(lambda, active), lambda) + start) * self.a;
+        if !gamma.re().is_finite() {
+            return Err(Error::NonFinite {
+                quantity: "explicit activation gamma",
+                value: gamma.re(),
+                context: format!("at lambda = {}, d = {damage}: eq. D:gamma left its domain", lambda.re()),
+            });
+        }
+        if gamma.re() < 0.0 {
+            return Ok(T::zero());
+        }
+        check_activation(gamma.re())?;
+        Ok(gamma)
+    }
+}
+
+impl ActivationLaw for ExplicitLaw {
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        let (gamma, slope, curvature) = second_derivative(|l| self.gamma(l, damage), lambda)?;
+        Ok(LawValue {
+            gamma,
+            slope,
+            curvature,
+        })
+    }
+
+    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+        ExplicitLaw::gamma(self, lambda, damage)
+    }
+}

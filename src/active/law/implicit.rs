@@ -1,0 +1,78 @@
+use super::{check_damage, first_activation_root, fibre_stress_and_slope, implicit_derivatives, ActivationLaw, LawValue, PathPartials};
+use crate::active::curve::ActiveCurve;
+use crate::energy::StrainEnergy;
+use crate::{Error, Result};
+use num_dual::second_derivative;
+
+/// The chapter's activation law (eq. D:eqgammaesplicita): γ(λ) solves
+///
+/// P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ),  P_tot = ∂Ŵ/∂λ along F = diag(λ, λ^-½, λ^-½),
+///
+/// for any energy (for the chapter's energy this is exactly the printed equation). γ = 0 for
+/// λ ≤ λ_min and wherever (1 − d) P_act = 0.
+///
+/// Valid for λ > λ_min up to the stretch where P_tot overflows at the root (≈ 1.9 for the
+/// chapter's parameters). Ill-conditioned just above λ_min: P_tot is nearly flat in γ there, so
+/// γ climbs from ≈ 0 at λ = 0.65 to ≈ 0.30 at λ = 0.70. Cost: a bracket by steps of 0.05 in γ
+/// plus ≈ 5 safeguarded Newton steps (one hyper-dual each), then three hyper-hyper-duals for the
+/// exact derivatives (implicit-function theorem).
+#[derive(Debug, Clone)]
+pub struct ImplicitLaw<E> {
+    energy: E,
+    curve: ActiveCurve,
+}
+
+impl<E: StrainEnergy> ImplicitLaw<E> {
+    /// The law fitted for `energy` to the active curve `curve`.
+    pub fn new(energy: E, curve: ActiveCurve) -> Self {
+        Self { energy, curve }
+    }
+
+    /// The active curve the law reproduces.
+    pub fn curve(&self) -> &ActiveCurve {
+        &self.curve
+    }
+
+    /// Residual of eq. D:eqgammaesplicita in kPa: P_tot(λ, γ) − P_pas(λ) − (1 − d) P_act(λ).
+    pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
+        let (p_tot, _) = fibre_stress_and_slope(&self.energy, lambda, gamma);
+        let (p_pas, _) = fibre_stress_and_slope(&self.energy, lambda, 0.0);
+        p_tot - p_pas - (1.0 - damage) * self.curve.value(lambda)
+    }
+}
+
+impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        check_damage(damage)?;
+        let scale = 1.0 - damage;
+        let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+        if !(lambda > 0.0) || !lambda.is_finite() {
+            return Err(Error::InvalidParameter {
+                name: "fibre stretch",
+                value: lambda,
+                rule: "must be finite and > 0",
+            });
+        }
+        if t <= 0.0 {
+            return Ok(LawValue::default());
+        }
+        let (p_pas, _) = fibre_stress_and_slope(&self.energy, lambda, 0.0);
+        let gamma = first_activation_root(
+            || format!("implicit activation law at lambda = {lambda}, d = {damage}"),
+            |g| {
+                let (p, dp) = fibre_stress_and_slope(&self.energy, lambda, g);
+                (p - p_pas - t, dp)
+            },
+        )?;
+        let at = PathPartials::at(&self.energy, lambda, gamma)?;
+        let passive = PathPartials::at(&self.energy, lambda, 0.0)?;
+        Ok(implicit_derivatives(
+            gamma,
+            at.w_ll - passive.w_ll - t_l,
+            at.w_lg,
+            at.w_lll - passive.w_lll - t_ll,
+            at.w_llg,
+            at.w_lgg,
+        ))
+    }
+}

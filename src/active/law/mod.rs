@@ -1,0 +1,222 @@
+//! Activation laws γ = g(λ_f, d): the activation as a function of the fibre stretch λ_f and the
+//! damage d. Every law returns exact first and second derivatives in λ_f, which the consistent
+//! coupling and the frozen model's exact tangent need.
+//!
+//! | law | definition | cost per evaluation |
+//! |---|---|---|
+//! | [`ConstantLaw`] | γ fixed | nothing |
+//! | [`ImplicitLaw`] | P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (eq. D:eqgammaesplicita) | a bracketed Newton solve |
+//! | [`ExplicitLaw`] | the chapter's closed form (eq. D:gamma) | a formula |
+//! | [`EnergyLaw`] | Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫ P_act (truly hyperelastic fit) | a quadrature and a bracketed Newton solve |
+
+mod constant;
+mod energy_fit;
+mod explicit;
+mod implicit;
+
+pub use constant::ConstantLaw;
+pub use energy_fit::EnergyLaw;
+pub use explicit::ExplicitLaw;
+pub use implicit::ImplicitLaw;
+
+use crate::active::strain::fibre_path_energy;
+use crate::energy::StrainEnergy;
+use crate::roots::newton_bisection;
+use crate::{Error, Result, Scalar};
+use num_dual::{HyperDual64, HyperHyperDual64};
+
+/// γ and its derivatives with respect to the fibre stretch at one point.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LawValue {
+    /// γ [-].
+    pub gamma: f64,
+    /// dγ/dλ_f.
+    pub slope: f64,
+    /// d²γ/dλ_f².
+    pub curvature: f64,
+}
+
+/// A map from fibre stretch (and damage) to activation.
+pub trait ActivationLaw {
+    /// γ, dγ/dλ and d²γ/dλ² at fibre stretch `lambda` [-] and damage `damage` ∈ [0, 1].
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue>;
+
+    /// γ on a generic scalar: the second-order Taylor expansion of [`evaluate`](Self::evaluate)
+    /// about the real part, which carries exact first and second derivatives through any dual
+    /// number of order ≤ 2.
+    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+        let v = self.evaluate(lambda.re(), damage)?;
+        let h = lambda - lambda.re();
+        Ok(h * h * (0.5 * v.curvature) + h * v.slope + v.gamma)
+    }
+}
+
+/// Any of the shipped laws, chosen at run time.
+#[derive(Debug, Clone)]
+pub enum Law<E> {
+    /// No activation: γ ≡ 0, the passive material.
+    Passive,
+    /// γ fixed.
+    Constant(ConstantLaw),
+    /// The chapter's exact fit (eq. D:eqgammaesplicita).
+    Implicit(ImplicitLaw<E>),
+    /// The chapter's closed-form approximation (eq. D:gamma).
+    Explicit(ExplicitLaw),
+    /// The energy-consistent (truly hyperelastic) fit.
+    Energy(EnergyLaw<E>),
+}
+
+impl<E> Law<E> {
+    /// Name used in logs and output files: passive, constant, implicit, explicit, energy.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Law::Passive => "passive",
+            Law::Constant(_) => "constant",
+            Law::Implicit(_) => "implicit",
+            Law::Explicit(_) => "explicit",
+            Law::Energy(_) => "energy",
+        }
+    }
+}
+
+impl<E: StrainEnergy> ActivationLaw for Law<E> {
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        match self {
+            Law::Passive => Ok(LawValue::default()),
+            Law::Constant(l) => l.evaluate(lambda, damage),
+            Law::Implicit(l) => l.evaluate(lambda, damage),
+            Law::Explicit(l) => l.evaluate(lambda, damage),
+            Law::Energy(l) => l.evaluate(lambda, damage),
+        }
+    }
+
+    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+        match self {
+            Law::Explicit(l) => l.gamma(lambda, damage),
+            _ => {
+                let v = self.evaluate(lambda.re(), damage)?;
+                let h = lambda - lambda.re();
+                Ok(h * h * (0.5 * v.curvature) + h * v.slope + v.gamma)
+            }
+        }
+    }
+}
+
+/// Rejects d ∉ [0, 1].
+pub fn check_damage(damage: f64) -> Result<f64> {
+    if (0.0..=1.0).contains(&damage) {
+        Ok(damage)
+    } else {
+        Err(Error::InvalidParameter {
+            name: "damage",
+            value: damage,
+            rule: "must lie in [0, 1]",
+        })
+    }
+}
+
+/// Partial derivatives of Ŵ(λ, γ) along the uniaxial fibre path up to third order
+/// (subscripts: l = λ, g = γ).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PathPartials {
+    pub w: f64,
+    pub w_l: f64,
+    pub w_ll: f64,
+    pub w_lll: f64,
+    pub w_g: f64,
+    pub w_lg: f64,
+    pub w_llg: f64,
+    pub w_gg: f64,
+    pub w_lgg: f64,
+}
+
+impl PathPartials {
+    /// Three hyper-hyper-dual evaluations of Ŵ(λ, γ).
+    pub fn at<E: StrainEnergy>(energy: &E, lambda: f64, gamma: f64) -> Result<Self> {
+        let hhd = HyperHyperDual64::from_re;
+        let l3 = hhd(lambda).derivative1().derivative2().derivative3();
+        let a = fibre_path_energy(energy, l3, hhd(gamma));
+        let b = fibre_path_energy(energy, hhd(lambda).derivative1().derivative2(), hhd(gamma).derivative3());
+        let c = fibre_path_energy(energy, hhd(lambda).derivative1(), hhd(gamma).derivative2().derivative3());
+        let p = Self {
+            w: a.re,
+            w_l: a.eps1,
+            w_ll: a.eps1eps2,
+            w_lll: a.eps1eps2eps3,
+            w_g: b.eps3,
+            w_lg: b.eps1eps3,
+            w_llg: b.eps1eps2eps3,
+            w_gg: c.eps2eps3,
+            w_lgg: c.eps1eps2eps3,
+        };
+        let all = [p.w, p.w_l, p.w_ll, p.w_lll, p.w_g, p.w_lg, p.w_llg, p.w_gg, p.w_lgg];
+        if all.iter().all(|x| x.is_finite()) {
+            Ok(p)
+        } else {
+            Err(Error::NonFinite {
+                quantity: "derivatives of the fibre-path energy",
+                value: all.iter().copied().find(|x| !x.is_finite()).unwrap_or(f64::NAN),
+                context: format!("at lambda = {lambda}, gamma = {gamma} (exp overflow?)"),
+            })
+        }
+    }
+}
+
+/// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path (eq. D:Ptotcalcolato), by one hyper-dual.
+pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(energy: &E, lambda: f64, gamma: f64) -> (f64, f64) {
+    let w = fibre_path_energy(
+        energy,
+        HyperDual64::from_re(lambda).derivative1(),
+        HyperDual64::from_re(gamma).derivative2(),
+    );
+    (w.eps1, w.eps1eps2)
+}
+
+/// The smallest root γ ∈ (0, 1) of `residual` with residual(0) < 0, found by stepping up in
+/// steps of 0.05 until the sign changes (a non-finite value — exp overflow — counts as "past the
+/// root" and halves the step), then safeguarded Newton to 1e-15 in γ.
+pub(crate) fn first_activation_root(
+    equation: impl Fn() -> String,
+    residual: impl Fn(f64) -> (f64, f64),
+) -> Result<f64> {
+    let (mut lo, mut hi) = (0.0, f64::NAN);
+    let mut step = 0.05;
+    while step > 1e-12 {
+        let trial = lo + step;
+        if trial >= 1.0 {
+            step *= 0.5;
+            continue;
+        }
+        let (f, _) = residual(trial);
+        if !f.is_finite() {
+            step *= 0.5;
+        } else if f > 0.0 {
+            hi = trial;
+            break;
+        } else {
+            lo = trial;
+        }
+    }
+    if hi.is_nan() {
+        return Err(Error::NoSolution {
+            equation: equation(),
+            reason: format!("no sign change of the residual for gamma in [0, {lo}] before exp overflow or gamma -> 1"),
+        });
+    }
+    newton_bisection(&residual, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
+        equation: equation(),
+        reason,
+    })
+}
+
+/// Derivatives of the root γ(λ) of F(λ, γ) = 0 by the implicit-function theorem:
+/// g′ = −F_λ/F_γ, g″ = −(F_λλ + 2 F_λγ g′ + F_γγ g′²)/F_γ.
+pub(crate) fn implicit_derivatives(gamma: f64, f_l: f64, f_g: f64, f_ll: f64, f_lg: f64, f_gg: f64) -> LawValue {
+    let slope = -f_l / f_g;
+    let curvature = -(f_ll + 2.0 * f_lg * slope + f_gg * slope * slope) / f_g;
+    LawValue {
+        gamma,
+        slope,
+        curvature,
+    }
+}

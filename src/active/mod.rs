@@ -1,0 +1,12 @@
+//! Activation: the active-strain map, the active curve, the activation laws γ = g(λ_f, d) and the
+//! coupling (frozen or consistent) of a law to the energy.
+
+pub mod coupling;
+pub mod curve;
+pub mod law;
+pub mod strain;
+
+pub use coupling::{Coupling, FrozenTangent};
+pub use curve::ActiveCurve;
+pub use law::{ActivationLaw, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue};
+pub use strain::{active_energy, check_activation, fibre_path_energy};

@@ -1,0 +1,62 @@
+use super::{open_unit, positive, Invariants, StrainEnergy};
+use crate::Result;
+use crate::Scalar;
+
+/// The chapter's passive energy (Giantesio & Musesti, eq. D:Wpassiva), polyconvex and coercive:
+///
+/// W(C) = μ/4 { [e^{α(I_p − 1)} − 1]/α + K_p − 1 },
+/// I_p = (w0/3) tr C + (1 − w0) C:M,  K_p = (w0/3) tr C⁻¹ + (1 − w0) C⁻¹:M.
+///
+/// Defaults: Table D:parpass, μ = 0.1599 kPa, α = 19.35, w0 = 0.7335.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GiantesioMusesti {
+    mu: f64,
+    alpha: f64,
+    w0: f64,
+}
+
+impl GiantesioMusesti {
+    /// μ [kPa] > 0, α [-] > 0, w0 [-] ∈ (0, 1).
+    pub fn new(mu: f64, alpha: f64, w0: f64) -> Result<Self> {
+        Ok(Self {
+            mu: positive("mu", mu)?,
+            alpha: positive("alpha", alpha)?,
+            w0: open_unit("w0", w0)?,
+        })
+    }
+
+    /// The chapter's parameters (Table D:parpass).
+    pub fn paper() -> Self {
+        Self {
+            mu: 0.1599,
+            alpha: 19.35,
+            w0: 0.7335,
+        }
+    }
+
+    /// Shear-like modulus μ [kPa].
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+    /// Exponential stiffening α [-].
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+    /// Isotropic weight w0 [-].
+    pub fn w0(&self) -> f64 {
+        self.w0
+    }
+}
+
+impl StrainEnergy for GiantesioMusesti {
+    fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
+        let (w0, a) = (self.w0, self.alpha);
+        let i_p = c.tr_c * (w0 / 3.0) + c.c_m * (1.0 - w0);
+        let k_p = c.tr_c_inv * (w0 / 3.0) + c.c_inv_m * (1.0 - w0);
+        ((i_p - 1.0) * a).exp_m1() * (self.mu / (4.0 * a)) + (k_p - 1.0) * (self.mu / 4.0)
+    }
+
+    fn name(&self) -> &str {
+        "giantesio-musesti"
+    }
+}

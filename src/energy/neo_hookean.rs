@@ -1,0 +1,34 @@
+use super::{positive, Invariants, StrainEnergy};
+use crate::Result;
+use crate::Scalar;
+
+/// Incompressible neo-Hookean reference: W(C) = μ/2 (tr C − 3). Isotropic; the fibre direction
+/// enters only through active strain.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NeoHookean {
+    mu: f64,
+}
+
+impl NeoHookean {
+    /// Shear modulus μ [kPa] > 0.
+    pub fn new(mu: f64) -> Result<Self> {
+        Ok(Self {
+            mu: positive("mu", mu)?,
+        })
+    }
+
+    /// Shear modulus μ [kPa].
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+}
+
+impl StrainEnergy for NeoHookean {
+    fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
+        (c.tr_c - 3.0) * (self.mu / 2.0)
+    }
+
+    fn name(&self) -> &str {
+        "neo-hookean"
+    }
+}

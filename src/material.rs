@@ -1,0 +1,106 @@
+//! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
+
+use crate::active::coupling::{couple, Coupling};
+use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
+use crate::energy::StrainEnergy;
+use crate::invariants::{Entries, Kinematics};
+use crate::response::{invariant_derivatives, Order};
+use crate::Result;
+use nalgebra::{SMatrix, SVector};
+
+/// Active skeletal muscle: Ŵ(F, γ) = (1 − γ) W(C_e) with γ = g(λ_f, d), coupled frozen or
+/// consistently (see [`crate::active::coupling`]).
+#[derive(Debug, Clone)]
+pub struct Muscle<E> {
+    energy: E,
+    law: Law<E>,
+    damage: f64,
+    coupling: Coupling,
+}
+
+/// A muscle's answer at one point over the entries of F in use.
+#[derive(Debug, Clone, Copy)]
+pub struct MuscleResponse<const N: usize> {
+    /// Activation γ = g(λ_f, d) [-].
+    pub gamma: f64,
+    /// Fibre stretch λ_f = sqrt(C:M) [-].
+    pub fibre_stretch: f64,
+    /// Ŵ(F, γ) [kPa].
+    pub energy: f64,
+    /// First Piola stress without the pressure term [kPa] (orders ≥ [`Order::Stress`]).
+    pub stress: Option<SVector<f64, N>>,
+    /// Its derivative in F [kPa] ([`Order::Tangent`]); non-symmetric for the exact frozen model.
+    pub tangent: Option<SMatrix<f64, N, N>>,
+}
+
+impl<E: StrainEnergy> Muscle<E> {
+    /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling.
+    pub fn new(energy: E, law: Law<E>, damage: f64, coupling: Coupling) -> Result<Self> {
+        Ok(Self {
+            energy,
+            law,
+            damage: check_damage(damage)?,
+            coupling,
+        })
+    }
+
+    /// The passive material (γ ≡ 0).
+    pub fn passive(energy: E) -> Self {
+        Self {
+            energy,
+            law: Law::Passive,
+            damage: 0.0,
+            coupling: Coupling::Consistent,
+        }
+    }
+
+    /// The passive energy W.
+    pub fn energy(&self) -> &E {
+        &self.energy
+    }
+    /// The activation law.
+    pub fn law(&self) -> &Law<E> {
+        &self.law
+    }
+    /// Damage d [-].
+    pub fn damage(&self) -> f64 {
+        self.damage
+    }
+    /// The coupling.
+    pub fn coupling(&self) -> Coupling {
+        self.coupling
+    }
+
+    /// γ with its λ-derivatives at fibre stretch `lambda`.
+    pub fn activation(&self, lambda: f64) -> Result<LawValue> {
+        self.law.evaluate(lambda, self.damage)
+    }
+
+    /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
+    pub fn respond<const N: usize>(
+        &self,
+        kinematics: &Kinematics,
+        order: Order,
+        entries: &Entries<N>,
+    ) -> Result<MuscleResponse<N>> {
+        let fibre_stretch = kinematics.fibre_stretch();
+        let law = self.activation(fibre_stretch)?;
+        let j = SVector::from(kinematics.invariants);
+        let d = invariant_derivatives(&self.energy, &j, law.gamma, order)?;
+        let mut out = MuscleResponse {
+            gamma: law.gamma,
+            fibre_stretch,
+            energy: d.energy,
+            stress: None,
+            tangent: None,
+        };
+        if order == Order::Energy {
+            return Ok(out);
+        }
+        let (gradient, hessian) = couple(self.coupling, &d, &law, fibre_stretch);
+        let dj = kinematics.gradients(entries);
+        out.stress = Some(dj.transpose() * gradient);
+        out.tangent = hessian.map(|k| dj.transpose() * k * dj + kinematics.curvature(&gradient, entries));
+        Ok(out)
+    }
+}

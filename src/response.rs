@@ -1,0 +1,173 @@
+//! The single place that seeds dual numbers. Callers say what they need ([`Order`]) and pay for
+//! nothing else: the energy alone is an `f64` evaluation, the stress a 5-component gradient, the
+//! tangent a 5×5 Hessian — always over the five invariants of C_e, never over the entries of F.
+//!
+//! Chain (with Ie = A(γ) j the active-strain map of [`crate::active::strain`], c = 1 − γ, g and
+//! H the gradient and Hessian of the user's W at Ie):
+//!
+//! - Ŵ = c W, Ŵ_j = c Aᵀ g, Ŵ_jj = c Aᵀ H A,
+//! - Ŵ_γ = −W + c g·Ie_γ, Ŵ_jγ = −Aᵀ g + c A_γᵀ g + c Aᵀ H Ie_γ,
+//! - Ŵ_γγ = −2 g·Ie_γ + c (Ie_γᵀ H Ie_γ + g·Ie_γγ),
+//!
+//! then P = Dᵀ Ŵ_j, ∂P/∂F = Dᵀ Ŵ_jj D + Σ Ŵ_j ∂²j/∂F², dP/dγ = Dᵀ Ŵ_jγ
+//! (D = ∂j/∂F, see [`crate::invariants`]).
+
+use crate::active::strain::{check_activation, StrainMap};
+use crate::energy::{Invariants, StrainEnergy};
+use crate::invariants::{Entries, Kinematics};
+use crate::{Error, Result};
+use nalgebra::{SMatrix, SVector};
+use num_dual::{gradient, hessian, DualSVec64, Dual2SVec64};
+
+/// What a caller needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Order {
+    /// Ŵ only.
+    Energy,
+    /// Ŵ, P and ∂Ŵ/∂γ.
+    Stress,
+    /// Ŵ, P, ∂Ŵ/∂γ, ∂P/∂F, dP/dγ and ∂²Ŵ/∂γ².
+    Tangent,
+}
+
+/// Second derivatives of Ŵ(j, γ) in invariant space.
+#[derive(Debug, Clone, Copy)]
+pub struct SecondDerivatives {
+    /// ∂²Ŵ/∂j∂j.
+    pub d_jj: SMatrix<f64, 5, 5>,
+    /// ∂²Ŵ/∂j∂γ.
+    pub d_jgamma: SVector<f64, 5>,
+    /// ∂²Ŵ/∂γ².
+    pub d_gammagamma: f64,
+}
+
+/// Derivatives of Ŵ(j, γ) = (1 − γ) W(A(γ) j) with respect to the invariants j of C and γ.
+#[derive(Debug, Clone, Copy)]
+pub struct InvariantDerivatives {
+    /// Ŵ [kPa].
+    pub energy: f64,
+    /// ∂Ŵ/∂j (zero for [`Order::Energy`]).
+    pub d_j: SVector<f64, 5>,
+    /// ∂Ŵ/∂γ (zero for [`Order::Energy`]).
+    pub d_gamma: f64,
+    /// Present for [`Order::Tangent`].
+    pub second: Option<SecondDerivatives>,
+}
+
+fn invariants_of<T: Copy>(v: &SVector<T, 5>) -> Invariants<T> {
+    Invariants::from_array([v[0], v[1], v[2], v[3], v[4]])
+}
+
+fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f64) -> Error {
+    Error::NonFinite {
+        quantity,
+        value,
+        context: format!(
+            "at invariants [tr C, C:M, tr C^-1, C^-1:M, det C] = [{:.6e}, {:.6e}, {:.6e}, {:.6e}, {:.6e}], gamma = {gamma} (exp overflow?)",
+            j[0], j[1], j[2], j[3], j[4]
+        ),
+    }
+}
+
+/// Derivatives of the active-strain energy in invariant space, to the order asked.
+pub fn invariant_derivatives<E: StrainEnergy>(
+    energy: &E,
+    j: &SVector<f64, 5>,
+    gamma: f64,
+    order: Order,
+) -> Result<InvariantDerivatives> {
+    check_activation(gamma)?;
+    let map = StrainMap::new(gamma);
+    let ie = map.apply(j);
+    let c = map.c;
+    let w_of = |v: &SVector<f64, 5>| energy.energy(&invariants_of(v));
+    let (w, g, h) = match order {
+        Order::Energy => (w_of(&ie), None, None),
+        Order::Stress => {
+            let (w, g) = gradient(|v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)), &ie);
+            (w, Some(g), None)
+        }
+        Order::Tangent => {
+            let (w, g, h) = hessian(|v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)), &ie);
+            (w, Some(g), Some(h))
+        }
+    };
+    if !w.is_finite() {
+        return Err(non_finite("strain energy", w, j, gamma));
+    }
+    let mut out = InvariantDerivatives {
+        energy: c * w,
+        d_j: SVector::zeros(),
+        d_gamma: 0.0,
+        second: None,
+    };
+    let Some(g) = g else { return Ok(out) };
+    if let Some(bad) = g.iter().find(|x| !x.is_finite()) {
+        return Err(non_finite("energy gradient", *bad, j, gamma));
+    }
+    let ie_gamma = map.a_gamma * j;
+    out.d_j = map.a.transpose() * g * c;
+    out.d_gamma = -w + c * g.dot(&ie_gamma);
+    if let Some(h) = h {
+        if let Some(bad) = h.iter().find(|x| !x.is_finite()) {
+            return Err(non_finite("energy Hessian", *bad, j, gamma));
+        }
+        let ha = h * map.a;
+        let h_ie_gamma = h * ie_gamma;
+        out.second = Some(SecondDerivatives {
+            d_jj: map.a.transpose() * ha * c,
+            d_jgamma: -map.a.transpose() * g + (map.a_gamma.transpose() * g + map.a.transpose() * h_ie_gamma) * c,
+            d_gammagamma: -2.0 * g.dot(&ie_gamma) + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&(map.a_gamma2 * j))),
+        });
+    }
+    Ok(out)
+}
+
+/// Response of the active-strain energy at a given γ, over the entries of F in `entries`.
+#[derive(Debug, Clone, Copy)]
+pub struct Response<const N: usize> {
+    /// Ŵ(F, γ) [kPa].
+    pub energy: f64,
+    /// ∂Ŵ/∂γ [kPa] (from [`Order::Stress`]).
+    pub denergy_dgamma: Option<f64>,
+    /// P = ∂Ŵ/∂F [kPa], without the pressure term (from [`Order::Stress`]).
+    pub stress: Option<SVector<f64, N>>,
+    /// ∂P/∂F [kPa] (from [`Order::Tangent`]).
+    pub tangent: Option<SMatrix<f64, N, N>>,
+    /// dP/dγ = ∂²Ŵ/∂F∂γ [kPa] (from [`Order::Tangent`]).
+    pub dstress_dgamma: Option<SVector<f64, N>>,
+    /// ∂²Ŵ/∂γ² [kPa] (from [`Order::Tangent`]).
+    pub d2energy_dgamma2: Option<f64>,
+}
+
+/// Ŵ(F, γ) and, to the order asked, its derivatives in F and γ (γ held fixed: no law).
+pub fn active_response<E: StrainEnergy, const N: usize>(
+    energy: &E,
+    kinematics: &Kinematics,
+    gamma: f64,
+    order: Order,
+    entries: &Entries<N>,
+) -> Result<Response<N>> {
+    let j = SVector::from(kinematics.invariants);
+    let d = invariant_derivatives(energy, &j, gamma, order)?;
+    let mut out = Response {
+        energy: d.energy,
+        denergy_dgamma: None,
+        stress: None,
+        tangent: None,
+        dstress_dgamma: None,
+        d2energy_dgamma2: None,
+    };
+    if order == Order::Energy {
+        return Ok(out);
+    }
+    let grad = kinematics.gradients(entries);
+    out.denergy_dgamma = Some(d.d_gamma);
+    out.stress = Some(grad.transpose() * d.d_j);
+    if let Some(s) = d.second {
+        out.tangent = Some(grad.transpose() * s.d_jj * grad + kinematics.curvature(&d.d_j, entries));
+        out.dstress_dgamma = Some(grad.transpose() * s.d_jgamma);
+        out.d2energy_dgamma2 = Some(s.d_gammagamma);
+    }
+    Ok(out)
+}

@@ -1,0 +1,118 @@
+//! Homogeneous (0D) tests of an incompressible muscle: uniaxial tension along and across the fibres
+//! with traction-free lateral faces. Fibres along e₁.
+//!
+//! - Along: F = diag(λ, λ^-½, λ^-½); the pressure follows from P₂₂ = 0, p = F₂₂ ∂Ψ/∂F₂₂, and the
+//!   nominal stress is P₁₁ = ∂Ψ/∂F₁₁ − p/λ. With γ = g(λ) this is P_tot(λ, g(λ)) (frozen) or
+//!   dΨ/dλ (consistent).
+//! - Across (stretch along e₂): F = diag(a, λ, 1/(aλ)) with the fibre stretch a unknown; both
+//!   lateral faces traction free: a ∂Ψ/∂F₁₁ = F₃₃ ∂Ψ/∂F₃₃ (= p), solved for a by safeguarded Newton
+//!   with the exact tangent. Nominal stress P₂₂ = ∂Ψ/∂F₂₂ − p/λ.
+
+use crate::energy::StrainEnergy;
+use crate::invariants::{Kinematics, FULL};
+use crate::material::Muscle;
+use crate::response::Order;
+use crate::roots::newton_bisection;
+use crate::{Error, Result};
+use nalgebra::{Matrix3, Vector3};
+
+/// One point of a uniaxial test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UniaxialPoint {
+    /// Applied stretch λ [-].
+    pub lambda: f64,
+    /// Nominal stress along the stretch [kPa].
+    pub stress: f64,
+    /// Activation γ at the point [-].
+    pub gamma: f64,
+    /// Fibre stretch λ_f [-] (= λ along the fibres).
+    pub fibre_stretch: f64,
+    /// The two lateral stretches [-] (along the fibres: both λ^-½; across: the fibre stretch
+    /// and the other lateral stretch).
+    pub lateral: [f64; 2],
+}
+
+fn fibre() -> Vector3<f64> {
+    Vector3::new(1.0, 0.0, 0.0)
+}
+
+fn check_stretch(lambda: f64) -> Result<f64> {
+    if lambda.is_finite() && lambda > 0.0 {
+        Ok(lambda)
+    } else {
+        Err(Error::InvalidParameter {
+            name: "lambda",
+            value: lambda,
+            rule: "stretch must be finite and > 0",
+        })
+    }
+}
+
+/// Uniaxial tension along the fibres.
+pub fn along_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
+    check_stretch(lambda)?;
+    let t = lambda.sqrt().recip();
+    let kin = Kinematics::new(&Matrix3::from_diagonal(&Vector3::new(lambda, t, t)), &fibre())?;
+    let r = muscle.respond(&kin, Order::Stress, &FULL)?;
+    let p = r.stress.unwrap_or_default();
+    let pressure = p[4] * t;
+    Ok(UniaxialPoint {
+        lambda,
+        stress: p[0] - pressure / lambda,
+        gamma: r.gamma,
+        fibre_stretch: r.fibre_stretch,
+        lateral: [t, t],
+    })
+}
+
+/// Uniaxial tension across the fibres (stretch along e₂, fibres along e₁).
+pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
+    check_stretch(lambda)?;
+    let state = |a: f64| -> Result<(Kinematics, f64)> {
+        let f33 = 1.0 / (a * lambda);
+        Ok((Kinematics::new(&Matrix3::from_diagonal(&Vector3::new(a, lambda, f33)), &fibre())?, f33))
+    };
+    // r(a) = a P₁₁ − F₃₃ P₃₃ and its exact derivative.
+    let residual = |a: f64| -> (f64, f64) {
+        let Ok((kin, f33)) = state(a) else { return (f64::NAN, f64::NAN) };
+        let Ok(r) = muscle.respond(&kin, Order::Tangent, &FULL) else { return (f64::NAN, f64::NAN) };
+        let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
+        let df33 = -f33 / a;
+        let dp11 = k[(0, 0)] + k[(0, 8)] * df33;
+        let dp33 = k[(8, 0)] + k[(8, 8)] * df33;
+        (a * p[0] - f33 * p[8], p[0] + a * dp11 - df33 * p[8] - f33 * dp33)
+    };
+    let guess = lambda.sqrt().recip();
+    let (mut lo, mut hi) = (guess, guess);
+    let mut expanded = 0;
+    while !(residual(lo).0 < 0.0) || !(residual(hi).0 > 0.0) {
+        if !(residual(lo).0 < 0.0) {
+            lo *= 0.8;
+        }
+        if !(residual(hi).0 > 0.0) {
+            hi *= 1.25;
+        }
+        expanded += 1;
+        if expanded > 60 {
+            return Err(Error::NoSolution {
+                equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
+                reason: format!("no sign change of a P11 - F33 P33 for fibre stretch in [{lo}, {hi}]"),
+            });
+        }
+    }
+    let a = newton_bisection(residual, lo, hi, 1e-15 * guess).map_err(|reason| Error::NoSolution {
+        equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
+        reason,
+    })?;
+    let (kin, f33) = state(a)?;
+    let r = muscle.respond(&kin, Order::Stress, &FULL)?;
+    let p = r.stress.unwrap_or_default();
+    let pressure = p[8] * f33;
+    Ok(UniaxialPoint {
+        lambda,
+        stress: p[4] - pressure / lambda,
+        gamma: r.gamma,
+        fibre_stretch: r.fibre_stretch,
+        lateral: [a, f33],
+    })
+}
