@@ -1,0 +1,135 @@
+//! Degrees of freedom and Dirichlet conditions.
+//!
+//! Global numbering: free displacement dofs `[0, n_free_u)`, free pressure dofs
+//! `[n_free_u, n_free)`, prescribed dofs `[n_free, n_total)`. Prescribed dofs never enter the
+//! linear system (they are eliminated, not penalised); their values are x_c = (λ − 1) d_c, with
+//! d_c = L for u_z on z = L and 0 otherwise.
+
+use super::element::{N_DOF, N_U};
+use super::mesh::{Boundary, Mesh};
+
+/// Which displacement components the bases hold.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Bases {
+    /// u_r free on both bases: the exact solution is homogeneous uniaxial stretch.
+    Sliding,
+    /// u_r = 0 on both bases.
+    Clamped,
+}
+
+/// The dof numbering of a mesh with its boundary conditions.
+#[derive(Debug, Clone)]
+pub struct DofMap {
+    /// Global dof of (u_r, u_z) at each node.
+    pub node_u: Vec<[u32; 2]>,
+    /// Global pressure dof at each node (`u32::MAX` at nodes without one).
+    pub node_p: Vec<u32>,
+    /// Global dofs of each element in local order.
+    pub element_dofs: Vec<[u32; N_DOF]>,
+    /// Number of free displacement dofs.
+    pub n_free_u: usize,
+    /// Number of free dofs (displacement and pressure).
+    pub n_free: usize,
+    /// Number of dofs.
+    pub n_total: usize,
+    /// dx/dλ on the prescribed dofs (index `k` ↔ global dof `n_free + k`).
+    pub prescribed_rate: Vec<f64>,
+    /// Global dofs of u_z on the moving base z = L (for the reaction).
+    pub top_axial: Vec<u32>,
+}
+
+impl DofMap {
+    /// Numbers the dofs of `mesh` with the conditions of `bases`.
+    pub fn new(mesh: &Mesh, bases: Bases) -> Self {
+        let nn = mesh.n_nodes();
+        let mut fixed = vec![[false; 2]; nn];
+        let mut rate = vec![[0.0f64; 2]; nn];
+        for &a in mesh.boundary(Boundary::Axis) {
+            fixed[a as usize][0] = true;
+        }
+        for &a in mesh.boundary(Boundary::Bottom) {
+            fixed[a as usize][1] = true;
+            if bases == Bases::Clamped {
+                fixed[a as usize][0] = true;
+            }
+        }
+        for &a in mesh.boundary(Boundary::Top) {
+            fixed[a as usize][1] = true;
+            rate[a as usize][1] = mesh.length;
+            if bases == Bases::Clamped {
+                fixed[a as usize][0] = true;
+            }
+        }
+        let mut has_p = vec![false; nn];
+        for e in &mesh.elements {
+            for &c in &e[..4] {
+                has_p[c as usize] = true;
+            }
+        }
+        let mut node_u = vec![[u32::MAX; 2]; nn];
+        let mut node_p = vec![u32::MAX; nn];
+        let mut next = 0u32;
+        for a in 0..nn {
+            for c in 0..2 {
+                if !fixed[a][c] {
+                    node_u[a][c] = next;
+                    next += 1;
+                }
+            }
+        }
+        let n_free_u = next as usize;
+        for a in 0..nn {
+            if has_p[a] {
+                node_p[a] = next;
+                next += 1;
+            }
+        }
+        let n_free = next as usize;
+        let mut prescribed_rate = Vec::new();
+        let mut top_axial = Vec::new();
+        for a in 0..nn {
+            for c in 0..2 {
+                if fixed[a][c] {
+                    node_u[a][c] = next;
+                    next += 1;
+                    prescribed_rate.push(rate[a][c]);
+                    if c == 1 && rate[a][c] != 0.0 {
+                        top_axial.push(node_u[a][c]);
+                    }
+                }
+            }
+        }
+        let element_dofs = mesh
+            .elements
+            .iter()
+            .map(|e| {
+                let mut d = [0u32; N_DOF];
+                for (a, &node) in e.iter().enumerate() {
+                    d[2 * a] = node_u[node as usize][0];
+                    d[2 * a + 1] = node_u[node as usize][1];
+                }
+                for (c, &node) in e[..4].iter().enumerate() {
+                    d[N_U + c] = node_p[node as usize];
+                }
+                d
+            })
+            .collect();
+        Self {
+            node_u,
+            node_p,
+            element_dofs,
+            n_free_u,
+            n_free,
+            n_total: next as usize,
+            prescribed_rate,
+            top_axial,
+        }
+    }
+
+    /// Sets the prescribed dofs of `x` for the stretch λ.
+    pub fn apply_stretch(&self, x: &mut [f64], stretch: f64) {
+        for (xc, d) in x[self.n_free..].iter_mut().zip(&self.prescribed_rate) {
+            *xc = (stretch - 1.0) * d;
+        }
+    }
+}

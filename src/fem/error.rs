@@ -1,0 +1,81 @@
+//! Errors of the finite-element solver: what failed, at which stretch, and why.
+
+use thiserror::Error;
+
+/// Why one Newton solve (one load step) was rejected. A rejected step is cut, never a crash;
+/// when cutting cannot help any more, the last cause is reported in [`FemError::TargetNotReached`].
+#[derive(Debug, Clone, Error, PartialEq)]
+pub enum StepFailure {
+    /// The material refused a trial state (non-finite response, det F ≤ 0, γ out of range, …).
+    #[error("material error at a trial state: {0}")]
+    Material(crate::Error),
+    /// Newton did not meet both convergence criteria within the allowed iterations.
+    #[error("no convergence in {iterations} Newton iterations (scaled residual {residual:.3e})")]
+    MaxIterations {
+        /// Iterations performed.
+        iterations: usize,
+        /// Last scaled residual norm.
+        residual: f64,
+    },
+    /// The backtracking line search found no step length that decreases the residual.
+    #[error("line search failed: no decrease of the scaled residual {residual:.3e} along the Newton direction")]
+    LineSearch {
+        /// Scaled residual at the start of the search.
+        residual: f64,
+    },
+    /// The LU factorisation of the tangent failed or produced non-finite numbers.
+    #[error("singular tangent: {detail}")]
+    SingularTangent {
+        /// What the linear solver reported.
+        detail: String,
+    },
+}
+
+/// Every fallible operation of the FE solver returns this error.
+#[derive(Debug, Error)]
+pub enum FemError {
+    /// An input (mesh size, geometry, stretch, option) is outside its admissible range.
+    #[error("invalid input {name} = {value}: {rule}")]
+    InvalidInput {
+        /// Name of the input as in the API.
+        name: &'static str,
+        /// The offending value, printed.
+        value: String,
+        /// The rule it breaks.
+        rule: &'static str,
+    },
+    /// A constitutive-core error outside the Newton loop (e.g. while writing output fields).
+    #[error(transparent)]
+    Material(#[from] crate::Error),
+    /// The sparse linear solver failed outside a Newton step (symbolic analysis, allocation).
+    #[error("linear solver: {0}")]
+    LinearSolver(String),
+    /// A target stretch could not be reached even with the smallest allowed load step.
+    #[error(
+        "target stretch {target} not reached: largest converged stretch {reached}; \
+         last attempted stretch {attempted} with step {step:.3e} failed: {cause}"
+    )]
+    TargetNotReached {
+        /// The requested stretch.
+        target: f64,
+        /// The largest (in the direction of loading) stretch at which Newton converged.
+        reached: f64,
+        /// The stretch of the last rejected trial step.
+        attempted: f64,
+        /// The load-step size of that trial (|Δλ|), at or below the minimum step.
+        step: f64,
+        /// Why that last trial was rejected.
+        cause: StepFailure,
+    },
+    /// Writing output files failed.
+    #[error("I/O error writing {path}: {source}")]
+    Io {
+        /// The file being written.
+        path: String,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+}
+
+/// Result alias of the FE solver.
+pub type FemResult<T> = std::result::Result<T, FemError>;

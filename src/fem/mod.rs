@@ -1,0 +1,31 @@
+//! Axisymmetric mixed displacement–pressure finite elements for the muscle cylinder.
+//!
+//! A cylinder of radius R and length L, fibres along z, is meshed in its meridian half plane
+//! (r, z) ∈ [0, R] × [0, L] with Taylor–Hood Q2/Q1 quadrilaterals. The solver minimises
+//! (finds the saddle point of) Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV with
+//!
+//! F = [[1 + ∂u_r/∂r, 0, ∂u_r/∂z], [0, 1 + u_r/r, 0], [∂u_z/∂r, 0, 1 + ∂u_z/∂z]],
+//! J = F_θθ (F_rr F_zz − F_rz F_zr),  dV = 2π r dr dz,
+//!
+//! for any constitutive model behind [`AxisymmetricMaterial`]. Boundary conditions: u_r = 0 on
+//! the axis, u_z = 0 at z = 0, u_z = (λ − 1) L at z = L, lateral surface traction free, bases
+//! [`Bases::Sliding`] or [`Bases::Clamped`]. See [`solver::AxisymmetricSolver`].
+
+pub mod assembly;
+pub mod dofs;
+pub mod element;
+pub mod error;
+pub mod linear;
+pub mod material;
+pub mod mesh;
+pub mod solver;
+pub mod vtk;
+
+pub use dofs::Bases;
+pub use error::{FemError, FemResult, StepFailure};
+pub use material::{AxiF, AxisymmetricMaterial, NeoHookean};
+pub use mesh::{Boundary, Mesh};
+pub use solver::{
+    AxisymmetricSolver, IterationRecord, QuadraturePoint, SolverOptions, State, StepRecord,
+    StretchResult, Sweep, Timings, VtkOutput,
+};

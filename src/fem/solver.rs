@@ -1,0 +1,820 @@
+//! Newton's method with load stepping for the axisymmetric mixed problem.
+//!
+//! Load path: from λ = 1 outwards in both directions (each direction starts from the λ = 1
+//! state), landing exactly on every requested stretch. Each load step uses a tangent predictor
+//! (x ← x_k + Δλ dx/dλ with K dx/dλ = −K_fc d_c at the last converged state), then Newton with
+//! backtracking line search on a scaled residual norm. A rejected step (no convergence, material
+//! error at a trial state, failed line search, singular tangent) is halved; after easy steps the
+//! step grows back. Below the minimum step the sweep stops with [`FemError::TargetNotReached`].
+//!
+//! Convergence (both required), with σ the largest stress magnitude at the quadrature points
+//! (plus a small floor), A = πR², V = πR²L:
+//!
+//! ‖R_u‖₂ / (σ A) ≤ tol   and   ‖R_p‖₂ / V ≤ tol   (residual),
+//! ‖Δu‖_∞ / L ≤ tol   and   ‖Δp‖_∞ / σ ≤ tol   (last Newton increment).
+
+use super::assembly::Assembler;
+use super::dofs::{Bases, DofMap};
+use super::element::{deformation, geometry, jacobian, jacobian_gradient, N_P, N_QP, N_U};
+use super::error::{FemError, FemResult, StepFailure};
+use super::linear::SparseLu;
+use super::material::{AxiF, AxisymmetricMaterial};
+use super::mesh::Mesh;
+use nalgebra::SVector;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// Where and when to write VTK fields during a sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VtkOutput {
+    /// Output directory (created if missing).
+    pub directory: PathBuf,
+    /// Stretches (among the sweep targets) at which to write `lambda_<λ>.vtu`.
+    pub stretches: Vec<f64>,
+}
+
+/// Tolerances and load-stepping controls.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolverOptions {
+    /// Relative tolerance on the scaled residual and increment (see module docs).
+    pub tolerance: f64,
+    /// Stress floor added to σ in the force scale [kPa] (guards the stress-free state).
+    pub stress_floor: f64,
+    /// Newton iterations per load step before the step is cut.
+    pub max_iterations: usize,
+    /// First load step |Δλ|.
+    pub initial_step: f64,
+    /// Largest load step |Δλ|.
+    pub max_step: f64,
+    /// Smallest load step |Δλ| before giving up.
+    pub min_step: f64,
+    /// A step that converged in at most this many iterations counts as easy; two easy steps in a row double the step.
+    pub easy_iterations: usize,
+    /// Backtracking halvings in the line search (0: full Newton steps only).
+    pub max_backtracks: usize,
+    /// Optional VTK output.
+    pub vtk: Option<VtkOutput>,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            stress_floor: 1e-6,
+            max_iterations: 25,
+            initial_step: 0.05,
+            max_step: 0.1,
+            min_step: 1e-4,
+            easy_iterations: 5,
+            max_backtracks: 8,
+            vtk: None,
+        }
+    }
+}
+
+/// One Newton iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IterationRecord {
+    /// Scaled residual norm after the iteration (max of the displacement and pressure parts).
+    pub residual: f64,
+    /// Scaled increment norm of the iteration (step length included).
+    pub increment: f64,
+    /// Line-search step length.
+    pub step_length: f64,
+}
+
+/// One attempted load step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// Stretch the step started from.
+    pub from: f64,
+    /// Stretch the step aimed at.
+    pub to: f64,
+    /// Scaled residual of the predictor.
+    pub initial_residual: f64,
+    /// Newton iterations.
+    pub iterations: Vec<IterationRecord>,
+    /// `None` if converged, else why it was rejected.
+    pub failure: Option<StepFailure>,
+}
+
+/// A discrete solution: all dofs (numbering of [`DofMap`]) at a stretch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Applied stretch λ.
+    pub stretch: f64,
+    /// Dof values.
+    pub x: Vec<f64>,
+}
+
+/// Everything reported at a converged target stretch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StretchResult {
+    /// Applied stretch λ.
+    pub stretch: f64,
+    /// Nominal axial stress = reaction / (πR²) [kPa].
+    pub nominal_stress: f64,
+    /// Axial reaction on the moving base (virtual-work reaction from the discrete residual).
+    pub reaction: f64,
+    /// Activation γ at the quadrature point nearest to the centre (r = 0, z = L/2).
+    pub gamma_centre: f64,
+    /// Fibre stretch at the same point.
+    pub fibre_stretch_centre: f64,
+    /// max |J − 1| over all quadrature points.
+    pub max_volume_error: f64,
+    /// Load steps (accepted and rejected) taken since the previous target.
+    pub steps: Vec<StepRecord>,
+    /// The solution.
+    pub state: State,
+}
+
+/// Outcome of a sweep: the converged targets (ascending λ) and, per direction that stopped, its error.
+#[derive(Debug)]
+pub struct Sweep {
+    /// Converged targets, ascending in λ.
+    pub results: Vec<StretchResult>,
+    /// Errors of directions that could not reach all their targets.
+    pub failures: Vec<FemError>,
+}
+
+impl Sweep {
+    /// The results if every target was reached, else the first failure.
+    pub fn into_result(self) -> FemResult<Vec<StretchResult>> {
+        match self.failures.into_iter().next() {
+            Some(e) => Err(e),
+            None => Ok(self.results),
+        }
+    }
+}
+
+/// Accumulated wall-clock time of the solver phases.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Full assemblies (residual + tangent).
+    pub assembly: Duration,
+    /// Number of full assemblies.
+    pub assemblies: usize,
+    /// Residual-only assemblies (line search).
+    pub residual_assembly: Duration,
+    /// Number of residual-only assemblies.
+    pub residual_assemblies: usize,
+    /// Numeric LU factorisations.
+    pub factorisation: Duration,
+    /// Number of factorisations.
+    pub factorisations: usize,
+    /// Triangular solves.
+    pub solve: Duration,
+    /// Number of solves.
+    pub solves: usize,
+}
+
+/// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuadraturePoint {
+    /// Element index.
+    pub element: usize,
+    /// Quadrature point index in the element (0..9).
+    pub point: usize,
+    /// Radius.
+    pub r: f64,
+    /// Axial coordinate.
+    pub z: f64,
+    /// Volume weight dV.
+    pub dv: f64,
+    /// Deformation gradient entries.
+    pub f: AxiF,
+    /// Pressure p.
+    pub pressure: f64,
+}
+
+struct Converged {
+    stretch: f64,
+    x: Vec<f64>,
+    rate: Vec<f64>,
+}
+
+/// The axisymmetric mixed u–p solver for one mesh, boundary-condition variant and material.
+pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
+    mesh: Mesh,
+    dofs: DofMap,
+    asm: Assembler,
+    lu: SparseLu,
+    material: &'m M,
+    options: SolverOptions,
+    timings: Timings,
+    centre: (usize, usize),
+    failed_trial: Option<State>,
+    trial: Vec<f64>,
+    delta: Vec<f64>,
+}
+
+impl<M: AxisymmetricMaterial + ?Sized> std::fmt::Debug for AxisymmetricSolver<'_, M> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("AxisymmetricSolver")
+            .field("elements", &self.mesh.elements.len())
+            .field("dofs", &self.dofs.n_total)
+            .field("free_dofs", &self.dofs.n_free)
+            .finish()
+    }
+}
+
+fn check_positive(name: &'static str, v: f64) -> FemResult<()> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(FemError::InvalidInput {
+            name,
+            value: v.to_string(),
+            rule: "must be finite and > 0",
+        })
+    }
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|a| a * a).sum::<f64>().sqrt()
+}
+
+fn norm_inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, a| m.max(a.abs()))
+}
+
+impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
+    /// Sets up dofs, pattern and symbolic factorisation for `mesh` with `bases` and `material`.
+    pub fn new(
+        mesh: Mesh,
+        bases: Bases,
+        material: &'m M,
+        options: SolverOptions,
+    ) -> FemResult<Self> {
+        check_positive("tolerance", options.tolerance)?;
+        check_positive("initial_step", options.initial_step)?;
+        check_positive("max_step", options.max_step)?;
+        check_positive("min_step", options.min_step)?;
+        if !(options.stress_floor.is_finite() && options.stress_floor >= 0.0) {
+            return Err(FemError::InvalidInput {
+                name: "stress_floor",
+                value: options.stress_floor.to_string(),
+                rule: "must be finite and ≥ 0",
+            });
+        }
+        if options.max_iterations == 0 {
+            return Err(FemError::InvalidInput {
+                name: "max_iterations",
+                value: "0".into(),
+                rule: "must be ≥ 1",
+            });
+        }
+        let dofs = DofMap::new(&mesh, bases);
+        let asm = Assembler::new(&mesh, &dofs)?;
+        let lu = SparseLu::new(&asm.pattern).map_err(FemError::LinearSolver)?;
+        // Quadrature point nearest to the centre (r = 0, z = L/2).
+        let target = [0.0, 0.5 * mesh.length];
+        let mut centre = (0, 0);
+        let mut best = f64::INFINITY;
+        for (e, x) in asm.coords().iter().enumerate() {
+            for q in 0..N_QP {
+                if let Some(g) = geometry(asm.reference(), q, x) {
+                    let d = (g.r - target[0]).powi(2) + (g.z - target[1]).powi(2);
+                    if d < best {
+                        best = d;
+                        centre = (e, q);
+                    }
+                }
+            }
+        }
+        let n = dofs.n_total;
+        Ok(Self {
+            mesh,
+            dofs,
+            asm,
+            lu,
+            material,
+            options,
+            timings: Timings::default(),
+            centre,
+            failed_trial: None,
+            trial: vec![0.0; n],
+            delta: vec![0.0; n],
+        })
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The dof numbering.
+    pub fn dofs(&self) -> &DofMap {
+        &self.dofs
+    }
+
+    /// Number of dofs in the linear system (free dofs).
+    pub fn n_free_dofs(&self) -> usize {
+        self.dofs.n_free
+    }
+
+    /// Accumulated timings.
+    pub fn timings(&self) -> Timings {
+        self.timings
+    }
+
+    /// Resets the accumulated timings.
+    pub fn reset_timings(&mut self) {
+        self.timings = Timings::default();
+    }
+
+    /// The trial state at which the last rejected Newton step failed (material error, last
+    /// iterate, …), kept for diagnostics. See [`Self::failed_trial_quadrature_points`].
+    pub fn failed_trial(&self) -> Option<&State> {
+        self.failed_trial.as_ref()
+    }
+
+    /// The deformation gradients at every quadrature point of the last failed trial state:
+    /// the hook for a material-stability (strong-ellipticity) check after a failure.
+    pub fn failed_trial_quadrature_points(&self) -> Option<Vec<QuadraturePoint>> {
+        self.failed_trial
+            .as_ref()
+            .map(|s| self.quadrature_points(s))
+    }
+
+    /// F, p, position and volume weight at every quadrature point of `state`.
+    pub fn quadrature_points(&self, state: &State) -> Vec<QuadraturePoint> {
+        let re = self.asm.reference();
+        let mut out = Vec::with_capacity(self.asm.coords().len() * N_QP);
+        for (e, (xe, d)) in self
+            .asm
+            .coords()
+            .iter()
+            .zip(self.asm.element_dofs())
+            .enumerate()
+        {
+            let u = SVector::<f64, N_U>::from_fn(|i, _| state.x[d[i] as usize]);
+            let p = SVector::<f64, N_P>::from_fn(|i, _| state.x[d[N_U + i] as usize]);
+            for q in 0..N_QP {
+                if let Some(g) = geometry(re, q, xe) {
+                    let m = SVector::<f64, N_P>::from_row_slice(&re.m[q]);
+                    out.push(QuadraturePoint {
+                        element: e,
+                        point: q,
+                        r: g.r,
+                        z: g.z,
+                        dv: g.dv,
+                        f: deformation(&g.b, &u),
+                        pressure: m.dot(&p),
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    fn assemble(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
+        let t = Instant::now();
+        let r = self.asm.assemble(x, self.material, tangent);
+        if tangent {
+            self.timings.assembly += t.elapsed();
+            self.timings.assemblies += 1;
+        } else {
+            self.timings.residual_assembly += t.elapsed();
+            self.timings.residual_assemblies += 1;
+        }
+        r
+    }
+
+    fn force_scale(&self) -> f64 {
+        (self.asm.stress_scale + self.options.stress_floor)
+            * std::f64::consts::PI
+            * self.mesh.radius.powi(2)
+    }
+
+    fn volume(&self) -> f64 {
+        std::f64::consts::PI * self.mesh.radius.powi(2) * self.mesh.length
+    }
+
+    /// Scaled residual norm of the last assembly for a given force scale.
+    fn scaled_residual(&self, force_scale: f64) -> f64 {
+        let nu = self.dofs.n_free_u;
+        let nf = self.dofs.n_free;
+        let ru = norm2(&self.asm.residual[..nu]) / force_scale;
+        let rp = norm2(&self.asm.residual[nu..nf]) / self.volume();
+        ru.max(rp)
+    }
+
+    fn factorise(&mut self) -> Result<(), StepFailure> {
+        let t = Instant::now();
+        let r = self.lu.factorise(&self.asm.pattern, &self.asm.values);
+        self.timings.factorisation += t.elapsed();
+        self.timings.factorisations += 1;
+        r.map_err(|detail| StepFailure::SingularTangent { detail })
+    }
+
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
+        let t = Instant::now();
+        let r = self.lu.solve_in_place(rhs);
+        self.timings.solve += t.elapsed();
+        self.timings.solves += 1;
+        r.map_err(|detail| StepFailure::SingularTangent { detail })
+    }
+
+    /// Newton's method at the stretch already set in `x` (prescribed dofs included).
+    ///
+    /// Each iteration solves K Δx = −R on the free dofs, then backtracks x + α Δx (α = 1, ½, …)
+    /// until the scaled residual decreases (Armijo, c = 10⁻⁴), or accepts α = 1 when the
+    /// residual is already at the tolerance (round-off floor). On success `x` holds the
+    /// converged state and the assembler holds its residual (and tangent, unless the last step
+    /// was backtracked).
+    fn newton(&mut self, x: &mut Vec<f64>, record: &mut StepRecord) -> Result<(), StepFailure> {
+        let tol = self.options.tolerance;
+        let nf = self.dofs.n_free;
+        let nu = self.dofs.n_free_u;
+        if let Err(e) = self.assemble(x, true) {
+            self.failed_trial = Some(State {
+                stretch: record.to,
+                x: x.clone(),
+            });
+            return Err(StepFailure::Material(e));
+        }
+        let mut have_tangent = true;
+        let mut scale = self.force_scale();
+        let mut phi = self.scaled_residual(scale);
+        record.initial_residual = phi;
+        for _ in 0..self.options.max_iterations {
+            if !have_tangent {
+                if let Err(e) = self.assemble(x, true) {
+                    self.failed_trial = Some(State {
+                        stretch: record.to,
+                        x: x.clone(),
+                    });
+                    return Err(StepFailure::Material(e));
+                }
+            }
+            self.factorise()?;
+            let mut delta = std::mem::take(&mut self.delta);
+            for (d, r) in delta[..nf].iter_mut().zip(&self.asm.residual[..nf]) {
+                *d = -r;
+            }
+            let solved = self.solve(&mut delta[..nf]);
+            self.delta = delta;
+            solved?;
+            // Backtracking line search on the scaled residual, σ frozen at the current state.
+            let mut alpha = 1.0;
+            let mut accepted = false;
+            let mut last_error = None;
+            for k in 0..=self.options.max_backtracks {
+                let full = k == 0;
+                let mut trial = std::mem::take(&mut self.trial);
+                trial.copy_from_slice(x);
+                for (t, d) in trial[..nf].iter_mut().zip(&self.delta[..nf]) {
+                    *t += alpha * d;
+                }
+                let result = self.assemble(&trial, full);
+                self.trial = trial;
+                match result {
+                    Ok(()) => {
+                        let phi_trial = self.scaled_residual(scale);
+                        if phi_trial <= (1.0 - 1e-4 * alpha) * phi || (full && phi <= tol) {
+                            accepted = true;
+                            have_tangent = full;
+                            phi = phi_trial;
+                            break;
+                        }
+                        last_error = None;
+                    }
+                    Err(e) => last_error = Some(e),
+                }
+                alpha *= 0.5;
+            }
+            if !accepted {
+                self.failed_trial = Some(State {
+                    stretch: record.to,
+                    x: self.trial.clone(),
+                });
+                return Err(match last_error {
+                    Some(e) => StepFailure::Material(e),
+                    None => StepFailure::LineSearch { residual: phi },
+                });
+            }
+            std::mem::swap(x, &mut self.trial);
+            scale = self.force_scale();
+            let nu_inc = norm_inf(&self.delta[..nu]) * alpha / self.mesh.length;
+            let np_inc = norm_inf(&self.delta[nu..nf]) * alpha
+                / (self.asm.stress_scale + self.options.stress_floor);
+            let increment = nu_inc.max(np_inc);
+            let residual = self.scaled_residual(scale);
+            record.iterations.push(IterationRecord {
+                residual,
+                increment,
+                step_length: alpha,
+            });
+            phi = residual;
+            if residual <= tol && increment <= tol {
+                if !have_tangent {
+                    // Leave the assembler consistent with the converged state (reaction, rate force).
+                    if let Err(e) = self.assemble(x, true) {
+                        return Err(StepFailure::Material(e));
+                    }
+                }
+                return Ok(());
+            }
+        }
+        self.failed_trial = Some(State {
+            stretch: record.to,
+            x: x.clone(),
+        });
+        Err(StepFailure::MaxIterations {
+            iterations: self.options.max_iterations,
+            residual: phi,
+        })
+    }
+
+    /// dx/dλ at the converged state held by the assembler: K_ff v_f = −K_fc d_c, v_c = d_c.
+    /// Uses the last factorisation (the tangent at the previous iterate, within tolerance).
+    fn rate(&mut self) -> Result<Vec<f64>, StepFailure> {
+        let nf = self.dofs.n_free;
+        let mut v = vec![0.0; self.dofs.n_total];
+        for (vi, g) in v[..nf].iter_mut().zip(&self.asm.rate_force[..nf]) {
+            *vi = -g;
+        }
+        self.solve(&mut v[..nf])?;
+        v[nf..].copy_from_slice(&self.dofs.prescribed_rate);
+        Ok(v)
+    }
+
+    /// Axial reaction on z = L from the discrete residual at the prescribed u_z dofs.
+    fn reaction(&self) -> f64 {
+        self.dofs
+            .top_axial
+            .iter()
+            .map(|&g| self.asm.residual[g as usize])
+            .sum()
+    }
+
+    fn result_at(
+        &self,
+        x: &[f64],
+        stretch: f64,
+        steps: Vec<StepRecord>,
+    ) -> FemResult<StretchResult> {
+        let reaction = self.reaction();
+        let state = State {
+            stretch,
+            x: x.to_vec(),
+        };
+        let qps = self.quadrature_points(&state);
+        let max_volume_error = qps
+            .iter()
+            .fold(0.0f64, |m, q| m.max((jacobian(&q.f) - 1.0).abs()));
+        let (gamma_centre, fibre_stretch_centre) = match qps
+            .iter()
+            .find(|q| q.element == self.centre.0 && q.point == self.centre.1)
+        {
+            Some(q) => self.material.point_fields(&q.f)?,
+            None => (f64::NAN, f64::NAN),
+        };
+        Ok(StretchResult {
+            stretch,
+            nominal_stress: reaction / (std::f64::consts::PI * self.mesh.radius.powi(2)),
+            reaction,
+            gamma_centre,
+            fibre_stretch_centre,
+            max_volume_error,
+            steps,
+            state,
+        })
+    }
+
+    /// Solves the reference state λ = 1 (the pressure balancing P(I)) from x = 0.
+    fn reference_state(&mut self) -> Result<(Converged, StepRecord), (StepFailure, StepRecord)> {
+        let mut x = vec![0.0; self.dofs.n_total];
+        self.dofs.apply_stretch(&mut x, 1.0);
+        let mut rec = StepRecord {
+            from: 1.0,
+            to: 1.0,
+            initial_residual: 0.0,
+            iterations: Vec::new(),
+            failure: None,
+        };
+        match self.newton(&mut x, &mut rec).and_then(|_| self.rate()) {
+            Ok(rate) => Ok((
+                Converged {
+                    stretch: 1.0,
+                    x,
+                    rate,
+                },
+                rec,
+            )),
+            Err(e) => {
+                rec.failure = Some(e.clone());
+                Err((e, rec))
+            }
+        }
+    }
+
+    /// Runs the load path through every target stretch (λ = 1 outwards in both directions).
+    ///
+    /// Targets must be finite and > 0; a target of 1 reports the reference state. A direction
+    /// that cannot reach a target stops there with [`FemError::TargetNotReached`] in
+    /// [`Sweep::failures`]; the other direction is still run.
+    pub fn sweep(&mut self, targets: &[f64]) -> FemResult<Sweep> {
+        if targets.is_empty() {
+            return Err(FemError::InvalidInput {
+                name: "targets",
+                value: "[]".into(),
+                rule: "need at least one target stretch",
+            });
+        }
+        for &t in targets {
+            check_positive("target stretch", t)?;
+        }
+        let mut up: Vec<f64> = targets.iter().copied().filter(|&t| t > 1.0).collect();
+        let mut down: Vec<f64> = targets.iter().copied().filter(|&t| t < 1.0).collect();
+        up.sort_by(f64::total_cmp);
+        up.dedup();
+        down.sort_by(|a, b| b.total_cmp(a));
+        down.dedup();
+        let mut results = Vec::new();
+        let mut failures = Vec::new();
+        let (reference, rec) = match self.reference_state() {
+            Ok(v) => v,
+            Err((cause, _)) => {
+                failures.push(FemError::TargetNotReached {
+                    target: 1.0,
+                    reached: f64::NAN,
+                    attempted: 1.0,
+                    step: 0.0,
+                    cause,
+                });
+                return Ok(Sweep { results, failures });
+            }
+        };
+        if targets.contains(&1.0) {
+            let r = self.result_at(&reference.x, 1.0, vec![rec])?;
+            self.write_requested(&r)?;
+            results.push(r);
+        }
+        for list in [&up, &down] {
+            if list.is_empty() {
+                continue;
+            }
+            let start = Converged {
+                stretch: reference.stretch,
+                x: reference.x.clone(),
+                rate: reference.rate.clone(),
+            };
+            if let Err(e) = self.path(start, list, &mut results) {
+                failures.push(e);
+            }
+        }
+        results.sort_by(|a, b| a.stretch.total_cmp(&b.stretch));
+        Ok(Sweep { results, failures })
+    }
+
+    fn path(
+        &mut self,
+        mut cur: Converged,
+        targets: &[f64],
+        results: &mut Vec<StretchResult>,
+    ) -> FemResult<()> {
+        let o = self.options.clone();
+        let mut h = o.initial_step.min(o.max_step);
+        let mut easy = 0usize;
+        let mut x = vec![0.0; self.dofs.n_total];
+        for &target in targets {
+            let mut steps = Vec::new();
+            while cur.stretch != target {
+                let remaining = target - cur.stretch;
+                let next = if remaining.abs() <= h * (1.0 + 1e-9) {
+                    target
+                } else {
+                    cur.stretch + h * remaining.signum()
+                };
+                let dl = next - cur.stretch;
+                // Tangent predictor.
+                for ((xi, c), v) in x.iter_mut().zip(&cur.x).zip(&cur.rate) {
+                    *xi = c + dl * v;
+                }
+                self.dofs.apply_stretch(&mut x, next);
+                let mut rec = StepRecord {
+                    from: cur.stretch,
+                    to: next,
+                    initial_residual: f64::NAN,
+                    iterations: Vec::new(),
+                    failure: None,
+                };
+                let outcome = self.newton(&mut x, &mut rec).and_then(|_| self.rate());
+                match outcome {
+                    Ok(rate) => {
+                        let n_it = rec.iterations.len();
+                        steps.push(rec);
+                        cur = Converged {
+                            stretch: next,
+                            x: x.clone(),
+                            rate,
+                        };
+                        if n_it <= o.easy_iterations {
+                            easy += 1;
+                            if easy >= 2 {
+                                h = (2.0 * h).min(o.max_step);
+                                easy = 0;
+                            }
+                        } else {
+                            easy = 0;
+                        }
+                    }
+                    Err(cause) => {
+                        rec.failure = Some(cause.clone());
+                        steps.push(rec);
+                        easy = 0;
+                        h = 0.5 * dl.abs();
+                        if h < o.min_step {
+                            return Err(FemError::TargetNotReached {
+                                target,
+                                reached: cur.stretch,
+                                attempted: next,
+                                step: dl.abs(),
+                                cause,
+                            });
+                        }
+                    }
+                }
+            }
+            // The assembler holds the converged state's residual (see `newton`).
+            let r = self.result_at(&cur.x, target, steps)?;
+            self.write_requested(&r)?;
+            results.push(r);
+        }
+        Ok(())
+    }
+
+    fn write_requested(&self, r: &StretchResult) -> FemResult<()> {
+        if let Some(v) = &self.options.vtk {
+            if v.stretches.iter().any(|&s| (s - r.stretch).abs() < 1e-12) {
+                std::fs::create_dir_all(&v.directory).map_err(|source| FemError::Io {
+                    path: v.directory.display().to_string(),
+                    source,
+                })?;
+                let path = v.directory.join(format!("lambda_{:.4}.vtu", r.stretch));
+                self.write_vtu(&r.state, &path)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes `state` as a VTK XML unstructured grid (ASCII) in the (r, z) plane: point data u
+    /// (u_r, u_z, 0) and p (Q1-interpolated to all nodes); cell data J, γ, λ_f, P_zz (nominal,
+    /// pressure included) as volume-weighted averages over the cell's quadrature points.
+    pub fn write_vtu(&self, state: &State, path: &std::path::Path) -> FemResult<()> {
+        let qps = self.quadrature_points(state);
+        let n_el = self.mesh.elements.len();
+        let mut cell = vec![[0.0f64; 5]; n_el]; // J, γ, λ_f, P_zz, Σ dV
+        for q in &qps {
+            let (gamma, lf) = self.material.point_fields(&q.f)?;
+            let pk = self.material.stress(&q.f)?;
+            let pzz = pk[3] - q.pressure * jacobian_gradient(&q.f)[3];
+            let c = &mut cell[q.element];
+            c[0] += jacobian(&q.f) * q.dv;
+            c[1] += gamma * q.dv;
+            c[2] += lf * q.dv;
+            c[3] += pzz * q.dv;
+            c[4] += q.dv;
+        }
+        let mut pressure = vec![0.0f64; self.mesh.n_nodes()];
+        for conn in &self.mesh.elements {
+            let pc: Vec<f64> = conn[..4]
+                .iter()
+                .map(|&a| state.x[self.dofs.node_p[a as usize] as usize])
+                .collect();
+            // Q1 interpolation at the reference positions of the 9 nodes.
+            let vals = [
+                pc[0],
+                pc[1],
+                pc[2],
+                pc[3],
+                0.5 * (pc[0] + pc[1]),
+                0.5 * (pc[1] + pc[2]),
+                0.5 * (pc[2] + pc[3]),
+                0.5 * (pc[3] + pc[0]),
+                0.25 * (pc[0] + pc[1] + pc[2] + pc[3]),
+            ];
+            for (a, v) in conn.iter().zip(vals) {
+                pressure[*a as usize] = v;
+            }
+        }
+        let u: Vec<[f64; 2]> = self
+            .dofs
+            .node_u
+            .iter()
+            .map(|d| [state.x[d[0] as usize], state.x[d[1] as usize]])
+            .collect();
+        let cells: Vec<[f64; 4]> = cell
+            .iter()
+            .map(|c| [c[0] / c[4], c[1] / c[4], c[2] / c[4], c[3] / c[4]])
+            .collect();
+        super::vtk::write_vtu(path, &self.mesh, &u, &pressure, &cells).map_err(|source| {
+            FemError::Io {
+                path: path.display().to_string(),
+                source,
+            }
+        })
+    }
+}
