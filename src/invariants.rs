@@ -127,7 +127,11 @@ impl Kinematics {
 
     /// Σ_j w_j ∂²j/∂F_a∂F_b over the entries of F (symmetric N×N), for weights w over the
     /// five invariants (see the module table).
-    pub fn curvature<const N: usize>(&self, w: &SVector<f64, 5>, entries: &Entries<N>) -> SMatrix<f64, N, N> {
+    pub fn curvature<const N: usize>(
+        &self,
+        w: &SVector<f64, 5>,
+        entries: &Entries<N>,
+    ) -> SMatrix<f64, N, N> {
         let (b, c_inv) = (&self.b, &self.c_inv);
         let bm = b.transpose() * self.m;
         // C⁻¹ : A with A = w₃ I + w₄ M: g = Bᵀ A C⁻¹, Q = Bᵀ A B.
@@ -137,7 +141,10 @@ impl Kinematics {
         let mut t = SMatrix::<f64, N, N>::zeros();
         for (x, &(k, l)) in entries.index.iter().enumerate() {
             for (y, &(i, jj)) in entries.index.iter().enumerate().skip(x) {
-                let mut v = 2.0 * (b[(jj, k)] * g[(i, l)] + q[(k, i)] * c_inv[(jj, l)] + g[(k, jj)] * b[(l, i)]);
+                let mut v = 2.0
+                    * (b[(jj, k)] * g[(i, l)]
+                        + q[(k, i)] * c_inv[(jj, l)]
+                        + g[(k, jj)] * b[(l, i)]);
                 if k == i {
                     v += 2.0 * (w[1] * self.fibre[(l, jj)] + if l == jj { w[0] } else { 0.0 });
                 }

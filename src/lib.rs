@@ -24,9 +24,12 @@ pub mod oracle;
 pub mod response;
 pub mod roots;
 pub mod scalar;
+pub mod testing;
 pub mod uniaxial;
 
 pub use energy::{Energy, StrainEnergy};
 pub use error::{Error, Result};
 pub use material::Muscle;
+/// Re-exported for [`energy_test_battery!`] in users' crates.
+pub use nalgebra;
 pub use scalar::Scalar;

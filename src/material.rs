@@ -3,7 +3,7 @@
 use crate::active::coupling::{couple, Coupling};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
-use crate::invariants::{Entries, Kinematics};
+use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
 use crate::response::{invariant_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
@@ -100,7 +100,33 @@ impl<E: StrainEnergy> Muscle<E> {
         let (gradient, hessian) = couple(self.coupling, &d, &law, fibre_stretch);
         let dj = kinematics.gradients(entries);
         out.stress = Some(dj.transpose() * gradient);
-        out.tangent = hessian.map(|k| dj.transpose() * k * dj + kinematics.curvature(&gradient, entries));
+        out.tangent =
+            hessian.map(|k| dj.transpose() * k * dj + kinematics.curvature(&gradient, entries));
         Ok(out)
+    }
+}
+
+/// The FE solver's view of a muscle: fibres along the cylinder axis, F given by its five
+/// axisymmetric entries, derivatives over those five entries only.
+impl<E: StrainEnergy> crate::fem::AxisymmetricMaterial for Muscle<E> {
+    fn stress(&self, f: &crate::fem::AxiF) -> Result<SVector<f64, 5>> {
+        let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
+        let r = self.respond(&kin, Order::Stress, &AXISYMMETRIC)?;
+        Ok(r.stress.unwrap_or_default())
+    }
+
+    fn stress_tangent(
+        &self,
+        f: &crate::fem::AxiF,
+    ) -> Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
+        let r = self.respond(&kin, Order::Tangent, &AXISYMMETRIC)?;
+        Ok((r.stress.unwrap_or_default(), r.tangent.unwrap_or_default()))
+    }
+
+    fn point_fields(&self, f: &crate::fem::AxiF) -> Result<(f64, f64)> {
+        let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
+        let lambda = kin.fibre_stretch();
+        Ok((self.activation(lambda)?.gamma, lambda))
     }
 }
