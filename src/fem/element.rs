@@ -117,13 +117,13 @@ pub struct QuadratureGeometry {
 pub fn geometry(re: &ReferenceElement, q: usize, x: &[[f64; 2]; 9]) -> Option<QuadratureGeometry> {
     let (mut r, mut z) = (0.0, 0.0);
     let (mut r_xi, mut r_eta, mut z_xi, mut z_eta) = (0.0, 0.0, 0.0, 0.0);
-    for a in 0..9 {
-        r += re.n[q][a] * x[a][0];
-        z += re.n[q][a] * x[a][1];
-        r_xi += re.dn[q][a][0] * x[a][0];
-        r_eta += re.dn[q][a][1] * x[a][0];
-        z_xi += re.dn[q][a][0] * x[a][1];
-        z_eta += re.dn[q][a][1] * x[a][1];
+    for (a, xa) in x.iter().enumerate() {
+        r += re.n[q][a] * xa[0];
+        z += re.n[q][a] * xa[1];
+        r_xi += re.dn[q][a][0] * xa[0];
+        r_eta += re.dn[q][a][1] * xa[0];
+        z_xi += re.dn[q][a][0] * xa[1];
+        z_eta += re.dn[q][a][1] * xa[1];
     }
     let det = r_xi * z_eta - r_eta * z_xi;
     if !(det > 0.0 && r > 0.0) {

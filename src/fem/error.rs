@@ -62,9 +62,15 @@ pub enum FemError {
         reached: f64,
         /// The stretch of the last rejected trial step.
         attempted: f64,
-        /// The load-step size of that trial (|Δλ|), at or below the minimum step.
+        /// The load-step size |Δλ| of that trial; half of it is below the minimum step.
         step: f64,
         /// Why that last trial was rejected.
+        cause: StepFailure,
+    },
+    /// The reference state λ = 1 (the pressure balancing the stress at F = I) was not found.
+    #[error("reference state λ = 1 not found: {cause}")]
+    ReferenceState {
+        /// Why Newton failed there.
         cause: StepFailure,
     },
     /// Writing output files failed.

@@ -584,7 +584,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     }
 
     /// Solves the reference state λ = 1 (the pressure balancing P(I)) from x = 0.
-    fn reference_state(&mut self) -> Result<(Converged, StepRecord), (StepFailure, StepRecord)> {
+    fn reference_state(&mut self) -> Result<(Converged, StepRecord), StepFailure> {
         let mut x = vec![0.0; self.dofs.n_total];
         self.dofs.apply_stretch(&mut x, 1.0);
         let mut rec = StepRecord {
@@ -603,10 +603,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
                 },
                 rec,
             )),
-            Err(e) => {
-                rec.failure = Some(e.clone());
-                Err((e, rec))
-            }
+            Err(e) => Err(e),
         }
     }
 
@@ -636,14 +633,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let mut failures = Vec::new();
         let (reference, rec) = match self.reference_state() {
             Ok(v) => v,
-            Err((cause, _)) => {
-                failures.push(FemError::TargetNotReached {
-                    target: 1.0,
-                    reached: f64::NAN,
-                    attempted: 1.0,
-                    step: 0.0,
-                    cause,
-                });
+            Err(cause) => {
+                failures.push(FemError::ReferenceState { cause });
                 return Ok(Sweep { results, failures });
             }
         };

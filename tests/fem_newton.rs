@@ -1,0 +1,267 @@
+//! Newton's method: quadratic convergence with the exact (non-symmetric) tangent, linear
+//! convergence with an approximated one, and typed errors instead of panics.
+
+use activemuscle::fem::material::axial_stretch;
+use activemuscle::fem::{
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, FemError, Mesh, NeoHookean,
+    SolverOptions, StepFailure, StepRecord,
+};
+use nalgebra::{SMatrix, SVector};
+
+const MU: f64 = 10.0;
+/// Strength of the non-gradient stress term.
+const C: f64 = 0.15 * MU;
+
+/// Neo-Hookean plus a stress that is not the gradient of any energy: P_rr += c F_zz².
+/// Its exact tangent has ∂P_rr/∂F_zz = 2c F_zz but ∂P_zz/∂F_rr = 0: non-symmetric.
+struct NonSymmetric {
+    mu: f64,
+    c: f64,
+    /// If true, `stress_tangent` drops the non-symmetric part (an approximated tangent).
+    approximate: bool,
+}
+
+impl AxisymmetricMaterial for NonSymmetric {
+    fn stress(&self, f: &AxiF) -> activemuscle::Result<SVector<f64, 5>> {
+        let mut p = f * self.mu;
+        p[0] += self.c * f[3] * f[3];
+        Ok(p)
+    }
+    fn stress_tangent(
+        &self,
+        f: &AxiF,
+    ) -> activemuscle::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        let mut a = SMatrix::<f64, 5, 5>::identity() * self.mu;
+        if !self.approximate {
+            a[(0, 3)] += 2.0 * self.c * f[3];
+        }
+        Ok((self.stress(f)?, a))
+    }
+    fn point_fields(&self, f: &AxiF) -> activemuscle::Result<(f64, f64)> {
+        Ok((0.0, axial_stretch(f)))
+    }
+}
+
+/// One large load step 1 → 1.3 on a clamped cylinder; returns the step's record.
+fn one_step(material: &NonSymmetric) -> StepRecord {
+    let mesh = Mesh::structured(1.0, 3.0, 4, 8, 1.0).unwrap();
+    let options = SolverOptions {
+        initial_step: 0.3,
+        max_step: 0.3,
+        max_iterations: 60,
+        tolerance: 1e-11,
+        ..SolverOptions::default()
+    };
+    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
+    let sweep = solver.sweep(&[1.3]).unwrap();
+    if let Some(e) = sweep.failures.first() {
+        panic!("{e}");
+    }
+    let res = sweep.results;
+    let steps = &res[0].steps;
+    assert_eq!(steps.len(), 1, "the step must not be cut");
+    steps[0].clone()
+}
+
+fn residuals(step: &StepRecord) -> Vec<f64> {
+    std::iter::once(step.initial_residual)
+        .chain(step.iterations.iter().map(|i| i.residual))
+        .collect()
+}
+
+#[test]
+fn exact_nonsymmetric_tangent_converges_quadratically() {
+    let exact = one_step(&NonSymmetric {
+        mu: MU,
+        c: C,
+        approximate: false,
+    });
+    let r = residuals(&exact);
+    println!("exact tangent, scaled residuals: {:?}", sci(&r));
+    // Observed order p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}), over iterations above the round-off floor.
+    let orders: Vec<f64> = r
+        .windows(3)
+        .filter(|w| w[2] > 1e-13 && w.iter().all(|v| *v > 0.0))
+        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
+        .collect();
+    println!("observed orders: {orders:.3?}");
+    let last = *orders
+        .last()
+        .expect("at least three iterates above the floor");
+    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
+    assert!(exact.iterations.iter().all(|i| i.step_length == 1.0));
+}
+
+#[test]
+fn dropping_the_nonsymmetric_part_of_the_tangent_converges_only_linearly() {
+    let exact = one_step(&NonSymmetric {
+        mu: MU,
+        c: C,
+        approximate: false,
+    });
+    let approx = one_step(&NonSymmetric {
+        mu: MU,
+        c: C,
+        approximate: true,
+    });
+    let r = residuals(&approx);
+    println!("approximated tangent, scaled residuals: {:?}", sci(&r));
+    let ratios: Vec<f64> = r
+        .windows(2)
+        .filter(|w| w[1] > 1e-13)
+        .map(|w| w[1] / w[0])
+        .collect();
+    println!("contraction ratios: {ratios:.3?}");
+    println!(
+        "iterations: exact tangent {}, approximated tangent {}",
+        exact.iterations.len(),
+        approx.iterations.len()
+    );
+    assert!(approx.iterations.len() >= exact.iterations.len() + 3);
+    // Linear convergence: the contraction ratio settles at a constant, it does not go to zero.
+    let tail = &ratios[ratios.len().saturating_sub(4)..];
+    assert!(tail.len() >= 3);
+    for q in tail {
+        assert!(
+            *q > 1e-3 && *q < 0.9,
+            "ratio {q} is not a linear-convergence ratio"
+        );
+    }
+    let spread =
+        tail.iter().cloned().fold(0.0, f64::max) / tail.iter().cloned().fold(1.0, f64::min);
+    assert!(spread < 3.0, "ratios {tail:?} do not settle");
+}
+
+/// Neo-Hookean that refuses (as an overflow would) any fibre stretch above `limit`.
+struct Breaks {
+    inner: NeoHookean,
+    limit: f64,
+}
+
+impl Breaks {
+    fn check(&self, f: &AxiF) -> activemuscle::Result<()> {
+        let lf = axial_stretch(f);
+        if lf > self.limit {
+            Err(activemuscle::Error::NonFinite {
+                quantity: "test stress",
+                value: f64::INFINITY,
+                context: format!("fibre stretch {lf}"),
+            })
+        } else {
+            Ok(())
+        }
+    }
+}
+
+impl AxisymmetricMaterial for Breaks {
+    fn stress(&self, f: &AxiF) -> activemuscle::Result<SVector<f64, 5>> {
+        self.check(f)?;
+        self.inner.stress(f)
+    }
+    fn stress_tangent(
+        &self,
+        f: &AxiF,
+    ) -> activemuscle::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        self.check(f)?;
+        self.inner.stress_tangent(f)
+    }
+    fn point_fields(&self, f: &AxiF) -> activemuscle::Result<(f64, f64)> {
+        self.inner.point_fields(f)
+    }
+}
+
+#[test]
+fn unreachable_target_is_a_typed_error_naming_the_largest_stretch_reached() {
+    let material = Breaks {
+        inner: NeoHookean::new(MU).unwrap(),
+        limit: 1.237,
+    };
+    let mesh = Mesh::structured(1.0, 2.0, 2, 4, 1.0).unwrap();
+    let mut solver =
+        AxisymmetricSolver::new(mesh, Bases::Sliding, &material, SolverOptions::default()).unwrap();
+    let sweep = solver.sweep(&[0.8, 1.1, 1.2, 1.5]).unwrap();
+    // The downward direction is unaffected; upward reaches 1.1 and 1.2 only.
+    let reached: Vec<f64> = sweep.results.iter().map(|r| r.stretch).collect();
+    assert_eq!(reached, vec![0.8, 1.1, 1.2]);
+    assert_eq!(sweep.failures.len(), 1);
+    let message = sweep.failures[0].to_string();
+    println!("{message}");
+    match &sweep.failures[0] {
+        FemError::TargetNotReached {
+            target,
+            reached,
+            attempted,
+            step,
+            cause,
+        } => {
+            assert_eq!(*target, 1.5);
+            // Sliding bases are homogeneous: the largest admissible stretch is the limit itself.
+            assert!(
+                *reached <= 1.237 && *reached > 1.237 - 2e-4,
+                "reached {reached}"
+            );
+            assert!(*attempted > 1.237);
+            assert!(*step < 2.0 * SolverOptions::default().min_step);
+            assert!(matches!(
+                cause,
+                StepFailure::Material(activemuscle::Error::NonFinite { .. })
+            ));
+        }
+        other => panic!("unexpected error {other:?}"),
+    }
+    // The failed trial's quadrature-point deformations are available for a stability check.
+    let qps = solver
+        .failed_trial_quadrature_points()
+        .expect("a failed trial is kept");
+    assert!(qps.iter().any(|q| axial_stretch(&q.f) > 1.237));
+    assert!(message.contains("1.5") && message.contains("largest converged stretch"));
+}
+
+#[test]
+fn invalid_inputs_are_typed_errors() {
+    let material = NeoHookean::new(MU).unwrap();
+    assert!(matches!(
+        Mesh::structured(1.0, 1.0, 0, 2, 1.0),
+        Err(FemError::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        Mesh::structured(-1.0, 1.0, 1, 2, 1.0),
+        Err(FemError::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        Mesh::structured(1.0, f64::NAN, 1, 2, 1.0),
+        Err(FemError::InvalidInput { .. })
+    ));
+    assert!(matches!(
+        Mesh::structured(1.0, 1.0, 1, 2, 0.5),
+        Err(FemError::InvalidInput { .. })
+    ));
+    let mesh = Mesh::structured(1.0, 1.0, 1, 2, 1.0).unwrap();
+    let mut solver =
+        AxisymmetricSolver::new(mesh, Bases::Clamped, &material, SolverOptions::default()).unwrap();
+    for bad in [
+        vec![],
+        vec![1.2, 0.0],
+        vec![f64::INFINITY],
+        vec![-0.5],
+        vec![f64::NAN],
+    ] {
+        assert!(
+            matches!(solver.sweep(&bad), Err(FemError::InvalidInput { .. })),
+            "targets {bad:?} accepted"
+        );
+    }
+    let bad_options = SolverOptions {
+        min_step: 0.0,
+        ..SolverOptions::default()
+    };
+    let mesh = Mesh::structured(1.0, 1.0, 1, 2, 1.0).unwrap();
+    assert!(matches!(
+        AxisymmetricSolver::new(mesh, Bases::Clamped, &material, bad_options),
+        Err(FemError::InvalidInput { .. })
+    ));
+}
+
+fn sci(v: &[f64]) -> Vec<String> {
+    v.iter().map(|x| format!("{x:.3e}")).collect()
+}
