@@ -1,0 +1,194 @@
+//! Activation laws: the implicit law solves eq. D:eqgammaesplicita, the energy law its energy
+//! counterpart; derivatives are exact; the couplings reproduce the active target curve.
+
+use activemuscle::active::{
+    ActivationLaw, ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+};
+use activemuscle::energy::GiantesioMusesti;
+use activemuscle::uniaxial::along_fibres;
+use activemuscle::Muscle;
+use num_dual::{first_derivative, Dual64};
+
+fn gm() -> GiantesioMusesti {
+    GiantesioMusesti::paper()
+}
+fn implicit() -> ImplicitLaw<GiantesioMusesti> {
+    ImplicitLaw::new(gm(), ActiveCurve::paper())
+}
+fn energy_law() -> EnergyLaw<GiantesioMusesti> {
+    EnergyLaw::new(gm(), ActiveCurve::paper())
+}
+/// 500 stretches in (λ_min, 1.6].
+fn stretches() -> impl Iterator<Item = f64> {
+    let lmin = ActiveCurve::paper().lambda_min();
+    (1..=500).map(move |i| lmin + (1.6 - lmin) * i as f64 / 500.0)
+}
+/// P_pas + (1 − d) P_act [kPa].
+fn target(l: f64, d: f64) -> f64 {
+    along_fibres(&Muscle::passive(gm()), l).unwrap().stress
+        + (1.0 - d) * ActiveCurve::paper().value(l)
+}
+
+#[test]
+fn implicit_law_is_exact_to_1e_12() {
+    let law = implicit();
+    for d in [0.0, 0.3] {
+        for l in stretches() {
+            let g = law.evaluate(l, d).unwrap().gamma;
+            let r = law.residual(l, g, d);
+            assert!(
+                r.abs() <= 1e-12 * target(l, d).abs().max(1.0),
+                "lambda {l}, d {d}: residual {r} kPa"
+            );
+        }
+    }
+}
+
+#[test]
+fn implicit_law_matches_the_checked_values() {
+    let law = implicit();
+    for (l, expected, tol) in [
+        (0.8, 0.3293, 1e-4),
+        (1.0, 0.24326, 1e-5),
+        (1.17, 0.14895, 1e-5),
+        (1.4, 0.0215, 1e-4),
+    ] {
+        let g = law.evaluate(l, 0.0).unwrap().gamma;
+        assert!(
+            (g - expected).abs() < tol,
+            "gamma({l}) = {g}, expected {expected}"
+        );
+    }
+    // Ill-conditioned just above λ_min: γ climbs from ≈ 0 to ≈ 0.30 between 0.65 and 0.70.
+    assert!(law.evaluate(0.65, 0.0).unwrap().gamma < 1e-3);
+    assert!((law.evaluate(0.70, 0.0).unwrap().gamma - 0.30).abs() < 0.01);
+}
+
+#[test]
+fn energy_law_matches_the_checked_value_and_solves_its_equation() {
+    let law = energy_law();
+    assert!((law.evaluate(1.17, 0.0).unwrap().gamma - 0.1919).abs() < 1e-4);
+    for d in [0.0, 0.5] {
+        for l in stretches().step_by(5) {
+            let g = law.evaluate(l, d).unwrap().gamma;
+            let scale = ActiveCurve::paper().integral(l).max(1e-3);
+            assert!(
+                law.residual(l, g, d).abs() < 1e-12 * scale.max(1.0),
+                "lambda {l}"
+            );
+        }
+    }
+}
+
+/// dγ/dλ and d²γ/dλ² against central differences of γ and of dγ/dλ.
+fn check_derivatives(law: &impl ActivationLaw, name: &str, range: (f64, f64)) {
+    let h = 1e-5;
+    for i in 0..=40 {
+        let l = range.0 + (range.1 - range.0) * i as f64 / 40.0;
+        let v = law.evaluate(l, 0.2).unwrap();
+        let (up, down) = (
+            law.evaluate(l + h, 0.2).unwrap(),
+            law.evaluate(l - h, 0.2).unwrap(),
+        );
+        let slope_fd = (up.gamma - down.gamma) / (2.0 * h);
+        let curvature_fd = (up.slope - down.slope) / (2.0 * h);
+        assert!(
+            (slope_fd - v.slope).abs() < 1e-6 * v.slope.abs().max(1.0),
+            "{name} slope at {l}: {} vs fd {slope_fd}",
+            v.slope
+        );
+        assert!(
+            (curvature_fd - v.curvature).abs() < 1e-5 * v.curvature.abs().max(1.0),
+            "{name} curvature at {l}: {} vs fd {curvature_fd}",
+            v.curvature
+        );
+        // The generic evaluation carries the same slope through a dual number.
+        let (_, slope) = first_derivative(|x: Dual64| law.gamma(x, 0.2).unwrap(), l);
+        assert!((slope - v.slope).abs() <= 1e-12 * v.slope.abs().max(1.0));
+    }
+}
+
+#[test]
+fn law_derivatives_agree_with_finite_differences() {
+    check_derivatives(&implicit(), "implicit", (0.7, 1.6));
+    check_derivatives(&energy_law(), "energy", (0.7, 1.6));
+    check_derivatives(&ExplicitLaw::paper(), "explicit", (0.7, 1.6));
+}
+
+#[test]
+fn explicit_law_approximates_the_implicit_law_and_vanishes_near_1_73() {
+    let (ex, im) = (ExplicitLaw::paper(), implicit());
+    let mut worst: f64 = 0.0;
+    for i in 0..=70 {
+        let l = 0.8 + 0.01 * i as f64;
+        worst = worst
+            .max((ex.evaluate(l, 0.0).unwrap().gamma - im.evaluate(l, 0.0).unwrap().gamma).abs());
+    }
+    println!("max |gamma_explicit - gamma_implicit| on [0.8, 1.5] = {worst:.3e}");
+    assert!(worst < 3e-3 && worst > 1e-5);
+    // The chapter says the explicit γ is negative for λ ≥ 1.6; as printed it stays positive to ≈ 1.73.
+    let (mut lo, mut hi) = (1.5, 2.0);
+    for _ in 0..50 {
+        let mid = 0.5 * (lo + hi);
+        if ex.evaluate(mid, 0.0).unwrap().gamma > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    println!("explicit gamma reaches 0 at lambda = {lo:.4}");
+    assert!(ex.evaluate(1.6, 0.0).unwrap().gamma > 0.0);
+    assert!((1.70..1.76).contains(&lo), "zero crossing at {lo}");
+}
+
+fn worst_relative_gap(muscle: &Muscle<GiantesioMusesti>, d: f64) -> (f64, f64) {
+    let (mut rel, mut abs): (f64, f64) = (0.0, 0.0);
+    for l in stretches() {
+        let (p, t) = (along_fibres(muscle, l).unwrap().stress, target(l, d));
+        abs = abs.max((p - t).abs());
+        rel = rel.max((p - t).abs() / t.abs().max(1.0));
+    }
+    (rel, abs)
+}
+
+#[test]
+fn energy_law_with_consistent_coupling_reproduces_the_target_curve() {
+    for d in [0.0, 0.25, 0.5] {
+        let muscle = Muscle::new(gm(), Law::Energy(energy_law()), d, Coupling::Consistent).unwrap();
+        let (rel, _) = worst_relative_gap(&muscle, d);
+        assert!(rel < 1e-10, "d = {d}: {rel:e}");
+    }
+}
+
+#[test]
+fn implicit_law_with_frozen_coupling_reproduces_the_target_curve() {
+    for d in [0.0, 0.25, 0.5] {
+        let muscle = Muscle::new(
+            gm(),
+            Law::Implicit(implicit()),
+            d,
+            Coupling::Frozen(FrozenTangent::Exact),
+        )
+        .unwrap();
+        let (rel, _) = worst_relative_gap(&muscle, d);
+        assert!(rel < 1e-10, "d = {d}: {rel:e}");
+    }
+}
+
+#[test]
+fn mismatched_pairs_miss_the_target_by_kilopascals() {
+    let frozen = Coupling::Frozen(FrozenTangent::Exact);
+    for d in [0.0, 0.5] {
+        let explicit_frozen =
+            Muscle::new(gm(), Law::Explicit(ExplicitLaw::paper()), d, frozen).unwrap();
+        let implicit_consistent =
+            Muscle::new(gm(), Law::Implicit(implicit()), d, Coupling::Consistent).unwrap();
+        let (re, ae) = worst_relative_gap(&explicit_frozen, d);
+        let (ri, ai) = worst_relative_gap(&implicit_consistent, d);
+        println!("d = {d}: explicit/frozen max gap {ae:.3} kPa (rel {re:.2e}); implicit/consistent max gap {ai:.3} kPa (rel {ri:.2e})");
+        assert!(
+            ae > 0.1 && ai > 0.1,
+            "a different model cannot reproduce the target exactly"
+        );
+    }
+}
