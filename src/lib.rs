@@ -18,12 +18,16 @@ pub mod active;
 pub mod energy;
 pub mod error;
 pub mod fem;
+pub mod fit;
 pub mod invariants;
 pub mod material;
 pub mod oracle;
+pub mod output;
 pub mod response;
 pub mod roots;
 pub mod scalar;
+pub mod stability;
+pub mod scene;
 pub mod testing;
 pub mod uniaxial;
 

@@ -1,0 +1,135 @@
+//! Material stability: strong ellipticity of an incompressible material and the slope of the
+//! uniaxial curve.
+//!
+//! Strong ellipticity (Legendre–Hadamard) under the constraint det F = 1: for every unit reference
+//! normal N and every unit direction a tangent to the constraint, a ⊥ n with n = F⁻ᵀN,
+//!
+//! a · Q(N) a > 0,  Q_ik(N) = A_iJkL N_J N_L,  A = ∂P/∂F.
+//!
+//! The pressure term −p F⁻ᵀ contributes p (n·a)² = 0 on a ⊥ n, so the tangent of Ψ alone decides.
+//! Only the symmetric part of Q enters the quadratic form, so the same check serves the frozen
+//! model's non-symmetric tangent. N is sampled on a Fibonacci half-sphere (Q(−N) = Q(N)); for
+//! each N the smallest eigenvalue of the 2×2 restriction of Q to the plane ⊥ n is exact.
+
+use crate::energy::StrainEnergy;
+use crate::invariants::{Kinematics, FULL};
+use crate::material::Muscle;
+use crate::response::Order;
+use crate::uniaxial::along_fibres;
+use crate::{Error, Result};
+use nalgebra::{Matrix2, Matrix3, SMatrix, Vector3};
+
+/// The least value of a·Q(N)a over the sampled normals.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ellipticity {
+    /// min a·Q(N)a [kPa].
+    pub least: f64,
+    /// The same divided by the Frobenius norm of the tangent [-]: negative means not elliptic.
+    pub relative: f64,
+    /// The reference normal N where it is least.
+    pub normal: Vector3<f64>,
+    /// The direction a where it is least.
+    pub direction: Vector3<f64>,
+}
+
+impl Ellipticity {
+    /// Strongly elliptic up to a relative tolerance of 1e-12.
+    pub fn holds(&self) -> bool {
+        self.relative > -1e-12
+    }
+}
+
+/// Unit vectors on the half-sphere z ≥ 0, Fibonacci lattice.
+fn half_sphere(samples: usize) -> impl Iterator<Item = Vector3<f64>> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..samples).map(move |i| {
+        let z = (i as f64 + 0.5) / samples as f64;
+        let r = (1.0 - z * z).sqrt();
+        let phi = golden * i as f64;
+        Vector3::new(r * phi.cos(), r * phi.sin(), z)
+    })
+}
+
+/// Two unit vectors spanning the plane orthogonal to the unit vector `n`.
+fn plane_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
+    let helper = if n.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let e1 = n.cross(&helper).normalize();
+    (e1, n.cross(&e1))
+}
+
+/// Strong ellipticity of the tangent A = ∂P/∂F (9×9, entries of F row by row) at F, over
+/// `samples` reference normals.
+pub fn strong_ellipticity(tangent: &SMatrix<f64, 9, 9>, f: &Matrix3<f64>, samples: usize) -> Result<Ellipticity> {
+    let f_inv_t = f.try_inverse().ok_or(Error::NonPositiveJacobian {
+        det: f.determinant(),
+        f: f.transpose().into(),
+    })?
+    .transpose();
+    let scale = tangent.norm().max(f64::MIN_POSITIVE);
+    let mut best = Ellipticity {
+        least: f64::INFINITY,
+        relative: f64::INFINITY,
+        normal: Vector3::z(),
+        direction: Vector3::x(),
+    };
+    for normal in half_sphere(samples.max(1)) {
+        let q = Matrix3::from_fn(|i, k| {
+            let mut s = 0.0;
+            for jj in 0..3 {
+                for l in 0..3 {
+                    s += tangent[(3 * i + jj, 3 * k + l)] * normal[jj] * normal[l];
+                }
+            }
+            s
+        });
+        let n = (f_inv_t * normal).normalize();
+        let (e1, e2) = plane_basis(&n);
+        let sym = |a: &Vector3<f64>, b: &Vector3<f64>| 0.5 * (a.dot(&(q * b)) + b.dot(&(q * a)));
+        let m = Matrix2::new(sym(&e1, &e1), sym(&e1, &e2), sym(&e2, &e1), sym(&e2, &e2));
+        let eig = m.symmetric_eigen();
+        let (idx, least) = if eig.eigenvalues[0] <= eig.eigenvalues[1] { (0, eig.eigenvalues[0]) } else { (1, eig.eigenvalues[1]) };
+        if least < best.least {
+            let v = eig.eigenvectors.column(idx);
+            best = Ellipticity {
+                least,
+                relative: least / scale,
+                normal,
+                direction: e1 * v[0] + e2 * v[1],
+            };
+        }
+    }
+    Ok(best)
+}
+
+/// Stability of one point of the uniaxial curve along the fibres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UniaxialStability {
+    /// Stretch λ [-].
+    pub lambda: f64,
+    /// Nominal stress [kPa].
+    pub stress: f64,
+    /// dP/dλ [kPa] along the homogeneous path (exact, from the tangent).
+    pub slope: f64,
+    /// Strong ellipticity at the point.
+    pub ellipticity: Ellipticity,
+}
+
+/// Slope and strong ellipticity of the homogeneous uniaxial state along the fibres at λ (fibres
+/// along e₁, F = diag(λ, λ^-½, λ^-½)). With t = λ^-½ and P = P₁₁ − P₂₂ t/λ:
+/// dP/dλ = dP₁₁/dλ − λ^{-3/2} dP₂₂/dλ + (3/2) λ^{-5/2} P₂₂, dF/dλ = diag(1, −t/(2λ), −t/(2λ)).
+pub fn along_fibres_stability<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64, samples: usize) -> Result<UniaxialStability> {
+    let point = along_fibres(muscle, lambda)?;
+    let t = lambda.sqrt().recip();
+    let f = Matrix3::from_diagonal(&Vector3::new(lambda, t, t));
+    let r = muscle.respond(&Kinematics::new(&f, &Vector3::x())?, Order::Tangent, &FULL)?;
+    let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
+    let df = [(0, 1.0), (4, -t / (2.0 * lambda)), (8, -t / (2.0 * lambda))];
+    let rate = |row: usize| df.iter().map(|&(b, v)| k[(row, b)] * v).sum::<f64>();
+    let slope = rate(0) - lambda.powf(-1.5) * rate(4) + 1.5 * lambda.powf(-2.5) * p[4];
+    Ok(UniaxialStability {
+        lambda,
+        stress: point.stress,
+        slope,
+        ellipticity: strong_ellipticity(&k, &f, samples)?,
+    })
+}
