@@ -52,19 +52,29 @@ fn half_sphere(samples: usize) -> impl Iterator<Item = Vector3<f64>> {
 
 /// Two unit vectors spanning the plane orthogonal to the unit vector `n`.
 fn plane_basis(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
-    let helper = if n.x.abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let helper = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::y()
+    };
     let e1 = n.cross(&helper).normalize();
     (e1, n.cross(&e1))
 }
 
 /// Strong ellipticity of the tangent A = ∂P/∂F (9×9, entries of F row by row) at F, over
 /// `samples` reference normals.
-pub fn strong_ellipticity(tangent: &SMatrix<f64, 9, 9>, f: &Matrix3<f64>, samples: usize) -> Result<Ellipticity> {
-    let f_inv_t = f.try_inverse().ok_or(Error::NonPositiveJacobian {
-        det: f.determinant(),
-        f: f.transpose().into(),
-    })?
-    .transpose();
+pub fn strong_ellipticity(
+    tangent: &SMatrix<f64, 9, 9>,
+    f: &Matrix3<f64>,
+    samples: usize,
+) -> Result<Ellipticity> {
+    let f_inv_t = f
+        .try_inverse()
+        .ok_or(Error::NonPositiveJacobian {
+            det: f.determinant(),
+            f: f.transpose().into(),
+        })?
+        .transpose();
     let scale = tangent.norm().max(f64::MIN_POSITIVE);
     let mut best = Ellipticity {
         least: f64::INFINITY,
@@ -87,7 +97,11 @@ pub fn strong_ellipticity(tangent: &SMatrix<f64, 9, 9>, f: &Matrix3<f64>, sample
         let sym = |a: &Vector3<f64>, b: &Vector3<f64>| 0.5 * (a.dot(&(q * b)) + b.dot(&(q * a)));
         let m = Matrix2::new(sym(&e1, &e1), sym(&e1, &e2), sym(&e2, &e1), sym(&e2, &e2));
         let eig = m.symmetric_eigen();
-        let (idx, least) = if eig.eigenvalues[0] <= eig.eigenvalues[1] { (0, eig.eigenvalues[0]) } else { (1, eig.eigenvalues[1]) };
+        let (idx, least) = if eig.eigenvalues[0] <= eig.eigenvalues[1] {
+            (0, eig.eigenvalues[0])
+        } else {
+            (1, eig.eigenvalues[1])
+        };
         if least < best.least {
             let v = eig.eigenvectors.column(idx);
             best = Ellipticity {
@@ -117,7 +131,11 @@ pub struct UniaxialStability {
 /// Slope and strong ellipticity of the homogeneous uniaxial state along the fibres at λ (fibres
 /// along e₁, F = diag(λ, λ^-½, λ^-½)). With t = λ^-½ and P = P₁₁ − P₂₂ t/λ:
 /// dP/dλ = dP₁₁/dλ − λ^{-3/2} dP₂₂/dλ + (3/2) λ^{-5/2} P₂₂, dF/dλ = diag(1, −t/(2λ), −t/(2λ)).
-pub fn along_fibres_stability<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64, samples: usize) -> Result<UniaxialStability> {
+pub fn along_fibres_stability<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    lambda: f64,
+    samples: usize,
+) -> Result<UniaxialStability> {
     let point = along_fibres(muscle, lambda)?;
     let t = lambda.sqrt().recip();
     let f = Matrix3::from_diagonal(&Vector3::new(lambda, t, t));
@@ -132,4 +150,40 @@ pub fn along_fibres_stability<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64, 
         slope,
         ellipticity: strong_ellipticity(&k, &f, samples)?,
     })
+}
+
+/// The largest stretch along the fibres (λ ≥ 1, uniaxial F = diag(λ, λ^-½, λ^-½)) at which the
+/// response of `muscle` to the given order is representable in f64, found by bisection to
+/// 1e-10 relative between 1 and 1e4. Beyond it the response is a typed
+/// [`Error::NonFinite`] (exp overflow: the Hessian leaves f64 first, then the gradient, then
+/// the energy), never inf or NaN.
+pub fn representable_stretch<E: StrainEnergy>(muscle: &Muscle<E>, order: Order) -> Result<f64> {
+    let ok = |l: f64| -> bool {
+        let t = l.sqrt().recip();
+        Kinematics::new(
+            &Matrix3::from_diagonal(&Vector3::new(l, t, t)),
+            &Vector3::x(),
+        )
+        .and_then(|kin| muscle.respond(&kin, order, &FULL))
+        .is_ok()
+    };
+    if !ok(1.0) {
+        return Err(Error::NoSolution {
+            equation: "representable stretch".into(),
+            reason: "the response is not representable even at lambda = 1".into(),
+        });
+    }
+    let (mut lo, mut hi) = (1.0, 1e4);
+    if ok(hi) {
+        return Ok(hi);
+    }
+    while hi - lo > 1e-10 * lo {
+        let mid = 0.5 * (lo + hi);
+        if ok(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(lo)
 }
