@@ -1,0 +1,130 @@
+//! Maps a byte offset of a TOML document (the span of a parse error) to the dotted key path that
+//! holds it (`study[1].stretch.step`), so that messages name the key, not only a line.
+
+/// The key path at `offset` in `text`, as well as it can be reconstructed from the text: table
+/// headers (`[a.b]`, `[[study]]` counted as `study[i]`), the key of the line (or of the
+/// multi-line array it continues) and the innermost key of an inline table.
+pub fn key_path(text: &str, offset: usize) -> String {
+    let offset = offset.min(text.len());
+    let mut header = String::new();
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    let mut line_start = 0;
+    let mut last_key_line: Option<(usize, &str)> = None;
+    for line in text.split_inclusive('\n') {
+        let end = line_start + line.len();
+        let body = strip_comment(line).trim();
+        if line_start > offset {
+            break;
+        }
+        if let Some(name) = body.strip_prefix("[[").and_then(|s| s.split("]]").next()) {
+            let name = name.trim().to_string();
+            let i = match counts.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, c)) => {
+                    *c += 1;
+                    *c - 1
+                }
+                None => {
+                    counts.push((name.clone(), 1));
+                    0
+                }
+            };
+            header = format!("{name}[{i}]");
+            last_key_line = None;
+        } else if let Some(name) = body.strip_prefix('[').and_then(|s| s.split(']').next()) {
+            header = name.trim().to_string();
+            last_key_line = None;
+        } else if body.contains('=') && !starts_inside_value(body) {
+            last_key_line = Some((line_start, line));
+        }
+        if offset < end || end == text.len() {
+            break;
+        }
+        line_start = end;
+    }
+    let mut path = header;
+    if let Some((start, line)) = last_key_line {
+        let top = line
+            .split('=')
+            .next()
+            .unwrap_or("")
+            .trim()
+            .trim_matches('"');
+        push(&mut path, top);
+        let within = offset.saturating_sub(start).min(line.len());
+        let prefix = line.get(..within).unwrap_or("");
+        if let Some(brace) = prefix.find('{') {
+            // Innermost key of an inline table: the key at the offset, or the last `key =` before it.
+            let rest = line.get(within..).unwrap_or("");
+            let word: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '-')
+                .collect();
+            let after = rest.get(word.len()..).unwrap_or("").trim_start();
+            if !word.is_empty() && after.starts_with('=') {
+                push(&mut path, &word);
+            } else if let Some(inner) = prefix
+                .get(brace + 1..)
+                .and_then(|s| s.rsplit(',').next())
+                .and_then(|s| s.split('=').next())
+                .map(str::trim)
+                .filter(|s| !s.is_empty() && !s.contains(' '))
+            {
+                push(&mut path, inner);
+            }
+        }
+    }
+    if path.is_empty() {
+        "(top level)".to_string()
+    } else {
+        path
+    }
+}
+
+fn push(path: &mut String, key: &str) {
+    if key.is_empty() {
+        return;
+    }
+    if !path.is_empty() {
+        path.push('.');
+    }
+    path.push_str(key);
+}
+
+fn strip_comment(line: &str) -> &str {
+    let mut in_string = false;
+    for (i, c) in line.char_indices() {
+        match c {
+            '"' => in_string = !in_string,
+            '#' if !in_string => return &line[..i],
+            _ => {}
+        }
+    }
+    line
+}
+
+/// A continuation line of a multi-line array (`  0.7, 0.8,`) has no key of its own.
+fn starts_inside_value(body: &str) -> bool {
+    body.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '{' || c == ']')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::key_path;
+
+    const DOC: &str = "title = \"x\"\n[material]\nmu = 1\n[[study]]\nkind = \"uniaxial\"\n[[study]]\nkind = \"cylinder\"\nstretch = { from = 0.7, to = 1.6, stepp = 0.05 }\nvtk = [\n  0.7,\n  1.0 ]\n";
+
+    fn at(needle: &str) -> String {
+        key_path(DOC, DOC.find(needle).unwrap_or(0))
+    }
+
+    #[test]
+    fn names_headers_array_indices_and_inline_keys() {
+        assert_eq!(at("\"x\""), "title");
+        assert_eq!(at("1\n[[study"), "material.mu");
+        assert_eq!(at("\"uniaxial\""), "study[0].kind");
+        assert_eq!(at("\"cylinder\""), "study[1].kind");
+        assert_eq!(at("stepp"), "study[1].stretch.stepp");
+        assert_eq!(at("1.6"), "study[1].stretch.to");
+        assert_eq!(at("1.0 ]"), "study[1].vtk");
+    }
+}

@@ -1,0 +1,725 @@
+//! Validation and resolution of a [`SceneFile`] into a [`Scene`]: defaults filled in, every rule
+//! checked, every model parameter passed once through the core's own constructors (their errors
+//! are mapped back to the key that produced them).
+
+use super::schema::{
+    ActivationSpec, BasesKind, CouplingKind, DirectionKind, EnergyKind, EnergySpec, ExplicitSpec,
+    LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, TangentKind,
+};
+use super::SceneError;
+use crate::active::{
+    ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+};
+use crate::energy::{EhretBolItskov, Energy, GiantesioMusesti, NeoHookean};
+use crate::Muscle;
+
+/// A validated scene with every default resolved.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// File name (or the embedded scene's name).
+    pub file: String,
+    /// The scene text as read.
+    pub source: String,
+    /// Title.
+    pub title: String,
+    /// The passive energy.
+    pub material: Energy,
+    /// Fibre direction (unit). The tests are defined relative to it, so any direction gives the
+    /// same curves; the cylinder's axis is aligned with it.
+    pub fibre: [f64; 3],
+    /// Active curve.
+    pub curve: ActiveCurve,
+    /// Explicit-law coefficients (a, b).
+    pub explicit: (f64, f64),
+    /// Tangent used by the frozen model.
+    pub frozen_tangent: TangentKind,
+    /// Studies in file order.
+    pub studies: Vec<Study>,
+    /// The resolved scene as a TOML document (every default written out).
+    pub resolved: SceneFile,
+}
+
+/// A study to run.
+#[derive(Debug, Clone)]
+pub enum Study {
+    /// Homogeneous uniaxial tension.
+    Uniaxial(UniaxialStudy),
+    /// The FE cylinder.
+    Cylinder(CylinderStudy),
+}
+
+/// One activation model: law, coupling, damage.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelChoice {
+    /// Activation law.
+    pub law: LawKind,
+    /// Coupling.
+    pub coupling: CouplingKind,
+    /// Damage d ∈ [0, 1].
+    pub damage: f64,
+}
+
+/// A validated uniaxial study.
+#[derive(Debug, Clone)]
+pub struct UniaxialStudy {
+    /// Label.
+    pub name: String,
+    /// Loading direction relative to the fibres.
+    pub direction: DirectionKind,
+    /// Stretches, ascending, without duplicates.
+    pub stretches: Vec<f64>,
+    /// Whether to include the material's passive curve.
+    pub passive: bool,
+    /// Extra passive energies.
+    pub compare: Vec<Energy>,
+    /// Active models: laws × couplings × damages.
+    pub models: Vec<ModelChoice>,
+    /// Constant activations.
+    pub constant_gamma: Vec<f64>,
+}
+
+/// A validated cylinder study.
+#[derive(Debug, Clone)]
+pub struct CylinderStudy {
+    /// Label.
+    pub name: String,
+    /// Radius R.
+    pub radius: f64,
+    /// Length L.
+    pub length: f64,
+    /// Cells in r.
+    pub nr: usize,
+    /// Cells in z.
+    pub nz: usize,
+    /// Middle/base cell-height ratio.
+    pub grading: f64,
+    /// Base conditions.
+    pub bases: BasesKind,
+    /// Target stretches, ascending.
+    pub stretches: Vec<f64>,
+    /// Activation law.
+    pub law: LawKind,
+    /// Coupling.
+    pub coupling: CouplingKind,
+    /// Damage values, one FE sweep each.
+    pub damages: Vec<f64>,
+    /// Stretches with VTK output.
+    pub vtk: Vec<f64>,
+    /// Newton tolerance.
+    pub tolerance: f64,
+}
+
+impl Study {
+    /// The study's label.
+    pub fn name(&self) -> &str {
+        match self {
+            Study::Uniaxial(s) => &s.name,
+            Study::Cylinder(s) => &s.name,
+        }
+    }
+}
+
+impl Scene {
+    /// The activation law `kind` built for this scene's material and curve.
+    pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
+        Ok(match kind {
+            LawKind::Implicit => Law::Implicit(ImplicitLaw::new(self.material.clone(), self.curve)),
+            LawKind::Energy => Law::Energy(EnergyLaw::new(self.material.clone(), self.curve)),
+            LawKind::Explicit => {
+                let gm = match &self.material {
+                    Energy::GiantesioMusesti(gm) => *gm,
+                    _ => GiantesioMusesti::paper(),
+                };
+                Law::Explicit(ExplicitLaw::new(
+                    self.explicit.0,
+                    self.explicit.1,
+                    gm,
+                    self.curve,
+                )?)
+            }
+        })
+    }
+
+    /// The coupling `kind` with this scene's frozen tangent.
+    pub fn coupling(&self, kind: CouplingKind) -> Coupling {
+        match (kind, self.frozen_tangent) {
+            (CouplingKind::Consistent, _) => Coupling::Consistent,
+            (CouplingKind::Frozen, TangentKind::Exact) => Coupling::Frozen(FrozenTangent::Exact),
+            (CouplingKind::Frozen, TangentKind::Symmetric) => {
+                Coupling::Frozen(FrozenTangent::Symmetric)
+            }
+        }
+    }
+
+    /// The active muscle of `model`.
+    pub fn muscle(&self, model: ModelChoice) -> crate::Result<Muscle<Energy>> {
+        Muscle::new(
+            self.material.clone(),
+            self.law(model.law)?,
+            model.damage,
+            self.coupling(model.coupling),
+        )
+    }
+
+    /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
+    pub fn constant(&self, gamma: f64) -> crate::Result<Muscle<Energy>> {
+        Muscle::new(
+            self.material.clone(),
+            Law::Constant(ConstantLaw::new(gamma)?),
+            0.0,
+            Coupling::Consistent,
+        )
+    }
+}
+
+struct Ctx<'a> {
+    file: &'a str,
+}
+
+impl Ctx<'_> {
+    fn err(
+        &self,
+        key: impl Into<String>,
+        value: impl fmt::Display,
+        rule: impl Into<String>,
+    ) -> SceneError {
+        SceneError {
+            file: self.file.to_string(),
+            key: key.into(),
+            value: value.to_string(),
+            rule: rule.into(),
+            line: None,
+        }
+    }
+
+    /// Maps a core error to the key `prefix.<parameter>`.
+    fn core(&self, prefix: &str, e: crate::Error) -> SceneError {
+        match e {
+            crate::Error::InvalidParameter { name, value, rule } => {
+                self.err(format!("{prefix}.{name}"), value, rule)
+            }
+            crate::Error::ActivationOutOfRange { gamma } => {
+                self.err(prefix, gamma, "activation gamma must lie in [0, 1)")
+            }
+            other => self.err(prefix, "", other.to_string()),
+        }
+    }
+}
+
+use std::fmt;
+
+fn fmt_list(v: &[f64]) -> String {
+    let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+    format!("[{}]", items.join(", "))
+}
+
+fn energy(
+    ctx: &Ctx,
+    key: &str,
+    kind: EnergyKind,
+    mu: Option<f64>,
+    alpha: Option<f64>,
+    beta: Option<f64>,
+    w0: Option<f64>,
+) -> Result<Energy, SceneError> {
+    let not_for = |name: &str, v: Option<f64>| -> Result<(), SceneError> {
+        match v {
+            Some(x) => Err(ctx.err(
+                format!("{key}.{name}"),
+                x,
+                format!("the {} energy has no parameter {name}", kind_name(kind)),
+            )),
+            None => Ok(()),
+        }
+    };
+    let e = match kind {
+        EnergyKind::GiantesioMusesti => {
+            not_for("beta", beta)?;
+            let p = GiantesioMusesti::paper();
+            GiantesioMusesti::new(
+                mu.unwrap_or(p.mu()),
+                alpha.unwrap_or(p.alpha()),
+                w0.unwrap_or(p.w0()),
+            )
+            .map(Energy::GiantesioMusesti)
+        }
+        EnergyKind::EhretBolItskov => EhretBolItskov::new(
+            mu.unwrap_or(0.1599),
+            alpha.unwrap_or(19.69),
+            beta.unwrap_or(1.190),
+            w0.unwrap_or(0.7388),
+        )
+        .map(Energy::EhretBolItskov),
+        EnergyKind::NeoHookean => {
+            not_for("alpha", alpha)?;
+            not_for("beta", beta)?;
+            not_for("w0", w0)?;
+            let Some(mu) = mu else {
+                return Err(ctx.err(
+                    format!("{key}.mu"),
+                    "(missing)",
+                    "the neo-hookean energy has no chapter value: give mu [kPa]",
+                ));
+            };
+            NeoHookean::new(mu).map(Energy::NeoHookean)
+        }
+    };
+    e.map_err(|e| ctx.core(key, e))
+}
+
+fn kind_name(kind: EnergyKind) -> &'static str {
+    match kind {
+        EnergyKind::GiantesioMusesti => "giantesio-musesti",
+        EnergyKind::EhretBolItskov => "ehret-bol-itskov",
+        EnergyKind::NeoHookean => "neo-hookean",
+    }
+}
+
+/// An energy spec with the defaults of its kind written out (for the printed scene).
+fn filled(spec: &EnergySpec) -> EnergySpec {
+    let (mu, alpha, beta, w0) = match spec.energy {
+        EnergyKind::GiantesioMusesti => (Some(0.1599), Some(19.35), None, Some(0.7335)),
+        EnergyKind::EhretBolItskov => (Some(0.1599), Some(19.69), Some(1.190), Some(0.7388)),
+        EnergyKind::NeoHookean => (None, None, None, None),
+    };
+    EnergySpec {
+        energy: spec.energy,
+        mu: spec.mu.or(mu),
+        alpha: spec.alpha.or(alpha),
+        beta: spec.beta.or(beta),
+        w0: spec.w0.or(w0),
+    }
+}
+
+/// Stretch lists: finite, > 0, ascending without duplicates, reasonably short.
+fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<f64>, SceneError> {
+    const MAX: usize = 100_000;
+    let mut v = match spec {
+        StretchSpec::List(v) => v.clone(),
+        StretchSpec::Range {
+            from,
+            to,
+            step,
+            extra,
+        } => {
+            if !(step.is_finite() && *step > 0.0) {
+                return Err(ctx.err(format!("{key}.step"), step, "must be finite and > 0"));
+            }
+            if !(from.is_finite() && to.is_finite() && to >= from) {
+                return Err(ctx.err(
+                    format!("{key}.to"),
+                    to,
+                    format!("must be finite and ≥ from = {from}"),
+                ));
+            }
+            let n = ((to - from) / step).round();
+            if ((from + n * step) - to).abs() > 1e-9 * step.max(1.0) {
+                return Err(ctx.err(
+                    format!("{key}.step"),
+                    step,
+                    format!("from = {from} must reach to = {to} in whole steps"),
+                ));
+            }
+            if n >= MAX as f64 {
+                return Err(ctx.err(
+                    format!("{key}.step"),
+                    step,
+                    format!("gives more than {MAX} stretches"),
+                ));
+            }
+            // Rounded to 10 decimals so that 0.65 + 0.01 i prints as the decimal it means.
+            let mut v: Vec<f64> = (0..=n as usize)
+                .map(|i| ((from + i as f64 * step) * 1e10).round() / 1e10)
+                .collect();
+            v.extend_from_slice(extra);
+            v
+        }
+    };
+    if v.is_empty() {
+        return Err(ctx.err(
+            key,
+            "[]",
+            "the stretch list is empty: give at least one stretch",
+        ));
+    }
+    if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+        return Err(ctx.err(key, bad, "every stretch must be finite and > 0"));
+    }
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    Ok(v)
+}
+
+fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
+    if v.is_empty() {
+        return Err(ctx.err(
+            key,
+            "[]",
+            "the damage list is empty: give at least one d ∈ [0, 1]",
+        ));
+    }
+    for (i, d) in v.iter().enumerate() {
+        if !(0.0..=1.0).contains(d) {
+            return Err(ctx.err(format!("{key}[{i}]"), d, "damage d must lie in [0, 1]"));
+        }
+    }
+    Ok(v.to_vec())
+}
+
+fn reject(ctx: &Ctx, key: &str, present: bool, kind: &str) -> Result<(), SceneError> {
+    if present {
+        Err(ctx.err(key, "(given)", format!("not a key of a {kind} study")))
+    } else {
+        Ok(())
+    }
+}
+
+pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, SceneError> {
+    let ctx = Ctx { file };
+    let MaterialSpec {
+        energy: kind,
+        mu,
+        alpha,
+        beta,
+        w0,
+        fibre,
+    } = raw.material.clone();
+    let material = energy(&ctx, "material", kind, mu, alpha, beta, w0)?;
+    let fibre = fibre.unwrap_or([1.0, 0.0, 0.0]);
+    let norm = fibre.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if !(norm.is_finite() && norm > 1e-12) {
+        return Err(ctx.err(
+            "material.fibre",
+            fmt_list(&fibre),
+            "the fibre direction must be a finite, non-zero vector",
+        ));
+    }
+    let fibre = fibre.map(|x| x / norm);
+
+    let act = raw.activation.clone();
+    let p = ActiveCurve::paper();
+    let curve = ActiveCurve::new(
+        act.lambda_min.unwrap_or(p.lambda_min()),
+        act.lambda_opt.unwrap_or(p.lambda_opt()),
+        act.k.unwrap_or(p.k()),
+        act.p_opt.unwrap_or(p.p_opt()),
+    )
+    .map_err(|e| ctx.core("activation", e))?;
+    let ex = act.explicit.clone().unwrap_or_default();
+    let explicit = (ex.a.unwrap_or(1.0133), ex.b.unwrap_or(0.2050));
+    ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
+        .map_err(|e| ctx.core("activation.explicit", e))?;
+    let default_law = act.law.unwrap_or_default();
+    let default_coupling = act.coupling.unwrap_or_default();
+    let frozen_tangent = act.frozen_tangent.unwrap_or_default();
+    let default_damage = damages(
+        &ctx,
+        "activation.damage",
+        act.damage.as_deref().unwrap_or(&[0.0]),
+    )?;
+    let explicit_ok = |key: String, law: LawKind| -> Result<(), SceneError> {
+        if law == LawKind::Explicit && kind != EnergyKind::GiantesioMusesti {
+            Err(ctx.err(
+                key,
+                "\"explicit\"",
+                format!(
+                    "eq. D:gamma is derived for the giantesio-musesti energy; material.energy is {}",
+                    kind_name(kind)
+                ),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+
+    if raw.studies.is_empty() {
+        return Err(ctx.err(
+            "study",
+            "(none)",
+            "a scene needs at least one [[study]] (kind = \"uniaxial\" or \"cylinder\")",
+        ));
+    }
+    let mut studies = Vec::new();
+    let mut resolved_studies = Vec::new();
+    for (i, s) in raw.studies.iter().enumerate() {
+        let key = format!("study[{i}]");
+        let k = |name: &str| format!("{key}.{name}");
+        let Some(spec) = &s.stretch else {
+            return Err(ctx.err(k("stretch"), "(missing)", "every study needs its stretches"));
+        };
+        let lambdas = stretches(&ctx, &k("stretch"), spec)?;
+        let damage = match &s.damage {
+            Some(d) => damages(&ctx, &k("damage"), d)?,
+            None => default_damage.clone(),
+        };
+        let mut r = s.clone();
+        r.damage = Some(damage.clone());
+        match s.kind {
+            StudyKind::Uniaxial => {
+                for (name, present) in [
+                    ("radius", s.radius.is_some()),
+                    ("length", s.length.is_some()),
+                    ("nr", s.nr.is_some()),
+                    ("nz", s.nz.is_some()),
+                    ("grading", s.grading.is_some()),
+                    ("bases", s.bases.is_some()),
+                    ("law", s.law.is_some()),
+                    ("coupling", s.coupling.is_some()),
+                    ("vtk", s.vtk.is_some()),
+                    ("tolerance", s.tolerance.is_some()),
+                ] {
+                    let hint = match name {
+                        "law" => " (uniaxial studies take a list: laws = [...])",
+                        "coupling" => " (uniaxial studies take a list: couplings = [...])",
+                        _ => "",
+                    };
+                    reject(&ctx, &k(name), present, &format!("uniaxial{hint}"))?;
+                }
+                let direction = s.direction.unwrap_or(DirectionKind::Along);
+                let laws = s.laws.clone().unwrap_or_else(|| vec![default_law]);
+                for (j, l) in laws.iter().enumerate() {
+                    explicit_ok(format!("{key}.laws[{j}]"), *l)?;
+                }
+                let couplings = s
+                    .couplings
+                    .clone()
+                    .unwrap_or_else(|| vec![default_coupling]);
+                if !laws.is_empty() && couplings.is_empty() {
+                    return Err(ctx.err(
+                        k("couplings"),
+                        "[]",
+                        "active laws need at least one coupling",
+                    ));
+                }
+                let mut compare = Vec::new();
+                for (j, c) in s.compare.clone().unwrap_or_default().iter().enumerate() {
+                    compare.push(energy(
+                        &ctx,
+                        &format!("{key}.compare[{j}]"),
+                        c.energy,
+                        c.mu,
+                        c.alpha,
+                        c.beta,
+                        c.w0,
+                    )?);
+                }
+                let constant_gamma = s.constant_gamma.clone().unwrap_or_default();
+                for (j, g) in constant_gamma.iter().enumerate() {
+                    ConstantLaw::new(*g).map_err(|_| {
+                        ctx.err(
+                            format!("{key}.constant_gamma[{j}]"),
+                            g,
+                            "activation gamma must lie in [0, 1) (γ = 1 is infinite contraction)",
+                        )
+                    })?;
+                }
+                let mut models = Vec::new();
+                for &law in &laws {
+                    for &coupling in &couplings {
+                        for &d in &damage {
+                            models.push(ModelChoice {
+                                law,
+                                coupling,
+                                damage: d,
+                            });
+                        }
+                    }
+                }
+                let passive = s.passive.unwrap_or(true);
+                if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty()
+                {
+                    return Err(ctx.err(
+                        &key,
+                        "(nothing to compute)",
+                        "a uniaxial study needs passive = true, compare, laws or constant_gamma",
+                    ));
+                }
+                r.direction = Some(direction);
+                r.passive = Some(passive);
+                r.laws = Some(laws);
+                r.couplings = Some(couplings);
+                r.constant_gamma = Some(constant_gamma.clone());
+                r.compare = Some(s.compare.iter().flatten().map(filled).collect());
+                let name = s.name.clone().unwrap_or_else(|| match direction {
+                    DirectionKind::Along => "uniaxial along fibres".into(),
+                    DirectionKind::Across => "uniaxial across fibres".into(),
+                });
+                r.name = Some(name.clone());
+                studies.push(Study::Uniaxial(UniaxialStudy {
+                    name,
+                    direction,
+                    stretches: lambdas,
+                    passive,
+                    compare,
+                    models,
+                    constant_gamma,
+                }));
+            }
+            StudyKind::Cylinder => {
+                for (name, present) in [
+                    ("direction", s.direction.is_some()),
+                    ("passive", s.passive.is_some()),
+                    ("compare", s.compare.is_some()),
+                    ("laws", s.laws.is_some()),
+                    ("couplings", s.couplings.is_some()),
+                    ("constant_gamma", s.constant_gamma.is_some()),
+                ] {
+                    let hint = match name {
+                        "laws" => " (a cylinder study takes one law: law = \"...\")",
+                        "couplings" => " (a cylinder study takes one coupling: coupling = \"...\")",
+                        _ => "",
+                    };
+                    reject(&ctx, &k(name), present, &format!("cylinder{hint}"))?;
+                }
+                let positive = |name: &str, v: f64| -> Result<f64, SceneError> {
+                    if v.is_finite() && v > 0.0 {
+                        Ok(v)
+                    } else {
+                        Err(ctx.err(k(name), v, "must be finite and > 0"))
+                    }
+                };
+                let radius = positive("radius", s.radius.unwrap_or(1.0))?;
+                let length = positive("length", s.length.unwrap_or(4.0))?;
+                let cells =
+                    |name: &str, v: Option<i64>, default: i64| -> Result<usize, SceneError> {
+                        let v = v.unwrap_or(default);
+                        if (1..=10_000).contains(&v) {
+                            Ok(v as usize)
+                        } else {
+                            Err(ctx.err(
+                                k(name),
+                                v,
+                                "the number of cells must be an integer in [1, 10000]",
+                            ))
+                        }
+                    };
+                let nr = cells("nr", s.nr, 6)?;
+                let nz = cells("nz", s.nz, 24)?;
+                let grading = s.grading.unwrap_or(1.0);
+                if !(grading.is_finite() && grading >= 1.0) {
+                    return Err(ctx.err(
+                        k("grading"),
+                        grading,
+                        "must be finite and ≥ 1 (1 = uniform)",
+                    ));
+                }
+                let tolerance = positive("tolerance", s.tolerance.unwrap_or(1e-10))?;
+                let law = s.law.unwrap_or(default_law);
+                explicit_ok(k("law"), law)?;
+                let coupling = s.coupling.unwrap_or(default_coupling);
+                let vtk = s.vtk.clone().unwrap_or_default();
+                for (j, v) in vtk.iter().enumerate() {
+                    if !lambdas.iter().any(|l| (l - v).abs() < 1e-12) {
+                        return Err(ctx.err(
+                            format!("{key}.vtk[{j}]"),
+                            v,
+                            "VTK output is written only at computed stretches: add it to stretch",
+                        ));
+                    }
+                }
+                let bases = s.bases.unwrap_or(BasesKind::Clamped);
+                let name = s.name.clone().unwrap_or_else(|| {
+                    format!(
+                        "cylinder {} {} {}",
+                        match bases {
+                            BasesKind::Clamped => "clamped",
+                            BasesKind::Sliding => "sliding",
+                        },
+                        law_name(law),
+                        coupling_name(coupling)
+                    )
+                });
+                r.name = Some(name.clone());
+                r.radius = Some(radius);
+                r.length = Some(length);
+                r.nr = Some(nr as i64);
+                r.nz = Some(nz as i64);
+                r.grading = Some(grading);
+                r.bases = Some(bases);
+                r.law = Some(law);
+                r.coupling = Some(coupling);
+                r.vtk = Some(vtk.clone());
+                r.tolerance = Some(tolerance);
+                studies.push(Study::Cylinder(CylinderStudy {
+                    name,
+                    radius,
+                    length,
+                    nr,
+                    nz,
+                    grading,
+                    bases,
+                    stretches: lambdas,
+                    law,
+                    coupling,
+                    damages: damage,
+                    vtk,
+                    tolerance,
+                }));
+            }
+        }
+        resolved_studies.push(r);
+    }
+
+    let material_spec = filled(&EnergySpec {
+        energy: kind,
+        mu,
+        alpha,
+        beta,
+        w0,
+    });
+    let resolved = SceneFile {
+        title: raw.title.clone(),
+        material: MaterialSpec {
+            energy: material_spec.energy,
+            mu: material_spec.mu,
+            alpha: material_spec.alpha,
+            beta: material_spec.beta,
+            w0: material_spec.w0,
+            fibre: Some(fibre),
+        },
+        activation: ActivationSpec {
+            lambda_min: Some(curve.lambda_min()),
+            lambda_opt: Some(curve.lambda_opt()),
+            k: Some(curve.k()),
+            p_opt: Some(curve.p_opt()),
+            law: Some(default_law),
+            coupling: Some(default_coupling),
+            frozen_tangent: Some(frozen_tangent),
+            damage: Some(default_damage),
+            explicit: Some(ExplicitSpec {
+                a: Some(explicit.0),
+                b: Some(explicit.1),
+            }),
+        },
+        studies: resolved_studies,
+    };
+    Ok(Scene {
+        file: file.to_string(),
+        source: text.to_string(),
+        title: raw.title.unwrap_or_else(|| "activemuscle scene".into()),
+        material,
+        fibre,
+        curve,
+        explicit,
+        frozen_tangent,
+        studies,
+        resolved,
+    })
+}
+
+/// Name of a law in logs and files.
+pub fn law_name(l: LawKind) -> &'static str {
+    match l {
+        LawKind::Implicit => "implicit",
+        LawKind::Explicit => "explicit",
+        LawKind::Energy => "energy",
+    }
+}
+
+/// Name of a coupling in logs and files.
+pub fn coupling_name(c: CouplingKind) -> &'static str {
+    match c {
+        CouplingKind::Frozen => "frozen",
+        CouplingKind::Consistent => "consistent",
+    }
+}

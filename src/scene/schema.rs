@@ -1,0 +1,280 @@
+//! The scene file as written: serde structures mirroring the TOML, every key optional except
+//! where a study cannot do without it. Defaults and rules live in [`super::resolve`].
+
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+use std::fmt;
+
+/// The whole file.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Free text shown in the report.
+    pub title: Option<String>,
+    /// The passive material and the fibre direction.
+    #[serde(default)]
+    pub material: MaterialSpec,
+    /// Active curve, activation law, coupling and damage values shared by the studies.
+    #[serde(default)]
+    pub activation: ActivationSpec,
+    /// The studies, in order (`[[study]]`).
+    #[serde(default, rename = "study")]
+    pub studies: Vec<StudySpec>,
+}
+
+/// Energy kinds (`energy = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EnergyKind {
+    /// The chapter's energy, eq. D:Wpassiva.
+    #[default]
+    GiantesioMusesti,
+    /// Ehret–Böl–Itskov, eq. D:Webi.
+    EhretBolItskov,
+    /// Incompressible neo-Hookean reference.
+    NeoHookean,
+}
+
+/// `[material]`: an energy, its parameters (chapter values by default) and the fibre direction.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Energy kind.
+    #[serde(default)]
+    pub energy: EnergyKind,
+    /// μ [kPa].
+    pub mu: Option<f64>,
+    /// α [-] (giantesio-musesti, ehret-bol-itskov).
+    pub alpha: Option<f64>,
+    /// β [-] (ehret-bol-itskov).
+    pub beta: Option<f64>,
+    /// w0 [-] (giantesio-musesti, ehret-bol-itskov).
+    pub w0: Option<f64>,
+    /// Fibre direction m in the reference configuration (normalised).
+    pub fibre: Option<[f64; 3]>,
+}
+
+/// An extra passive energy to compare with (`compare = [{ energy = "ehret-bol-itskov" }]`).
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnergySpec {
+    /// Energy kind.
+    #[serde(default)]
+    pub energy: EnergyKind,
+    /// μ [kPa].
+    pub mu: Option<f64>,
+    /// α [-].
+    pub alpha: Option<f64>,
+    /// β [-].
+    pub beta: Option<f64>,
+    /// w0 [-].
+    pub w0: Option<f64>,
+}
+
+/// Activation laws (`law = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawKind {
+    /// eq. D:eqgammaesplicita solved numerically.
+    #[default]
+    Implicit,
+    /// eq. D:gamma (closed form, a and b).
+    Explicit,
+    /// The energy-consistent fit.
+    Energy,
+}
+
+/// Couplings (`coupling = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CouplingKind {
+    /// The chapter's model: γ held in the stress.
+    #[default]
+    Frozen,
+    /// Truly hyperelastic: Ψ(F) = Ŵ(F, g(λ_f(F))).
+    Consistent,
+}
+
+/// Linearisation of the frozen model (`frozen_tangent = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum TangentKind {
+    /// Exact, non-symmetric.
+    #[default]
+    Exact,
+    /// Symmetric, inexact.
+    Symmetric,
+}
+
+/// `[activation]`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ActivationSpec {
+    /// λ_min [-] (Table D:paratt).
+    pub lambda_min: Option<f64>,
+    /// λ_opt [-].
+    pub lambda_opt: Option<f64>,
+    /// k [-].
+    pub k: Option<f64>,
+    /// P_opt [kPa].
+    pub p_opt: Option<f64>,
+    /// Default law of the studies.
+    pub law: Option<LawKind>,
+    /// Default coupling of the studies.
+    pub coupling: Option<CouplingKind>,
+    /// Tangent of the frozen model.
+    pub frozen_tangent: Option<TangentKind>,
+    /// Default damage values d ∈ [0, 1].
+    pub damage: Option<Vec<f64>>,
+    /// Coefficients of the explicit law (eq. D:gamma).
+    pub explicit: Option<ExplicitSpec>,
+}
+
+/// `explicit = { a = 1.0133, b = 0.2050 }`.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExplicitSpec {
+    /// a [-].
+    pub a: Option<f64>,
+    /// b [-].
+    pub b: Option<f64>,
+}
+
+/// Study kinds (`kind = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StudyKind {
+    /// Homogeneous uniaxial tension (0D).
+    Uniaxial,
+    /// The axisymmetric FE cylinder.
+    Cylinder,
+}
+
+/// Uniaxial loading direction relative to the fibres.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum DirectionKind {
+    /// Along the fibres.
+    Along,
+    /// Across the fibres.
+    Across,
+}
+
+/// Base conditions of the cylinder.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BasesKind {
+    /// u_r free on the bases (homogeneous solution).
+    Sliding,
+    /// u_r = 0 on the bases.
+    Clamped,
+}
+
+/// One `[[study]]`. Keys that do not belong to the study's kind are rejected by validation.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct StudySpec {
+    /// `uniaxial` or `cylinder`.
+    pub kind: StudyKind,
+    /// Label in logs and the report.
+    pub name: Option<String>,
+    /// Stretches λ: a list or `{ from, to, step, extra = [...] }`.
+    pub stretch: Option<StretchSpec>,
+    /// Damage values (default: `activation.damage`).
+    pub damage: Option<Vec<f64>>,
+    // --- uniaxial ---
+    /// `along` or `across` (uniaxial).
+    pub direction: Option<DirectionKind>,
+    /// Include the passive curve of the material (uniaxial; default true).
+    pub passive: Option<bool>,
+    /// Extra passive energies (uniaxial).
+    pub compare: Option<Vec<EnergySpec>>,
+    /// Activation laws (uniaxial; default `[activation.law]`; `[]` for none).
+    pub laws: Option<Vec<LawKind>>,
+    /// Couplings (uniaxial; default `[activation.coupling]`).
+    pub couplings: Option<Vec<CouplingKind>>,
+    /// Constant activations γ ∈ [0, 1) (uniaxial).
+    pub constant_gamma: Option<Vec<f64>>,
+    // --- cylinder ---
+    /// Radius R (cylinder).
+    pub radius: Option<f64>,
+    /// Length L (cylinder).
+    pub length: Option<f64>,
+    /// Cells in r (cylinder).
+    pub nr: Option<i64>,
+    /// Cells in z (cylinder).
+    pub nz: Option<i64>,
+    /// Middle/base cell-height ratio ≥ 1 (cylinder).
+    pub grading: Option<f64>,
+    /// `clamped` or `sliding` (cylinder).
+    pub bases: Option<BasesKind>,
+    /// Activation law (cylinder; default `activation.law`).
+    pub law: Option<LawKind>,
+    /// Coupling (cylinder; default `activation.coupling`).
+    pub coupling: Option<CouplingKind>,
+    /// Stretches at which VTK fields are written (cylinder; must be among the stretches).
+    pub vtk: Option<Vec<f64>>,
+    /// Newton tolerance (cylinder).
+    pub tolerance: Option<f64>,
+}
+
+/// Stretches: `[0.8, 1.0, 1.2]` or `{ from = 0.7, to = 1.6, step = 0.05, extra = [1.17] }`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum StretchSpec {
+    /// Explicit list.
+    List(Vec<f64>),
+    /// Evenly spaced, plus extra points.
+    Range {
+        /// First stretch.
+        from: f64,
+        /// Last stretch (must be reached by whole steps).
+        to: f64,
+        /// Step > 0.
+        step: f64,
+        /// Extra stretches merged in.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        extra: Vec<f64>,
+    },
+}
+
+// Hand-written so that errors inside keep their position in the file (an untagged derive
+// buffers the value and loses it).
+impl<'de> Deserialize<'de> for StretchSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = StretchSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a list of stretches or a table { from, to, step, extra }")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    v.push(x);
+                }
+                Ok(StretchSpec::List(v))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+                const FIELDS: &[&str] = &["from", "to", "step", "extra"];
+                let (mut from, mut to, mut step, mut extra) = (None, None, None, Vec::new());
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "from" => from = Some(map.next_value::<f64>()?),
+                        "to" => to = Some(map.next_value::<f64>()?),
+                        "step" => step = Some(map.next_value::<f64>()?),
+                        "extra" => extra = map.next_value::<Vec<f64>>()?,
+                        other => return Err(de::Error::unknown_field(other, FIELDS)),
+                    }
+                }
+                Ok(StretchSpec::Range {
+                    from: from.ok_or_else(|| de::Error::missing_field("from"))?,
+                    to: to.ok_or_else(|| de::Error::missing_field("to"))?,
+                    step: step.ok_or_else(|| de::Error::missing_field("step"))?,
+                    extra,
+                })
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}

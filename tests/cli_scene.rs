@@ -1,0 +1,255 @@
+//! Every kind of bad scene input gives a non-zero exit and a message naming the file, the key,
+//! the value and the rule; the binary is run as a user runs it.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");
+
+const STUDY: &str = "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n";
+
+fn scene_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("activemuscle-cli-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let p = dir.join(format!("{name}.toml"));
+    std::fs::write(&p, text).expect("write scene");
+    p
+}
+
+/// Runs `check` on `text`; asserts failure and that stderr names the file and every `needle`.
+fn rejected(name: &str, text: &str, needles: &[&str]) {
+    let path = scene_file(name, text);
+    let out = Command::new(BIN)
+        .arg("check")
+        .arg(&path)
+        .output()
+        .expect("run binary");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success(),
+        "{name}: accepted a bad scene; stderr: {err}"
+    );
+    assert!(
+        err.contains(&format!("{name}.toml")),
+        "{name}: message does not name the file: {err}"
+    );
+    for n in needles {
+        assert!(err.contains(n), "{name}: message lacks {n:?}: {err}");
+    }
+}
+
+#[test]
+fn a_valid_scene_is_accepted_and_printed_resolved() {
+    let path = scene_file("valid", STUDY);
+    let out = Command::new(BIN)
+        .arg("check")
+        .arg(&path)
+        .output()
+        .expect("run binary");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Defaults are the chapter's values.
+    for v in [
+        "mu = 0.1599",
+        "alpha = 19.35",
+        "w0 = 0.7335",
+        "lambda_min = 0.6243",
+        "p_opt = 73.52",
+        "a = 1.0133",
+    ] {
+        assert!(text.contains(v), "resolved scene lacks {v}: {text}");
+    }
+}
+
+#[test]
+fn the_shipped_paper_scene_is_valid() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/paper.toml");
+    let out = Command::new(BIN)
+        .args(["check", path])
+        .output()
+        .expect("run binary");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn unknown_keys_are_named_with_their_path() {
+    rejected(
+        "unknown_key",
+        &format!("[material]\nmuu = 1.0\n{STUDY}"),
+        &["material.muu", "unknown field"],
+    );
+    rejected(
+        "unknown_study_key",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nnz_typo = 3\n",
+        &["study[0].nz_typo"],
+    );
+    rejected(
+        "unknown_range_key",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = { from = 0.8, to = 1.2, stepp = 0.1 }\n",
+        &["study[0].stretch.stepp"],
+    );
+}
+
+#[test]
+fn wrong_types_are_named_with_key_and_value() {
+    rejected(
+        "wrong_type",
+        "[[study]]\nkind = \"cylinder\"\nstretch = [1.1]\nnr = \"six\"\n",
+        &["study[0].nr", "\"six\""],
+    );
+    rejected(
+        "unknown_law",
+        &format!("[activation]\nlaw = \"magic\"\n{STUDY}"),
+        &["activation.law", "magic"],
+    );
+}
+
+#[test]
+fn activation_of_one_or_more_is_rejected() {
+    rejected(
+        "gamma_one",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nconstant_gamma = [0.2, 1.0]\n",
+        &["study[0].constant_gamma[1]", "= 1", "[0, 1)"],
+    );
+}
+
+#[test]
+fn damage_outside_the_unit_interval_is_rejected() {
+    rejected(
+        "damage",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"implicit\"]\ndamage = [0.0, 1.5]\n",
+        &["study[0].damage[1]", "1.5", "[0, 1]"],
+    );
+    rejected(
+        "damage_default",
+        &format!("[activation]\ndamage = [-0.1]\n{STUDY}"),
+        &["activation.damage[0]", "-0.1"],
+    );
+}
+
+#[test]
+fn inconsistent_active_curve_is_rejected() {
+    rejected(
+        "lambda_min",
+        &format!("[activation]\nlambda_min = 1.2\n{STUDY}"),
+        &["activation.lambda_opt", "1.1704", "lambda_min"],
+    );
+}
+
+#[test]
+fn energy_parameters_out_of_range_are_rejected() {
+    rejected(
+        "w0",
+        &format!("[material]\nw0 = 1.0\n{STUDY}"),
+        &["material.w0", "= 1", "(0, 1)"],
+    );
+    rejected(
+        "mu",
+        &format!("[material]\nmu = -2\n{STUDY}"),
+        &["material.mu", "-2", "> 0"],
+    );
+    rejected(
+        "beta_on_gm",
+        &format!("[material]\nbeta = 1.0\n{STUDY}"),
+        &["material.beta", "giantesio-musesti"],
+    );
+}
+
+#[test]
+fn empty_or_broken_stretch_lists_are_rejected() {
+    rejected(
+        "empty_stretch",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = []\n",
+        &["study[0].stretch", "empty"],
+    );
+    rejected(
+        "negative_stretch",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, -0.5]\n",
+        &["study[0].stretch", "-0.5"],
+    );
+    rejected(
+        "range_step",
+        "[[study]]\nkind = \"uniaxial\"\nstretch = { from = 0.8, to = 1.25, step = 0.1 }\n",
+        &["study[0].stretch.step", "0.1", "whole steps"],
+    );
+    rejected(
+        "missing_stretch",
+        "[[study]]\nkind = \"uniaxial\"\n",
+        &["study[0].stretch", "missing"],
+    );
+}
+
+#[test]
+fn cylinder_rules_are_enforced() {
+    let cyl = "[[study]]\nkind = \"cylinder\"\nstretch = [0.9, 1.1]\n";
+    rejected(
+        "nr_zero",
+        &format!("{cyl}nr = 0\n"),
+        &["study[0].nr", "= 0", "[1, 10000]"],
+    );
+    rejected(
+        "grading",
+        &format!("{cyl}grading = 0.5\n"),
+        &["study[0].grading", "0.5", "≥ 1"],
+    );
+    rejected(
+        "radius",
+        &format!("{cyl}radius = 0\n"),
+        &["study[0].radius", "> 0"],
+    );
+    rejected(
+        "vtk",
+        &format!("{cyl}vtk = [1.17]\n"),
+        &["study[0].vtk[0]", "1.17", "computed stretches"],
+    );
+    rejected(
+        "laws_on_cylinder",
+        &format!("{cyl}laws = [\"explicit\"]\n"),
+        &["study[0].laws", "cylinder"],
+    );
+    rejected(
+        "explicit_needs_gm",
+        &format!("[material]\nenergy = \"ehret-bol-itskov\"\n{cyl}law = \"explicit\"\n"),
+        &["study[0].law", "explicit", "giantesio-musesti"],
+    );
+}
+
+#[test]
+fn a_scene_without_studies_or_file_is_rejected() {
+    rejected(
+        "no_study",
+        "title = \"nothing\"\n",
+        &["study", "at least one"],
+    );
+    let out = Command::new(BIN)
+        .args(["check", "/nonexistent/scene.toml"])
+        .output()
+        .expect("run binary");
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("/nonexistent/scene.toml"));
+}
+
+#[test]
+fn a_failed_run_leaves_no_outputs() {
+    let path = scene_file("run_bad", "[[study]]\nkind = \"uniaxial\"\nstretch = []\n");
+    let dir =
+        std::env::temp_dir().join(format!("activemuscle-cli-scene-out-{}", std::process::id()));
+    let out = Command::new(BIN)
+        .arg("run")
+        .arg(&path)
+        .arg("--out")
+        .arg(&dir)
+        .arg("--quiet")
+        .output()
+        .expect("run binary");
+    assert!(!out.status.success());
+    assert!(!dir.join("curves.csv").exists() && !dir.join("report.html").exists());
+}
