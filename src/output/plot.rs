@@ -170,7 +170,17 @@ fn draw_panel<DB: DrawingBackend>(
     for s in &panel.series {
         let c = PALETTE[s.colour % PALETTE.len()];
         let style = c.stroke_width(2);
-        let runs = clip(&s.points, y0, y1);
+        let runs = if s.stroke == Stroke::Markers {
+            // Markers outside the frame are dropped, not moved onto its edge.
+            vec![s
+                .points
+                .iter()
+                .copied()
+                .filter(|&(x, y)| x.is_finite() && y >= y0 && y <= y1)
+                .collect()]
+        } else {
+            clip(&s.points, y0, y1)
+        };
         let stroke = s.stroke;
         for (i, pts) in runs.into_iter().enumerate() {
             let a = match s.stroke {
