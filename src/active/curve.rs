@@ -4,7 +4,7 @@
 //!
 //! Damage d ∈ [0, 1] scales it by (1 − d) (section "Loss of activation"): the caller applies it.
 
-use crate::energy::positive;
+use crate::energy::{positive, ScalarWith};
 use crate::{Error, Result, Scalar};
 
 /// Parameters of the active curve. Defaults: Table D:paratt.
@@ -55,6 +55,7 @@ impl ActiveCurve {
     }
 
     /// Table D:paratt: λ_min = 0.6243, λ_opt = 1.1704, k = 0.4342, P_opt = 73.52 kPa.
+    #[allow(clippy::approx_constant)] // k = 0.4342 is the chapter's fitted value, not log10(e)
     pub fn paper() -> Self {
         Self {
             lambda_min: 0.6243,
@@ -83,15 +84,28 @@ impl ActiveCurve {
 
     /// P_act(λ) [kPa], generic so that dual numbers give its derivatives (all 0 at and below λ_min).
     pub fn value<T: Scalar>(&self, lambda: T) -> T {
-        if lambda <= self.lambda_min {
+        Self::value_with(self.lambda_min, self.lambda_opt, self.k, self.p_opt, lambda)
+    }
+
+    /// The formula of eq. D:pact, written once: P_act(λ) [kPa] from λ_min, λ_opt, k [-] and
+    /// P_opt [kPa], which are `f64` ([`value`](Self::value)) or dual numbers (derivatives in the
+    /// parameters, for fitting); nothing is checked here.
+    pub fn value_with<P: Scalar, T: ScalarWith<P>>(
+        lambda_min: P,
+        lambda_opt: P,
+        k: P,
+        p_opt: P,
+        lambda: T,
+    ) -> T {
+        if lambda.re() <= lambda_min.re() {
             return T::zero();
         }
-        let q = lambda * lambda - self.lambda_opt * self.lambda_opt;
-        let x = q * q * self.k / (lambda - self.lambda_min);
+        let q = lambda * lambda - lambda_opt * lambda_opt;
+        let x = q * q * k / (lambda - lambda_min);
         if x.re() > UNDERFLOW_EXPONENT {
             return T::zero();
         }
-        (-x).exp() * self.p_opt
+        (-x).exp() * p_opt
     }
 
     /// ∫_{λ_min}^{λ} P_act(s) ds [kPa] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on

@@ -1,4 +1,4 @@
-use super::{open_unit, positive, Invariants, StrainEnergy};
+use super::{open_unit, positive, Invariants, ScalarWith, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -36,15 +36,45 @@ impl EhretBolItskov {
             w0: 0.7388,
         }
     }
+
+    /// Shear-like modulus μ [kPa].
+    pub fn mu(&self) -> f64 {
+        self.mu
+    }
+    /// Exponential stiffening of the I_p term α [-].
+    pub fn alpha(&self) -> f64 {
+        self.alpha
+    }
+    /// Exponential stiffening of the K_p term β [-].
+    pub fn beta(&self) -> f64 {
+        self.beta
+    }
+    /// Isotropic weight w0 [-].
+    pub fn w0(&self) -> f64 {
+        self.w0
+    }
+
+    /// The formula of eq. D:Webi, written once: W [kPa] from μ [kPa], α, β, w0 [-] and the
+    /// invariants. The parameters are `f64` ([`StrainEnergy::energy`]) or dual numbers
+    /// (derivatives in the parameters, for fitting); nothing is checked here.
+    pub fn energy_with<P: Scalar, T: ScalarWith<P>>(
+        mu: P,
+        alpha: P,
+        beta: P,
+        w0: P,
+        c: &Invariants<T>,
+    ) -> T {
+        let (isotropic, fibre) = (w0 / 3.0, -w0 + 1.0);
+        let i_p = c.tr_c * isotropic + c.c_m * fibre;
+        let k_p = c.tr_c_inv * isotropic + c.c_inv_m * fibre;
+        ((i_p - 1.0) * alpha).exp_m1() * (mu / (alpha * 4.0))
+            + ((k_p - 1.0) * beta).exp_m1() * (mu / (beta * 4.0))
+    }
 }
 
 impl StrainEnergy for EhretBolItskov {
     fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
-        let w0 = self.w0;
-        let i_p = c.tr_c * (w0 / 3.0) + c.c_m * (1.0 - w0);
-        let k_p = c.tr_c_inv * (w0 / 3.0) + c.c_inv_m * (1.0 - w0);
-        ((i_p - 1.0) * self.alpha).exp_m1() * (self.mu / (4.0 * self.alpha))
-            + ((k_p - 1.0) * self.beta).exp_m1() * (self.mu / (4.0 * self.beta))
+        Self::energy_with(self.mu, self.alpha, self.beta, self.w0, c)
     }
 
     fn name(&self) -> &str {

@@ -13,8 +13,30 @@ pub use ehret_bol_itskov::EhretBolItskov;
 pub use giantesio_musesti::GiantesioMusesti;
 pub use neo_hookean::NeoHookean;
 
-use crate::{Error, Result};
 use crate::Scalar;
+use crate::{Error, Result};
+
+/// A scalar `T` that combines with model parameters of type `P` (`T op P -> T`): `P = f64` for
+/// fixed parameters (the fast path every response takes, no zero derivatives carried) or
+/// `P = T` for parameters carried as dual numbers (derivatives in the parameters, for fitting).
+/// Lets each model write its formula once for both.
+pub trait ScalarWith<P>:
+    Scalar
+    + std::ops::Add<P, Output = Self>
+    + std::ops::Sub<P, Output = Self>
+    + std::ops::Mul<P, Output = Self>
+    + std::ops::Div<P, Output = Self>
+{
+}
+
+impl<P, T> ScalarWith<P> for T where
+    T: Scalar
+        + std::ops::Add<P, Output = T>
+        + std::ops::Sub<P, Output = T>
+        + std::ops::Mul<P, Output = T>
+        + std::ops::Div<P, Output = T>
+{
+}
 
 /// The invariants of a right Cauchy–Green tensor C with respect to the fibre direction m
 /// (M = m ⊗ m) that energies may use.

@@ -1,4 +1,4 @@
-use super::{positive, Invariants, StrainEnergy};
+use super::{positive, Invariants, ScalarWith, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -21,11 +21,16 @@ impl NeoHookean {
     pub fn mu(&self) -> f64 {
         self.mu
     }
+
+    /// The formula, written once: W [kPa] from μ [kPa] (`f64` or a dual number) and tr C.
+    pub fn energy_with<P: Scalar, T: ScalarWith<P>>(mu: P, c: &Invariants<T>) -> T {
+        (c.tr_c - 3.0) * (mu / 2.0)
+    }
 }
 
 impl StrainEnergy for NeoHookean {
     fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
-        (c.tr_c - 3.0) * (self.mu / 2.0)
+        Self::energy_with(self.mu, c)
     }
 
     fn name(&self) -> &str {

@@ -1,7 +1,7 @@
 use super::{check_damage, ActivationLaw, LawValue};
 use crate::active::curve::ActiveCurve;
 use crate::active::strain::check_activation;
-use crate::energy::{positive, GiantesioMusesti};
+use crate::energy::{positive, GiantesioMusesti, ScalarWith};
 use crate::{Error, Result, Scalar};
 use num_dual::second_derivative;
 
@@ -63,13 +63,14 @@ impl ExplicitLaw {
         ((l * f - inv * inv * (w0 / 3.0)) * expo - inv * inv * inv * f + w0 / 3.0) * (mu / 2.0)
     }
 
-    /// g(λ) of eq. D:gamma.
-    fn g<T: Scalar>(&self, l: T, active: T) -> T {
+    /// g(λ) of eq. D:gamma, with b as `f64` or a dual number.
+    fn g<P: Scalar, T: ScalarWith<P>>(&self, l: T, active: T, b: P) -> T {
         let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
         let f = 1.0 - 2.0 * w0 / 3.0;
         let q = l.recip() * (w0 / 3.0) + 1.0 / al;
         let ratio = q.recip() * f;
-        let bracket = (active + self.passive_stress(l)) * (self.b * 2.0 / mu) + ratio.sqrt() * (q.recip() * (f * f) - l * (w0 / 3.0));
+        let bracket = (active + self.passive_stress(l)) * (b * 2.0 / mu)
+            + ratio.sqrt() * (q.recip() * (f * f) - l * (w0 / 3.0));
         (-l.recip() * w0 + 1.0) * al + al.ln() - ratio.ln() * 0.5 + bracket.ln()
     }
 
@@ -83,19 +84,36 @@ impl ExplicitLaw {
     /// γ(λ) on any scalar, clamped at 0 beyond its zero crossing. Errors if the formula leaves
     /// its domain (a logarithm or square root of a non-positive number) or γ ≥ 1.
     pub fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+        self.gamma_with(self.a, self.b, lambda, damage)
+    }
+
+    /// γ(λ) of eq. D:gamma, written once, with (a, b) as `f64` ([`gamma`](Self::gamma)) or dual
+    /// numbers (derivatives in a and b, for fitting); the energy and the curve are this law's.
+    /// The values of a and b are not checked here.
+    pub fn gamma_with<P: Scalar, T: ScalarWith<P>>(
+        &self,
+        a: P,
+        b: P,
+        lambda: T,
+        damage: f64,
+    ) -> Result<T> {
         check_damage(damage)?;
         let lmin = self.curve.lambda_min();
         if lambda <= lmin {
             return Ok(T::zero());
         }
         let active = self.curve.value(lambda) * (1.0 - damage);
-        let start = self.scaled_root(self.g(lmin, 0.0), lmin);
-        let gamma = (-self.scaled_root(self.g(lambda, active), lambda) + start) * self.a;
+        let lmin_p = P::from(lmin);
+        let start = self.scaled_root(self.g(lmin_p, P::zero(), b), lmin_p);
+        let gamma = (-self.scaled_root(self.g(lambda, active, b), lambda) + start) * a;
         if !gamma.re().is_finite() {
             return Err(Error::NonFinite {
                 quantity: "explicit activation gamma",
                 value: gamma.re(),
-                context: format!("at lambda = {}, d = {damage}: eq. D:gamma left its domain", lambda.re()),
+                context: format!(
+                    "at lambda = {}, d = {damage}: eq. D:gamma left its domain",
+                    lambda.re()
+                ),
             });
         }
         if gamma.re() < 0.0 {

@@ -1,0 +1,171 @@
+//! Stress–stretch data: (λ, P) pairs, λ dimensionless and strictly increasing, P the nominal
+//! stress in kPa. Read from CSV with the header `lambda,P`.
+
+use super::FitError;
+use std::io::Read;
+use std::path::Path;
+
+/// Validated stress–stretch data: λ_i > 0 strictly increasing, all values finite.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Data {
+    lambda: Vec<f64>,
+    stress: Vec<f64>,
+}
+
+impl Data {
+    /// From columns λ [-] and P [kPa]; errors name the 1-based point.
+    pub fn new(lambda: Vec<f64>, stress: Vec<f64>) -> Result<Self, FitError> {
+        if lambda.len() != stress.len() {
+            return Err(FitError::LengthMismatch {
+                stretches: lambda.len(),
+                stresses: stress.len(),
+            });
+        }
+        let locations: Vec<String> = (1..=lambda.len()).map(|i| format!("point {i}")).collect();
+        validate(&lambda, &stress, &locations)?;
+        Ok(Self { lambda, stress })
+    }
+
+    /// Samples `model` at the given stretches (for synthetic data and reference curves).
+    pub fn sampled(
+        lambda: Vec<f64>,
+        model: impl Fn(f64) -> crate::Result<f64>,
+    ) -> Result<Self, FitError> {
+        let stress = lambda
+            .iter()
+            .map(|&l| model(l))
+            .collect::<crate::Result<Vec<f64>>>()?;
+        Self::new(lambda, stress)
+    }
+
+    /// Reads a CSV file with header `lambda,P` (λ [-], P [kPa]).
+    pub fn from_csv_path(path: impl AsRef<Path>) -> Result<Self, FitError> {
+        let path = path.as_ref();
+        let file = std::fs::File::open(path).map_err(|e| FitError::Csv {
+            source_name: path.display().to_string(),
+            line: 0,
+            message: e.to_string(),
+        })?;
+        Self::from_csv_reader(file, &path.display().to_string())
+    }
+
+    /// Reads CSV with header `lambda,P` from any reader; `source_name` appears in errors.
+    pub fn from_csv_reader(reader: impl Read, source_name: &str) -> Result<Self, FitError> {
+        let csv_error = |line: u64, message: String| FitError::Csv {
+            source_name: source_name.to_string(),
+            line,
+            message,
+        };
+        let mut rdr = csv::ReaderBuilder::new()
+            .has_headers(true)
+            .trim(csv::Trim::All)
+            .from_reader(reader);
+        let header = rdr
+            .headers()
+            .map_err(|e| csv_error(1, e.to_string()))?
+            .clone();
+        let names: Vec<&str> = header.iter().collect();
+        if names.len() != 2 || names[0] != "lambda" || !names[1].eq_ignore_ascii_case("p") {
+            return Err(csv_error(
+                1,
+                format!("header must be `lambda,P`, found `{}`", names.join(",")),
+            ));
+        }
+        let (mut lambda, mut stress, mut locations) = (Vec::new(), Vec::new(), Vec::new());
+        for record in rdr.records() {
+            let record = record.map_err(|e| {
+                let line = e.position().map_or(0, |p| p.line());
+                csv_error(line, e.to_string())
+            })?;
+            let line = record.position().map_or(0, |p| p.line());
+            let field = |i: usize, column: &str| -> Result<f64, FitError> {
+                let text = record.get(i).unwrap_or("");
+                text.parse::<f64>()
+                    .map_err(|_| csv_error(line, format!("{column} = {text:?} is not a number")))
+            };
+            lambda.push(field(0, "lambda")?);
+            stress.push(field(1, "P")?);
+            locations.push(format!("{source_name}, line {line}"));
+        }
+        validate(&lambda, &stress, &locations)?;
+        Ok(Self { lambda, stress })
+    }
+
+    /// Writes the data as CSV with header `lambda,P`.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::from("lambda,P\n");
+        for (l, p) in self.lambda.iter().zip(&self.stress) {
+            out.push_str(&format!("{l},{p}\n"));
+        }
+        out
+    }
+
+    /// Stretches λ_i [-].
+    pub fn lambda(&self) -> &[f64] {
+        &self.lambda
+    }
+
+    /// Nominal stresses P_i [kPa].
+    pub fn stress(&self) -> &[f64] {
+        &self.stress
+    }
+
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.lambda.len()
+    }
+
+    /// True if there are no points.
+    pub fn is_empty(&self) -> bool {
+        self.lambda.is_empty()
+    }
+
+    /// The same stretches with stresses `stress` (for residual data after a subtraction).
+    pub(crate) fn with_stress(&self, stress: Vec<f64>) -> Result<Self, FitError> {
+        Self::new(self.lambda.clone(), stress)
+    }
+}
+
+fn validate(lambda: &[f64], stress: &[f64], locations: &[String]) -> Result<(), FitError> {
+    for i in 0..lambda.len() {
+        let location = || locations[i].clone();
+        let (l, p) = (lambda[i], stress[i]);
+        if !l.is_finite() {
+            return Err(FitError::NonFiniteData {
+                location: location(),
+                column: "lambda",
+                value: l,
+            });
+        }
+        if !p.is_finite() {
+            return Err(FitError::NonFiniteData {
+                location: location(),
+                column: "P",
+                value: p,
+            });
+        }
+        if l <= 0.0 {
+            return Err(FitError::NonPositiveStretch {
+                location: location(),
+                lambda: l,
+            });
+        }
+        if i > 0 {
+            let previous = lambda[i - 1];
+            if l == previous {
+                return Err(FitError::DuplicateStretch {
+                    location: location(),
+                    lambda: l,
+                });
+            }
+            if l < previous {
+                return Err(FitError::DecreasingStretch {
+                    location: location(),
+                    lambda: l,
+                    previous,
+                });
+            }
+        }
+    }
+    Ok(())
+}

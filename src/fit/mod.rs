@@ -1,0 +1,247 @@
+//! Least-squares fitting of the model's parameters to stress–stretch data, the way the chapter
+//! obtained them: (α, w0) of the passive energy with μ fixed (Table D:parpass), (λ_min, λ_opt, k)
+//! of the active curve with P_opt fixed (Table D:paratt), (a, b) of the explicit law (eq. D:gamma),
+//! and — read backwards — the damage d of a weakened muscle (section "Loss of activation").
+//!
+//! | fit | model of the data | default free parameters |
+//! |---|---|---|
+//! | [`fit_passive`] | P(λ) = dW(λ)/dλ along (or across) the fibres, any [`Parametric`] energy | all but μ |
+//! | [`fit_active_curve`] | P_act(λ) of eq. D:pact (data: active stress, or total minus passive via [`active_from_total`]) | λ_min, λ_opt, k |
+//! | [`fit_explicit_law`] | γ_expl(λ; a, b) against the implicit γ, or the stress P_tot(λ, γ_expl) against P_pas + P_act | a, b |
+//! | [`fit_damage`] | P_pas(λ) + (1 − d) P_act(λ) | d |
+//!
+//! Units: λ dimensionless, P in kPa (CSV header `lambda,P`, see [`Data`]).
+//!
+//! All residuals are written once for a generic scalar; the Jacobian comes from dual numbers
+//! (one evaluation per free parameter, exact), see [`solver`]. Results are [`FitReport`]s with
+//! the parameters, residual norm, RMS error, standard errors s²(JᵀJ)⁻¹, the correlation matrix,
+//! iterations and the convergence flag; a fit that does not converge is an error
+//! ([`FitError::NotConverged`]) carrying the best point found, never a result.
+
+mod active;
+mod damage;
+mod data;
+mod error;
+mod explicit;
+mod parametric;
+mod passive;
+pub mod plot;
+pub mod solver;
+
+pub use active::{active_from_total, fit_active_curve, ActiveFit, CURVE_PARAMETERS};
+pub use damage::{fit_damage, DamageFit};
+pub use data::Data;
+pub use error::FitError;
+pub use explicit::{explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget};
+pub use parametric::Parametric;
+pub use passive::{across_stress_with, fibre_stress_with, fit_passive, Direction, PassiveFit};
+pub use solver::{least_squares, residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
+
+use crate::Scalar;
+use std::fmt;
+
+/// The outcome of a least-squares fit, at the best point found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitReport {
+    /// Names of the free parameters, in order.
+    pub names: Vec<String>,
+    /// Fitted values.
+    pub values: Vec<f64>,
+    /// Standard errors σ_j = √(s² (JᵀJ)⁻¹_jj), s² = ‖r‖²/(m − p) (NaN if JᵀJ is singular).
+    pub standard_errors: Vec<f64>,
+    /// Correlation of the parameter estimates, ρ_ij = (JᵀJ)⁻¹_ij / √((JᵀJ)⁻¹_ii (JᵀJ)⁻¹_jj).
+    pub correlation: Vec<Vec<f64>>,
+    /// Residuals r_i = model − data at the fitted values (units of the data).
+    pub residuals: Vec<f64>,
+    /// ‖r‖₂.
+    pub residual_norm: f64,
+    /// RMS error √(‖r‖²/m).
+    pub rms: f64,
+    /// Solver iterations (Nelder–Mead plus Gauss–Newton).
+    pub iterations: u64,
+    /// True only if the final Gauss–Newton step is negligible (see [`solver`]).
+    pub converged: bool,
+    /// How the solver(s) stopped.
+    pub termination: String,
+}
+
+impl FitReport {
+    /// Fitted value of parameter `name`.
+    pub fn value(&self, name: &str) -> Option<f64> {
+        self.index(name).map(|i| self.values[i])
+    }
+
+    /// Standard error of parameter `name`.
+    pub fn standard_error(&self, name: &str) -> Option<f64> {
+        self.index(name).map(|i| self.standard_errors[i])
+    }
+
+    fn index(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+}
+
+impl fmt::Display for FitReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{:<12} {:>14} {:>12}",
+            "parameter", "value", "std. error"
+        )?;
+        for i in 0..self.names.len() {
+            writeln!(
+                f,
+                "{:<12} {:>14.6} {:>12.3e}",
+                self.names[i], self.values[i], self.standard_errors[i]
+            )?;
+        }
+        if self.names.len() > 1 {
+            write!(f, "correlation:")?;
+            for row in &self.correlation {
+                write!(f, " [")?;
+                for c in row {
+                    write!(f, "{c:>7.3}")?;
+                }
+                write!(f, " ]")?;
+            }
+            writeln!(f)?;
+        }
+        write!(
+            f,
+            "residual norm {:.4e}, RMS {:.4e}, {} points, {} iterations, {}",
+            self.residual_norm,
+            self.rms,
+            self.residuals.len(),
+            self.iterations,
+            if self.converged {
+                "converged"
+            } else {
+                "NOT converged"
+            }
+        )
+    }
+}
+
+/// Which parameters are free, where they start and within which bounds; unnamed parameters keep
+/// the model's values, starts default to the model's values, bounds to the model's admissible
+/// ranges.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FitSetup {
+    free: Option<Vec<String>>,
+    start: Vec<(String, f64)>,
+    bounds: Vec<(String, Bounds)>,
+    /// Solver settings.
+    pub options: FitOptions,
+}
+
+impl FitSetup {
+    /// The fit's default free parameters, starts and bounds.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Frees exactly these parameters (the others are held at the model's values).
+    pub fn free(mut self, names: &[&str]) -> Self {
+        self.free = Some(names.iter().map(|s| s.to_string()).collect());
+        self
+    }
+
+    /// Starting value of a free parameter.
+    pub fn start(mut self, name: &str, value: f64) -> Self {
+        self.start.push((name.to_string(), value));
+        self
+    }
+
+    /// Bounds of a free parameter.
+    pub fn bounds(mut self, name: &str, bounds: Bounds) -> Self {
+        self.bounds.push((name.to_string(), bounds));
+        self
+    }
+
+    /// Solver settings.
+    pub fn options(mut self, options: FitOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// Resolves the selection against a model's parameters.
+    pub(crate) fn resolve(
+        &self,
+        names: &[&'static str],
+        values: &[f64],
+        bounds: &[Bounds],
+        default_free: &[&str],
+    ) -> Result<Selection, FitError> {
+        let unknown = |name: &str| FitError::UnknownParameter {
+            name: name.to_string(),
+            available: names.to_vec(),
+        };
+        let free: Vec<String> = match &self.free {
+            Some(f) => f.clone(),
+            None => default_free.iter().map(|s| s.to_string()).collect(),
+        };
+        if free.is_empty() {
+            return Err(FitError::NoFreeParameter);
+        }
+        let mut indices = Vec::new();
+        for name in &free {
+            let i = names
+                .iter()
+                .position(|n| n == name)
+                .ok_or_else(|| unknown(name))?;
+            if indices.contains(&i) {
+                return Err(unknown(name));
+            }
+            indices.push(i);
+        }
+        let mut start: Vec<f64> = indices.iter().map(|&i| values[i]).collect();
+        let mut free_bounds: Vec<Bounds> = indices.iter().map(|&i| bounds[i]).collect();
+        for (name, value) in &self.start {
+            let k = free
+                .iter()
+                .position(|n| n == name)
+                .ok_or_else(|| unknown(name))?;
+            start[k] = *value;
+        }
+        for (name, b) in &self.bounds {
+            let k = free
+                .iter()
+                .position(|n| n == name)
+                .ok_or_else(|| unknown(name))?;
+            free_bounds[k] = *b;
+        }
+        Ok(Selection {
+            all: values.to_vec(),
+            indices,
+            names: free,
+            start,
+            bounds: free_bounds,
+        })
+    }
+}
+
+/// A resolved parameter selection: all values, which are free, their names, starts and bounds.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Selection {
+    pub all: Vec<f64>,
+    pub indices: Vec<usize>,
+    pub names: Vec<String>,
+    pub start: Vec<f64>,
+    pub bounds: Vec<Bounds>,
+}
+
+impl Selection {
+    /// All parameters as scalars: the free ones from θ, the others fixed.
+    pub fn assemble<T: Scalar>(&self, theta: &[T]) -> Vec<T> {
+        let mut all: Vec<T> = self.all.iter().map(|&v| T::from(v)).collect();
+        for (k, &i) in self.indices.iter().enumerate() {
+            all[i] = theta[k];
+        }
+        all
+    }
+
+    /// All parameters as numbers, with the free ones from `values`.
+    pub fn assemble_values(&self, values: &[f64]) -> Vec<f64> {
+        self.assemble(values)
+    }
+}
