@@ -24,7 +24,9 @@ struct FibreReinforced {
 impl StrainEnergy for FibreReinforced {
     fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
         let fibre = c.c_m - 1.0;
-        (c.tr_c - 3.0) * self.c1 + (c.tr_c_inv - 3.0) * self.c2 + (fibre * fibre * self.k2).exp_m1() * (self.k1 / (2.0 * self.k2))
+        (c.tr_c - 3.0) * self.c1
+            + (c.tr_c_inv - 3.0) * self.c2
+            + (fibre * fibre * self.k2).exp_m1() * (self.k1 / (2.0 * self.k2))
     }
 
     fn name(&self) -> &str {
@@ -44,11 +46,17 @@ fn main() -> activemuscle::Result<()> {
     let passive = Muscle::passive(energy.clone());
     let active = Muscle::new(energy.clone(), law, 0.0, Coupling::Consistent)?;
     println!("{} along the fibres (kPa)", energy.name());
-    println!("{:>6} {:>10} {:>10} {:>10}", "lambda", "P_pas", "gamma", "P");
+    println!(
+        "{:>6} {:>10} {:>10} {:>10}",
+        "lambda", "P_pas", "gamma", "P"
+    );
     for i in 0..=8 {
         let l = 0.8 + 0.1 * i as f64;
         let (p, a) = (along_fibres(&passive, l)?, along_fibres(&active, l)?);
-        println!("{l:6.2} {:10.4} {:10.6} {:10.4}", p.stress, a.gamma, a.stress);
+        println!(
+            "{l:6.2} {:10.4} {:10.6} {:10.4}",
+            p.stress, a.gamma, a.stress
+        );
     }
     Ok(())
 }

@@ -26,8 +26,8 @@ pub mod output;
 pub mod response;
 pub mod roots;
 pub mod scalar;
-pub mod stability;
 pub mod scene;
+pub mod stability;
 pub mod testing;
 pub mod uniaxial;
 

@@ -31,7 +31,8 @@ fn transpose<T: Scalar>(a: &M3<T>) -> M3<T> {
 }
 
 fn det<T: Scalar>(a: &M3<T>) -> T {
-    a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
+    a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1])
+        - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
         + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
 }
 
@@ -62,7 +63,12 @@ fn quadratic<T: Scalar>(a: &M3<T>, m: &Vector3<f64>) -> T {
 }
 
 /// Ŵ(F, γ) = det F_a · W(F_a⁻ᵀ C F_a⁻¹), F_a = I − γ m⊗m, by matrix products on any scalar.
-pub fn active_energy_by_matrices<E: StrainEnergy, T: Scalar>(energy: &E, f: &M3<T>, m: &Vector3<f64>, gamma: T) -> T {
+pub fn active_energy_by_matrices<E: StrainEnergy, T: Scalar>(
+    energy: &E,
+    f: &M3<T>,
+    m: &Vector3<f64>,
+    gamma: T,
+) -> T {
     let mut fa = [[T::zero(); 3]; 3];
     for (i, row) in fa.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
@@ -101,7 +107,12 @@ pub struct FullResponse {
 }
 
 /// The reference response at (F, γ) by dual numbers over F's nine entries and γ.
-pub fn full_response<E: StrainEnergy>(energy: &E, f: &Matrix3<f64>, m: &Vector3<f64>, gamma: f64) -> Result<FullResponse> {
+pub fn full_response<E: StrainEnergy>(
+    energy: &E,
+    f: &Matrix3<f64>,
+    m: &Vector3<f64>,
+    gamma: f64,
+) -> Result<FullResponse> {
     crate::active::strain::check_activation(gamma)?;
     let mut x = SVector::<f64, 10>::zeros();
     for i in 0..3 {

@@ -17,7 +17,7 @@ use crate::energy::{Invariants, StrainEnergy};
 use crate::invariants::{Entries, Kinematics};
 use crate::{Error, Result};
 use nalgebra::{SMatrix, SVector};
-use num_dual::{gradient, hessian, DualSVec64, Dual2SVec64};
+use num_dual::{gradient, hessian, Dual2SVec64, DualSVec64};
 
 /// What a caller needs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -84,11 +84,17 @@ pub fn invariant_derivatives<E: StrainEnergy>(
     let (w, g, h) = match order {
         Order::Energy => (w_of(&ie), None, None),
         Order::Stress => {
-            let (w, g) = gradient(|v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)), &ie);
+            let (w, g) = gradient(
+                |v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+                &ie,
+            );
             (w, Some(g), None)
         }
         Order::Tangent => {
-            let (w, g, h) = hessian(|v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)), &ie);
+            let (w, g, h) = hessian(
+                |v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+                &ie,
+            );
             (w, Some(g), Some(h))
         }
     };
@@ -116,8 +122,10 @@ pub fn invariant_derivatives<E: StrainEnergy>(
         let h_ie_gamma = h * ie_gamma;
         out.second = Some(SecondDerivatives {
             d_jj: map.a.transpose() * ha * c,
-            d_jgamma: -map.a.transpose() * g + (map.a_gamma.transpose() * g + map.a.transpose() * h_ie_gamma) * c,
-            d_gammagamma: -2.0 * g.dot(&ie_gamma) + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&(map.a_gamma2 * j))),
+            d_jgamma: -map.a.transpose() * g
+                + (map.a_gamma.transpose() * g + map.a.transpose() * h_ie_gamma) * c,
+            d_gammagamma: -2.0 * g.dot(&ie_gamma)
+                + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&(map.a_gamma2 * j))),
         });
     }
     Ok(out)
@@ -165,7 +173,8 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     out.denergy_dgamma = Some(d.d_gamma);
     out.stress = Some(grad.transpose() * d.d_j);
     if let Some(s) = d.second {
-        out.tangent = Some(grad.transpose() * s.d_jj * grad + kinematics.curvature(&d.d_j, entries));
+        out.tangent =
+            Some(grad.transpose() * s.d_jj * grad + kinematics.curvature(&d.d_j, entries));
         out.dstress_dgamma = Some(grad.transpose() * s.d_jgamma);
         out.d2energy_dgamma2 = Some(s.d_gammagamma);
     }

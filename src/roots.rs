@@ -4,7 +4,12 @@
 /// whenever a step leaves the bracket or the derivative is unusable (rtsafe). `f` returns the
 /// value and the derivative; a non-finite value shrinks the bracket from above. Converges when
 /// the bracket or the step is below `xtol`; returns why it failed otherwise.
-pub fn newton_bisection(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64, xtol: f64) -> Result<f64, String> {
+pub fn newton_bisection(
+    f: impl Fn(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    xtol: f64,
+) -> Result<f64, String> {
     let mut x = 0.5 * (lo + hi);
     for _ in 0..200 {
         let (fx, dfx) = f(x);
@@ -17,7 +22,8 @@ pub fn newton_bisection(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64,
             lo = x;
         }
         let newton = x - fx / dfx;
-        let next = if fx.is_finite() && dfx.is_finite() && dfx != 0.0 && newton > lo && newton < hi {
+        let next = if fx.is_finite() && dfx.is_finite() && dfx != 0.0 && newton > lo && newton < hi
+        {
             newton
         } else {
             0.5 * (lo + hi)
@@ -28,5 +34,7 @@ pub fn newton_bisection(f: impl Fn(f64) -> (f64, f64), mut lo: f64, mut hi: f64,
             return Ok(x);
         }
     }
-    Err(format!("no convergence in 200 iterations (bracket [{lo}, {hi}])"))
+    Err(format!(
+        "no convergence in 200 iterations (bracket [{lo}, {hi}])"
+    ))
 }

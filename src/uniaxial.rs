@@ -52,7 +52,10 @@ fn check_stretch(lambda: f64) -> Result<f64> {
 pub fn along_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
     check_stretch(lambda)?;
     let t = lambda.sqrt().recip();
-    let kin = Kinematics::new(&Matrix3::from_diagonal(&Vector3::new(lambda, t, t)), &fibre())?;
+    let kin = Kinematics::new(
+        &Matrix3::from_diagonal(&Vector3::new(lambda, t, t)),
+        &fibre(),
+    )?;
     let r = muscle.respond(&kin, Order::Stress, &FULL)?;
     let p = r.stress.unwrap_or_default();
     let pressure = p[4] * t;
@@ -70,17 +73,30 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
     check_stretch(lambda)?;
     let state = |a: f64| -> Result<(Kinematics, f64)> {
         let f33 = 1.0 / (a * lambda);
-        Ok((Kinematics::new(&Matrix3::from_diagonal(&Vector3::new(a, lambda, f33)), &fibre())?, f33))
+        Ok((
+            Kinematics::new(
+                &Matrix3::from_diagonal(&Vector3::new(a, lambda, f33)),
+                &fibre(),
+            )?,
+            f33,
+        ))
     };
     // r(a) = a P₁₁ − F₃₃ P₃₃ and its exact derivative.
     let residual = |a: f64| -> (f64, f64) {
-        let Ok((kin, f33)) = state(a) else { return (f64::NAN, f64::NAN) };
-        let Ok(r) = muscle.respond(&kin, Order::Tangent, &FULL) else { return (f64::NAN, f64::NAN) };
+        let Ok((kin, f33)) = state(a) else {
+            return (f64::NAN, f64::NAN);
+        };
+        let Ok(r) = muscle.respond(&kin, Order::Tangent, &FULL) else {
+            return (f64::NAN, f64::NAN);
+        };
         let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
         let df33 = -f33 / a;
         let dp11 = k[(0, 0)] + k[(0, 8)] * df33;
         let dp33 = k[(8, 0)] + k[(8, 8)] * df33;
-        (a * p[0] - f33 * p[8], p[0] + a * dp11 - df33 * p[8] - f33 * dp33)
+        (
+            a * p[0] - f33 * p[8],
+            p[0] + a * dp11 - df33 * p[8] - f33 * dp33,
+        )
     };
     let guess = lambda.sqrt().recip();
     let (mut lo, mut hi) = (guess, guess);
@@ -96,14 +112,17 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
         if expanded > 60 {
             return Err(Error::NoSolution {
                 equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
-                reason: format!("no sign change of a P11 - F33 P33 for fibre stretch in [{lo}, {hi}]"),
+                reason: format!(
+                    "no sign change of a P11 - F33 P33 for fibre stretch in [{lo}, {hi}]"
+                ),
             });
         }
     }
-    let a = newton_bisection(residual, lo, hi, 1e-15 * guess).map_err(|reason| Error::NoSolution {
-        equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
-        reason,
-    })?;
+    let a =
+        newton_bisection(residual, lo, hi, 1e-15 * guess).map_err(|reason| Error::NoSolution {
+            equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
+            reason,
+        })?;
     let (kin, f33) = state(a)?;
     let r = muscle.respond(&kin, Order::Stress, &FULL)?;
     let p = r.stress.unwrap_or_default();

@@ -15,7 +15,15 @@ fn neo_hookean_acoustic_tensor_is_mu_in_every_direction() {
     let mut s = activemuscle::testing::Sampler::new(31);
     for _ in 0..10 {
         let f = s.deformation(0.3);
-        let k = muscle.respond(&Kinematics::new(&f, &s.unit_vector()).unwrap(), Order::Tangent, &FULL).unwrap().tangent.unwrap();
+        let k = muscle
+            .respond(
+                &Kinematics::new(&f, &s.unit_vector()).unwrap(),
+                Order::Tangent,
+                &FULL,
+            )
+            .unwrap()
+            .tangent
+            .unwrap();
         let e = strong_ellipticity(&k, &f, 200).unwrap();
         assert!((e.least - 3.0).abs() < 1e-12, "least {}", e.least);
         assert!(e.holds());
@@ -36,11 +44,21 @@ fn a_negative_definite_tangent_is_not_elliptic() {
 fn polyconvex_energies_are_strongly_elliptic_along_the_fibres() {
     let gm = GiantesioMusesti::paper();
     for gamma in [0.0, 0.2, 0.4] {
-        let muscle = Muscle::new(gm, Law::Constant(ConstantLaw::new(gamma).unwrap()), 0.0, Coupling::Consistent).unwrap();
+        let muscle = Muscle::new(
+            gm,
+            Law::Constant(ConstantLaw::new(gamma).unwrap()),
+            0.0,
+            Coupling::Consistent,
+        )
+        .unwrap();
         for i in 0..=95 {
             let l = 0.65 + 0.01 * i as f64;
             let s = along_fibres_stability(&muscle, l, 300).unwrap();
-            assert!(s.ellipticity.holds(), "gamma {gamma}, lambda {l}: {:?}", s.ellipticity);
+            assert!(
+                s.ellipticity.holds(),
+                "gamma {gamma}, lambda {l}: {:?}",
+                s.ellipticity
+            );
         }
     }
 }
@@ -49,13 +67,24 @@ fn polyconvex_energies_are_strongly_elliptic_along_the_fibres() {
 fn uniaxial_slope_matches_finite_differences() {
     let (gm, curve) = (GiantesioMusesti::paper(), ActiveCurve::paper());
     for coupling in [Coupling::Frozen(FrozenTangent::Exact), Coupling::Consistent] {
-        let muscle = Muscle::new(gm, Law::Implicit(ImplicitLaw::new(gm, curve)), 0.2, coupling).unwrap();
+        let muscle = Muscle::new(
+            gm,
+            Law::Implicit(ImplicitLaw::new(gm, curve)),
+            0.2,
+            coupling,
+        )
+        .unwrap();
         for i in 0..=18 {
             let l = 0.7 + 0.05 * i as f64;
             let h = 1e-6;
-            let fd = (along_fibres(&muscle, l + h).unwrap().stress - along_fibres(&muscle, l - h).unwrap().stress) / (2.0 * h);
+            let fd = (along_fibres(&muscle, l + h).unwrap().stress
+                - along_fibres(&muscle, l - h).unwrap().stress)
+                / (2.0 * h);
             let s = along_fibres_stability(&muscle, l, 50).unwrap().slope;
-            assert!((fd - s).abs() < 1e-6 * s.abs().max(1.0), "{coupling:?} at {l}: slope {s} vs fd {fd}");
+            assert!(
+                (fd - s).abs() < 1e-6 * s.abs().max(1.0),
+                "{coupling:?} at {l}: slope {s} vs fd {fd}"
+            );
         }
     }
 }

@@ -54,7 +54,10 @@ impl Coupling {
 /// dγ/dj₂ and d²γ/dj₂² from dγ/dλ and d²γ/dλ² at λ = √j₂.
 pub fn invariant_slopes(law: &LawValue, fibre_stretch: f64) -> (f64, f64) {
     let l = fibre_stretch;
-    (law.slope / (2.0 * l), (law.curvature - law.slope / l) / (4.0 * l * l))
+    (
+        law.slope / (2.0 * l),
+        (law.curvature - law.slope / l) / (4.0 * l * l),
+    )
 }
 
 /// Invariant-space gradient Ψ_j and (if `d` carries second derivatives) Hessian K of the coupled

@@ -1,4 +1,7 @@
-use super::{check_damage, first_activation_root, implicit_derivatives, ActivationLaw, LawValue, PathPartials};
+use super::{
+    check_damage, first_activation_root, implicit_derivatives, ActivationLaw, LawValue,
+    PathPartials,
+};
 use crate::active::curve::ActiveCurve;
 use crate::active::strain::fibre_path_energy;
 use crate::energy::StrainEnergy;
@@ -62,7 +65,10 @@ impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
         let gamma = first_activation_root(
             || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
             |g| {
-                let (w, w_g) = first_derivative(|g| fibre_path_energy(&self.energy, num_dual::Dual64::from(lambda), g), g);
+                let (w, w_g) = first_derivative(
+                    |g| fibre_path_energy(&self.energy, num_dual::Dual64::from(lambda), g),
+                    g,
+                );
                 (w - passive - work, w_g)
             },
         )?;

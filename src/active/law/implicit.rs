@@ -1,4 +1,7 @@
-use super::{check_damage, first_activation_root, fibre_stress_and_slope, implicit_derivatives, ActivationLaw, LawValue, PathPartials};
+use super::{
+    check_damage, fibre_stress_and_slope, first_activation_root, implicit_derivatives,
+    ActivationLaw, LawValue, PathPartials,
+};
 use crate::active::curve::ActiveCurve;
 use crate::energy::StrainEnergy;
 use crate::{Error, Result};

@@ -136,8 +136,16 @@ impl PathPartials {
         let hhd = HyperHyperDual64::from_re;
         let l3 = hhd(lambda).derivative1().derivative2().derivative3();
         let a = fibre_path_energy(energy, l3, hhd(gamma));
-        let b = fibre_path_energy(energy, hhd(lambda).derivative1().derivative2(), hhd(gamma).derivative3());
-        let c = fibre_path_energy(energy, hhd(lambda).derivative1(), hhd(gamma).derivative2().derivative3());
+        let b = fibre_path_energy(
+            energy,
+            hhd(lambda).derivative1().derivative2(),
+            hhd(gamma).derivative3(),
+        );
+        let c = fibre_path_energy(
+            energy,
+            hhd(lambda).derivative1(),
+            hhd(gamma).derivative2().derivative3(),
+        );
         let p = Self {
             w: a.re,
             w_l: a.eps1,
@@ -149,13 +157,19 @@ impl PathPartials {
             w_gg: c.eps2eps3,
             w_lgg: c.eps1eps2eps3,
         };
-        let all = [p.w, p.w_l, p.w_ll, p.w_lll, p.w_g, p.w_lg, p.w_llg, p.w_gg, p.w_lgg];
+        let all = [
+            p.w, p.w_l, p.w_ll, p.w_lll, p.w_g, p.w_lg, p.w_llg, p.w_gg, p.w_lgg,
+        ];
         if all.iter().all(|x| x.is_finite()) {
             Ok(p)
         } else {
             Err(Error::NonFinite {
                 quantity: "derivatives of the fibre-path energy",
-                value: all.iter().copied().find(|x| !x.is_finite()).unwrap_or(f64::NAN),
+                value: all
+                    .iter()
+                    .copied()
+                    .find(|x| !x.is_finite())
+                    .unwrap_or(f64::NAN),
                 context: format!("at lambda = {lambda}, gamma = {gamma} (exp overflow?)"),
             })
         }
@@ -163,7 +177,11 @@ impl PathPartials {
 }
 
 /// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path (eq. D:Ptotcalcolato), by one hyper-dual.
-pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(energy: &E, lambda: f64, gamma: f64) -> (f64, f64) {
+pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
+    energy: &E,
+    lambda: f64,
+    gamma: f64,
+) -> (f64, f64) {
     let w = fibre_path_energy(
         energy,
         HyperDual64::from_re(lambda).derivative1(),
@@ -211,7 +229,14 @@ pub(crate) fn first_activation_root(
 
 /// Derivatives of the root γ(λ) of F(λ, γ) = 0 by the implicit-function theorem:
 /// g′ = −F_λ/F_γ, g″ = −(F_λλ + 2 F_λγ g′ + F_γγ g′²)/F_γ.
-pub(crate) fn implicit_derivatives(gamma: f64, f_l: f64, f_g: f64, f_ll: f64, f_lg: f64, f_gg: f64) -> LawValue {
+pub(crate) fn implicit_derivatives(
+    gamma: f64,
+    f_l: f64,
+    f_g: f64,
+    f_ll: f64,
+    f_lg: f64,
+    f_gg: f64,
+) -> LawValue {
     let slope = -f_l / f_g;
     let curvature = -(f_ll + 2.0 * f_lg * slope + f_gg * slope * slope) / f_g;
     LawValue {
