@@ -56,11 +56,20 @@ pub struct Kinematics {
     pub m: Vector3<f64>,
     /// J = det F.
     pub det_f: f64,
+    /// B = F⁻¹.
     b: Matrix3<f64>,
+    /// C⁻¹ = B Bᵀ.
     c_inv: Matrix3<f64>,
-    fibre: Matrix3<f64>,
+    /// Bᵀ B = b⁻¹ (inverse left Cauchy–Green).
+    b_t_b: Matrix3<f64>,
+    /// F m.
+    f_m: Vector3<f64>,
+    /// Bᵀ m = F⁻ᵀ m.
+    b_t_m: Vector3<f64>,
+    /// C⁻¹ m.
+    c_inv_m: Vector3<f64>,
+    /// Bᵀ C⁻¹ = Bᵀ B Bᵀ (g of j_I).
     g_identity: Matrix3<f64>,
-    g_fibre: Matrix3<f64>,
     /// [tr C, C:M, tr C⁻¹, C⁻¹:M, det C].
     pub invariants: [f64; 5],
 }
@@ -70,26 +79,24 @@ impl Kinematics {
     /// `m` must be a unit vector (the caller validates it once, not per point).
     pub fn new(f: &Matrix3<f64>, m: &Vector3<f64>) -> Result<Self> {
         let det_f = f.determinant();
-        if !(det_f > 0.0) || !f.iter().all(|x| x.is_finite()) {
-            return Err(Error::NonPositiveJacobian {
-                det: det_f,
-                f: f.transpose().into(),
-            });
-        }
-        let b = f.try_inverse().ok_or(Error::NonPositiveJacobian {
+        let rejected = || Error::NonPositiveJacobian {
             det: det_f,
             f: f.transpose().into(),
-        })?;
-        let c = f.transpose() * f;
+        };
+        if !(det_f > 0.0) || !f.iter().all(|x| x.is_finite()) {
+            return Err(rejected());
+        }
+        let b = f.try_inverse().ok_or_else(rejected)?;
         let c_inv = b * b.transpose();
-        let fibre = m * m.transpose();
-        let g_identity = b.transpose() * c_inv;
-        let g_fibre = b.transpose() * fibre * c_inv;
+        let b_t_b = b.transpose() * b;
+        let f_m = f * m;
+        let b_t_m = b.transpose() * m;
+        let c_inv_m = c_inv * m;
         let invariants = [
-            c.trace(),
-            (c * fibre).trace(),
-            c_inv.trace(),
-            (c_inv * fibre).trace(),
+            f.norm_squared(),
+            f_m.norm_squared(),
+            b.norm_squared(),
+            b_t_m.norm_squared(),
             det_f * det_f,
         ];
         Ok(Self {
@@ -98,9 +105,11 @@ impl Kinematics {
             det_f,
             b,
             c_inv,
-            fibre,
-            g_identity,
-            g_fibre,
+            b_t_b,
+            f_m,
+            b_t_m,
+            c_inv_m,
+            g_identity: b_t_b * b.transpose(),
             invariants,
         })
     }
@@ -111,15 +120,15 @@ impl Kinematics {
     }
 
     /// D_ja = ∂j/∂F_a for the five invariants j (rows) and the entries a of F (columns).
+    /// With g_M = Bᵀ M C⁻¹ = (Bᵀm)(C⁻¹m)ᵀ and F M = (Fm) mᵀ.
     pub fn gradients<const N: usize>(&self, entries: &Entries<N>) -> SMatrix<f64, 5, N> {
-        let fm = self.f * self.fibre;
         let j2 = self.det_f * self.det_f;
         let mut d = SMatrix::<f64, 5, N>::zeros();
         for (a, &(k, l)) in entries.index.iter().enumerate() {
             d[(0, a)] = 2.0 * self.f[(k, l)];
-            d[(1, a)] = 2.0 * fm[(k, l)];
+            d[(1, a)] = 2.0 * self.f_m[k] * self.m[l];
             d[(2, a)] = -2.0 * self.g_identity[(k, l)];
-            d[(3, a)] = -2.0 * self.g_fibre[(k, l)];
+            d[(3, a)] = -2.0 * self.b_t_m[k] * self.c_inv_m[l];
             d[(4, a)] = 2.0 * j2 * self.b[(l, k)];
         }
         d
@@ -132,11 +141,10 @@ impl Kinematics {
         w: &SVector<f64, 5>,
         entries: &Entries<N>,
     ) -> SMatrix<f64, N, N> {
-        let (b, c_inv) = (&self.b, &self.c_inv);
-        let bm = b.transpose() * self.m;
+        let (b, c_inv, m) = (&self.b, &self.c_inv, &self.m);
         // C⁻¹ : A with A = w₃ I + w₄ M: g = Bᵀ A C⁻¹, Q = Bᵀ A B.
-        let g = self.g_identity * w[2] + self.g_fibre * w[3];
-        let q = b.transpose() * b * w[2] + bm * bm.transpose() * w[3];
+        let g = self.g_identity * w[2] + self.b_t_m * self.c_inv_m.transpose() * w[3];
+        let q = self.b_t_b * w[2] + self.b_t_m * self.b_t_m.transpose() * w[3];
         let j2w = self.det_f * self.det_f * w[4];
         let mut t = SMatrix::<f64, N, N>::zeros();
         for (x, &(k, l)) in entries.index.iter().enumerate() {
@@ -146,9 +154,11 @@ impl Kinematics {
                         + q[(k, i)] * c_inv[(jj, l)]
                         + g[(k, jj)] * b[(l, i)]);
                 if k == i {
-                    v += 2.0 * (w[1] * self.fibre[(l, jj)] + if l == jj { w[0] } else { 0.0 });
+                    v += 2.0 * (w[1] * m[l] * m[jj] + if l == jj { w[0] } else { 0.0 });
                 }
-                v += j2w * (4.0 * b[(jj, i)] * b[(l, k)] - 2.0 * b[(l, i)] * b[(jj, k)]);
+                if j2w != 0.0 {
+                    v += j2w * (4.0 * b[(jj, i)] * b[(l, k)] - 2.0 * b[(l, i)] * b[(jj, k)]);
+                }
                 t[(x, y)] = v;
                 t[(y, x)] = v;
             }

@@ -36,4 +36,6 @@ pub use error::{Error, Result};
 pub use material::Muscle;
 /// Re-exported for [`energy_test_battery!`] in users' crates.
 pub use nalgebra;
+/// Re-exported for [`energy_test_battery!`] in users' crates.
+pub use num_dual;
 pub use scalar::Scalar;

@@ -69,6 +69,74 @@ fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f6
     }
 }
 
+/// W, its gradient and its Hessian at the elastic invariants `ie`, to the order asked; over four
+/// invariants (det C held) when the energy does not use det C.
+fn energy_derivatives<E: StrainEnergy>(
+    energy: &E,
+    ie: &SVector<f64, 5>,
+    order: Order,
+) -> (f64, Option<SVector<f64, 5>>, Option<SMatrix<f64, 5, 5>>) {
+    let w_of = |v: &SVector<f64, 5>| energy.energy(&invariants_of(v));
+    if order == Order::Energy {
+        return (w_of(ie), None, None);
+    }
+    if energy.uses_det_c() {
+        return match order {
+            Order::Stress => {
+                let (w, g) = gradient(
+                    |v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+                    ie,
+                );
+                (w, Some(g), None)
+            }
+            _ => {
+                let (w, g, h) = hessian(
+                    |v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+                    ie,
+                );
+                (w, Some(g), Some(h))
+            }
+        };
+    }
+    let four = ie.fixed_rows::<4>(0).into_owned();
+    let det_c = ie[4];
+    let pad = |g: SVector<f64, 4>| SVector::<f64, 5>::from([g[0], g[1], g[2], g[3], 0.0]);
+    match order {
+        Order::Stress => {
+            let (w, g) = gradient(
+                |v: SVector<DualSVec64<4>, 4>| {
+                    energy.energy(&Invariants::from_array([
+                        v[0],
+                        v[1],
+                        v[2],
+                        v[3],
+                        DualSVec64::from_re(det_c),
+                    ]))
+                },
+                &four,
+            );
+            (w, Some(pad(g)), None)
+        }
+        _ => {
+            let (w, g, h) = hessian(
+                |v: SVector<Dual2SVec64<4>, 4>| {
+                    energy.energy(&Invariants::from_array([
+                        v[0],
+                        v[1],
+                        v[2],
+                        v[3],
+                        Dual2SVec64::from_re(det_c),
+                    ]))
+                },
+                &four,
+            );
+            let mut h5 = SMatrix::<f64, 5, 5>::zeros();
+            h5.fixed_view_mut::<4, 4>(0, 0).copy_from(&h);
+            (w, Some(pad(g)), Some(h5))
+        }
+    }
+}
+
 /// Derivatives of the active-strain energy in invariant space, to the order asked.
 pub fn invariant_derivatives<E: StrainEnergy>(
     energy: &E,
@@ -78,26 +146,8 @@ pub fn invariant_derivatives<E: StrainEnergy>(
 ) -> Result<InvariantDerivatives> {
     check_activation(gamma)?;
     let map = StrainMap::new(gamma);
-    let ie = map.apply(j);
     let c = map.c;
-    let w_of = |v: &SVector<f64, 5>| energy.energy(&invariants_of(v));
-    let (w, g, h) = match order {
-        Order::Energy => (w_of(&ie), None, None),
-        Order::Stress => {
-            let (w, g) = gradient(
-                |v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)),
-                &ie,
-            );
-            (w, Some(g), None)
-        }
-        Order::Tangent => {
-            let (w, g, h) = hessian(
-                |v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)),
-                &ie,
-            );
-            (w, Some(g), Some(h))
-        }
-    };
+    let (w, g, h) = energy_derivatives(energy, &map.apply(j), order);
     if !w.is_finite() {
         return Err(non_finite("strain energy", w, j, gamma));
     }
@@ -111,21 +161,21 @@ pub fn invariant_derivatives<E: StrainEnergy>(
     if let Some(bad) = g.iter().find(|x| !x.is_finite()) {
         return Err(non_finite("energy gradient", *bad, j, gamma));
     }
-    let ie_gamma = map.a_gamma * j;
-    out.d_j = map.a.transpose() * g * c;
+    let ie_gamma = map.rate(j);
+    let a_t_g = map.transpose_apply(&g);
+    out.d_j = a_t_g * c;
     out.d_gamma = -w + c * g.dot(&ie_gamma);
     if let Some(h) = h {
         if let Some(bad) = h.iter().find(|x| !x.is_finite()) {
             return Err(non_finite("energy Hessian", *bad, j, gamma));
         }
-        let ha = h * map.a;
         let h_ie_gamma = h * ie_gamma;
         out.second = Some(SecondDerivatives {
-            d_jj: map.a.transpose() * ha * c,
-            d_jgamma: -map.a.transpose() * g
-                + (map.a_gamma.transpose() * g + map.a.transpose() * h_ie_gamma) * c,
+            d_jj: map.congruence(&h) * c,
+            d_jgamma: -a_t_g
+                + (map.rate_transpose_apply(&g) + map.transpose_apply(&h_ie_gamma)) * c,
             d_gammagamma: -2.0 * g.dot(&ie_gamma)
-                + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&(map.a_gamma2 * j))),
+                + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&map.rate2(j))),
         });
     }
     Ok(out)

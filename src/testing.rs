@@ -228,6 +228,32 @@ macro_rules! energy_test_battery {
             }
 
             #[test]
+            fn declared_invariants_are_honest() {
+                use $crate::StrainEnergy;
+                if ($energy).uses_det_c() {
+                    return;
+                }
+                // An energy that says it ignores det C must have ∂W/∂det C = 0 everywhere.
+                let mut s = Sampler::new(8);
+                for _ in 0..SAMPLES {
+                    let v = $crate::nalgebra::SVector::<f64, 5>::from_fn(|_, _| s.range(0.5, 2.0));
+                    let (_, g) = $crate::num_dual::gradient(
+                        |x: $crate::nalgebra::SVector<$crate::num_dual::DualSVec64<5>, 5>| {
+                            ($energy).energy(&$crate::energy::Invariants::from_array([
+                                x[0], x[1], x[2], x[3], x[4],
+                            ]))
+                        },
+                        &v,
+                    );
+                    assert_eq!(
+                        g[4], 0.0,
+                        "uses_det_c() is false but dW/d(det C) = {}",
+                        g[4]
+                    );
+                }
+            }
+
+            #[test]
             fn rejects_non_positive_jacobian() {
                 let m = Vector3::new(1.0, 0.0, 0.0);
                 for f in [

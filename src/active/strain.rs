@@ -61,53 +61,88 @@ pub fn fibre_path_energy<E: StrainEnergy, T: Scalar>(energy: &E, lambda: T, gamm
     active_energy(energy, &j, gamma)
 }
 
-/// The active-strain map as matrices at a fixed γ: Ie = A j, and its γ-derivatives.
+/// The active-strain map at a fixed γ, Ie = A(γ) j, applied by its seven non-zero entries:
+///
+/// A = [[1, s²−1, 0, 0, 0], [0, s², 0, 0, 0], [0, 0, 1, c²−1, 0], [0, 0, 0, c², 0], [0, 0, 0, 0, s²]],
+///
+/// with ds/dγ = s², d(s²)/dγ = 2s³, d(2s³)/dγ = 6s⁴; d(c²)/dγ = −2c, d(−2c)/dγ = 2.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct StrainMap {
     /// 1 − γ.
     pub c: f64,
-    /// A(γ).
-    pub a: SMatrix<f64, 5, 5>,
-    /// dA/dγ.
-    pub a_gamma: SMatrix<f64, 5, 5>,
-    /// d²A/dγ².
-    pub a_gamma2: SMatrix<f64, 5, 5>,
+    c2: f64,
+    s2: f64,
+    s3: f64,
+    s4: f64,
 }
 
 impl StrainMap {
-    /// ds/dγ = s², d(s²)/dγ = 2s³, d(2s³)/dγ = 6s⁴; d(c²)/dγ = −2c, d(−2c)/dγ = 2.
     pub fn new(gamma: f64) -> Self {
         let c = 1.0 - gamma;
         let s = 1.0 / c;
-        let (s2, s3, s4) = (s * s, s * s * s, s * s * s * s);
-        let mut a = SMatrix::<f64, 5, 5>::zeros();
-        let mut a_gamma = SMatrix::<f64, 5, 5>::zeros();
-        let mut a_gamma2 = SMatrix::<f64, 5, 5>::zeros();
-        a[(0, 0)] = 1.0;
-        a[(0, 1)] = s2 - 1.0;
-        a[(1, 1)] = s2;
-        a[(2, 2)] = 1.0;
-        a[(2, 3)] = c * c - 1.0;
-        a[(3, 3)] = c * c;
-        a[(4, 4)] = s2;
-        for (r, col) in [(0, 1), (1, 1), (4, 4)] {
-            a_gamma[(r, col)] = 2.0 * s3;
-            a_gamma2[(r, col)] = 6.0 * s4;
-        }
-        for (r, col) in [(2, 3), (3, 3)] {
-            a_gamma[(r, col)] = -2.0 * c;
-            a_gamma2[(r, col)] = 2.0;
-        }
+        let s2 = s * s;
         Self {
             c,
-            a,
-            a_gamma,
-            a_gamma2,
+            c2: c * c,
+            s2,
+            s3: s2 * s,
+            s4: s2 * s2,
         }
     }
 
     /// Ie = A j.
     pub fn apply(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
-        self.a * j
+        SVector::from([
+            j[0] + (self.s2 - 1.0) * j[1],
+            self.s2 * j[1],
+            j[2] + (self.c2 - 1.0) * j[3],
+            self.c2 * j[3],
+            self.s2 * j[4],
+        ])
+    }
+
+    /// Aᵀ y.
+    pub fn transpose_apply(&self, y: &SVector<f64, 5>) -> SVector<f64, 5> {
+        SVector::from([
+            y[0],
+            (self.s2 - 1.0) * y[0] + self.s2 * y[1],
+            y[2],
+            (self.c2 - 1.0) * y[2] + self.c2 * y[3],
+            self.s2 * y[4],
+        ])
+    }
+
+    /// dIe/dγ = (dA/dγ) j.
+    pub fn rate(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
+        let (a, b) = (2.0 * self.s3, -2.0 * self.c);
+        SVector::from([a * j[1], a * j[1], b * j[3], b * j[3], a * j[4]])
+    }
+
+    /// d²Ie/dγ² = (d²A/dγ²) j.
+    pub fn rate2(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
+        let a = 6.0 * self.s4;
+        SVector::from([a * j[1], a * j[1], 2.0 * j[3], 2.0 * j[3], a * j[4]])
+    }
+
+    /// (dA/dγ)ᵀ y.
+    pub fn rate_transpose_apply(&self, y: &SVector<f64, 5>) -> SVector<f64, 5> {
+        let (a, b) = (2.0 * self.s3, -2.0 * self.c);
+        SVector::from([0.0, a * (y[0] + y[1]), 0.0, b * (y[2] + y[3]), a * y[4]])
+    }
+
+    /// X A, by columns.
+    fn right(&self, x: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
+        let mut y = *x;
+        for r in 0..5 {
+            y[(r, 1)] = (self.s2 - 1.0) * x[(r, 0)] + self.s2 * x[(r, 1)];
+            y[(r, 3)] = (self.c2 - 1.0) * x[(r, 2)] + self.c2 * x[(r, 3)];
+            y[(r, 4)] = self.s2 * x[(r, 4)];
+        }
+        y
+    }
+
+    /// Aᵀ H A for a symmetric H.
+    pub fn congruence(&self, h: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
+        self.right(&self.right(h).transpose())
     }
 }

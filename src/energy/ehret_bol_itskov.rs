@@ -80,4 +80,8 @@ impl StrainEnergy for EhretBolItskov {
     fn name(&self) -> &str {
         "ehret-bol-itskov"
     }
+
+    fn uses_det_c(&self) -> bool {
+        false
+    }
 }

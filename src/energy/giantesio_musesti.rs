@@ -71,4 +71,8 @@ impl StrainEnergy for GiantesioMusesti {
     fn name(&self) -> &str {
         "giantesio-musesti"
     }
+
+    fn uses_det_c(&self) -> bool {
+        false
+    }
 }

@@ -97,6 +97,13 @@ pub trait StrainEnergy: Clone + Send + Sync {
     fn name(&self) -> &str {
         "user-defined"
     }
+
+    /// Whether W depends on `det_c`. An energy that does not may return `false`: the responses
+    /// then differentiate over four invariants instead of five (about 1.5× faster tangents).
+    /// Returning `false` for an energy that does use `det_c` gives wrong derivatives.
+    fn uses_det_c(&self) -> bool {
+        true
+    }
 }
 
 /// Checks that `value` is finite and strictly positive.
@@ -150,6 +157,14 @@ impl StrainEnergy for Energy {
             Energy::GiantesioMusesti(w) => w.name(),
             Energy::EhretBolItskov(w) => w.name(),
             Energy::NeoHookean(w) => w.name(),
+        }
+    }
+
+    fn uses_det_c(&self) -> bool {
+        match self {
+            Energy::GiantesioMusesti(w) => w.uses_det_c(),
+            Energy::EhretBolItskov(w) => w.uses_det_c(),
+            Energy::NeoHookean(w) => w.uses_det_c(),
         }
     }
 }

@@ -36,4 +36,8 @@ impl StrainEnergy for NeoHookean {
     fn name(&self) -> &str {
         "neo-hookean"
     }
+
+    fn uses_det_c(&self) -> bool {
+        false
+    }
 }
