@@ -59,7 +59,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         let _ = iterations;
         println!(
-            "{:>9} {:>9} {:>6} {:>11.4} {:>11.4} {:>11.4} {:>11.4} {:>9.3} {:>10.0}",
+            "{:>9} {:>9} {:>6} {:>11.4} {:>11.4} {:>11.4} {:>11.4} {:>9.3} {:>10.0} {:>7.1} {:>5}",
             format!("{nr}x{nz}"),
             solver.n_free_dofs(),
             t.factorisations,
@@ -68,7 +68,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             s,
             a + f + s,
             setup,
-            peak_memory_mib().unwrap_or(f64::NAN)
+            peak_memory_mib().unwrap_or(f64::NAN),
+            t.krylov_iterations as f64 / t.solves.max(1) as f64,
+            t.lu_fallbacks
         );
     }
     Ok(())

@@ -15,6 +15,7 @@ pub mod assembly;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod ldlt;
 pub mod linear;
 pub mod material;
 pub mod mesh;
@@ -26,6 +27,6 @@ pub use error::{FemError, FemResult, StepFailure};
 pub use material::{AxiF, AxisymmetricMaterial, NeoHookean};
 pub use mesh::{Boundary, Mesh};
 pub use solver::{
-    AxisymmetricSolver, IterationRecord, QuadraturePoint, SolverOptions, State, StepRecord,
-    StretchResult, Sweep, Timings, VtkOutput,
+    AxisymmetricSolver, IterationRecord, LinearSolver, QuadraturePoint, SolverOptions, State,
+    StepRecord, StretchResult, Sweep, Timings, VtkOutput,
 };

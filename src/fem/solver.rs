@@ -14,9 +14,11 @@
 //! ‖Δu‖_∞ / L ≤ tol   and   ‖Δp‖_∞ / σ ≤ tol   (last Newton increment).
 
 use super::assembly::Assembler;
+use super::assembly::Pattern;
 use super::dofs::{Bases, DofMap};
 use super::element::{deformation, geometry, jacobian, jacobian_gradient, N_P, N_QP, N_U};
 use super::error::{FemError, FemResult, StepFailure};
+use super::ldlt::{Gmres, SymmetricPartLdlt};
 use super::linear::SparseLu;
 use super::material::{AxiF, AxisymmetricMaterial};
 use super::mesh::Mesh;
@@ -31,6 +33,16 @@ pub struct VtkOutput {
     pub directory: PathBuf,
     /// Stretches (among the sweep targets) at which to write `lambda_<λ>.vtu`.
     pub stretches: Vec<f64>,
+}
+
+/// How the Newton system K Δx = −R is solved. Both give the exact Newton direction (to round-off).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LinearSolver {
+    /// GMRES on K preconditioned by LDLᵀ of (K + Kᵀ)/2 (fast; for a symmetric K one iteration),
+    /// falling back to the sparse LU when GMRES does not converge.
+    SymmetricPartGmres,
+    /// faer's sparse LU with partial pivoting (COLAMD ordering) only.
+    Lu,
 }
 
 /// Tolerances and load-stepping controls.
@@ -52,6 +64,8 @@ pub struct SolverOptions {
     pub easy_iterations: usize,
     /// Backtracking halvings in the line search (0: full Newton steps only).
     pub max_backtracks: usize,
+    /// Linear solver of the Newton system.
+    pub linear_solver: LinearSolver,
     /// Optional VTK output.
     pub vtk: Option<VtkOutput>,
 }
@@ -67,6 +81,7 @@ impl Default for SolverOptions {
             min_step: 1e-4,
             easy_iterations: 5,
             max_backtracks: 8,
+            linear_solver: LinearSolver::SymmetricPartGmres,
             vtk: None,
         }
     }
@@ -166,6 +181,10 @@ pub struct Timings {
     pub solve: Duration,
     /// Number of solves.
     pub solves: usize,
+    /// GMRES iterations in all solves.
+    pub krylov_iterations: usize,
+    /// Solves that fell back to the sparse LU.
+    pub lu_fallbacks: usize,
 }
 
 /// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
@@ -198,7 +217,11 @@ pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
     mesh: Mesh,
     dofs: DofMap,
     asm: Assembler,
-    lu: SparseLu,
+    lu: Option<SparseLu>,
+    ldlt: Option<SymmetricPartLdlt>,
+    gmres: Gmres,
+    use_lu: bool,
+    rhs_copy: Vec<f64>,
     material: &'m M,
     options: SolverOptions,
     timings: Timings,
@@ -266,7 +289,20 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         }
         let dofs = DofMap::new(&mesh, bases);
         let asm = Assembler::new(&mesh, &dofs)?;
-        let lu = SparseLu::new(&asm.pattern).map_err(FemError::LinearSolver)?;
+        let (lu, ldlt) = match options.linear_solver {
+            LinearSolver::Lu => (
+                Some(SparseLu::new(&asm.pattern).map_err(FemError::LinearSolver)?),
+                None,
+            ),
+            LinearSolver::SymmetricPartGmres => {
+                let (node_dofs, adjacency) = node_structure(&mesh, &dofs);
+                let ldlt = SymmetricPartLdlt::new(&asm.pattern, &node_dofs, &adjacency)
+                    .map_err(FemError::LinearSolver)?;
+                (None, Some(ldlt))
+            }
+        };
+        let n_free = dofs.n_free;
+        let gmres = Gmres::new(n_free, 40);
         // Quadrature point nearest to the centre (r = 0, z = L/2).
         let target = [0.0, 0.5 * mesh.length];
         let mut centre = (0, 0);
@@ -288,6 +324,10 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             dofs,
             asm,
             lu,
+            ldlt,
+            gmres,
+            use_lu: false,
+            rhs_copy: vec![0.0; n_free],
             material,
             options,
             timings: Timings::default(),
@@ -400,20 +440,82 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         ru.max(rp)
     }
 
-    fn factorise(&mut self) -> Result<(), StepFailure> {
-        let t = Instant::now();
-        let r = self.lu.factorise(&self.asm.pattern, &self.asm.values);
-        self.timings.factorisation += t.elapsed();
-        self.timings.factorisations += 1;
-        r.map_err(|detail| StepFailure::SingularTangent { detail })
+    fn factorise_lu(&mut self) -> Result<(), StepFailure> {
+        if self.lu.is_none() {
+            self.lu = Some(
+                SparseLu::new(&self.asm.pattern)
+                    .map_err(|detail| StepFailure::SingularTangent { detail })?,
+            );
+        }
+        match self.lu.as_mut() {
+            Some(lu) => lu
+                .factorise(&self.asm.pattern, &self.asm.values)
+                .map_err(|detail| StepFailure::SingularTangent { detail }),
+            None => Err(StepFailure::SingularTangent {
+                detail: "no LU".into(),
+            }),
+        }
     }
 
+    fn factorise(&mut self) -> Result<(), StepFailure> {
+        let t = Instant::now();
+        let r = match self.ldlt.as_mut() {
+            Some(ldlt) => match ldlt.factorise(&self.asm.pattern, &self.asm.values) {
+                Ok(_) => {
+                    self.use_lu = false;
+                    Ok(())
+                }
+                Err(_) => {
+                    // LDLᵀ breakdown (e.g. a zero pivot): exact LU instead.
+                    self.use_lu = true;
+                    self.timings.lu_fallbacks += 1;
+                    self.factorise_lu()
+                }
+            },
+            None => {
+                self.use_lu = true;
+                self.factorise_lu()
+            }
+        };
+        self.timings.factorisation += t.elapsed();
+        self.timings.factorisations += 1;
+        r
+    }
+
+    /// Solves K y = rhs in place with the current factorisation (GMRES + LDLᵀ, or LU).
     fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
         let t = Instant::now();
-        let r = self.lu.solve_in_place(rhs);
+        let r = self.solve_inner(rhs);
         self.timings.solve += t.elapsed();
         self.timings.solves += 1;
-        r.map_err(|detail| StepFailure::SingularTangent { detail })
+        r
+    }
+
+    fn solve_inner(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
+        if !self.use_lu {
+            if let Some(ldlt) = self.ldlt.as_mut() {
+                self.rhs_copy.copy_from_slice(rhs);
+                let pattern = &self.asm.pattern;
+                let values = &self.asm.values;
+                if let Some(it) = self.gmres.solve(pattern, values, ldlt, rhs, 1e-12, 200) {
+                    self.timings.krylov_iterations += it;
+                    return Ok(());
+                }
+                // GMRES did not converge: exact LU of the same matrix.
+                rhs.copy_from_slice(&self.rhs_copy);
+                self.timings.lu_fallbacks += 1;
+            }
+            self.use_lu = true;
+            self.factorise_lu()?;
+        }
+        match self.lu.as_mut() {
+            Some(lu) => lu
+                .solve_in_place(rhs)
+                .map_err(|detail| StepFailure::SingularTangent { detail }),
+            None => Err(StepFailure::SingularTangent {
+                detail: "no factorisation".into(),
+            }),
+        }
     }
 
     /// Newton's method at the stretch already set in `x` (prescribed dofs included).
@@ -808,4 +910,89 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             }
         })
     }
+}
+
+/// Dof groups for the LDLᵀ ordering and their adjacency graph. One group per node with free
+/// displacement dofs: those dofs, then the node's pressure dof. A pressure dof whose node has no
+/// free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first, so it
+/// joins the group of a neighbouring node (sharing an element) and is eliminated after that
+/// node's displacement dofs, which couple to it.
+fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern) {
+    let nf = dofs.n_free as u32;
+    let nn_all = mesh.n_nodes();
+    let mut group_of = vec![u32::MAX; nn_all];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (a, g) in group_of.iter_mut().enumerate() {
+        let d: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
+        if !d.is_empty() {
+            *g = groups.len() as u32;
+            groups.push(d);
+        }
+    }
+    // Node neighbours through elements.
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nn_all];
+    for e in &mesh.elements {
+        for &a in e {
+            neighbours[a as usize].extend(e.iter().copied().filter(|&b| b != a));
+        }
+    }
+    let mut orphans = Vec::new();
+    for a in 0..nn_all {
+        let p = dofs.node_p[a];
+        if p >= nf {
+            continue;
+        }
+        let host = if group_of[a] != u32::MAX {
+            Some(group_of[a])
+        } else {
+            neighbours[a]
+                .iter()
+                .map(|&b| group_of[b as usize])
+                .find(|&g| g != u32::MAX)
+        };
+        match host {
+            Some(g) => groups[g as usize].push(p),
+            None => orphans.push(p),
+        }
+    }
+    if !orphans.is_empty() {
+        // No displacement dof anywhere near (degenerate mesh): keep them, the LU will cope.
+        groups.push(orphans);
+    }
+    let ng = groups.len();
+    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); ng];
+    for e in &mesh.elements {
+        for &a in e {
+            let ga = group_of[a as usize];
+            if ga == u32::MAX {
+                continue;
+            }
+            for &b in e {
+                let gb = group_of[b as usize];
+                if gb != u32::MAX {
+                    cols[ga as usize].push(gb);
+                }
+            }
+        }
+    }
+    if cols.len() < ng {
+        cols.resize(ng, Vec::new());
+    }
+    let mut col_ptr = vec![0u32];
+    let mut row_idx = Vec::new();
+    for (j, c) in cols.iter_mut().enumerate() {
+        c.push(j as u32);
+        c.sort_unstable();
+        c.dedup();
+        row_idx.extend_from_slice(c);
+        col_ptr.push(row_idx.len() as u32);
+    }
+    (
+        groups,
+        Pattern {
+            n: ng,
+            col_ptr,
+            row_idx,
+        },
+    )
 }

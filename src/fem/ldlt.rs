@@ -1,0 +1,337 @@
+//! Fast linear solver for the tangent: GMRES on the exact (possibly non-symmetric) tangent K,
+//! right-preconditioned by a sparse LDLᵀ factorisation of its symmetric part S = (K + Kᵀ)/2.
+//!
+//! Why: faer's sparse LU bounds its fill by the Cholesky factor of KᵀK (static pivoting
+//! structure), which for these meshes is several times denser than the factor of K itself.
+//! LDLᵀ works on the pattern of K. The saddle point is factorised without pivoting thanks to the
+//! ordering: approximate minimum degree on the node graph, and within each node the displacement
+//! dofs before the pressure dof, so a pressure pivot is a Schur complement rather than the zero
+//! diagonal. A zero pivot (or a non-finite factor) is reported and the caller uses the LU
+//! instead. For a symmetric tangent S = K and GMRES converges in one iteration; for a
+//! non-symmetric one in a few. If GMRES does not reach its tolerance the caller falls back to the
+//! LU (see [`super::linear`]), so the Newton direction is always exact to round-off.
+
+use super::assembly::Pattern;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+/// LDLᵀ of the symmetric part, used as a preconditioner.
+pub struct SymmetricPartLdlt {
+    n: usize,
+    symbolic: SymbolicCholesky<u32>,
+    l_values: Vec<f64>,
+    s_values: Vec<f64>,
+    transpose_of: Vec<u32>,
+    factor_scratch: MemBuffer,
+    solve_scratch: MemBuffer,
+    par: Par,
+    factorised: bool,
+}
+
+impl std::fmt::Debug for SymmetricPartLdlt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SymmetricPartLdlt")
+            .field("n", &self.n)
+            .finish()
+    }
+}
+
+impl SymmetricPartLdlt {
+    /// Symbolic analysis. `node_dofs[a]` lists the free dofs of node a, displacement first,
+    /// `node_adjacency` is the node graph (nodes sharing an element).
+    pub fn new(
+        pattern: &Pattern,
+        node_dofs: &[Vec<u32>],
+        node_adjacency: &Pattern,
+    ) -> Result<Self, String> {
+        let n = pattern.n;
+        let par = faer::get_global_parallelism();
+        // Position of the transposed entry of every nonzero (the pattern is structurally symmetric).
+        let mut transpose_of = vec![0u32; pattern.row_idx.len()];
+        for j in 0..n {
+            let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
+            for (k, &i) in range.clone().zip(&pattern.row_idx[range]) {
+                let i = i as usize;
+                let col =
+                    &pattern.row_idx[pattern.col_ptr[i] as usize..pattern.col_ptr[i + 1] as usize];
+                let pos = col
+                    .binary_search(&(j as u32))
+                    .map_err(|_| "tangent pattern is not structurally symmetric".to_string())?;
+                transpose_of[k] = pattern.col_ptr[i] + pos as u32;
+            }
+        }
+        // AMD on the node graph, then node-wise expansion (displacement dofs, then pressure).
+        let nn = node_adjacency.n;
+        let mut node_perm = vec![0u32; nn];
+        let mut node_perm_inv = vec![0u32; nn];
+        {
+            let a = SymbolicSparseColMatRef::new_checked(
+                nn,
+                nn,
+                &node_adjacency.col_ptr,
+                None,
+                &node_adjacency.row_idx,
+            );
+            let mut mem =
+                MemBuffer::try_new(amd::order_scratch::<u32>(nn, node_adjacency.row_idx.len()))
+                    .map_err(|_| "out of memory for AMD".to_string())?;
+            amd::order(
+                &mut node_perm,
+                &mut node_perm_inv,
+                a,
+                amd::Control::default(),
+                MemStack::new(&mut mem),
+            )
+            .map_err(|e| format!("AMD: {e:?}"))?;
+        }
+        let mut perm = Vec::with_capacity(n);
+        for &a in &node_perm {
+            perm.extend_from_slice(&node_dofs[a as usize]);
+        }
+        if perm.len() != n {
+            return Err(format!("node ordering covers {} of {n} dofs", perm.len()));
+        }
+        let mut perm_inv = vec![0u32; n];
+        for (k, &i) in perm.iter().enumerate() {
+            perm_inv[i as usize] = k as u32;
+        }
+        let a =
+            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            a,
+            Side::Lower,
+            SymmetricOrdering::Custom(PermRef::new_checked(&perm, &perm_inv, n)),
+            Default::default(),
+        )
+        .map_err(|e| format!("symbolic LDLT: {e:?}"))?;
+        let factor_scratch = MemBuffer::try_new(
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|_| "out of memory for LDLT scratch".to_string())?;
+        let solve_scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
+            .map_err(|_| "out of memory for LDLT scratch".to_string())?;
+        let l_values = vec![0.0; symbolic.len_val()];
+        Ok(Self {
+            n,
+            symbolic,
+            l_values,
+            s_values: vec![0.0; pattern.row_idx.len()],
+            transpose_of,
+            factor_scratch,
+            solve_scratch,
+            par,
+            factorised: false,
+        })
+    }
+
+    /// Factorises S = (K + Kᵀ)/2.
+    pub fn factorise(&mut self, pattern: &Pattern, values: &[f64]) -> Result<(), String> {
+        self.factorised = false;
+        let mut scale = 0.0f64;
+        for (k, s) in self.s_values.iter_mut().enumerate() {
+            *s = 0.5 * (values[k] + values[self.transpose_of[k] as usize]);
+            scale = scale.max(s.abs());
+        }
+        if !scale.is_finite() {
+            return Err("non-finite tangent".into());
+        }
+        let n = self.n;
+        let a = SparseColMatRef::new(
+            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx),
+            &self.s_values,
+        );
+        // No sign regularisation: K_uu − p H is legitimately indefinite in incompressible
+        // elasticity (positive only on the constraint kernel), so pivot signs are not known in
+        // advance. A zero pivot is an error and the caller falls back to the LU.
+        let reg = faer::linalg::cholesky::ldlt::factor::LdltRegularization::default();
+        let info = self
+            .symbolic
+            .factorize_numeric_ldlt(
+                &mut self.l_values,
+                a,
+                Side::Lower,
+                reg,
+                self.par,
+                MemStack::new(&mut self.factor_scratch),
+                Default::default(),
+            )
+            .map_err(|e| format!("LDLT: {e:?}"))?;
+        let _ = info;
+        if self.l_values.iter().any(|v| !v.is_finite()) {
+            return Err("non-finite LDLT factor (zero pivot)".into());
+        }
+        self.factorised = true;
+        Ok(())
+    }
+
+    /// x ← S⁻¹ x.
+    pub fn apply(&mut self, x: &mut [f64]) {
+        let n = x.len();
+        LdltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(x, n, 1),
+            self.par,
+            MemStack::new(&mut self.solve_scratch),
+        );
+    }
+
+    /// Whether a factorisation is available.
+    pub fn is_factorised(&self) -> bool {
+        self.factorised
+    }
+}
+
+/// y = K x for K in compressed columns.
+fn matvec(pattern: &Pattern, values: &[f64], x: &[f64], y: &mut [f64]) {
+    y.fill(0.0);
+    for (j, &xj) in x.iter().enumerate() {
+        if xj == 0.0 {
+            continue;
+        }
+        for k in pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize {
+            y[pattern.row_idx[k] as usize] += values[k] * xj;
+        }
+    }
+}
+
+/// Workspace of restarted, right-preconditioned GMRES (allocated once).
+#[derive(Debug)]
+pub struct Gmres {
+    restart: usize,
+    v: Vec<Vec<f64>>,
+    z: Vec<f64>,
+    w: Vec<f64>,
+    h: Vec<Vec<f64>>,
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    g: Vec<f64>,
+    x: Vec<f64>,
+    r: Vec<f64>,
+}
+
+impl Gmres {
+    /// Workspace for dimension `n` and restart length `restart`.
+    pub fn new(n: usize, restart: usize) -> Self {
+        Self {
+            restart,
+            v: vec![vec![0.0; n]; restart + 1],
+            z: vec![0.0; n],
+            w: vec![0.0; n],
+            h: vec![vec![0.0; restart]; restart + 1],
+            cs: vec![0.0; restart],
+            sn: vec![0.0; restart],
+            g: vec![0.0; restart + 1],
+            x: vec![0.0; n],
+            r: vec![0.0; n],
+        }
+    }
+
+    /// Solves K x = b (b in `rhs`, x returned in `rhs`) to ‖b − K x‖ ≤ `tol` ‖b‖ with at most
+    /// `max_iter` iterations. Returns the iterations used, or `None` if the tolerance was not met.
+    pub fn solve(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        pre: &mut SymmetricPartLdlt,
+        rhs: &mut [f64],
+        tol: f64,
+        max_iter: usize,
+    ) -> Option<usize> {
+        let bnorm = rhs.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if bnorm == 0.0 {
+            return Some(0);
+        }
+        self.x.fill(0.0);
+        self.r.copy_from_slice(rhs);
+        let mut total = 0;
+        while total < max_iter {
+            let beta = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if beta <= tol * bnorm {
+                rhs.copy_from_slice(&self.x);
+                return Some(total);
+            }
+            for (vi, ri) in self.v[0].iter_mut().zip(&self.r) {
+                *vi = ri / beta;
+            }
+            self.g.fill(0.0);
+            self.g[0] = beta;
+            let mut k_used = 0;
+            for k in 0..self.restart {
+                total += 1;
+                k_used = k + 1;
+                self.z.copy_from_slice(&self.v[k]);
+                pre.apply(&mut self.z);
+                matvec(pattern, values, &self.z, &mut self.w);
+                for i in 0..=k {
+                    let hik: f64 = self.w.iter().zip(&self.v[i]).map(|(a, b)| a * b).sum();
+                    self.h[i][k] = hik;
+                    for (wj, vj) in self.w.iter_mut().zip(&self.v[i]) {
+                        *wj -= hik * vj;
+                    }
+                }
+                let hk1 = self.w.iter().map(|v| v * v).sum::<f64>().sqrt();
+                self.h[k + 1][k] = hk1;
+                if hk1 > 0.0 {
+                    for (vj, wj) in self.v[k + 1].iter_mut().zip(&self.w) {
+                        *vj = wj / hk1;
+                    }
+                }
+                for i in 0..k {
+                    let t = self.cs[i] * self.h[i][k] + self.sn[i] * self.h[i + 1][k];
+                    self.h[i + 1][k] = -self.sn[i] * self.h[i][k] + self.cs[i] * self.h[i + 1][k];
+                    self.h[i][k] = t;
+                }
+                let d = (self.h[k][k].powi(2) + self.h[k + 1][k].powi(2)).sqrt();
+                if d == 0.0 || !d.is_finite() {
+                    return None;
+                }
+                self.cs[k] = self.h[k][k] / d;
+                self.sn[k] = self.h[k + 1][k] / d;
+                self.h[k][k] = d;
+                self.h[k + 1][k] = 0.0;
+                self.g[k + 1] = -self.sn[k] * self.g[k];
+                self.g[k] *= self.cs[k];
+                if self.g[k + 1].abs() <= 0.1 * tol * bnorm || total >= max_iter {
+                    break;
+                }
+            }
+            // y = H⁻¹ g (upper triangular), x += M⁻¹ V y.
+            let mut y = [0.0f64; 64];
+            for i in (0..k_used).rev() {
+                let mut s = self.g[i];
+                for (hij, yj) in self.h[i][i + 1..k_used].iter().zip(&y[i + 1..k_used]) {
+                    s -= hij * yj;
+                }
+                y[i] = s / self.h[i][i];
+            }
+            self.z.fill(0.0);
+            for (j, yj) in y.iter().enumerate().take(k_used) {
+                for (zi, vi) in self.z.iter_mut().zip(&self.v[j]) {
+                    *zi += yj * vi;
+                }
+            }
+            pre.apply(&mut self.z);
+            for (xi, zi) in self.x.iter_mut().zip(&self.z) {
+                *xi += zi;
+            }
+            // True residual.
+            matvec(pattern, values, &self.x, &mut self.w);
+            for ((ri, bi), wi) in self.r.iter_mut().zip(rhs.iter()).zip(&self.w) {
+                *ri = bi - wi;
+            }
+        }
+        let beta = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if beta <= tol * bnorm && self.x.iter().all(|v| v.is_finite()) {
+            rhs.copy_from_slice(&self.x);
+            Some(total)
+        } else {
+            None
+        }
+    }
+}

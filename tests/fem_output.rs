@@ -1,0 +1,126 @@
+//! Linear-solver equivalence and VTK output.
+
+use activemuscle::fem::material::axial_stretch;
+use activemuscle::fem::{
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, LinearSolver, Mesh, NeoHookean,
+    SolverOptions, VtkOutput,
+};
+use nalgebra::{SMatrix, SVector};
+
+/// Neo-Hookean plus the non-gradient stress P_rr += c F_zz² (non-symmetric exact tangent).
+struct NonSymmetric {
+    mu: f64,
+    c: f64,
+}
+
+impl AxisymmetricMaterial for NonSymmetric {
+    fn stress(&self, f: &AxiF) -> activemuscle::Result<SVector<f64, 5>> {
+        let mut p = f * self.mu;
+        p[0] += self.c * f[3] * f[3];
+        Ok(p)
+    }
+    fn stress_tangent(
+        &self,
+        f: &AxiF,
+    ) -> activemuscle::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        let mut a = SMatrix::<f64, 5, 5>::identity() * self.mu;
+        a[(0, 3)] += 2.0 * self.c * f[3];
+        Ok((self.stress(f)?, a))
+    }
+    fn point_fields(&self, f: &AxiF) -> activemuscle::Result<(f64, f64)> {
+        Ok((0.0, axial_stretch(f)))
+    }
+}
+
+#[test]
+fn gmres_with_symmetric_part_preconditioner_matches_the_sparse_lu() {
+    let material = NonSymmetric { mu: 10.0, c: 1.5 };
+    let targets = [0.8, 1.25];
+    let mut stresses = Vec::new();
+    for linear_solver in [LinearSolver::SymmetricPartGmres, LinearSolver::Lu] {
+        let mesh = Mesh::structured(1.0, 3.0, 3, 9, 2.0).unwrap();
+        let options = SolverOptions {
+            linear_solver,
+            ..SolverOptions::default()
+        };
+        let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, &material, options).unwrap();
+        let res = solver.sweep(&targets).unwrap().into_result().unwrap();
+        let t = solver.timings();
+        println!(
+            "{linear_solver:?}: P = {:?}, solves {}, GMRES iterations {}, LU fallbacks {}",
+            res.iter().map(|r| r.nominal_stress).collect::<Vec<_>>(),
+            t.solves,
+            t.krylov_iterations,
+            t.lu_fallbacks
+        );
+        if linear_solver == LinearSolver::SymmetricPartGmres {
+            // The tangent is non-symmetric, so GMRES needs more than one iteration per solve.
+            assert!(t.krylov_iterations > t.solves);
+        } else {
+            assert_eq!(t.krylov_iterations, 0);
+        }
+        stresses.push(res.iter().map(|r| r.nominal_stress).collect::<Vec<_>>());
+    }
+    for (a, b) in stresses[0].iter().zip(&stresses[1]) {
+        assert!((a - b).abs() < 1e-10 * b.abs(), "GMRES {a} vs LU {b}");
+    }
+}
+
+#[test]
+fn vtu_output_holds_the_fields_with_the_homogeneous_values() {
+    let mu = 4.0;
+    let lambda = 1.3;
+    let material = NeoHookean::new(mu).unwrap();
+    let directory = std::env::temp_dir().join(format!("fem_vtu_test_{}", std::process::id()));
+    let options = SolverOptions {
+        vtk: Some(VtkOutput {
+            directory: directory.clone(),
+            stretches: vec![lambda],
+        }),
+        ..SolverOptions::default()
+    };
+    let mesh = Mesh::structured(1.0, 2.0, 2, 3, 1.0).unwrap();
+    let mut solver = AxisymmetricSolver::new(mesh, Bases::Sliding, &material, options).unwrap();
+    solver.sweep(&[1.1, lambda]).unwrap().into_result().unwrap();
+    let path = directory.join("lambda_1.3000.vtu");
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        !directory.join("lambda_1.1000.vtu").exists(),
+        "only requested stretches are written"
+    );
+    assert!(text.contains(r#"NumberOfPoints="35" NumberOfCells="6""#));
+    for name in [
+        "\"u\"",
+        "\"p\"",
+        "\"J\"",
+        "\"gamma\"",
+        "\"fibre_stretch\"",
+        "\"P_zz\"",
+    ] {
+        assert!(text.contains(&format!("Name={name}")), "missing {name}");
+    }
+    // Cell data: the uniaxial state, P_zz = μ(λ − λ⁻²), J = 1, fibre stretch λ, in every cell.
+    let block = |name: &str| -> Vec<f64> {
+        let start = text.find(&format!("Name=\"{name}\"")).unwrap();
+        let body = &text[start..];
+        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+        body.split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect()
+    };
+    let pzz = block("P_zz");
+    assert_eq!(pzz.len(), 6);
+    let exact = mu * (lambda - lambda.powi(-2));
+    assert!(
+        pzz.iter().all(|v| (v - exact).abs() < 1e-9 * exact),
+        "{pzz:?} vs {exact}"
+    );
+    assert!(block("J").iter().all(|v| (v - 1.0).abs() < 1e-10));
+    assert!(block("fibre_stretch")
+        .iter()
+        .all(|v| (v - lambda).abs() < 1e-10));
+    assert!(block("p")
+        .iter()
+        .all(|v| (v - mu / lambda).abs() < 1e-9 * mu));
+    std::fs::remove_dir_all(&directory).unwrap();
+}
