@@ -261,9 +261,18 @@ pub fn element_residual_tangent<M: AxisymmetricMaterial + ?Sized>(
                 residual.fixed_rows_mut::<N_P>(N_U).add_assign(&rp);
                 // K_uu += Bᵀ D B with D = (A − p H) dV.
                 let d = (a - jacobian_hessian(&f) * pq) * g.dv;
+                // B is sparse: a u_r column is (∂N/∂r, ∂N/∂z, 0, 0, N/r), a u_z column
+                // (0, 0, ∂N/∂r, ∂N/∂z, 0); only those entries are multiplied.
                 let db = d * g.b;
-                let kuu = g.b.tr_mul(&db);
-                k.fixed_view_mut::<N_U, N_U>(0, 0).add_assign(&kuu);
+                for j in 0..N_U {
+                    let c = db.column(j);
+                    for a in 0..9 {
+                        let (ra, za) = (2 * a, 2 * a + 1);
+                        k[(ra, j)] +=
+                            g.b[(0, ra)] * c[0] + g.b[(1, ra)] * c[1] + g.b[(4, ra)] * c[4];
+                        k[(za, j)] += g.b[(2, za)] * c[2] + g.b[(3, za)] * c[3];
+                    }
+                }
                 // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
                 let bdj = g.b.tr_mul(&dj) * (-g.dv);
                 let kup = bdj * m.transpose();
