@@ -29,6 +29,7 @@ pub mod scalar;
 pub mod scene;
 pub mod stability;
 pub mod testing;
+pub mod tradeoff;
 pub mod uniaxial;
 
 pub use energy::{Energy, StrainEnergy};

@@ -43,6 +43,22 @@ enum Command {
         #[arg(long, short)]
         quiet: bool,
     },
+    /// Measure speed against accuracy for every option that trades one for the other.
+    ///
+    /// Activation law, derivative route, frozen tangent, mesh, Newton tolerance and 0D vs FE, each
+    /// timed (wall time) and compared with a reference at its accurate end. Writes into DIR:
+    /// tradeoff.csv, tradeoff.md, tradeoff_*.png/svg (log–log error vs time, Pareto front) and
+    /// tradeoff.html (self-contained). Uses the scene's material, activation and cylinder geometry.
+    Tradeoff {
+        /// Scene file (TOML). Omit to use the chapter's (scenes/paper.toml, embedded).
+        scene: Option<PathBuf>,
+        /// Output directory (created if missing).
+        #[arg(long, short, value_name = "DIR", default_value = "out/tradeoff")]
+        out: PathBuf,
+        /// Print only the findings and where the outputs are.
+        #[arg(long, short)]
+        quiet: bool,
+    },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
         /// Scene file (TOML).
@@ -217,12 +233,43 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
     Ok(())
 }
 
+fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
+    use activemuscle::tradeoff::{report, run as run_tradeoff, TradeoffOptions};
+    let start = Instant::now();
+    let scene = load(scene)?;
+    let options = TradeoffOptions {
+        verbose: !quiet,
+        ..TradeoffOptions::default()
+    };
+    let results = run_tradeoff(&scene, &options).map_err(|e| e.to_string())?;
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    let wall = start.elapsed().as_secs_f64();
+    let files = report::write_all(&results, out, &scene.title, &command, wall)
+        .map_err(|e| e.to_string())?;
+    if !quiet {
+        println!("\n{}", report::markdown(&results.rows));
+    }
+    for f in &results.findings {
+        println!("{f}");
+    }
+    println!(
+        "{} files in {} (tradeoff.html, tradeoff.csv); wall time {:.1} s",
+        files.len(),
+        out.display(),
+        start.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match &cli.command {
         None => run_command(None, Path::new("out"), false),
         Some(Command::Run { scene, out, quiet }) => run_command(scene.as_deref(), out, *quiet),
         Some(Command::Check { scene }) => check(scene),
+        Some(Command::Tradeoff { scene, out, quiet }) => {
+            tradeoff_command(scene.as_deref(), out, *quiet)
+        }
     };
     match outcome {
         Ok(()) => ExitCode::SUCCESS,

@@ -76,7 +76,7 @@ static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Registers the embedded font as "sans-serif" (once per process).
-fn register_font() {
+pub fn register_font() {
     REGISTER.call_once(|| {
         // An invalid font would only lose the text of the PNGs; the SVGs do not need it.
         let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);

@@ -1,0 +1,712 @@
+//! The options a user trades, each run at its variants against a reference at its accurate end.
+//!
+//! | option | variants | reference | error on |
+//! |---|---|---|---|
+//! | activation law (0D along the fibres) | explicit (frozen), energy (consistent) | implicit (frozen): reproduces P_pas + P_act | P(λ), γ(λ) |
+//! | derivative route at a point | oracle (9-entry F), central differences | fast AD | ∂P/∂F |
+//! | derivative route in the FE | oracle, central differences | fast AD | P(λ), centre γ |
+//! | frozen tangent (FE) | symmetric approximation | exact | P(λ), centre γ |
+//! | mesh (clamped cylinder) | coarser meshes | finest | P(λ), centre γ |
+//! | Newton tolerance (FE) | 1e-6, 1e-8, 1e-10 | 1e-12 | P(λ), centre γ |
+//! | 0D vs FE (sliding bases: homogeneous) | FE | 0D (the exact solution) | P(λ), γ |
+//!
+//! Times are wall times [s]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
+//! or one material-point call.
+
+use super::measure::{curve_error, finalise, time_median, CurveError, Measurement};
+use super::routes::{FiniteDifferenceTangent, OracleRoute};
+use crate::active::{Coupling, FrozenTangent};
+use crate::energy::Energy;
+use crate::fem::{AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Mesh, SolverOptions};
+use crate::scene::schema::{CouplingKind, DirectionKind, LawKind};
+use crate::scene::{ModelChoice, Scene, Study};
+use crate::uniaxial::along_fibres;
+use crate::Muscle;
+use std::time::Instant;
+
+/// A failure of the trade-off run: which option and variant, and why.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct TradeoffError(pub String);
+
+impl From<crate::Error> for TradeoffError {
+    fn from(e: crate::Error) -> Self {
+        Self(e.to_string())
+    }
+}
+
+impl From<crate::fem::FemError> for TradeoffError {
+    fn from(e: crate::fem::FemError) -> Self {
+        Self(e.to_string())
+    }
+}
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeoffOptions {
+    /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
+    pub meshes: Vec<(usize, usize)>,
+    /// Mesh of the FE derivative-route, frozen-tangent, tolerance and sliding (0D vs FE)
+    /// options; `None`: the scene's first cylinder study's (nr, nz), or (4, 16) without one.
+    pub fe_mesh: Option<(usize, usize)>,
+    /// Stretches of every FE sweep.
+    pub fe_stretches: Vec<f64>,
+    /// Newton tolerances, loose to tight; the last is the reference.
+    pub tolerances: Vec<f64>,
+    /// Relative step of the central-difference tangent.
+    pub fd_step: f64,
+    /// Print one line per measured variant.
+    pub verbose: bool,
+}
+
+impl Default for TradeoffOptions {
+    fn default() -> Self {
+        Self {
+            meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
+            fe_mesh: None,
+            fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
+            tolerances: vec![1e-6, 1e-8, 1e-10, 1e-12],
+            fd_step: 1e-6,
+            verbose: false,
+        }
+    }
+}
+
+/// Options with the FE mesh resolved.
+struct Resolved {
+    meshes: Vec<(usize, usize)>,
+    fe_mesh: (usize, usize),
+    fe_stretches: Vec<f64>,
+    tolerances: Vec<f64>,
+    fd_step: f64,
+}
+
+/// Everything measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeoffResults {
+    /// One row per variant, options in run order (speed-up, error ratio and Pareto filled in).
+    pub rows: Vec<Measurement>,
+    /// Conclusions with their numbers, one line each.
+    pub findings: Vec<String>,
+}
+
+/// The cylinder every FE variant runs on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry {
+    /// Radius R.
+    pub radius: f64,
+    /// Length L.
+    pub length: f64,
+    /// Middle/base cell-height ratio in z (≥ 1).
+    pub grading: f64,
+}
+
+/// The cylinder of the scene's first cylinder study (R, L, grading), or R = 1, L = 4, grading 3.
+fn geometry(scene: &Scene) -> (Geometry, (usize, usize)) {
+    scene
+        .studies
+        .iter()
+        .find_map(|s| match s {
+            Study::Cylinder(c) => Some((
+                Geometry {
+                    radius: c.radius,
+                    length: c.length,
+                    grading: c.grading,
+                },
+                (c.nr, c.nz),
+            )),
+            _ => None,
+        })
+        .unwrap_or((
+            Geometry {
+                radius: 1.0,
+                length: 4.0,
+                grading: 3.0,
+            },
+            (4, 16),
+        ))
+}
+
+/// Stretches of the scene's first uniaxial study along the fibres, or 0.65:0.01:1.60.
+fn uniaxial_stretches(scene: &Scene) -> Vec<f64> {
+    scene
+        .studies
+        .iter()
+        .find_map(|s| match s {
+            Study::Uniaxial(u) if u.direction == DirectionKind::Along => Some(u.stretches.clone()),
+            _ => None,
+        })
+        .unwrap_or_else(|| (0..=95).map(|i| 0.65 + 0.01 * i as f64).collect())
+}
+
+/// One FE sweep, timed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeRun {
+    /// Wall time of mesh, set-up and sweep [s] (median of repeats if under 1 s).
+    pub time_s: f64,
+    /// Nominal axial stress P [kPa] at each requested stretch (NaN where not reached).
+    pub stress: Vec<f64>,
+    /// γ at the quadrature point nearest the centre [-] at each stretch.
+    pub gamma_centre: Vec<f64>,
+    /// Newton iterations of the whole sweep (rejected steps included).
+    pub iterations: usize,
+    /// Assembly + factorisation + solve time per Newton iteration [s].
+    pub per_iteration_s: f64,
+    /// Free dofs.
+    pub dofs: usize,
+    /// Why a direction of the sweep stopped, if it did.
+    pub failures: Vec<String>,
+}
+
+fn fe_once<M: AxisymmetricMaterial + ?Sized>(
+    material: &M,
+    geom: Geometry,
+    cells: (usize, usize),
+    bases: Bases,
+    stretches: &[f64],
+    options: &SolverOptions,
+) -> Result<FeRun, TradeoffError> {
+    let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
+    let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
+    let sweep = solver.sweep(stretches)?;
+    let t = solver.timings();
+    let mut stress = vec![f64::NAN; stretches.len()];
+    let mut gamma_centre = vec![f64::NAN; stretches.len()];
+    let mut iterations = 0;
+    for r in &sweep.results {
+        iterations += r.steps.iter().map(|s| s.iterations.len()).sum::<usize>();
+        if let Some(i) = stretches.iter().position(|&s| s == r.stretch) {
+            stress[i] = r.nominal_stress;
+            gamma_centre[i] = r.gamma_centre;
+        }
+    }
+    let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
+    Ok(FeRun {
+        time_s: 0.0,
+        stress,
+        gamma_centre,
+        iterations,
+        per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
+        dofs: solver.n_free_dofs(),
+        failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
+    })
+}
+
+/// Runs and times one FE sweep of `material` on a `cells` = (nr, nz) mesh of `geom`.
+pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
+    material: &M,
+    geom: Geometry,
+    cells: (usize, usize),
+    bases: Bases,
+    stretches: &[f64],
+    options: &SolverOptions,
+) -> Result<FeRun, TradeoffError> {
+    let (time_s, mut run) =
+        time_median(|| fe_once(material, geom, cells, bases, stretches, options))?;
+    run.time_s = time_s;
+    Ok(run)
+}
+
+/// The row of an FE run measured against `reference_run`'s stresses and centre γ.
+pub fn fe_row(
+    option: &str,
+    variant: &str,
+    reference: bool,
+    run: &FeRun,
+    reference_run: &FeRun,
+) -> Measurement {
+    let mut m = Measurement::new(
+        option,
+        variant,
+        reference,
+        run.time_s,
+        "P(λ) at the FE stretches [kPa]",
+        curve_error(&reference_run.stress, &run.stress),
+    );
+    m.gamma_error = Some(curve_error(&reference_run.gamma_centre, &run.gamma_centre).max_abs);
+    m.iterations = Some(run.iterations);
+    m.per_iteration_s = Some(run.per_iteration_s);
+    m.dofs = Some(run.dofs);
+    if !run.failures.is_empty() {
+        m.note = format!("failed: {}", run.failures.join("; "));
+    }
+    m
+}
+
+struct Runner {
+    verbose: bool,
+    rows: Vec<Measurement>,
+    started: Instant,
+}
+
+impl Runner {
+    fn push(&mut self, m: Measurement) {
+        if self.verbose {
+            println!(
+                "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s  error {:>9.2e} (rel {:>9.2e}){}",
+                self.started.elapsed().as_secs_f64(),
+                m.option,
+                m.variant,
+                m.time_s,
+                m.error.max_abs,
+                m.error.max_rel,
+                m.iterations
+                    .map_or(String::new(), |i| format!("  {i} Newton its"))
+            );
+        }
+        self.rows.push(m);
+    }
+}
+
+fn muscle(
+    scene: &Scene,
+    law: LawKind,
+    coupling: Coupling,
+) -> Result<Muscle<Energy>, TradeoffError> {
+    Ok(Muscle::new(
+        scene.material.clone(),
+        scene.law(law)?,
+        0.0,
+        coupling,
+    )?)
+}
+
+/// The solver's defaults (tolerance 1e-10, 25 Newton iterations per step).
+fn tight() -> SolverOptions {
+    SolverOptions::default()
+}
+
+fn with_tolerance(tolerance: f64) -> SolverOptions {
+    SolverOptions {
+        tolerance,
+        ..SolverOptions::default()
+    }
+}
+
+const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
+
+/// Activation law, 0D along the fibres.
+fn activation_law(
+    scene: &Scene,
+    run: &mut Runner,
+    findings: &mut Vec<String>,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "activation law (0D)";
+    let stretches = uniaxial_stretches(scene);
+    let curve = |m: &Muscle<Energy>| -> Result<(f64, (Vec<f64>, Vec<f64>)), TradeoffError> {
+        time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
+            let mut p = Vec::with_capacity(stretches.len());
+            let mut g = Vec::with_capacity(stretches.len());
+            for &l in &stretches {
+                let pt = along_fibres(m, l)?;
+                p.push(pt.stress);
+                g.push(pt.gamma);
+            }
+            Ok((p, g))
+        })
+    };
+    let implicit = scene.muscle(ModelChoice {
+        law: LawKind::Implicit,
+        coupling: CouplingKind::Frozen,
+        damage: 0.0,
+    })?;
+    let implicit = Muscle::new(scene.material.clone(), implicit.law().clone(), 0.0, EXACT)?;
+    let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
+    // The reference reproduces the target P_pas + P_act.
+    let passive = Muscle::passive(scene.material.clone());
+    let mut target = Vec::with_capacity(stretches.len());
+    for &l in &stretches {
+        target.push(along_fibres(&passive, l)?.stress + scene.curve.value(l));
+    }
+    let check = curve_error(&target, &p_ref);
+    let quantity = "P(λ) over the 0D sweep [kPa]";
+    let mut r = Measurement::new(
+        OPTION,
+        "implicit (frozen)",
+        true,
+        t_ref,
+        quantity,
+        CurveError::ZERO,
+    );
+    r.gamma_error = Some(0.0);
+    r.note = format!(
+        "{} stretches; vs the target P_pas + P_act: max abs {:.1e} kPa",
+        stretches.len(),
+        check.max_abs
+    );
+    run.push(r);
+    let variants = [
+        ("explicit (frozen)", LawKind::Explicit, EXACT),
+        ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
+    ];
+    for (name, law, coupling) in variants {
+        let m = muscle(scene, law, coupling)?;
+        let (t, (p, g)) = curve(&m)?;
+        let e = curve_error(&p_ref, &p);
+        let mut r = Measurement::new(OPTION, name, false, t, quantity, e);
+        let ge = curve_error(&g_ref, &g).max_abs;
+        r.gamma_error = Some(ge);
+        if law == LawKind::Explicit {
+            // Where is the stress error largest, and how big is γ's error there?
+            let (i, _) = p
+                .iter()
+                .zip(&p_ref)
+                .map(|(a, b)| (a - b).abs())
+                .enumerate()
+                .fold((0, 0.0), |acc, (i, d)| if d > acc.1 { (i, d) } else { acc });
+            let dg = (g[i] - g_ref[i]).abs();
+            r.note = format!(
+                "largest P error at λ = {:.2}: |Δγ| = {:.2e} there gives |ΔP| = {:.2} kPa ({:.1} kPa per 0.01 of γ)",
+                stretches[i],
+                dg,
+                (p[i] - p_ref[i]).abs(),
+                (p[i] - p_ref[i]).abs() / dg.max(1e-300) * 0.01
+            );
+            findings.push(format!(
+                "Explicit law (0D, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
+                stretches.len(),
+                t_ref / t,
+                t,
+                t_ref,
+                e.max_abs,
+                100.0 * e.max_rel,
+                ge
+            ));
+        }
+        run.push(r);
+    }
+    Ok(())
+}
+
+/// The representative point of BENCHMARKS.md: fibre stretch ≈ 1.10.
+fn representative_point() -> AxiF {
+    let t = 1.1f64.sqrt().recip();
+    AxiF::from([t, 0.05, 0.02, 1.1, t])
+}
+
+fn max_rel(a: &nalgebra::SMatrix<f64, 5, 5>, b: &nalgebra::SMatrix<f64, 5, 5>) -> f64 {
+    (a - b).amax() / b.amax()
+}
+
+/// Derivative routes at one material point and in the FE.
+fn derivative_route(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+) -> Result<(), TradeoffError> {
+    let fast = muscle(scene, LawKind::Explicit, EXACT)?;
+    let oracle = OracleRoute::new(&fast);
+    let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
+    let f = representative_point();
+    const BATCH: usize = 200;
+    let per_point = |m: &dyn AxisymmetricMaterial| -> Result<(f64, nalgebra::SMatrix<f64, 5, 5>), TradeoffError> {
+        let (t, k) = time_median(|| -> Result<_, TradeoffError> {
+            let mut last = None;
+            for _ in 0..BATCH {
+                last = Some(m.stress_tangent(std::hint::black_box(&f))?);
+            }
+            Ok(last.map(|v| v.1).unwrap_or_default())
+        })?;
+        Ok((t / BATCH as f64, k))
+    };
+    const POINT: &str = "derivative route (point)";
+    let quantity = "∂P/∂F at one point [kPa] (explicit law, frozen exact)";
+    let (t_fast, k_fast) = per_point(&fast)?;
+    run.push(Measurement::new(
+        POINT,
+        "fast AD (invariants)",
+        true,
+        t_fast,
+        quantity,
+        CurveError::ZERO,
+    ));
+    let variants: [(&str, &dyn AxisymmetricMaterial); 2] = [
+        ("oracle (9-entry F + γ)", &oracle),
+        ("central differences of P", &fd),
+    ];
+    for (name, m) in variants {
+        let (t, k) = per_point(m)?;
+        let e = CurveError {
+            max_abs: (k - k_fast).amax(),
+            max_rel: max_rel(&k, &k_fast),
+        };
+        run.push(Measurement::new(POINT, name, false, t, quantity, e));
+    }
+    const FE: &str = "derivative route (FE)";
+    let reference = fe_run(
+        &fast,
+        geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+        &tight(),
+    )?;
+    run.push(fe_row(
+        FE,
+        "fast AD (invariants)",
+        true,
+        &reference,
+        &reference,
+    ));
+    for (name, m) in variants {
+        let r = fe_run(
+            m,
+            geom,
+            o.fe_mesh,
+            Bases::Clamped,
+            &o.fe_stretches,
+            &tight(),
+        )?;
+        run.push(fe_row(FE, name, false, &r, &reference));
+    }
+    Ok(())
+}
+
+/// Exact versus symmetric frozen tangent in the FE.
+fn frozen_tangent(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "frozen tangent (FE)";
+    let exact = muscle(scene, LawKind::Explicit, EXACT)?;
+    let symmetric = muscle(
+        scene,
+        LawKind::Explicit,
+        Coupling::Frozen(FrozenTangent::Symmetric),
+    )?;
+    let reference = fe_run(
+        &exact,
+        geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+        &tight(),
+    )?;
+    run.push(fe_row(
+        OPTION,
+        "exact (non-symmetric)",
+        true,
+        &reference,
+        &reference,
+    ));
+    let r = fe_run(
+        &symmetric,
+        geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+        &tight(),
+    )?;
+    run.push(fe_row(
+        OPTION,
+        "symmetric, 25 its/step",
+        false,
+        &r,
+        &reference,
+    ));
+    // Linear convergence needs more iterations per step: give it 8× the budget.
+    let patient = SolverOptions {
+        max_iterations: 200,
+        ..tight()
+    };
+    let r = fe_run(
+        &symmetric,
+        geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+        &patient,
+    )?;
+    run.push(fe_row(
+        OPTION,
+        "symmetric, 200 its/step",
+        false,
+        &r,
+        &reference,
+    ));
+    Ok(())
+}
+
+/// Mesh refinement of the clamped cylinder.
+fn mesh(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+    findings: &mut Vec<String>,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "mesh (clamped)";
+    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let mut runs = Vec::new();
+    for &cells in &o.meshes {
+        runs.push((
+            cells,
+            fe_run(&m, geom, cells, Bases::Clamped, &o.fe_stretches, &tight())?,
+        ));
+    }
+    let Some((_, finest)) = runs.last().cloned() else {
+        return Ok(());
+    };
+    let at = o
+        .fe_stretches
+        .iter()
+        .position(|&s| (s - 1.17).abs() < 1e-12);
+    let mut coarsest = None;
+    for (k, (cells, r)) in runs.iter().enumerate() {
+        let reference = k + 1 == runs.len();
+        let mut row = fe_row(
+            OPTION,
+            &format!("{} × {} cells", cells.0, cells.1),
+            reference,
+            r,
+            &finest,
+        );
+        if let Some(i) = at {
+            let rel = ((r.stress[i] - finest.stress[i]) / finest.stress[i]).abs();
+            row.note = format!(
+                "P(1.17) = {:.6} kPa, rel. error {:.1e}; {}",
+                r.stress[i], rel, row.note
+            );
+            if !reference && rel <= 1e-4 && coarsest.is_none() {
+                coarsest = Some((*cells, rel, r.dofs));
+            }
+        }
+        run.push(row);
+    }
+    if at.is_some() {
+        findings.push(match coarsest {
+            Some((c, rel, dofs)) => format!(
+                "Mesh: the coarsest mesh with P(1.17) within 1e-4 (relative) of the finest ({} × {}) is {} × {} cells ({} dofs, rel. error {:.1e}).",
+                o.meshes[o.meshes.len() - 1].0, o.meshes[o.meshes.len() - 1].1, c.0, c.1, dofs, rel
+            ),
+            None => "Mesh: no mesh coarser than the finest has P(1.17) within 1e-4 of it.".to_string(),
+        });
+    }
+    Ok(())
+}
+
+/// Newton tolerance in the FE.
+fn tolerance(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "Newton tolerance (FE)";
+    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let mut runs = Vec::new();
+    for &tol in &o.tolerances {
+        runs.push((
+            tol,
+            fe_run(
+                &m,
+                geom,
+                o.fe_mesh,
+                Bases::Clamped,
+                &o.fe_stretches,
+                &with_tolerance(tol),
+            )?,
+        ));
+    }
+    let Some((_, reference)) = runs.last().cloned() else {
+        return Ok(());
+    };
+    for (k, (tol, r)) in runs.iter().enumerate() {
+        run.push(fe_row(
+            OPTION,
+            &format!("tol {tol:.0e}"),
+            k + 1 == runs.len(),
+            r,
+            &reference,
+        ));
+    }
+    Ok(())
+}
+
+/// 0D versus FE on the sliding cylinder, whose exact solution is homogeneous.
+fn zero_d_vs_fe(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "0D vs FE (sliding)";
+    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
+        let mut p = Vec::new();
+        let mut g = Vec::new();
+        for &l in &o.fe_stretches {
+            let pt = along_fibres(&m, l)?;
+            p.push(pt.stress);
+            g.push(pt.gamma);
+        }
+        Ok((p, g))
+    })?;
+    let quantity = "P(λ) at the FE stretches [kPa]";
+    let mut r = Measurement::new(
+        OPTION,
+        "0D (exact here)",
+        true,
+        t0,
+        quantity,
+        CurveError::ZERO,
+    );
+    r.gamma_error = Some(0.0);
+    run.push(r);
+    for cells in [o.meshes[0], o.fe_mesh] {
+        let fe = fe_run(&m, geom, cells, Bases::Sliding, &o.fe_stretches, &tight())?;
+        let reference = FeRun {
+            stress: p0.clone(),
+            gamma_centre: g0.clone(),
+            ..fe.clone()
+        };
+        let row = fe_row(
+            OPTION,
+            &format!("FE {} × {} cells", cells.0, cells.1),
+            false,
+            &fe,
+            &reference,
+        );
+        run.push(row);
+        if o.meshes[0] == o.fe_mesh {
+            break;
+        }
+    }
+    Ok(())
+}
+
+/// Runs every option for `scene` (its material, activation and first cylinder's geometry).
+pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, TradeoffError> {
+    let verbose = o.verbose;
+    if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
+        return Err(TradeoffError(
+            "need at least one mesh, tolerance and FE stretch".into(),
+        ));
+    }
+    let (geom, scene_cells) = geometry(scene);
+    let o = &Resolved {
+        fe_mesh: o.fe_mesh.unwrap_or(scene_cells),
+        meshes: o.meshes.clone(),
+        fe_stretches: o.fe_stretches.clone(),
+        tolerances: o.tolerances.clone(),
+        fd_step: o.fd_step,
+    };
+    let mut runner = Runner {
+        verbose,
+        rows: Vec::new(),
+        started: Instant::now(),
+    };
+    let mut findings = Vec::new();
+    activation_law(scene, &mut runner, &mut findings)?;
+    derivative_route(scene, geom, o, &mut runner)?;
+    frozen_tangent(scene, geom, o, &mut runner)?;
+    mesh(scene, geom, o, &mut runner, &mut findings)?;
+    tolerance(scene, geom, o, &mut runner)?;
+    zero_d_vs_fe(scene, geom, o, &mut runner)?;
+    let mut rows = runner.rows;
+    finalise(&mut rows);
+    Ok(TradeoffResults { rows, findings })
+}

@@ -1,0 +1,285 @@
+//! The trade-off machinery measures what is there: on cases with a known answer, the error it
+//! reports is the error there is, the derivative-route wrappers are what they claim, and the
+//! Pareto front is the set of undominated points.
+
+use activemuscle::active::{
+    ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+};
+use activemuscle::energy::GiantesioMusesti;
+use activemuscle::fem::{AxiF, AxisymmetricMaterial, Bases, NeoHookean, SolverOptions};
+use activemuscle::tradeoff::measure::finalise;
+use activemuscle::tradeoff::study::{fe_row, fe_run, FeRun, Geometry};
+use activemuscle::tradeoff::{
+    curve_error, pareto_front, time_median, CurveError, FiniteDifferenceTangent, Measurement,
+    OracleRoute,
+};
+use activemuscle::Muscle;
+use nalgebra::SMatrix;
+
+const STRETCHES: [f64; 4] = [0.8, 1.0, 1.17, 1.3];
+
+fn geometry() -> Geometry {
+    Geometry {
+        radius: 1.0,
+        length: 4.0,
+        grading: 1.0,
+    }
+}
+
+/// Closed form of the incompressible neo-Hookean bar: P = μ (λ − λ⁻²).
+fn neo_hookean_closed_form(mu: f64) -> Vec<f64> {
+    STRETCHES.iter().map(|l| mu * (l - l.powi(-2))).collect()
+}
+
+fn closed_form_run(mu: f64, like: &FeRun) -> FeRun {
+    FeRun {
+        stress: neo_hookean_closed_form(mu),
+        gamma_centre: vec![0.0; STRETCHES.len()],
+        ..like.clone()
+    }
+}
+
+#[test]
+fn sliding_neo_hookean_error_reported_is_the_solver_error() {
+    let mu = 5.0;
+    let m = NeoHookean::new(mu).unwrap();
+    let run = fe_run(
+        &m,
+        geometry(),
+        (2, 8),
+        Bases::Sliding,
+        &STRETCHES,
+        &SolverOptions::default(),
+    )
+    .unwrap();
+    let row = fe_row("fe", "sliding", false, &run, &closed_form_run(mu, &run));
+    // The homogeneous solution is in the FE space: the only error is the solver's.
+    assert!(row.error.max_abs < 1e-8, "{:?}", row.error);
+    assert!(row.time_s > 0.0 && row.iterations.unwrap() > 0);
+}
+
+#[test]
+fn perturbed_modulus_error_reported_equals_the_closed_form_error() {
+    // The FE runs μ(1 + δ), the reference is the closed form at μ: the error there is is
+    // δ μ max|λ − λ⁻²| (absolute) and δ (relative, λ = 1 aside where P = 0).
+    let (mu, delta) = (5.0, 1e-3);
+    let m = NeoHookean::new(mu * (1.0 + delta)).unwrap();
+    let run = fe_run(
+        &m,
+        geometry(),
+        (2, 8),
+        Bases::Sliding,
+        &STRETCHES,
+        &SolverOptions::default(),
+    )
+    .unwrap();
+    let row = fe_row("fe", "perturbed", false, &run, &closed_form_run(mu, &run));
+    let expected_abs = STRETCHES
+        .iter()
+        .map(|l| delta * mu * (l - l.powi(-2)).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        (row.error.max_abs - expected_abs).abs() < 1e-8,
+        "reported {} vs {}",
+        row.error.max_abs,
+        expected_abs
+    );
+    assert!(
+        (row.error.max_rel - delta).abs() < 1e-8,
+        "{}",
+        row.error.max_rel
+    );
+    assert_eq!(row.gamma_error, Some(0.0));
+}
+
+#[test]
+fn curve_error_uses_a_floored_relative_denominator() {
+    let e = curve_error(&[0.0, 1.0, -2.0], &[1e-3, 1.1, -2.0]);
+    assert!((e.max_abs - 0.1).abs() < 1e-15);
+    // At the zero crossing the denominator is 10⁻³ · 2: 10⁻³ / 2·10⁻³ = 0.5 > 0.1.
+    assert!((e.max_rel - 0.5).abs() < 1e-12);
+    assert_eq!(curve_error(&[1.0], &[f64::NAN]), CurveError::FAILED);
+    assert_eq!(curve_error(&[1.0, 2.0], &[1.0]), CurveError::FAILED);
+    assert_eq!(curve_error(&[1.0, 2.0], &[1.0, 2.0]), CurveError::ZERO);
+}
+
+#[test]
+fn time_median_repeats_short_runs_and_reports_their_median() {
+    let mut calls = 0;
+    let (t, v) = time_median(|| -> Result<usize, ()> {
+        calls += 1;
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        Ok(calls)
+    })
+    .unwrap();
+    assert!(calls >= 3 && v == calls);
+    assert!((0.02..0.2).contains(&t), "{t}");
+}
+
+#[test]
+fn pareto_front_is_the_set_of_undominated_points() {
+    let pts = [
+        (1.0, 1.0),
+        (2.0, 0.5),
+        (3.0, 0.6), // dominated by (2, 0.5)
+        (0.5, 2.0),
+        (4.0, 0.1),
+        (4.0, 0.2), // dominated by (4, 0.1)
+        (5.0, 0.1), // dominated by (4, 0.1)
+        (2.0, 0.5), // equal to an undominated point: on the front too
+        (f64::NAN, 1e-9),
+        (0.1, f64::INFINITY),
+    ];
+    let expected = [
+        true, true, false, true, true, false, false, true, false, false,
+    ];
+    assert_eq!(pareto_front(&pts), expected);
+}
+
+#[test]
+fn finalise_fills_speedup_error_ratio_and_front_per_option() {
+    let row = |o: &str, v: &str, r: bool, t: f64, e: f64| {
+        Measurement::new(
+            o,
+            v,
+            r,
+            t,
+            "P",
+            CurveError {
+                max_abs: e,
+                max_rel: e,
+            },
+        )
+    };
+    let mut rows = vec![
+        row("a", "ref", true, 2.0, 0.0),
+        row("b", "ref", true, 10.0, 0.0),
+        row("a", "fast", false, 0.5, 1e-3),
+        row("a", "faster", false, 0.25, 1e-2),
+        row("b", "slow and bad", false, 20.0, 1.0),
+    ];
+    finalise(&mut rows);
+    assert_eq!(rows[2].speedup, 4.0);
+    assert_eq!(rows[3].speedup, 8.0);
+    assert!((rows[3].error_ratio - 10.0).abs() < 1e-12);
+    assert_eq!(rows[2].error_ratio, 1.0);
+    assert!(rows[0].pareto && rows[2].pareto && rows[3].pareto);
+    assert!(rows[1].pareto && !rows[4].pareto);
+    assert_eq!(rows[4].speedup, 0.5);
+}
+
+fn points() -> Vec<AxiF> {
+    let t = 1.1f64.sqrt().recip();
+    let mut v = vec![
+        AxiF::from([t, 0.05, 0.02, 1.1, t]),
+        AxiF::from([1.0, 0.0, 0.0, 1.0, 1.0]),
+    ];
+    // A few more, deterministic, near the identity and in compression.
+    for k in 0..6 {
+        let s = k as f64;
+        let l = 0.8 + 0.1 * s;
+        v.push(AxiF::from([
+            l.powf(-0.5) + 0.01 * s,
+            0.03 * (s - 2.0),
+            -0.02 * s,
+            l,
+            l.powf(-0.5) - 0.005 * s,
+        ]));
+    }
+    v
+}
+
+fn rel(a: &SMatrix<f64, 5, 5>, b: &SMatrix<f64, 5, 5>) -> f64 {
+    (a - b).amax() / b.amax()
+}
+
+fn muscles() -> Vec<(&'static str, Muscle<GiantesioMusesti>)> {
+    let e = GiantesioMusesti::paper();
+    let c = ActiveCurve::paper();
+    vec![
+        (
+            "explicit frozen exact",
+            Muscle::new(
+                e,
+                Law::Explicit(ExplicitLaw::paper()),
+                0.0,
+                Coupling::Frozen(FrozenTangent::Exact),
+            )
+            .unwrap(),
+        ),
+        (
+            "implicit frozen symmetric, d = 0.3",
+            Muscle::new(
+                e,
+                Law::Implicit(ImplicitLaw::new(e, c)),
+                0.3,
+                Coupling::Frozen(FrozenTangent::Symmetric),
+            )
+            .unwrap(),
+        ),
+        (
+            "energy consistent",
+            Muscle::new(
+                e,
+                Law::Energy(EnergyLaw::new(e, c)),
+                0.0,
+                Coupling::Consistent,
+            )
+            .unwrap(),
+        ),
+    ]
+}
+
+#[test]
+fn oracle_route_agrees_with_the_fast_route_to_1e_12() {
+    for (name, m) in muscles() {
+        let oracle = OracleRoute::new(&m);
+        for f in points() {
+            let (p, k) = m.stress_tangent(&f).unwrap();
+            let (po, ko) = oracle.stress_tangent(&f).unwrap();
+            let ep = (po - p).amax() / p.amax().max(1.0);
+            let ek = rel(&ko, &k);
+            assert!(
+                ep < 1e-12 && ek < 1e-12,
+                "{name} at {f:?}: P {ep:e}, K {ek:e}"
+            );
+            assert_eq!(
+                oracle.point_fields(&f).unwrap(),
+                m.point_fields(&f).unwrap()
+            );
+            assert!((oracle.stress(&f).unwrap() - po).amax() == 0.0);
+        }
+    }
+}
+
+#[test]
+fn finite_difference_tangent_agrees_to_its_expected_accuracy() {
+    for (name, m) in muscles() {
+        // The symmetric frozen tangent is not the derivative of the stress, by design.
+        let exact = m.coupling() != Coupling::Frozen(FrozenTangent::Symmetric);
+        for f in points() {
+            let (p, k) = m.stress_tangent(&f).unwrap();
+            let err = |h: f64| {
+                let fd = FiniteDifferenceTangent::new(&m, h).unwrap();
+                let (pf, kf) = fd.stress_tangent(&f).unwrap();
+                assert_eq!(pf, p);
+                rel(&kf, &k)
+            };
+            // Round-off ε|P|/h plus truncation O(h²): h = 10⁻⁵ gives ≈ 10⁻¹⁰; 10⁻⁷ is the bound.
+            let e5 = err(1e-5);
+            if !exact {
+                assert!(e5 > 1e-3, "{name} at {f:?}: {e5:e}");
+                continue;
+            }
+            assert!(e5 < 1e-7, "{name} at {f:?}: {e5:e}");
+            // Truncation dominates at large steps: the error falls like h².
+            let (e2, e3) = (err(1e-2), err(1e-3));
+            let order = (e2 / e3).log10();
+            assert!(
+                (1.7..2.3).contains(&order),
+                "{name} at {f:?}: h = 1e-2 {e2:e}, 1e-3 {e3:e}"
+            );
+        }
+    }
+    assert!(FiniteDifferenceTangent::new(&NeoHookean::new(1.0).unwrap(), 0.0).is_err());
+}
