@@ -12,12 +12,12 @@
 //! each N the smallest eigenvalue of the 2×2 restriction of Q to the plane ⊥ n is exact.
 
 use crate::energy::StrainEnergy;
-use crate::invariants::{Kinematics, FULL};
+use crate::invariants::{axial_fibre, axisymmetric_f, Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
 use crate::uniaxial::along_fibres;
 use crate::{Error, Result};
-use nalgebra::{Matrix2, Matrix3, SMatrix, Vector3};
+use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
 
 /// The least value of a·Q(N)a over the sampled normals.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -186,4 +186,86 @@ pub fn representable_stretch<E: StrainEnergy>(muscle: &Muscle<E>, order: Order) 
         }
     }
     Ok(lo)
+}
+
+/// What the material says about the quadrature points of a state the FE solver could not
+/// converge to: strong ellipticity at each point (with the 9×9 tangent of the coupled model) and
+/// whether the body straddles a discontinuity of the activation law.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FailureDiagnosis {
+    /// Quadrature points examined.
+    pub points: usize,
+    /// Points where strong ellipticity fails.
+    pub not_elliptic: usize,
+    /// Least relative value of a·Q(N)a/‖A‖ over all points, and the fibre stretch there.
+    pub least: (f64, f64),
+    /// Range of fibre stretches over the points.
+    pub fibre_stretch: (f64, f64),
+    /// The law's discontinuity (see [`crate::active::Law::jump`]) and how many points lie at or below it.
+    pub jump: Option<(f64, usize)>,
+    /// Points where the material itself refused the state (e.g. exp overflow).
+    pub refused: usize,
+}
+
+impl std::fmt::Display for FailureDiagnosis {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "of {} quadrature points of the failed trial state, {} are not strongly elliptic (least a·Q(N)a/|A| = {:.3e} at fibre stretch {:.4}); fibre stretches span [{:.4}, {:.4}]",
+            self.points, self.not_elliptic, self.least.0, self.least.1, self.fibre_stretch.0, self.fibre_stretch.1
+        )?;
+        if let Some((at, below)) = self.jump {
+            if below > 0 && below < self.points {
+                write!(f, "; {below} points lie at or below lambda_min = {at}, where the activation law jumps, so the energy Psi is discontinuous inside the body")?;
+            }
+        }
+        if self.refused > 0 {
+            write!(f, "; the material refused {} points", self.refused)?;
+        }
+        Ok(())
+    }
+}
+
+/// Diagnoses the quadrature points (axisymmetric F entries [F_rr, F_rz, F_zr, F_zz, F_θθ], fibres
+/// along z) of a failed FE trial state, with `samples` normals per point.
+pub fn diagnose_axisymmetric<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    points: &[SVector<f64, 5>],
+    samples: usize,
+) -> FailureDiagnosis {
+    let mut d = FailureDiagnosis {
+        points: points.len(),
+        not_elliptic: 0,
+        least: (f64::INFINITY, f64::NAN),
+        fibre_stretch: (f64::INFINITY, f64::NEG_INFINITY),
+        jump: muscle.law().jump().map(|at| (at, 0)),
+        refused: 0,
+    };
+    for f in points {
+        let full = axisymmetric_f(f);
+        let check = Kinematics::new(&full, &axial_fibre()).and_then(|kin| {
+            let r = muscle.respond(&kin, Order::Tangent, &FULL)?;
+            Ok((
+                kin.fibre_stretch(),
+                strong_ellipticity(&r.tangent.unwrap_or_default(), &full, samples)?,
+            ))
+        });
+        let Ok((lambda, e)) = check else {
+            d.refused += 1;
+            continue;
+        };
+        d.fibre_stretch = (d.fibre_stretch.0.min(lambda), d.fibre_stretch.1.max(lambda));
+        if !e.holds() {
+            d.not_elliptic += 1;
+        }
+        if e.relative < d.least.0 {
+            d.least = (e.relative, lambda);
+        }
+        if let Some((at, below)) = d.jump.as_mut() {
+            if lambda <= *at {
+                *below += 1;
+            }
+        }
+    }
+    d
 }

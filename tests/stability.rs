@@ -88,3 +88,39 @@ fn uniaxial_slope_matches_finite_differences() {
         }
     }
 }
+
+#[test]
+fn diagnosis_finds_the_energy_law_jump_and_passive_stability() {
+    use activemuscle::active::EnergyLaw;
+    use activemuscle::stability::diagnose_axisymmetric;
+    use nalgebra::SVector;
+    let gm = GiantesioMusesti::paper();
+    // Uniaxial-like states along the axis with fibre stretches 0.60 … 0.70 (λ_min = 0.6243).
+    let points: Vec<SVector<f64, 5>> = (0..11)
+        .map(|i| {
+            let l = 0.60 + 0.01 * i as f64;
+            SVector::from([l.powf(-0.5), 0.0, 0.0, l, l.powf(-0.5)])
+        })
+        .collect();
+    let energy = Muscle::new(
+        gm,
+        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
+        0.0,
+        Coupling::Consistent,
+    )
+    .unwrap();
+    let d = diagnose_axisymmetric(&energy, &points, 100);
+    assert_eq!(d.points, 11);
+    assert_eq!(
+        d.jump,
+        Some((0.6243, 3)),
+        "0.60, 0.61, 0.62 lie below lambda_min"
+    );
+    assert!((d.fibre_stretch.0 - 0.60).abs() < 1e-12 && (d.fibre_stretch.1 - 0.70).abs() < 1e-12);
+    assert!(d.to_string().contains("discontinuous"));
+    let passive = diagnose_axisymmetric(&Muscle::passive(gm), &points, 100);
+    assert_eq!(
+        (passive.not_elliptic, passive.jump, passive.refused),
+        (0, None, 0)
+    );
+}

@@ -150,6 +150,9 @@ pub struct Sweep {
     pub results: Vec<StretchResult>,
     /// Errors of directions that could not reach all their targets.
     pub failures: Vec<FemError>,
+    /// For each failure, the quadrature points of its last rejected trial state (for a
+    /// material-stability diagnosis, e.g. [`crate::stability::diagnose_axisymmetric`]).
+    pub failed_trials: Vec<Option<Vec<QuadraturePoint>>>,
 }
 
 impl Sweep {
@@ -733,11 +736,16 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         down.dedup();
         let mut results = Vec::new();
         let mut failures = Vec::new();
+        let mut failed_trials = Vec::new();
         let (reference, rec) = match self.reference_state() {
             Ok(v) => v,
             Err(cause) => {
                 failures.push(FemError::ReferenceState { cause });
-                return Ok(Sweep { results, failures });
+                return Ok(Sweep {
+                    results,
+                    failures,
+                    failed_trials: vec![None],
+                });
             }
         };
         if targets.contains(&1.0) {
@@ -756,10 +764,15 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             };
             if let Err(e) = self.path(start, list, &mut results) {
                 failures.push(e);
+                failed_trials.push(self.failed_trial_quadrature_points());
             }
         }
         results.sort_by(|a, b| a.stretch.total_cmp(&b.stretch));
-        Ok(Sweep { results, failures })
+        Ok(Sweep {
+            results,
+            failures,
+            failed_trials,
+        })
     }
 
     fn path(

@@ -31,6 +31,13 @@ pub struct EnergyLaw<E> {
     curve: ActiveCurve,
 }
 
+impl<E> EnergyLaw<E> {
+    /// The active curve the law reproduces.
+    pub fn curve(&self) -> &ActiveCurve {
+        &self.curve
+    }
+}
+
 impl<E: StrainEnergy> EnergyLaw<E> {
     /// The energy-consistent law for `energy` and the active curve `curve`.
     pub fn new(energy: E, curve: ActiveCurve) -> Self {

@@ -67,6 +67,15 @@ pub enum Law<E> {
 }
 
 impl<E> Law<E> {
+    /// The fibre stretch at which γ(λ) is discontinuous, if any: the energy law jumps at λ_min
+    /// from 0 to the root of Ŵ(λ_min, γ) = W_pas(λ_min) (see [`EnergyLaw`]).
+    pub fn jump(&self) -> Option<f64> {
+        match self {
+            Law::Energy(l) => Some(l.curve().lambda_min()),
+            _ => None,
+        }
+    }
+
     /// Name used in logs and output files: passive, constant, implicit, explicit, energy.
     pub fn name(&self) -> &'static str {
         match self {
