@@ -1,7 +1,7 @@
 //! `activemuscle`: runs scene files (TOML) of active skeletal-muscle studies and writes the
 //! curves, the figures and a report. Without arguments it runs the chapter's whole study.
 
-use activemuscle::output::csv::to_csv;
+use activemuscle::output::csv::{tables, to_csv};
 use activemuscle::output::figures::figures;
 use activemuscle::output::plot::render;
 use activemuscle::output::report::{html, RunInfo};
@@ -94,6 +94,21 @@ fn describe(scene: &Scene) -> Vec<String> {
                 c.stretches.len(),
                 c.damages.len()
             )),
+            Study::Fit(f) => v.push(format!(
+                "{}: {} fit(s) of {} parameter(s) {:?} to {}",
+                f.name,
+                f.cases.len(),
+                f.free.len(),
+                f.free,
+                f.source
+            )),
+            Study::Stability(st) => v.push(format!(
+                "{}: {} model(s) × {} stretches, {} normals",
+                st.name,
+                st.models.len() + usize::from(st.passive),
+                st.stretches.len(),
+                st.normals
+            )),
         }
     }
     v
@@ -158,6 +173,13 @@ fn summary(results: &Results, out: &Path, wall: f64) {
     for n in &results.notes {
         println!("note: {} — {}: {}", n.study, n.model, n.message);
     }
+    let failed = results.fits.iter().filter(|f| !f.converged).count();
+    if failed > 0 {
+        println!(
+            "{failed} of {} fit(s) did NOT converge (best points reported in fits.csv and report.html); the run continued",
+            results.fits.len()
+        );
+    }
     println!(
         "{} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
         results.rows.len(),
@@ -193,6 +215,10 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
         )
         .map_err(|e| e.to_string())?;
     files.push("curves.csv".to_string());
+    for (name, bytes) in tables(&results).map_err(|e| e.to_string())? {
+        staging.write(name, &bytes).map_err(|e| e.to_string())?;
+        files.push(name.to_string());
+    }
     staging
         .write("scene.toml", scene.source.as_bytes())
         .map_err(|e| e.to_string())?;
@@ -224,7 +250,7 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
         rustc: rustc_version(),
         files,
     };
-    let page = html(&scene, &results, &rendered, &info);
+    let page = html(&scene, &results, &rendered, &info).map_err(|e| e.to_string())?;
     staging
         .write("report.html", page.as_bytes())
         .map_err(|e| e.to_string())?;

@@ -63,7 +63,7 @@ fn panel(
 }
 
 fn figure(stem: &str, heading: &str, caption: &str, panels: Vec<Option<Panel>>) -> Option<Figure> {
-    if panels.iter().any(Option::is_none) {
+    if panels.is_empty() || panels.iter().any(Option::is_none) {
         return None;
     }
     Some(Figure {
@@ -371,5 +371,195 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             vec![panel("FE vs 0D", STRESS, s, active_range)],
         ));
     }
+    out.extend(fit_figures(results));
+    out.extend(stability_figures(results));
     out
+}
+
+/// One figure per fit study: data (markers), the fit (solid) and the model at the reference or
+/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
+fn fit_figures(results: &Results) -> Vec<Figure> {
+    let mut studies: Vec<usize> = results.fits.iter().map(|f| f.study).collect();
+    studies.dedup();
+    let mut out = Vec::new();
+    for study in studies {
+        let fits: Vec<_> = results.fits.iter().filter(|f| f.study == study).collect();
+        let Some(first) = fits.first() else { continue };
+        let mut panels = Vec::new();
+        let status = |f: &crate::scene::FitOutcome| {
+            let values: Vec<String> = f
+                .names
+                .iter()
+                .zip(&f.values)
+                .map(|(n, v)| format!("{n} = {v:.4}"))
+                .collect();
+            format!(
+                "fit: {}{}",
+                values.join(", "),
+                if f.converged { "" } else { " (NOT converged)" }
+            )
+        };
+        if first.fit == "damage" {
+            let mut s = Vec::new();
+            for (i, f) in fits.iter().enumerate() {
+                s.push(series(
+                    f.case.clone(),
+                    f.plot.data.clone(),
+                    Stroke::Markers,
+                    i,
+                ));
+                s.push(series(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+            }
+            if let Some((label, points)) = &first.plot.start {
+                s.push(series(label.clone(), points.clone(), Stroke::Dashed, 7));
+            }
+            panels.push(panel(&first.study_name, &first.plot.y_label, s, None));
+        } else {
+            for f in &fits {
+                let mut s = vec![
+                    series(
+                        f.plot.data_label.clone(),
+                        f.plot.data.clone(),
+                        Stroke::Markers,
+                        1,
+                    ),
+                    series(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+                ];
+                if let Some((label, points)) = &f.plot.start {
+                    s.push(series(label.clone(), points.clone(), Stroke::Dashed, 2));
+                }
+                panels.push(panel(
+                    &format!("{}: {}", f.study_name, f.case),
+                    &f.plot.y_label,
+                    s,
+                    None,
+                ));
+            }
+        }
+        let stem = prefixed("fit", &first.study_name);
+        out.extend(figure(
+            &stem,
+            &format!("Fit: {}", first.study_name),
+            &format!(
+                "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
+                first.fit, first.source
+            ),
+            panels.into_iter().flatten().map(Some).collect(),
+        ));
+    }
+    out
+}
+
+/// One figure per stability study, a panel per damage value: the stress along the fibres of each
+/// law × coupling (solid frozen, dashed consistent), with markers on the points where the curve
+/// softens (dP/dλ < 0) and, in black-ish, where strong ellipticity is lost.
+fn stability_figures(results: &Results) -> Vec<Figure> {
+    let mut studies: Vec<usize> = results.stability.iter().map(|c| c.study).collect();
+    studies.dedup();
+    let mut out = Vec::new();
+    for study in studies {
+        let curves: Vec<_> = results
+            .stability
+            .iter()
+            .filter(|c| c.study == study)
+            .collect();
+        let name = results
+            .studies
+            .get(study)
+            .map_or("stability".to_string(), |s| s.name.clone());
+        let mut ds: Vec<f64> = curves.iter().filter_map(|c| c.d).collect();
+        ds.sort_by(f64::total_cmp);
+        ds.dedup();
+        if ds.is_empty() {
+            ds.push(0.0);
+        }
+        let colour = |law: &str| match law {
+            "implicit" => 0,
+            "explicit" => 1,
+            "energy" => 2,
+            _ => 5,
+        };
+        let mut panels = Vec::new();
+        for d in &ds {
+            let mut s = Vec::new();
+            let (mut soft_labelled, mut lost_labelled) = (false, false);
+            for c in curves.iter().filter(|c| c.d.is_none() || c.d == Some(*d)) {
+                let stroke = if c.coupling == Some("consistent") {
+                    Stroke::Dashed
+                } else if c.law == "passive" {
+                    Stroke::Dotted
+                } else {
+                    Stroke::Solid
+                };
+                let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
+                s.push(series(c.label(), all, stroke, colour(c.law)));
+                let soft: Vec<(f64, f64)> = c
+                    .points
+                    .iter()
+                    .filter(|p| p.slope < 0.0)
+                    .map(|p| (p.lambda, p.stress))
+                    .collect();
+                let label = if soft.is_empty() || soft_labelled {
+                    String::new()
+                } else {
+                    soft_labelled = true;
+                    "dP/dλ < 0 (circles in the curve's colour)".to_string()
+                };
+                s.push(series(label, soft, Stroke::Markers, colour(c.law)));
+                let lost: Vec<(f64, f64)> = c
+                    .points
+                    .iter()
+                    .filter(|p| !p.elliptic)
+                    .map(|p| (p.lambda, p.stress))
+                    .collect();
+                let label = if lost.is_empty() || lost_labelled {
+                    String::new()
+                } else {
+                    lost_labelled = true;
+                    "strong ellipticity lost".to_string()
+                };
+                s.push(series(label, lost, Stroke::Markers, 6));
+            }
+            panels.push(panel(
+                &format!("Stability along the fibres, d = {d}"),
+                STRESS,
+                s,
+                Some((-5.0, 160.0)),
+            ));
+        }
+        out.extend(figure(
+            &prefixed("stability", &name),
+            &format!("Material stability along the fibres: {name}"),
+            "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.",
+            panels.into_iter().flatten().map(Some).collect(),
+        ));
+    }
+    out
+}
+
+/// `fig_<kind>_<name>`, without repeating the kind when the name starts with it.
+fn prefixed(kind: &str, name: &str) -> String {
+    let s = slug(name);
+    if s.starts_with(kind) {
+        format!("fig_{s}")
+    } else {
+        format!("fig_{kind}_{s}")
+    }
+}
+
+fn slug(text: &str) -> String {
+    let mut s: String = text
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    while s.contains("__") {
+        s = s.replace("__", "_");
+    }
+    s.trim_matches('_').to_string()
 }

@@ -23,7 +23,7 @@ pub enum Stroke {
 /// One curve.
 #[derive(Debug, Clone)]
 pub struct Series {
-    /// Legend entry.
+    /// Legend entry (empty: none).
     pub label: String,
     /// (x, y) points.
     pub points: Vec<(f64, f64)>,
@@ -195,8 +195,8 @@ fn draw_panel<DB: DrawingBackend>(
                 ),
             }
             .map_err(|e| e.to_string())?;
-            // Only the first run carries the legend entry.
-            if i > 0 {
+            // Only the first run carries the legend entry; an empty label has none.
+            if i > 0 || s.label.is_empty() {
                 continue;
             }
             a.label(s.label.as_str())

@@ -1,8 +1,9 @@
 //! `report.html`: one self-contained page (figures embedded as base64 PNG) with the run's
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
+use super::atomic::OutputError;
 use super::base64;
-use super::csv::COLUMNS;
+use super::csv::{checked, COLUMNS};
 use super::plot::Figure;
 use crate::scene::run::Results;
 use crate::scene::Scene;
@@ -32,13 +33,14 @@ pub fn escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The report page. `pngs` holds the PNG bytes of each figure, in the same order.
+/// The report page. `pngs` holds the PNG bytes of each figure, in the same order. A non-finite
+/// number in a table is an error naming it, never written.
 pub fn html(
     scene: &Scene,
     results: &Results,
     figures: &[(Figure, Vec<u8>)],
     info: &RunInfo,
-) -> String {
+) -> Result<String, OutputError> {
     let mut h = String::new();
     let e = escape;
     let _ = write!(
@@ -110,12 +112,22 @@ pub fn html(
                 c.bases,
                 e(&c.label),
                 c.points.len(),
-                worst.0,
-                worst.1
+                checked(worst.0, "max |P_FE − P_0D|", || format!(
+                    "report: {}",
+                    c.label
+                ))?,
+                checked(
+                    worst.1,
+                    "lambda of the largest FE − 0D difference",
+                    || format!("report: {}", c.label)
+                )?
             );
         }
         h.push_str("</table>\n");
     }
+
+    fits_table(&mut h, results)?;
+    stability_table(&mut h, results)?;
 
     h.push_str("<h2>Figures</h2>\n");
     for (f, png) in figures {
@@ -161,5 +173,122 @@ pub fn html(
     h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
     h.push_str(&e(&scene.source));
     h.push_str("</pre>\n</body></html>\n");
-    h
+    Ok(h)
+}
+
+/// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
+fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
+    if results.fits.is_empty() {
+        return Ok(());
+    }
+    let e = escape;
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    for f in &results.fits {
+        let origin = || format!("report: fit {:?}, {}", f.study_name, f.case);
+        let n = f.names.len();
+        for j in 0..n {
+            let value = checked(f.values[j], "fitted value", origin)?;
+            let se = match f.standard_errors.get(j).copied().flatten() {
+                Some(s) => format!(" ± {:.3e}", checked(s, "standard error", origin)?),
+                None => " ± (n/a)".into(),
+            };
+            let reference = match f.reference.get(j).copied().flatten() {
+                Some(r) => checked(r, "reference value", origin)?.to_string(),
+                None => String::new(),
+            };
+            let corr = f
+                .correlation
+                .get(j)
+                .map(|row| {
+                    row.iter()
+                        .map(|c| c.map_or("n/a".to_string(), |c| format!("{c:.4}")))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                })
+                .unwrap_or_default();
+            if j == 0 {
+                let mut status = if f.converged {
+                    "converged".to_string()
+                } else {
+                    format!("<b>NOT converged</b> ({})", e(&f.termination))
+                };
+                for x in &f.extra {
+                    status.push_str(&format!("<br>{}", e(x)));
+                }
+                let _ = write!(
+                    h,
+                    "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
+                    e(&f.study_name),
+                    e(&f.case),
+                    f.points
+                );
+                let _ = writeln!(
+                    h,
+                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
+                    e(&f.names[j]),
+                    checked(f.rms, "RMS error", origin)?,
+                    f.unit,
+                    f.iterations,
+                );
+            } else {
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td></tr>",
+                    e(&f.names[j]),
+                );
+            }
+        }
+    }
+    h.push_str("</table>\n");
+    Ok(())
+}
+
+/// Intervals of softening and of lost strong ellipticity, per model.
+fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
+    if results.stability.is_empty() {
+        return Ok(());
+    }
+    let e = escape;
+    let fmt = |v: Vec<(f64, f64)>| {
+        if v.is_empty() {
+            "none".to_string()
+        } else {
+            v.iter()
+                .map(|(a, b)| format!("{a:.3}–{b:.3}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    };
+    h.push_str("<h2>Material stability along the fibres</h2>\n<p>Uniaxial path along the fibres: intervals of the stretch grid where dP/dλ &lt; 0 and where strong ellipticity (incompressible, a ⊥ F⁻ᵀN) is lost; per-point values in <code>stability.csv</code>.</p>\n<table><tr><th>study</th><th>model</th><th>d</th><th>stretches</th><th>dP/dλ &lt; 0 on</th><th>not strongly elliptic on</th><th>least relative a·Q(N)a</th></tr>\n");
+    for c in &results.stability {
+        let name = results
+            .studies
+            .get(c.study)
+            .map_or(String::new(), |s| s.name.clone());
+        let least = c
+            .points
+            .iter()
+            .map(|p| p.relative)
+            .fold(f64::INFINITY, f64::min);
+        let least = if c.points.is_empty() {
+            "n/a".to_string()
+        } else {
+            let least = checked(least, "relative ellipticity", || {
+                format!("report: {name}, {}, d = {:?}", c.label(), c.d)
+            })?;
+            format!("{least:.3e}")
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{least}</td></tr>",
+            e(&name),
+            e(&c.label()),
+            c.d.map_or(String::new(), |d| d.to_string()),
+            c.points.len(),
+            fmt(c.intervals(|p| p.slope < 0.0)),
+            fmt(c.intervals(|p| !p.elliptic)),
+        );
+    }
+    h.push_str("</table>\n");
+    Ok(())
 }

@@ -1,7 +1,7 @@
 //! Scene files: what to compute, written in TOML.
 //!
 //! A scene names a material (`[material]`), the activation (`[activation]`) and a list of studies
-//! (`[[study]]`, kind `uniaxial` or `cylinder`). Every key is optional unless a study cannot do
+//! (`[[study]]`, kind `uniaxial`, `cylinder`, `fit` or `stability`). Every key is optional unless a study cannot do
 //! without it; defaults are the chapter's values (Tables D:parpass, D:paratt; a = 1.0133,
 //! b = 0.2050). Unknown keys, wrong types and values that break a rule are errors that name the
 //! file, the key path, the value and the rule ([`SceneError`]). `scenes/paper.toml` is the
@@ -9,13 +9,17 @@
 //!
 //! [`Scene::parse`] validates and resolves a file into a [`Scene`]; [`run`] computes its studies.
 
+pub mod fit;
 mod keypath;
 mod resolve;
 pub mod run;
 pub mod schema;
+pub mod stability;
 
+pub use fit::{FitCase, FitOutcome, FitStudy};
 pub use keypath::key_path;
 pub use resolve::{CylinderStudy, ModelChoice, Scene, Study, UniaxialStudy};
+pub use stability::{StabilityCurve, StabilityPoint, StabilityStudy};
 
 use std::fmt;
 use std::path::Path;

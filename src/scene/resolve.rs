@@ -2,10 +2,12 @@
 //! checked, every model parameter passed once through the core's own constructors (their errors
 //! are mapped back to the key that produced them).
 
+use super::fit::{resolve_fit, FitStudy};
 use super::schema::{
     ActivationSpec, BasesKind, CouplingKind, DirectionKind, EnergyKind, EnergySpec, ExplicitSpec,
-    LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, TangentKind,
+    LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, StudySpec, TangentKind,
 };
+use super::stability::{resolve_stability, StabilityStudy};
 use super::SceneError;
 use crate::active::{
     ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
@@ -46,6 +48,10 @@ pub enum Study {
     Uniaxial(UniaxialStudy),
     /// The FE cylinder.
     Cylinder(CylinderStudy),
+    /// A least-squares fit.
+    Fit(FitStudy),
+    /// Material stability along the fibres.
+    Stability(StabilityStudy),
 }
 
 /// One activation model: law, coupling, damage.
@@ -115,6 +121,8 @@ impl Study {
         match self {
             Study::Uniaxial(s) => &s.name,
             Study::Cylinder(s) => &s.name,
+            Study::Fit(s) => &s.name,
+            Study::Stability(s) => &s.name,
         }
     }
 }
@@ -172,12 +180,12 @@ impl Scene {
     }
 }
 
-struct Ctx<'a> {
-    file: &'a str,
+pub(super) struct Ctx<'a> {
+    pub file: &'a str,
 }
 
 impl Ctx<'_> {
-    fn err(
+    pub fn err(
         &self,
         key: impl Into<String>,
         value: impl fmt::Display,
@@ -193,7 +201,7 @@ impl Ctx<'_> {
     }
 
     /// Maps a core error to the key `prefix.<parameter>`.
-    fn core(&self, prefix: &str, e: crate::Error) -> SceneError {
+    pub fn core(&self, prefix: &str, e: crate::Error) -> SceneError {
         match e {
             crate::Error::InvalidParameter { name, value, rule } => {
                 self.err(format!("{prefix}.{name}"), value, rule)
@@ -208,12 +216,12 @@ impl Ctx<'_> {
 
 use std::fmt;
 
-fn fmt_list(v: &[f64]) -> String {
+pub(super) fn fmt_list(v: &[f64]) -> String {
     let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
     format!("[{}]", items.join(", "))
 }
 
-fn energy(
+pub(super) fn energy(
     ctx: &Ctx,
     key: &str,
     kind: EnergyKind,
@@ -267,7 +275,7 @@ fn energy(
     e.map_err(|e| ctx.core(key, e))
 }
 
-fn kind_name(kind: EnergyKind) -> &'static str {
+pub(super) fn kind_name(kind: EnergyKind) -> &'static str {
     match kind {
         EnergyKind::GiantesioMusesti => "giantesio-musesti",
         EnergyKind::EhretBolItskov => "ehret-bol-itskov",
@@ -276,7 +284,7 @@ fn kind_name(kind: EnergyKind) -> &'static str {
 }
 
 /// An energy spec with the defaults of its kind written out (for the printed scene).
-fn filled(spec: &EnergySpec) -> EnergySpec {
+pub(super) fn filled(spec: &EnergySpec) -> EnergySpec {
     let (mu, alpha, beta, w0) = match spec.energy {
         EnergyKind::GiantesioMusesti => (Some(0.1599), Some(19.35), None, Some(0.7335)),
         EnergyKind::EhretBolItskov => (Some(0.1599), Some(19.69), Some(1.190), Some(0.7388)),
@@ -292,7 +300,7 @@ fn filled(spec: &EnergySpec) -> EnergySpec {
 }
 
 /// Stretch lists: finite, > 0, ascending without duplicates, reasonably short.
-fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<f64>, SceneError> {
+pub(super) fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<f64>, SceneError> {
     const MAX: usize = 100_000;
     let mut v = match spec {
         StretchSpec::List(v) => v.clone(),
@@ -350,7 +358,7 @@ fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<f64>, Scene
     Ok(v)
 }
 
-fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
+pub(super) fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
     if v.is_empty() {
         return Err(ctx.err(
             key,
@@ -366,12 +374,69 @@ fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
     Ok(v.to_vec())
 }
 
-fn reject(ctx: &Ctx, key: &str, present: bool, kind: &str) -> Result<(), SceneError> {
-    if present {
-        Err(ctx.err(key, "(given)", format!("not a key of a {kind} study")))
-    } else {
-        Ok(())
+/// Every key of a study besides `kind`, `name`, `stretch` and `damage`, and whether it is given.
+fn given_keys(s: &StudySpec) -> Vec<(&'static str, bool)> {
+    vec![
+        ("direction", s.direction.is_some()),
+        ("passive", s.passive.is_some()),
+        ("compare", s.compare.is_some()),
+        ("laws", s.laws.is_some()),
+        ("couplings", s.couplings.is_some()),
+        ("constant_gamma", s.constant_gamma.is_some()),
+        ("radius", s.radius.is_some()),
+        ("length", s.length.is_some()),
+        ("nr", s.nr.is_some()),
+        ("nz", s.nz.is_some()),
+        ("grading", s.grading.is_some()),
+        ("bases", s.bases.is_some()),
+        ("law", s.law.is_some()),
+        ("coupling", s.coupling.is_some()),
+        ("vtk", s.vtk.is_some()),
+        ("tolerance", s.tolerance.is_some()),
+        ("fit", s.fit.is_some()),
+        ("data", s.data.is_some()),
+        ("reference", s.reference.is_some()),
+        ("stress", s.stress.is_some()),
+        ("true_damage", s.true_damage.is_some()),
+        ("noise", s.noise.is_some()),
+        ("seed", s.seed.is_some()),
+        ("residual", s.residual.is_some()),
+        ("free", s.free.is_some()),
+        ("start", s.start.is_some()),
+        ("bounds", s.bounds.is_some()),
+        ("method", s.method.is_some()),
+        ("max_iterations", s.max_iterations.is_some()),
+        ("normals", s.normals.is_some()),
+    ]
+}
+
+/// Rejects every given key of study `key` that is not in `allowed` for a study of `kind`.
+pub(super) fn only_keys(
+    ctx: &Ctx,
+    key: &str,
+    s: &StudySpec,
+    kind: &str,
+    allowed: &[&str],
+) -> Result<(), SceneError> {
+    for (name, present) in given_keys(s) {
+        if present && !allowed.contains(&name) {
+            let hint = match (kind, name) {
+                ("uniaxial" | "stability", "law") => " (it takes a list: laws = [...])",
+                ("uniaxial" | "stability", "coupling") => " (it takes a list: couplings = [...])",
+                ("cylinder", "laws") => " (a cylinder study takes one law: law = \"...\")",
+                ("cylinder", "couplings") => {
+                    " (a cylinder study takes one coupling: coupling = \"...\")"
+                }
+                _ => "",
+            };
+            return Err(ctx.err(
+                format!("{key}.{name}"),
+                "(given)",
+                format!("not a key of a {kind} study{hint}"),
+            ));
+        }
     }
+    Ok(())
 }
 
 pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -444,10 +509,13 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
     for (i, s) in raw.studies.iter().enumerate() {
         let key = format!("study[{i}]");
         let k = |name: &str| format!("{key}.{name}");
-        let Some(spec) = &s.stretch else {
-            return Err(ctx.err(k("stretch"), "(missing)", "every study needs its stretches"));
+        let lambdas = match &s.stretch {
+            Some(spec) => Some(stretches(&ctx, &k("stretch"), spec)?),
+            None => None,
         };
-        let lambdas = stretches(&ctx, &k("stretch"), spec)?;
+        let required = |l: Option<Vec<f64>>| -> Result<Vec<f64>, SceneError> {
+            l.ok_or_else(|| ctx.err(k("stretch"), "(missing)", "every study needs its stretches"))
+        };
         let damage = match &s.damage {
             Some(d) => damages(&ctx, &k("damage"), d)?,
             None => default_damage.clone(),
@@ -455,26 +523,34 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
         let mut r = s.clone();
         r.damage = Some(damage.clone());
         match s.kind {
+            StudyKind::Fit => {
+                let (study, resolved) = resolve_fit(&ctx, &key, s, &material, curve, lambdas)?;
+                studies.push(Study::Fit(study));
+                resolved_studies.push(resolved);
+                continue;
+            }
+            StudyKind::Stability => {
+                let (study, resolved) = resolve_stability(&ctx, &key, s, kind, lambdas)?;
+                studies.push(Study::Stability(study));
+                resolved_studies.push(resolved);
+                continue;
+            }
             StudyKind::Uniaxial => {
-                for (name, present) in [
-                    ("radius", s.radius.is_some()),
-                    ("length", s.length.is_some()),
-                    ("nr", s.nr.is_some()),
-                    ("nz", s.nz.is_some()),
-                    ("grading", s.grading.is_some()),
-                    ("bases", s.bases.is_some()),
-                    ("law", s.law.is_some()),
-                    ("coupling", s.coupling.is_some()),
-                    ("vtk", s.vtk.is_some()),
-                    ("tolerance", s.tolerance.is_some()),
-                ] {
-                    let hint = match name {
-                        "law" => " (uniaxial studies take a list: laws = [...])",
-                        "coupling" => " (uniaxial studies take a list: couplings = [...])",
-                        _ => "",
-                    };
-                    reject(&ctx, &k(name), present, &format!("uniaxial{hint}"))?;
-                }
+                let lambdas = required(lambdas)?;
+                only_keys(
+                    &ctx,
+                    &key,
+                    s,
+                    "uniaxial",
+                    &[
+                        "direction",
+                        "passive",
+                        "compare",
+                        "laws",
+                        "couplings",
+                        "constant_gamma",
+                    ],
+                )?;
                 let direction = s.direction.unwrap_or(DirectionKind::Along);
                 let laws = s.laws.clone().unwrap_or_else(|| vec![default_law]);
                 for (j, l) in laws.iter().enumerate() {
@@ -556,21 +632,25 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                 }));
             }
             StudyKind::Cylinder => {
-                for (name, present) in [
-                    ("direction", s.direction.is_some()),
-                    ("passive", s.passive.is_some()),
-                    ("compare", s.compare.is_some()),
-                    ("laws", s.laws.is_some()),
-                    ("couplings", s.couplings.is_some()),
-                    ("constant_gamma", s.constant_gamma.is_some()),
-                ] {
-                    let hint = match name {
-                        "laws" => " (a cylinder study takes one law: law = \"...\")",
-                        "couplings" => " (a cylinder study takes one coupling: coupling = \"...\")",
-                        _ => "",
-                    };
-                    reject(&ctx, &k(name), present, &format!("cylinder{hint}"))?;
-                }
+                let lambdas = required(lambdas)?;
+                only_keys(
+                    &ctx,
+                    &key,
+                    s,
+                    "cylinder",
+                    &[
+                        "radius",
+                        "length",
+                        "nr",
+                        "nz",
+                        "grading",
+                        "bases",
+                        "law",
+                        "coupling",
+                        "vtk",
+                        "tolerance",
+                    ],
+                )?;
                 let positive = |name: &str, v: f64| -> Result<f64, SceneError> {
                     if v.is_finite() && v > 0.0 {
                         Ok(v)

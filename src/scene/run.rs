@@ -1,8 +1,10 @@
 //! Running a scene: builds only the models its studies need, computes the homogeneous curves in
 //! parallel (rayon) and the cylinder sweeps with the FE solver, and collects tidy rows.
 
+use super::fit::{run_fit, FitOutcome};
 use super::resolve::{coupling_name, law_name, CylinderStudy, ModelChoice, UniaxialStudy};
 use super::schema::{BasesKind, DirectionKind};
+use super::stability::{run_stability, StabilityCurve};
 use super::{Scene, Study};
 use crate::energy::{Energy, StrainEnergy};
 use crate::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions, VtkOutput};
@@ -105,6 +107,10 @@ pub struct Results {
     pub fe_vs_0d: Vec<FeComparison>,
     /// VTK files written (relative to the VTK staging directory).
     pub vtk_files: Vec<PathBuf>,
+    /// Fits, converged or not (see [`FitOutcome::converged`]).
+    pub fits: Vec<FitOutcome>,
+    /// Stability curves.
+    pub stability: Vec<StabilityCurve>,
 }
 
 /// How to run.
@@ -215,6 +221,82 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Results, RunError> {
         let summary = match study {
             Study::Uniaxial(s) => uniaxial(scene, i, s, &rep, &mut out)?,
             Study::Cylinder(s) => cylinder(scene, i, s, &rep, options, &mut out)?,
+            Study::Fit(s) => {
+                rep.log(&format!(
+                    "{}: {} fit(s), {}",
+                    s.name,
+                    s.cases.len(),
+                    s.source
+                ));
+                let (fits, messages) = run_fit(i, s, &scene.material, scene.curve);
+                let converged = fits.iter().filter(|f| f.converged).count();
+                let mut details = vec![format!("data: {}", s.source)];
+                for f in &fits {
+                    details.push(format!(
+                        "{}: {} points, {} iterations, RMS {:.3e} {}, {}",
+                        f.case,
+                        f.points,
+                        f.iterations,
+                        f.rms,
+                        f.unit,
+                        if f.converged {
+                            "converged"
+                        } else {
+                            "NOT converged"
+                        }
+                    ));
+                }
+                out.notes.extend(messages.into_iter().map(|m| Note {
+                    study: s.name.clone(),
+                    model: "fit".into(),
+                    message: m,
+                }));
+                let summary = StudySummary {
+                    name: s.name.clone(),
+                    kind: "fit",
+                    models: s.cases.len(),
+                    points: converged,
+                    requested: s.cases.len(),
+                    elapsed: Duration::ZERO,
+                    details,
+                };
+                out.fits.extend(fits);
+                summary
+            }
+            Study::Stability(s) => {
+                rep.log(&format!(
+                    "{}: {} model(s) × {} stretches, {} normals",
+                    s.name,
+                    s.models.len() + usize::from(s.passive),
+                    s.stretches.len(),
+                    s.normals
+                ));
+                let (curves, messages) =
+                    run_stability(scene, i, s).map_err(|e| RunError(format!("{}: {e}", s.name)))?;
+                out.notes.extend(messages.into_iter().map(|m| Note {
+                    study: s.name.clone(),
+                    model: "stability".into(),
+                    message: m,
+                }));
+                let points = curves.iter().map(|c| c.points.len()).sum();
+                let summary = StudySummary {
+                    name: s.name.clone(),
+                    kind: "stability",
+                    models: curves.len(),
+                    points,
+                    requested: (s.models.len() + usize::from(s.passive)) * s.stretches.len(),
+                    elapsed: Duration::ZERO,
+                    details: vec![format!(
+                        "{} stretches in [{}, {}] along the fibres, {} sampled normals",
+                        s.stretches.len(),
+                        s.stretches.first().copied().unwrap_or(f64::NAN),
+                        s.stretches.last().copied().unwrap_or(f64::NAN),
+                        s.normals
+                    )],
+                };
+                out.stability.extend(curves);
+                summary
+            }
         };
         let summary = StudySummary {
             elapsed: t0.elapsed(),

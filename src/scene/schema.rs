@@ -3,6 +3,7 @@
 
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
+use std::collections::BTreeMap;
 use std::fmt;
 
 /// The whole file.
@@ -148,6 +149,54 @@ pub enum StudyKind {
     Uniaxial,
     /// The axisymmetric FE cylinder.
     Cylinder,
+    /// A least-squares fit of model parameters (issue 5).
+    Fit,
+    /// Material stability along the uniaxial path along the fibres (issue 7).
+    Stability,
+}
+
+/// What a fit study fits (`fit = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FitKind {
+    /// Passive parameters of the material's energy to (λ, P) data (eq. D:Ppas).
+    Passive,
+    /// (λ_min, λ_opt, k, P_opt) of the active curve (eq. D:pact).
+    ActiveCurve,
+    /// (a, b) of the explicit law (eq. D:gamma) against the implicit law.
+    ExplicitLaw,
+    /// The damage d of a weakened total curve.
+    Damage,
+}
+
+/// What the stresses of active-curve data are (`stress = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StressKind {
+    /// Active stress P_act.
+    Active,
+    /// Total stress of a tetanised muscle; the model's passive stress is subtracted.
+    Total,
+}
+
+/// Residual of the explicit-law fit (`residual = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ResidualKind {
+    /// Total stress it produces against P_pas + (1 − d) P_act [kPa] (the chapter's choice).
+    Stress,
+    /// Activation γ against the implicit γ [-].
+    Activation,
+}
+
+/// Search strategy of a fit (`method = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MethodKind {
+    /// Gauss–Newton with line search.
+    GaussNewton,
+    /// Nelder–Mead, then Gauss–Newton (for poor starting values).
+    NelderMead,
 }
 
 /// Uniaxial loading direction relative to the fibres.
@@ -216,6 +265,36 @@ pub struct StudySpec {
     pub vtk: Option<Vec<f64>>,
     /// Newton tolerance (cylinder).
     pub tolerance: Option<f64>,
+    // --- fit ---
+    /// What to fit (fit, required): `passive` | `active-curve` | `explicit-law` | `damage`.
+    pub fit: Option<FitKind>,
+    /// CSV data file with header `lambda,P` (λ [-], P [kPa]), relative to the scene file (fit).
+    pub data: Option<String>,
+    /// Passive energy whose curve is the data (fit passive; instead of `data`).
+    pub reference: Option<EnergySpec>,
+    /// Stresses of active-curve data: `active` or `total` (fit active-curve).
+    pub stress: Option<StressKind>,
+    /// Damage values of synthetic weakened curves, one fit each (fit damage; instead of `data`).
+    pub true_damage: Option<Vec<f64>>,
+    /// Standard deviation of Gaussian noise added to synthetic data [kPa] (fit).
+    pub noise: Option<f64>,
+    /// Seed of the noise (fit).
+    pub seed: Option<i64>,
+    /// `stress` or `activation` (fit explicit-law).
+    pub residual: Option<ResidualKind>,
+    /// Free parameters (fit; default: the fit's own choice).
+    pub free: Option<Vec<String>>,
+    /// Starting values by parameter name (fit).
+    pub start: Option<BTreeMap<String, f64>>,
+    /// Bounds [lower, upper] by parameter name (fit).
+    pub bounds: Option<BTreeMap<String, [f64; 2]>>,
+    /// `gauss-newton` or `nelder-mead` (fit).
+    pub method: Option<MethodKind>,
+    /// Maximum Gauss–Newton iterations (fit).
+    pub max_iterations: Option<i64>,
+    // --- stability ---
+    /// Sampled reference normals of the strong-ellipticity check (stability).
+    pub normals: Option<i64>,
 }
 
 /// Stretches: `[0.8, 1.0, 1.2]` or `{ from = 0.7, to = 1.6, step = 0.05, extra = [1.17] }`.
