@@ -40,6 +40,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
     targets.push(1.17);
+    let mut options = SolverOptions::default();
+    if std::env::var("LINEAR").as_deref() == Ok("lu") {
+        options.linear_solver = activemuscle::fem::LinearSolver::Lu;
+    }
     println!(
         "# {nr}x{nz} {bases:?} {} law, {} coupling",
         law.name(),
@@ -53,7 +57,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Mesh::structured(1.0, 4.0, nr, nz, 1.0)?,
             bases,
             &muscle,
-            SolverOptions::default(),
+            options.clone(),
         )?;
         let sweep = solver.sweep(&targets)?;
         for r in &sweep.results {
@@ -63,12 +67,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 r.stretch, r.nominal_stress, r.gamma_centre
             );
         }
+        let t = solver.timings();
         eprintln!(
-            "d = {d}: {} of {} targets in {:.1} s ({} dofs)",
+            "d = {d}: {} of {} targets in {:.1} s ({} dofs): assembly {:.2} s / {}, residuals {:.2} s / {}, factorisation {:.2} s / {}, solve {:.2} s / {} ({} Krylov iterations, {} LU fallbacks)",
             sweep.results.len(),
             targets.len(),
             start.elapsed().as_secs_f64(),
-            solver.n_free_dofs()
+            solver.n_free_dofs(),
+            t.assembly.as_secs_f64(),
+            t.assemblies,
+            t.residual_assembly.as_secs_f64(),
+            t.residual_assemblies,
+            t.factorisation.as_secs_f64(),
+            t.factorisations,
+            t.solve.as_secs_f64(),
+            t.solves,
+            t.krylov_iterations,
+            t.lu_fallbacks
         );
         for (failure, trial) in sweep.failures.iter().zip(&sweep.failed_trials) {
             eprintln!("  stopped: {failure}");

@@ -217,6 +217,12 @@ impl std::fmt::Display for FailureDiagnosis {
         if let Some((at, below)) = self.jump {
             if below > 0 && below < self.points {
                 write!(f, "; {below} points lie at or below lambda_min = {at}, where the activation law jumps, so the energy Psi is discontinuous inside the body")?;
+            } else if below == 0 && self.fibre_stretch.0 - at < 0.01 {
+                write!(
+                    f,
+                    "; the smallest fibre stretch is {:.2e} above lambda_min = {at}, where the activation law jumps: the next stretch puts part of the body across a discontinuity of the energy Psi",
+                    self.fibre_stretch.0 - at
+                )?;
             }
         }
         if self.refused > 0 {

@@ -124,3 +124,31 @@ fn diagnosis_finds_the_energy_law_jump_and_passive_stability() {
         (0, None, 0)
     );
 }
+
+#[test]
+fn the_vtk_writer_refuses_non_finite_values() {
+    use activemuscle::fem::{vtk::write_vtu, Mesh};
+    let mesh = Mesh::structured(1.0, 2.0, 1, 1, 1.0).unwrap();
+    let dir = std::env::temp_dir().join(format!("activemuscle-vtk-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.vtu");
+    let n = mesh.nodes.len();
+    let mut u = vec![[0.0, 0.0]; n];
+    u[3][1] = f64::NAN;
+    let err = write_vtu(&path, &mesh, &u, &vec![0.0; n], &[[1.0, 0.0, 1.0, 0.0]]).unwrap_err();
+    assert!(
+        err.to_string().contains("u_z") && err.to_string().contains("node 3"),
+        "{err}"
+    );
+    assert!(!path.exists(), "nothing written");
+    let err = write_vtu(
+        &path,
+        &mesh,
+        &vec![[0.0, 0.0]; n],
+        &vec![0.0; n],
+        &[[1.0, f64::INFINITY, 1.0, 0.0]],
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("gamma"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

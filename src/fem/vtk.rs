@@ -3,6 +3,23 @@
 use super::mesh::Mesh;
 use std::io::Write;
 
+/// An error (nothing written) if any value of `field` is not finite, naming the field and where.
+fn refuse_non_finite(
+    field: &str,
+    values: impl Iterator<Item = f64>,
+    at: &str,
+) -> std::io::Result<()> {
+    for (i, v) in values.enumerate() {
+        if !v.is_finite() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("refusing to write non-finite {field} ({v}) at {at} {i}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// VTK cell type of the 9-node biquadratic quadrilateral.
 const VTK_BIQUADRATIC_QUAD: u8 = 28;
 
@@ -15,6 +32,12 @@ pub fn write_vtu(
     p: &[f64],
     cells: &[[f64; 4]],
 ) -> std::io::Result<()> {
+    refuse_non_finite("u_r", u.iter().map(|v| v[0]), "node")?;
+    refuse_non_finite("u_z", u.iter().map(|v| v[1]), "node")?;
+    refuse_non_finite("p", p.iter().copied(), "node")?;
+    for (k, name) in ["J", "gamma", "fibre_stretch", "P_zz"].iter().enumerate() {
+        refuse_non_finite(name, cells.iter().map(|c| c[k]), "cell")?;
+    }
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
     let (nn, ne) = (mesh.nodes.len(), mesh.elements.len());
     writeln!(w, r#"<?xml version="1.0"?>"#)?;

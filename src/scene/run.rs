@@ -8,6 +8,7 @@ use super::stability::{run_stability, StabilityCurve};
 use super::{Scene, Study};
 use crate::energy::{Energy, StrainEnergy};
 use crate::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions, VtkOutput};
+use crate::stability::diagnose_axisymmetric;
 use crate::uniaxial::{across_fibres, along_fibres, UniaxialPoint};
 use crate::Muscle;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -584,10 +585,19 @@ fn cylinder(
             let notes = sweep
                 .failures
                 .iter()
-                .map(|f| Note {
-                    study: s.name.clone(),
-                    model: model_label(scene, m),
-                    message: describe_failure(f),
+                .zip(&sweep.failed_trials)
+                .map(|(f, trial)| {
+                    let mut message = describe_failure(f);
+                    if let Some(points) = trial {
+                        let f: Vec<_> = points.iter().map(|q| q.f).collect();
+                        let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);
+                        message.push_str(&format!("; material diagnosis: {diagnosis}"));
+                    }
+                    Note {
+                        study: s.name.clone(),
+                        model: model_label(scene, m),
+                        message,
+                    }
                 })
                 .collect();
             Ok((*m, rows, notes, comparison, vtk_files, dofs))
