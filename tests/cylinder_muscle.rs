@@ -2,7 +2,9 @@
 //! state, so the FE nominal stress must equal the 0D result of the constitutive core to solver
 //! tolerance, for every law and coupling, with and without damage.
 
-use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law};
+use activemuscle::active::{
+    ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, SolverOptions};
 use activemuscle::uniaxial::along_fibres;
@@ -13,9 +15,21 @@ fn models() -> Vec<(&'static str, Law<GiantesioMusesti>, Coupling)> {
     let frozen = Coupling::Frozen(FrozenTangent::Exact);
     vec![
         ("passive", Law::Passive, Coupling::Consistent),
-        ("implicit/frozen", Law::Implicit(ImplicitLaw::new(gm, curve)), frozen),
-        ("explicit/frozen", Law::Explicit(ExplicitLaw::paper()), frozen),
-        ("energy/consistent", Law::Energy(EnergyLaw::new(gm, curve)), Coupling::Consistent),
+        (
+            "implicit/frozen",
+            Law::Implicit(ImplicitLaw::new(gm, curve)),
+            frozen,
+        ),
+        (
+            "explicit/frozen",
+            Law::Explicit(ExplicitLaw::paper()),
+            frozen,
+        ),
+        (
+            "energy/consistent",
+            Law::Energy(EnergyLaw::new(gm, curve)),
+            Coupling::Consistent,
+        ),
     ]
 }
 
@@ -29,15 +43,29 @@ fn sliding_bases_reproduce_the_homogeneous_curve() {
             }
             let muscle = Muscle::new(GiantesioMusesti::paper(), law.clone(), d, coupling).unwrap();
             let mesh = Mesh::structured(1.0, 4.0, 2, 4, 1.0).unwrap();
-            let mut solver = AxisymmetricSolver::new(mesh, Bases::Sliding, &muscle, SolverOptions::default()).unwrap();
+            let mut solver =
+                AxisymmetricSolver::new(mesh, Bases::Sliding, &muscle, SolverOptions::default())
+                    .unwrap();
             let results = solver.sweep(&targets).unwrap().into_result().unwrap();
             assert_eq!(results.len(), targets.len(), "{name}, d = {d}");
             for r in &results {
                 let exact = along_fibres(&muscle, r.stretch).unwrap();
                 let rel = (r.nominal_stress - exact.stress).abs() / exact.stress.abs().max(1e-3);
-                assert!(rel < 1e-9, "{name}, d = {d}, lambda = {}: FE {} vs 0D {} (rel {rel:e})", r.stretch, r.nominal_stress, exact.stress);
-                assert!((r.gamma_centre - exact.gamma).abs() < 1e-9, "{name}: gamma at the centre");
-                assert!(r.max_volume_error < 1e-9, "det F = 1 at the quadrature points");
+                assert!(
+                    rel < 1e-9,
+                    "{name}, d = {d}, lambda = {}: FE {} vs 0D {} (rel {rel:e})",
+                    r.stretch,
+                    r.nominal_stress,
+                    exact.stress
+                );
+                assert!(
+                    (r.gamma_centre - exact.gamma).abs() < 1e-9,
+                    "{name}: gamma at the centre"
+                );
+                assert!(
+                    r.max_volume_error < 1e-9,
+                    "det F = 1 at the quadrature points"
+                );
             }
         }
     }
