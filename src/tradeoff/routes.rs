@@ -26,8 +26,8 @@ const AXI_IN_FULL: [usize; 5] = [0, 2, 6, 8, 4];
 ///
 /// - frozen: P = ∂Ŵ/∂F; exact tangent ∂²Ŵ/∂F² + (∂P/∂γ) ⊗ g′ ∂λ_f/∂F with ∂λ_f/∂F = F M / λ_f
 ///   (M = m ⊗ m); the symmetric variant drops the second term;
-/// - consistent: P = ∂Ŵ/∂F + Ŵ_γ g′ ∂λ_f/∂F; tangent ∂²Ŵ/∂F² + (∂P/∂γ ⊗ g′∂λ_f/∂F + transpose)
-///   + (Ŵ_γγ g′² + Ŵ_γ g″) ∂λ_f/∂F ⊗ ∂λ_f/∂F + Ŵ_γ g′ ∂²λ_f/∂F², with
+/// - consistent: P = ∂Ŵ/∂F + Ŵ_γ g′ ∂λ_f/∂F; tangent ∂²Ŵ/∂F² + (∂P/∂γ ⊗ g′∂λ_f/∂F +
+///   transpose) + (Ŵ_γγ g′² + Ŵ_γ g″) ∂λ_f/∂F ⊗ ∂λ_f/∂F + Ŵ_γ g′ ∂²λ_f/∂F², with
 ///   ∂²λ_f/∂F_iJ∂F_kL = δ_ik M_JL / λ_f − (F m)_i m_J (F m)_k m_L / λ_f³.
 ///
 /// Stress [kPa], tangent [kPa]; the same quantities as the fast route, computed independently of
