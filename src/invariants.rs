@@ -83,7 +83,7 @@ impl Kinematics {
             det: det_f,
             f: f.transpose().into(),
         };
-        if !(det_f > 0.0) || !f.iter().all(|x| x.is_finite()) {
+        if det_f.is_nan() || det_f <= 0.0 || !f.iter().all(|x| x.is_finite()) {
             return Err(rejected());
         }
         let b = f.try_inverse().ok_or_else(rejected)?;

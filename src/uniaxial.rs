@@ -101,11 +101,14 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
     let guess = lambda.sqrt().recip();
     let (mut lo, mut hi) = (guess, guess);
     let mut expanded = 0;
-    while !(residual(lo).0 < 0.0) || !(residual(hi).0 > 0.0) {
-        if !(residual(lo).0 < 0.0) {
+    // Expand [lo, hi] geometrically until r(lo) < 0 < r(hi) (a NaN counts as not yet).
+    let below = |a: f64| residual(a).0 < 0.0;
+    let above = |a: f64| residual(a).0 > 0.0;
+    while !below(lo) || !above(hi) {
+        if !below(lo) {
             lo *= 0.8;
         }
-        if !(residual(hi).0 > 0.0) {
+        if !above(hi) {
             hi *= 1.25;
         }
         expanded += 1;

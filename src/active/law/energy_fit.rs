@@ -55,7 +55,7 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
     fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
         check_damage(damage)?;
-        if !(lambda > 0.0) || !lambda.is_finite() {
+        if lambda.is_nan() || lambda <= 0.0 || lambda.is_infinite() {
             return Err(Error::InvalidParameter {
                 name: "fibre stretch",
                 value: lambda,

@@ -49,7 +49,7 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         check_damage(damage)?;
         let scale = 1.0 - damage;
         let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
-        if !(lambda > 0.0) || !lambda.is_finite() {
+        if lambda.is_nan() || lambda <= 0.0 || lambda.is_infinite() {
             return Err(Error::InvalidParameter {
                 name: "fibre stretch",
                 value: lambda,
