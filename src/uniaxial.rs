@@ -8,7 +8,7 @@
 //!   lateral faces traction free: a ∂Ψ/∂F₁₁ = F₃₃ ∂Ψ/∂F₃₃ (= p), solved for a by safeguarded Newton
 //!   with the exact tangent. Nominal stress P₂₂ = ∂Ψ/∂F₂₂ − p/λ.
 
-use crate::energy::StrainEnergy;
+use crate::energy::{positive, StrainEnergy};
 use crate::invariants::{Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
@@ -37,15 +37,7 @@ fn fibre() -> Vector3<f64> {
 }
 
 fn check_stretch(lambda: f64) -> Result<f64> {
-    if lambda.is_finite() && lambda > 0.0 {
-        Ok(lambda)
-    } else {
-        Err(Error::InvalidParameter {
-            name: "lambda",
-            value: lambda,
-            rule: "stretch must be finite and > 0",
-        })
-    }
+    positive("lambda", lambda)
 }
 
 /// Uniaxial tension along the fibres.

@@ -4,8 +4,8 @@ use super::{
 };
 use crate::active::curve::ActiveCurve;
 use crate::active::strain::fibre_path_energy;
-use crate::energy::StrainEnergy;
-use crate::{Error, Result};
+use crate::energy::{positive, StrainEnergy};
+use crate::Result;
 use num_dual::{first_derivative, second_derivative};
 
 /// The energy-consistent activation law (Giantesio & Musesti 2017, "Strain-dependent internal
@@ -55,13 +55,7 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
     fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
         check_damage(damage)?;
-        if lambda.is_nan() || lambda <= 0.0 || lambda.is_infinite() {
-            return Err(Error::InvalidParameter {
-                name: "fibre stretch",
-                value: lambda,
-                rule: "must be finite and > 0",
-            });
-        }
+        positive("fibre stretch", lambda)?;
         let scale = 1.0 - damage;
         let work = scale * self.curve.integral(lambda);
         if work <= 0.0 {

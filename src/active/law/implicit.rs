@@ -3,8 +3,8 @@ use super::{
     ActivationLaw, LawValue, PathPartials,
 };
 use crate::active::curve::ActiveCurve;
-use crate::energy::StrainEnergy;
-use crate::{Error, Result};
+use crate::energy::{positive, StrainEnergy};
+use crate::Result;
 use num_dual::second_derivative;
 
 /// The chapter's activation law (eq. D:eqgammaesplicita): γ(λ) solves
@@ -49,13 +49,7 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         check_damage(damage)?;
         let scale = 1.0 - damage;
         let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
-        if lambda.is_nan() || lambda <= 0.0 || lambda.is_infinite() {
-            return Err(Error::InvalidParameter {
-                name: "fibre stretch",
-                value: lambda,
-                rule: "must be finite and > 0",
-            });
-        }
+        positive("fibre stretch", lambda)?;
         if t <= 0.0 {
             return Ok(LawValue::default());
         }
