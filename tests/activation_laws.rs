@@ -192,3 +192,54 @@ fn mismatched_pairs_miss_the_target_by_kilopascals() {
         );
     }
 }
+
+#[test]
+fn the_energy_law_continues_continuously_below_lambda_min() {
+    use activemuscle::active::BelowMinimum;
+    let lmin = ActiveCurve::paper().lambda_min();
+    let (continuous, jumping) = (
+        energy_law(),
+        energy_law().below_minimum(BelowMinimum::Inactive),
+    );
+    // A fine grid across λ_min (and across the stretch ≈ λ_min + 6e-4 where ∫P_act leaves 0 in f64).
+    let grid: Vec<f64> = (0..=400)
+        .map(|i| lmin - 0.002 + 0.00001 * i as f64)
+        .collect();
+    let gammas: Vec<f64> = grid
+        .iter()
+        .map(|&l| continuous.evaluate(l, 0.0).unwrap().gamma)
+        .collect();
+    let worst = gammas
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst < 1e-5,
+        "gamma continuous across lambda_min: largest step {worst:e} over 1e-5 in lambda"
+    );
+    assert!(gammas.iter().all(|g| *g > 0.2), "on the zero-work branch");
+    assert_eq!(jumping.evaluate(lmin - 1e-8, 0.0).unwrap().gamma, 0.0);
+    assert!(
+        jumping.evaluate(lmin + 0.01, 0.0).unwrap().gamma > 0.2,
+        "the inactive variant jumps"
+    );
+    // Zero active work below λ_min: Ŵ(λ, γ) = W_pas(λ), and the consistent stress is P_pas.
+    for l in [0.5, 0.55, 0.6, 0.62] {
+        let g = continuous.evaluate(l, 0.3).unwrap().gamma;
+        assert!(continuous.residual(l, g, 0.3).abs() < 1e-13);
+        let muscle = Muscle::new(
+            gm(),
+            Law::Energy(continuous.clone()),
+            0.3,
+            Coupling::Consistent,
+        )
+        .unwrap();
+        let (p, pas) = (along_fibres(&muscle, l).unwrap().stress, target(l, 0.3));
+        assert!(
+            (p - pas).abs() < 1e-10 * pas.abs(),
+            "lambda {l}: {p} vs {pas}"
+        );
+    }
+    // Full damage: no activation at all.
+    assert_eq!(continuous.evaluate(0.6, 1.0).unwrap().gamma, 0.0);
+}

@@ -70,3 +70,44 @@ fn sliding_bases_reproduce_the_homogeneous_curve() {
         }
     }
 }
+
+/// The consistent energy-law model on the clamped cylinder: with the continuous branch below
+/// λ_min the chapter's sweep completes; with the jumping variant it stops where the fibres reach
+/// λ_min, and says so.
+#[test]
+fn clamped_consistent_energy_law_completes_the_sweep_and_the_jumping_variant_explains_its_stop() {
+    use activemuscle::active::BelowMinimum;
+    use activemuscle::stability::diagnose_axisymmetric;
+    let gm = GiantesioMusesti::paper();
+    let mut targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
+    targets.push(1.17);
+    let run = |below: BelowMinimum| {
+        let law = Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper()).below_minimum(below));
+        let muscle = Muscle::new(gm, law, 0.0, Coupling::Consistent).unwrap();
+        let mesh = Mesh::structured(1.0, 4.0, 3, 12, 3.0).unwrap();
+        let mut solver =
+            AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default())
+                .unwrap();
+        let sweep = solver.sweep(&targets).unwrap();
+        let diagnosis = sweep
+            .failed_trials
+            .first()
+            .cloned()
+            .flatten()
+            .map(|points| {
+                let f: Vec<_> = points.iter().map(|q| q.f).collect();
+                diagnose_axisymmetric(&muscle, &f, 60).to_string()
+            });
+        (sweep.results.len(), diagnosis)
+    };
+    let (reached, _) = run(BelowMinimum::ZeroWork);
+    assert_eq!(
+        reached,
+        targets.len(),
+        "the continuous law completes the sweep"
+    );
+    let (reached, diagnosis) = run(BelowMinimum::Inactive);
+    assert!(reached < targets.len(), "the jumping law cannot reach 0.70");
+    let diagnosis = diagnosis.expect("a diagnosis of the failed trial");
+    assert!(diagnosis.contains("lambda_min"), "{diagnosis}");
+}

@@ -91,7 +91,7 @@ fn uniaxial_slope_matches_finite_differences() {
 
 #[test]
 fn diagnosis_finds_the_energy_law_jump_and_passive_stability() {
-    use activemuscle::active::EnergyLaw;
+    use activemuscle::active::{BelowMinimum, EnergyLaw};
     use activemuscle::stability::diagnose_axisymmetric;
     use nalgebra::SVector;
     let gm = GiantesioMusesti::paper();
@@ -104,7 +104,7 @@ fn diagnosis_finds_the_energy_law_jump_and_passive_stability() {
         .collect();
     let energy = Muscle::new(
         gm,
-        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
+        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper()).below_minimum(BelowMinimum::Inactive)),
         0.0,
         Coupling::Consistent,
     )

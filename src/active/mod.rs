@@ -8,5 +8,7 @@ pub mod strain;
 
 pub use coupling::{Coupling, FrozenTangent};
 pub use curve::ActiveCurve;
-pub use law::{ActivationLaw, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue};
+pub use law::{
+    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue,
+};
 pub use strain::{active_energy, check_activation, fibre_path_energy};

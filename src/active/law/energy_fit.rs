@@ -16,7 +16,7 @@ use num_dual::{first_derivative, second_derivative};
 /// along the uniaxial fibre path, so that the *consistent* model Ψ(F) = Ŵ(F, γ(λ_f)) reproduces
 /// P_pas + (1 − d) P_act exactly along the fibres (dΨ/dλ = P_pas + (1 − d) P_act there).
 ///
-/// Where it is valid: λ > λ_min. For λ ≲ 0.95, Ŵ(λ, γ) − W_pas(λ) first dips below zero as γ
+/// For λ ≲ 0.95, Ŵ(λ, γ) − W_pas(λ) first dips below zero as γ
 /// grows (activation relieves the compression) and rises again; the law takes the first root
 /// above γ = 0, which just above λ_min is γ ≈ 0.25, not 0: γ(λ) **jumps** at λ_min from 0 to the
 /// root of Ŵ(λ_min, γ) = W_pas(λ_min). Along the uniaxial path Ψ stays continuous (both branches
@@ -25,10 +25,32 @@ use num_dual::{first_derivative, second_derivative};
 ///
 /// Cost: a quadrature of P_act (≤ 20 panels of 16 points) plus the bracketed Newton solve
 /// (one dual number per step) and three hyper-hyper-duals for exact derivatives.
+///
+/// Below λ_min two choices are offered ([`BelowMinimum`]): γ = 0 (the chapter's "no activation
+/// below λ_min", with the jump), or — the default — the continuation of the same root branch,
+/// γ solving Ŵ(λ, γ) = W_pas(λ) (zero active work), which makes γ and Ψ continuous across λ_min
+/// while the stress along the fibres stays P_pas there. We chose the continuous one because the
+/// jump makes Ψ(F) discontinuous in any body whose fibres cross λ_min (a question of material
+/// stability, not of root finding). For d = 1 the law is γ ≡ 0 either way; note that for any
+/// d < 1 the branch has γ ≈ 0.25 near λ_min, so γ is discontinuous in d at d = 1.
 #[derive(Debug, Clone)]
 pub struct EnergyLaw<E> {
     energy: E,
     curve: ActiveCurve,
+    below_minimum: BelowMinimum,
+}
+
+/// What the energy-consistent law does at fibre stretches λ ≤ λ_min.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BelowMinimum {
+    /// γ = 0: no activation below λ_min; γ and Ψ jump at λ_min. A clamped cylinder whose fibres
+    /// reach λ_min cannot be followed past that point (measured: it stops at λ ≈ 0.729).
+    Inactive,
+    /// γ continues on the zero-work root branch Ŵ(λ, γ) = W_pas(λ): continuous γ and Ψ; the
+    /// stress along the fibres is P_pas below λ_min as with γ = 0. The default: with it the
+    /// clamped cylinder sweep to λ = 0.70 completes.
+    #[default]
+    ZeroWork,
 }
 
 impl<E> EnergyLaw<E> {
@@ -36,12 +58,29 @@ impl<E> EnergyLaw<E> {
     pub fn curve(&self) -> &ActiveCurve {
         &self.curve
     }
+
+    /// What the law does below λ_min.
+    pub fn below_minimum_choice(&self) -> BelowMinimum {
+        self.below_minimum
+    }
 }
 
 impl<E: StrainEnergy> EnergyLaw<E> {
     /// The energy-consistent law for `energy` and the active curve `curve`.
     pub fn new(energy: E, curve: ActiveCurve) -> Self {
-        Self { energy, curve }
+        Self {
+            energy,
+            curve,
+            below_minimum: BelowMinimum::ZeroWork,
+        }
+    }
+
+    /// The same law with the given behaviour below λ_min.
+    pub fn below_minimum(self, below_minimum: BelowMinimum) -> Self {
+        Self {
+            below_minimum,
+            ..self
+        }
     }
 
     /// Residual in kPa (energy per volume): Ŵ(λ, γ) − W_pas(λ) − (1 − d) ∫ P_act.
@@ -58,7 +97,8 @@ impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
         positive("fibre stretch", lambda)?;
         let scale = 1.0 - damage;
         let work = scale * self.curve.integral(lambda);
-        if work <= 0.0 {
+        let zero_work = self.below_minimum == BelowMinimum::ZeroWork && scale > 0.0;
+        if work <= 0.0 && !zero_work {
             return Ok(LawValue::default());
         }
         let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);

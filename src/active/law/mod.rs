@@ -15,7 +15,7 @@ mod explicit;
 mod implicit;
 
 pub use constant::ConstantLaw;
-pub use energy_fit::EnergyLaw;
+pub use energy_fit::{BelowMinimum, EnergyLaw};
 pub use explicit::ExplicitLaw;
 pub use implicit::ImplicitLaw;
 
@@ -71,7 +71,9 @@ impl<E> Law<E> {
     /// from 0 to the root of Ŵ(λ_min, γ) = W_pas(λ_min) (see [`EnergyLaw`]).
     pub fn jump(&self) -> Option<f64> {
         match self {
-            Law::Energy(l) => Some(l.curve().lambda_min()),
+            Law::Energy(l) if l.below_minimum_choice() == BelowMinimum::Inactive => {
+                Some(l.curve().lambda_min())
+            }
             _ => None,
         }
     }
