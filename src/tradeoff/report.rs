@@ -34,11 +34,13 @@ pub const COLUMNS: [&str; 15] = [
     "note",
 ];
 
+/// A CSV cell: non-finite values (an error that does not exist because the variant failed, a
+/// ratio without a reference) are written as empty cells, never as NaN or inf.
 fn num(x: f64) -> String {
     if x.is_finite() {
         format!("{x:.6e}")
     } else {
-        x.to_string()
+        String::new()
     }
 }
 
@@ -236,8 +238,8 @@ fn ratio(x: f64) -> String {
 fn cell(x: Option<f64>, digits: usize) -> String {
     match x {
         Some(v) if v.is_finite() => format!("{v:.digits$e}"),
-        Some(v) => v.to_string(),
-        None => "–".into(),
+        Some(v) if v.is_infinite() => "failed".into(),
+        _ => "–".into(),
     }
 }
 
