@@ -111,3 +111,62 @@ fn clamped_consistent_energy_law_completes_the_sweep_and_the_jumping_variant_exp
     let diagnosis = diagnosis.expect("a diagnosis of the failed trial");
     assert!(diagnosis.contains("lambda_min"), "{diagnosis}");
 }
+
+/// Solver extremes with the muscle: the coarsest mesh (1 × 4 cells) still follows the clamped
+/// sweep, and a target beyond what f64 can represent (exp overflow of the passive energy near
+/// λ ≈ 8.5) stops with a typed error naming the largest stretch reached and why.
+#[test]
+fn coarsest_mesh_runs_and_unreachable_targets_stop_with_the_largest_stretch_reached() {
+    use activemuscle::fem::{FemError, StepFailure};
+    let gm = GiantesioMusesti::paper();
+    let muscle = Muscle::new(
+        gm,
+        Law::Explicit(ExplicitLaw::paper()),
+        0.2,
+        Coupling::Frozen(FrozenTangent::Exact),
+    )
+    .unwrap();
+    let mesh = Mesh::structured(1.0, 4.0, 1, 4, 1.0).unwrap();
+    let mut solver =
+        AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default()).unwrap();
+    let sweep = solver.sweep(&[0.7, 0.9, 1.17, 1.4]).unwrap();
+    assert_eq!(sweep.results.len(), 4, "{:?}", sweep.failures);
+    assert!(sweep.results.iter().all(|r| r.nominal_stress.is_finite()));
+
+    let passive = Muscle::passive(gm);
+    let mesh = Mesh::structured(1.0, 4.0, 1, 2, 1.0).unwrap();
+    let options = SolverOptions {
+        max_step: 0.5,
+        ..SolverOptions::default()
+    };
+    let mut solver = AxisymmetricSolver::new(mesh, Bases::Sliding, &passive, options).unwrap();
+    let sweep = solver.sweep(&[2.0, 12.0]).unwrap();
+    assert_eq!(sweep.results.len(), 1, "lambda = 2 is reached");
+    match &sweep.failures[..] {
+        [FemError::TargetNotReached {
+            target,
+            reached,
+            cause,
+            ..
+        }] => {
+            assert_eq!(*target, 12.0);
+            // The material itself is representable up to λ ≈ 8.56 (stability::representable_stretch);
+            // the solver stops earlier, where Newton iterates of the trial steps overflow.
+            println!("stopped: {}", sweep.failures[0]);
+            assert!(
+                *reached > 2.0 && *reached < 8.6,
+                "largest stretch reached {reached}"
+            );
+            assert!(
+                matches!(
+                    cause,
+                    StepFailure::Material(activemuscle::Error::NonFinite { .. })
+                        | StepFailure::LineSearch { .. }
+                        | StepFailure::MaxIterations { .. }
+                ),
+                "{cause}"
+            );
+        }
+        other => panic!("expected one TargetNotReached, got {other:?}"),
+    }
+}

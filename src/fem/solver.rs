@@ -256,8 +256,18 @@ fn check_positive(name: &'static str, v: f64) -> FemResult<()> {
     }
 }
 
+/// Euclidean norm, scaled by the largest entry so that squares of huge residuals (stresses near
+/// the exp-overflow limit) do not overflow.
 fn norm2(v: &[f64]) -> f64 {
-    v.iter().map(|a| a * a).sum::<f64>().sqrt()
+    let scale = norm_inf(v);
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    scale
+        * v.iter()
+            .map(|a| (a / scale) * (a / scale))
+            .sum::<f64>()
+            .sqrt()
 }
 
 fn norm_inf(v: &[f64]) -> f64 {
