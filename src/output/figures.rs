@@ -547,7 +547,8 @@ fn prefixed(kind: &str, name: &str) -> String {
     }
 }
 
-fn slug(text: &str) -> String {
+/// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).
+pub fn slug(text: &str) -> String {
     let mut s: String = text
         .chars()
         .map(|c| {

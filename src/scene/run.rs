@@ -455,23 +455,6 @@ fn uniaxial(
     })
 }
 
-fn slug(text: &str) -> String {
-    let mut s: String = text
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    while s.contains("__") {
-        s = s.replace("__", "_");
-    }
-    s.trim_matches('_').to_string()
-}
-
 fn cylinder(
     scene: &Scene,
     index: usize,
@@ -521,7 +504,11 @@ fn cylinder(
             let muscle = scene.muscle(*m).map_err(|e| fail(m, e.to_string()))?;
             let mesh = Mesh::structured(s.radius, s.length, s.nr, s.nz, s.grading)
                 .map_err(|e| fail(m, e.to_string()))?;
-            let sub = PathBuf::from(format!("{}_d{}", slug(&s.name), m.damage));
+            let sub = PathBuf::from(format!(
+                "{}_d{}",
+                crate::output::figures::slug(&s.name),
+                m.damage
+            ));
             let vtk = match (&options.vtk_dir, s.vtk.is_empty()) {
                 (Some(dir), false) => Some(VtkOutput {
                     directory: dir.join(&sub),
