@@ -3,6 +3,7 @@
 //! diagnosed at the quadrature points of the failed trial state (strong ellipticity, law jumps).
 //!
 //! `cargo run --release --example cylinder_sweep -- NR NZ explicit|energy [sliding]`
+//! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver)
 //! prints `d lambda P gamma_centre newton_iterations` rows and the diagnoses.
 
 use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, Law};
@@ -40,6 +41,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let mut targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
     targets.push(1.17);
+    // DAMAGE=0.2,0.3 restricts the damages.
+    let damages: Vec<f64> = match std::env::var("DAMAGE") {
+        Ok(list) => list.split(',').map(str::parse).collect::<Result<_, _>>()?,
+        Err(_) => damages,
+    };
     let mut options = SolverOptions::default();
     if std::env::var("LINEAR").as_deref() == Ok("lu") {
         options.linear_solver = activemuscle::fem::LinearSolver::Lu;
