@@ -45,9 +45,16 @@ pub trait ActivationLaw {
     /// about the real part, which carries exact first and second derivatives through any dual
     /// number of order ≤ 2.
     fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
-        let v = self.evaluate(lambda.re(), damage)?;
+        Ok(self.evaluate(lambda.re(), damage)?.lift(lambda))
+    }
+}
+
+impl LawValue {
+    /// γ(λ) on a generic scalar from the value and derivatives at λ's real part:
+    /// γ + γ′ h + ½ γ″ h² with h = λ − re λ (exact to second order).
+    pub fn lift<T: Scalar>(&self, lambda: T) -> T {
         let h = lambda - lambda.re();
-        Ok(h * h * (0.5 * v.curvature) + h * v.slope + v.gamma)
+        h * h * (0.5 * self.curvature) + h * self.slope + self.gamma
     }
 }
 
@@ -104,11 +111,7 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
     fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
         match self {
             Law::Explicit(l) => l.gamma(lambda, damage),
-            _ => {
-                let v = self.evaluate(lambda.re(), damage)?;
-                let h = lambda - lambda.re();
-                Ok(h * h * (0.5 * v.curvature) + h * v.slope + v.gamma)
-            }
+            _ => Ok(self.evaluate(lambda.re(), damage)?.lift(lambda)),
         }
     }
 }
