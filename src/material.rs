@@ -25,11 +25,11 @@ pub struct MuscleResponse<const N: usize> {
     pub gamma: f64,
     /// Fibre stretch λ_f = sqrt(C:M) [-].
     pub fibre_stretch: f64,
-    /// Ŵ(F, γ) [kPa].
+    /// Ŵ(F, γ) \[kPa\].
     pub energy: f64,
-    /// First Piola stress without the pressure term [kPa] (orders ≥ [`Order::Stress`]).
+    /// First Piola stress without the pressure term \[kPa\] (orders ≥ [`Order::Stress`]).
     pub stress: Option<SVector<f64, N>>,
-    /// Its derivative in F [kPa] ([`Order::Tangent`]); non-symmetric for the exact frozen model.
+    /// Its derivative in F \[kPa\] ([`Order::Tangent`]); non-symmetric for the exact frozen model.
     pub tangent: Option<SMatrix<f64, N, N>>,
 }
 

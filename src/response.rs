@@ -44,7 +44,7 @@ pub struct SecondDerivatives {
 /// Derivatives of Ŵ(j, γ) = (1 − γ) W(A(γ) j) with respect to the invariants j of C and γ.
 #[derive(Debug, Clone, Copy)]
 pub struct InvariantDerivatives {
-    /// Ŵ [kPa].
+    /// Ŵ \[kPa\].
     pub energy: f64,
     /// ∂Ŵ/∂j (zero for [`Order::Energy`]).
     pub d_j: SVector<f64, 5>,
@@ -184,17 +184,17 @@ pub fn invariant_derivatives<E: StrainEnergy>(
 /// Response of the active-strain energy at a given γ, over the entries of F in `entries`.
 #[derive(Debug, Clone, Copy)]
 pub struct Response<const N: usize> {
-    /// Ŵ(F, γ) [kPa].
+    /// Ŵ(F, γ) \[kPa\].
     pub energy: f64,
-    /// ∂Ŵ/∂γ [kPa] (from [`Order::Stress`]).
+    /// ∂Ŵ/∂γ \[kPa\] (from [`Order::Stress`]).
     pub denergy_dgamma: Option<f64>,
-    /// P = ∂Ŵ/∂F [kPa], without the pressure term (from [`Order::Stress`]).
+    /// P = ∂Ŵ/∂F \[kPa\], without the pressure term (from [`Order::Stress`]).
     pub stress: Option<SVector<f64, N>>,
-    /// ∂P/∂F [kPa] (from [`Order::Tangent`]).
+    /// ∂P/∂F \[kPa\] (from [`Order::Tangent`]).
     pub tangent: Option<SMatrix<f64, N, N>>,
-    /// dP/dγ = ∂²Ŵ/∂F∂γ [kPa] (from [`Order::Tangent`]).
+    /// dP/dγ = ∂²Ŵ/∂F∂γ \[kPa\] (from [`Order::Tangent`]).
     pub dstress_dgamma: Option<SVector<f64, N>>,
-    /// ∂²Ŵ/∂γ² [kPa] (from [`Order::Tangent`]).
+    /// ∂²Ŵ/∂γ² \[kPa\] (from [`Order::Tangent`]).
     pub d2energy_dgamma2: Option<f64>,
 }
 

@@ -22,7 +22,7 @@ use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
 /// The least value of a·Q(N)a over the sampled normals.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ellipticity {
-    /// min a·Q(N)a [kPa].
+    /// min a·Q(N)a \[kPa\].
     pub least: f64,
     /// The same divided by the Frobenius norm of the tangent [-]: negative means not elliptic.
     pub relative: f64,
@@ -120,9 +120,9 @@ pub fn strong_ellipticity(
 pub struct UniaxialStability {
     /// Stretch λ [-].
     pub lambda: f64,
-    /// Nominal stress [kPa].
+    /// Nominal stress \[kPa\].
     pub stress: f64,
-    /// dP/dλ [kPa] along the homogeneous path (exact, from the tangent).
+    /// dP/dλ \[kPa\] along the homogeneous path (exact, from the tangent).
     pub slope: f64,
     /// Strong ellipticity at the point.
     pub ellipticity: Ellipticity,

@@ -21,7 +21,7 @@ use nalgebra::{Matrix3, Vector3};
 pub struct UniaxialPoint {
     /// Applied stretch λ [-].
     pub lambda: f64,
-    /// Nominal stress along the stretch [kPa].
+    /// Nominal stress along the stretch \[kPa\].
     pub stress: f64,
     /// Activation γ at the point [-].
     pub gamma: f64,

@@ -33,7 +33,7 @@ const GAUSS_16: [(f64, f64); 8] = [
 ];
 
 impl ActiveCurve {
-    /// λ_min [-] > 0, λ_opt [-] > λ_min, k [-] > 0, P_opt [kPa] > 0.
+    /// λ_min [-] > 0, λ_opt [-] > λ_min, k [-] > 0, P_opt \[kPa\] > 0.
     pub fn new(lambda_min: f64, lambda_opt: f64, k: f64, p_opt: f64) -> Result<Self> {
         positive("lambda_min", lambda_min)?;
         positive("lambda_opt", lambda_opt)?;
@@ -77,18 +77,18 @@ impl ActiveCurve {
     pub fn k(&self) -> f64 {
         self.k
     }
-    /// Peak stress P_opt [kPa].
+    /// Peak stress P_opt \[kPa\].
     pub fn p_opt(&self) -> f64 {
         self.p_opt
     }
 
-    /// P_act(λ) [kPa], generic so that dual numbers give its derivatives (all 0 at and below λ_min).
+    /// P_act(λ) \[kPa\], generic so that dual numbers give its derivatives (all 0 at and below λ_min).
     pub fn value<T: Scalar>(&self, lambda: T) -> T {
         Self::value_with(self.lambda_min, self.lambda_opt, self.k, self.p_opt, lambda)
     }
 
-    /// The formula of eq. D:pact, written once: P_act(λ) [kPa] from λ_min, λ_opt, k [-] and
-    /// P_opt [kPa], which are `f64` ([`value`](Self::value)) or dual numbers (derivatives in the
+    /// The formula of eq. D:pact, written once: P_act(λ) \[kPa\] from λ_min, λ_opt, k [-] and
+    /// P_opt \[kPa\], which are `f64` ([`value`](Self::value)) or dual numbers (derivatives in the
     /// parameters, for fitting); nothing is checked here.
     pub fn value_with<P: Scalar, T: ScalarWith<P>>(
         lambda_min: P,
@@ -108,7 +108,7 @@ impl ActiveCurve {
         (-x).exp() * p_opt
     }
 
-    /// ∫_{λ_min}^{λ} P_act(s) ds [kPa] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
+    /// ∫_{λ_min}^{λ} P_act(s) ds \[kPa\] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
     /// panels of width ≤ 0.05: the integrand is C^∞ (flat to all orders at λ_min), so this is
     /// exact to rounding.
     pub fn integral(&self, lambda: f64) -> f64 {

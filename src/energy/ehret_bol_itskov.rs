@@ -17,7 +17,7 @@ pub struct EhretBolItskov {
 }
 
 impl EhretBolItskov {
-    /// μ [kPa] > 0, α [-] > 0, β [-] > 0, w0 [-] ∈ (0, 1).
+    /// μ \[kPa\] > 0, α [-] > 0, β [-] > 0, w0 [-] ∈ (0, 1).
     pub fn new(mu: f64, alpha: f64, beta: f64, w0: f64) -> Result<Self> {
         Ok(Self {
             mu: positive("mu", mu)?,
@@ -37,7 +37,7 @@ impl EhretBolItskov {
         }
     }
 
-    /// Shear-like modulus μ [kPa].
+    /// Shear-like modulus μ \[kPa\].
     pub fn mu(&self) -> f64 {
         self.mu
     }
@@ -54,7 +54,7 @@ impl EhretBolItskov {
         self.w0
     }
 
-    /// The formula of eq. D:Webi, written once: W [kPa] from μ [kPa], α, β, w0 [-] and the
+    /// The formula of eq. D:Webi, written once: W \[kPa\] from μ \[kPa\], α, β, w0 [-] and the
     /// invariants. The parameters are `f64` ([`StrainEnergy::energy`]) or dual numbers
     /// (derivatives in the parameters, for fitting); nothing is checked here.
     pub fn energy_with<P: Scalar, T: ScalarWith<P>>(

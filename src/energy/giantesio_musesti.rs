@@ -16,7 +16,7 @@ pub struct GiantesioMusesti {
 }
 
 impl GiantesioMusesti {
-    /// μ [kPa] > 0, α [-] > 0, w0 [-] ∈ (0, 1).
+    /// μ \[kPa\] > 0, α [-] > 0, w0 [-] ∈ (0, 1).
     pub fn new(mu: f64, alpha: f64, w0: f64) -> Result<Self> {
         Ok(Self {
             mu: positive("mu", mu)?,
@@ -34,7 +34,7 @@ impl GiantesioMusesti {
         }
     }
 
-    /// Shear-like modulus μ [kPa].
+    /// Shear-like modulus μ \[kPa\].
     pub fn mu(&self) -> f64 {
         self.mu
     }
@@ -47,7 +47,7 @@ impl GiantesioMusesti {
         self.w0
     }
 
-    /// The formula of eq. D:Wpassiva, written once: W [kPa] from μ [kPa], α [-], w0 [-] and the
+    /// The formula of eq. D:Wpassiva, written once: W \[kPa\] from μ \[kPa\], α [-], w0 [-] and the
     /// invariants. The parameters are `f64` ([`StrainEnergy::energy`]) or dual numbers
     /// (derivatives in the parameters, for fitting); nothing is checked here.
     pub fn energy_with<P: Scalar, T: ScalarWith<P>>(

@@ -83,7 +83,7 @@ impl<T: Copy> Invariants<T> {
     }
 }
 
-/// A hyperelastic strain-energy density W(C) [kPa], transversely isotropic about the fibre direction.
+/// A hyperelastic strain-energy density W(C) \[kPa\], transversely isotropic about the fibre direction.
 ///
 /// Implement [`energy`](Self::energy) once, generically; every response (stress, tangent, dP/dγ,
 /// activation, both couplings, the FE solver) follows from it. Under the incompressibility

@@ -10,19 +10,19 @@ pub struct NeoHookean {
 }
 
 impl NeoHookean {
-    /// Shear modulus μ [kPa] > 0.
+    /// Shear modulus μ \[kPa\] > 0.
     pub fn new(mu: f64) -> Result<Self> {
         Ok(Self {
             mu: positive("mu", mu)?,
         })
     }
 
-    /// Shear modulus μ [kPa].
+    /// Shear modulus μ \[kPa\].
     pub fn mu(&self) -> f64 {
         self.mu
     }
 
-    /// The formula, written once: W [kPa] from μ [kPa] (`f64` or a dual number) and tr C.
+    /// The formula, written once: W \[kPa\] from μ \[kPa\] (`f64` or a dual number) and tr C.
     pub fn energy_with<P: Scalar, T: ScalarWith<P>>(mu: P, c: &Invariants<T>) -> T {
         (c.tr_c - 3.0) * (mu / 2.0)
     }

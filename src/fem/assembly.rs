@@ -45,7 +45,7 @@ pub struct Assembler {
     pub residual: Vec<f64>,
     /// K_fc d_c: the tangent times the rate of the prescribed dofs (for the tangent predictor).
     pub rate_force: Vec<f64>,
-    /// Largest stress magnitude of the last assembly [kPa].
+    /// Largest stress magnitude of the last assembly \[kPa\].
     pub stress_scale: f64,
     val_ptr: Vec<u32>,
     val_src: Vec<u32>,

@@ -197,7 +197,7 @@ pub fn jacobian_hessian(f: &AxiF) -> SMatrix<f64, 5, 5> {
     h
 }
 
-/// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| [kPa].
+/// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ElementScale {
     /// Largest stress magnitude met at the element's quadrature points.

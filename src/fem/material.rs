@@ -50,12 +50,12 @@ pub fn axial_stretch(f: &AxiF) -> f64 {
 /// scaling example; the solver never names it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NeoHookean {
-    /// Shear modulus μ [kPa].
+    /// Shear modulus μ \[kPa\].
     pub mu: f64,
 }
 
 impl NeoHookean {
-    /// A neo-Hookean material with shear modulus `mu` [kPa] (> 0, finite).
+    /// A neo-Hookean material with shear modulus `mu` \[kPa\] (> 0, finite).
     pub fn new(mu: f64) -> crate::Result<Self> {
         if mu.is_finite() && mu > 0.0 {
             Ok(Self { mu })

@@ -50,7 +50,7 @@ pub enum LinearSolver {
 pub struct SolverOptions {
     /// Relative tolerance on the scaled residual and increment (see module docs).
     pub tolerance: f64,
-    /// Stress floor added to σ in the force scale [kPa] (guards the stress-free state).
+    /// Stress floor added to σ in the force scale \[kPa\] (guards the stress-free state).
     pub stress_floor: f64,
     /// Newton iterations per load step before the step is cut.
     pub max_iterations: usize,
@@ -127,7 +127,7 @@ pub struct State {
 pub struct StretchResult {
     /// Applied stretch λ.
     pub stretch: f64,
-    /// Nominal axial stress = reaction / (πR²) [kPa].
+    /// Nominal axial stress = reaction / (πR²) \[kPa\].
     pub nominal_stress: f64,
     /// Axial reaction on the moving base (virtual-work reaction from the discrete residual).
     pub reaction: f64,

@@ -1,6 +1,6 @@
 //! Fit 2: the active curve (eq. D:pact) to active-stress data,
 //!
-//! r_i = P_act(λ_i; λ_min, λ_opt, k, P_opt) − P_i [kPa],
+//! r_i = P_act(λ_i; λ_min, λ_opt, k, P_opt) − P_i \[kPa\],
 //!
 //! with P_opt fixed by default (the chapter's practice: Table D:paratt). Data of the total stress
 //! of a tetanised muscle become active data by subtracting the model's passive stress

@@ -4,7 +4,7 @@
 //!
 //! P(λ; d) = P_pas(λ) + (1 − d) P_act(λ),
 //!
-//! so r_i = P_pas(λ_i) + (1 − d) P_act(λ_i) − P_i [kPa], linear in d (Gauss–Newton converges in
+//! so r_i = P_pas(λ_i) + (1 − d) P_act(λ_i) − P_i \[kPa\], linear in d (Gauss–Newton converges in
 //! one step). d ∈ [0, 1]; a best d outside it (a muscle stronger than the reference) is reported
 //! as not converged.
 

@@ -13,7 +13,7 @@ pub struct Data {
 }
 
 impl Data {
-    /// From columns λ [-] and P [kPa]; errors name the 1-based point.
+    /// From columns λ [-] and P \[kPa\]; errors name the 1-based point.
     pub fn new(lambda: Vec<f64>, stress: Vec<f64>) -> Result<Self, FitError> {
         if lambda.len() != stress.len() {
             return Err(FitError::LengthMismatch {
@@ -38,7 +38,7 @@ impl Data {
         Self::new(lambda, stress)
     }
 
-    /// Reads a CSV file with header `lambda,P` (λ [-], P [kPa]).
+    /// Reads a CSV file with header `lambda,P` (λ [-], P \[kPa\]).
     pub fn from_csv_path(path: impl AsRef<Path>) -> Result<Self, FitError> {
         let path = path.as_ref();
         let file = std::fs::File::open(path).map_err(|e| FitError::Csv {
@@ -105,7 +105,7 @@ impl Data {
         &self.lambda
     }
 
-    /// Nominal stresses P_i [kPa].
+    /// Nominal stresses P_i \[kPa\].
     pub fn stress(&self) -> &[f64] {
         &self.stress
     }

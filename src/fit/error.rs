@@ -12,7 +12,7 @@ pub enum FitError {
     /// The CSV file could not be read or parsed (I/O, missing header, text where a number belongs).
     #[error("{source_name}, line {line}: {message}")]
     Csv {
-        /// File name or "<reader>".
+        /// File name or `"<reader>"`.
         source_name: String,
         /// 1-based line in the file (the header is line 1).
         line: u64,

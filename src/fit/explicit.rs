@@ -5,7 +5,7 @@
 //!
 //! or in the stress it produces,
 //!
-//! r_i = P_tot(λ_i, γ_expl(λ_i; a, b)) − [P_pas(λ_i) + (1 − d) P_act(λ_i)]  [kPa],
+//! r_i = P_tot(λ_i, γ_expl(λ_i; a, b)) − [P_pas(λ_i) + (1 − d) P_act(λ_i)]  \[kPa\],
 //!
 //! the target being exactly the total stress the implicit law reproduces. P_tot = ∂Ŵ/∂λ along the
 //! fibres is evaluated with λ as a dual number nested over the (a, b) dual.
@@ -38,11 +38,11 @@ pub struct ExplicitFit {
     pub report: FitReport,
     /// max_i |γ_expl(λ_i) − γ_impl(λ_i)| [-].
     pub max_activation_error: f64,
-    /// max_i |P_tot(λ_i, γ_expl) − P_pas − (1 − d) P_act| [kPa].
+    /// max_i |P_tot(λ_i, γ_expl) − P_pas − (1 − d) P_act| \[kPa\].
     pub max_stress_error: f64,
 }
 
-/// P_tot(λ, γ) = ∂Ŵ/∂λ along the fibres [kPa] for any scalar γ.
+/// P_tot(λ, γ) = ∂Ŵ/∂λ along the fibres \[kPa\] for any scalar γ.
 fn total_stress<T: Scalar>(energy: &GiantesioMusesti, lambda: f64, gamma: T) -> T {
     let l = Dual::from_re(T::from(lambda)).derivative();
     fibre_path_energy(energy, l, Dual::from_re(gamma)).eps
@@ -81,7 +81,7 @@ impl Residuals for ExplicitProblem<'_> {
 }
 
 /// Errors of an explicit law against the implicit one on the stretches `lambda`:
-/// (max |Δγ|, max |ΔP| [kPa]).
+/// (max |Δγ|, max |ΔP| \[kPa\]).
 pub fn explicit_law_errors(
     law: &ExplicitLaw,
     energy: &GiantesioMusesti,

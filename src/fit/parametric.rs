@@ -21,7 +21,7 @@ pub trait Parametric: StrainEnergy + Sized {
     /// The same model with new parameter values, validated by its constructor.
     fn rebuilt(&self, values: &[f64]) -> Result<Self>;
 
-    /// W(C) [kPa] with the parameters given as scalars (dual numbers differentiate in them).
+    /// W(C) \[kPa\] with the parameters given as scalars (dual numbers differentiate in them).
     fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T;
 }
 

@@ -41,7 +41,7 @@ pub struct PassiveFit<E> {
     pub report: FitReport,
 }
 
-/// The passive nominal stress along the fibres, P(λ) = dW/dλ [kPa], with all parameters of
+/// The passive nominal stress along the fibres, P(λ) = dW/dλ \[kPa\], with all parameters of
 /// `energy` given as scalars `parameters` (dual numbers differentiate in them).
 pub fn fibre_stress_with<E: Parametric, T: Scalar>(energy: &E, parameters: &[T], lambda: f64) -> T {
     let lifted: Vec<Dual<T>> = parameters.iter().map(|&p| Dual::from_re(p)).collect();
@@ -64,7 +64,7 @@ fn across_invariants<T: Scalar>(a: T, lambda: T) -> Invariants<T> {
     Invariants::from_array([a2 + l2 + ia2 * il2, a2, ia2 + il2 + a2 * l2, ia2, T::one()])
 }
 
-/// The passive nominal stress across the fibres [kPa] at the lateral equilibrium a*, with all
+/// The passive nominal stress across the fibres \[kPa\] at the lateral equilibrium a*, with all
 /// parameters of `energy` given as scalars: a* is solved in f64, then lifted to the parameter
 /// scalar by one dual Newton step (exact first derivatives, see the module docs).
 pub fn across_stress_with<E: Parametric, T: Scalar>(
@@ -119,7 +119,7 @@ impl<E: Parametric> Residuals for PassiveProblem<'_, E> {
 
 /// Fits the parameters of `energy` chosen in `setup` (default: all but μ, as the chapter does)
 /// to uniaxial data sets: each `(direction, data)` contributes its residuals
-/// P_model(λ_i) − P_i [kPa]. The model's other parameters stay at their values.
+/// P_model(λ_i) − P_i \[kPa\]. The model's other parameters stay at their values.
 pub fn fit_passive<E: Parametric>(
     energy: &E,
     sets: &[(Direction, &Data)],

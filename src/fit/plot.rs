@@ -23,7 +23,7 @@ const COLOURS: [RGBColor; 4] = [
 pub struct FitPlot {
     /// Caption.
     pub title: String,
-    /// y-axis label with unit, e.g. "P [kPa]".
+    /// y-axis label with unit, e.g. "P \[kPa\]".
     pub y_label: String,
     /// Legend entry of the data.
     pub data_label: String,

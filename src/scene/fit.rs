@@ -7,7 +7,7 @@
 //! | `explicit-law` | the implicit law at `stretch`, one fit per `damage` | a, b |
 //! | `damage` | `data` (total stress) or synthetic curves with `true_damage = [...]` at `stretch` | d |
 //!
-//! `noise` [kPa] adds seeded Gaussian noise to synthetic data. Data files are read and checked
+//! `noise` \[kPa\] adds seeded Gaussian noise to synthetic data. Data files are read and checked
 //! when the scene is validated, so a bad file is reported by `check` with its name and line.
 
 use super::resolve::{damages, energy, filled, fmt_list, only_keys, Ctx};

@@ -39,11 +39,11 @@ pub struct Row {
     pub lambda: f64,
     /// γ (uniaxial) or γ at the centre of the cylinder.
     pub gamma: Option<f64>,
-    /// Nominal stress along the stretch [kPa].
+    /// Nominal stress along the stretch \[kPa\].
     pub p: f64,
-    /// Passive stress of the material at λ [kPa] (active uniaxial rows along the fibres).
+    /// Passive stress of the material at λ \[kPa\] (active uniaxial rows along the fibres).
     pub p_pas: Option<f64>,
-    /// Target active stress (1 − d) P_act(λ) [kPa] (same rows).
+    /// Target active stress (1 − d) P_act(λ) \[kPa\] (same rows).
     pub p_act: Option<f64>,
     /// Newton iterations to reach this stretch from the previous one (cylinder).
     pub newton_iterations: Option<usize>,

@@ -1,5 +1,5 @@
 //! The scene file as written: serde structures mirroring the TOML, every key optional except
-//! where a study cannot do without it. Defaults and rules live in [`super::resolve`].
+//! where a study cannot do without it. Defaults and rules live in `scene::resolve`.
 
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
@@ -43,7 +43,7 @@ pub struct MaterialSpec {
     /// Energy kind.
     #[serde(default)]
     pub energy: EnergyKind,
-    /// μ [kPa].
+    /// μ \[kPa\].
     pub mu: Option<f64>,
     /// α [-] (giantesio-musesti, ehret-bol-itskov).
     pub alpha: Option<f64>,
@@ -62,7 +62,7 @@ pub struct EnergySpec {
     /// Energy kind.
     #[serde(default)]
     pub energy: EnergyKind,
-    /// μ [kPa].
+    /// μ \[kPa\].
     pub mu: Option<f64>,
     /// α [-].
     pub alpha: Option<f64>,
@@ -117,7 +117,7 @@ pub struct ActivationSpec {
     pub lambda_opt: Option<f64>,
     /// k [-].
     pub k: Option<f64>,
-    /// P_opt [kPa].
+    /// P_opt \[kPa\].
     pub p_opt: Option<f64>,
     /// Default law of the studies.
     pub law: Option<LawKind>,
@@ -183,7 +183,7 @@ pub enum StressKind {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ResidualKind {
-    /// Total stress it produces against P_pas + (1 − d) P_act [kPa] (the chapter's choice).
+    /// Total stress it produces against P_pas + (1 − d) P_act \[kPa\] (the chapter's choice).
     Stress,
     /// Activation γ against the implicit γ [-].
     Activation,
@@ -268,7 +268,7 @@ pub struct StudySpec {
     // --- fit ---
     /// What to fit (fit, required): `passive` | `active-curve` | `explicit-law` | `damage`.
     pub fit: Option<FitKind>,
-    /// CSV data file with header `lambda,P` (λ [-], P [kPa]), relative to the scene file (fit).
+    /// CSV data file with header `lambda,P` (λ [-], P \[kPa\]), relative to the scene file (fit).
     pub data: Option<String>,
     /// Passive energy whose curve is the data (fit passive; instead of `data`).
     pub reference: Option<EnergySpec>,
@@ -276,7 +276,7 @@ pub struct StudySpec {
     pub stress: Option<StressKind>,
     /// Damage values of synthetic weakened curves, one fit each (fit damage; instead of `data`).
     pub true_damage: Option<Vec<f64>>,
-    /// Standard deviation of Gaussian noise added to synthetic data [kPa] (fit).
+    /// Standard deviation of Gaussian noise added to synthetic data \[kPa\] (fit).
     pub noise: Option<f64>,
     /// Seed of the noise (fit).
     pub seed: Option<i64>,

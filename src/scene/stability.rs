@@ -140,11 +140,11 @@ pub(super) fn resolve_stability(
 pub struct StabilityPoint {
     /// Stretch λ [-].
     pub lambda: f64,
-    /// Nominal stress P [kPa].
+    /// Nominal stress P \[kPa\].
     pub stress: f64,
-    /// dP/dλ [kPa].
+    /// dP/dλ \[kPa\].
     pub slope: f64,
-    /// min a·Q(N)a over the sampled normals [kPa].
+    /// min a·Q(N)a over the sampled normals \[kPa\].
     pub least: f64,
     /// The same relative to the tangent's norm [-].
     pub relative: f64,

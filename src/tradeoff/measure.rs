@@ -4,14 +4,14 @@
 
 use std::time::Instant;
 
-/// Runs shorter than this are repeated and their median is reported [s].
+/// Runs shorter than this are repeated and their median is reported \[s\].
 pub const SHORT_RUN: f64 = 1.0;
-/// Repeated runs continue until at least this much time has been spent [s] (and ≥ 3 runs).
+/// Repeated runs continue until at least this much time has been spent \[s\] (and ≥ 3 runs).
 pub const REPEAT_BUDGET: f64 = 0.3;
 /// At most this many repeats of a short run.
 pub const MAX_REPEATS: usize = 10_000;
 
-/// Wall time of `f` [s] and its (last) value.
+/// Wall time of `f` \[s\] and its (last) value.
 ///
 /// A first run of `f` taking ≥ [`SHORT_RUN`] is reported as it is. A shorter one is repeated
 /// until at least 3 runs and [`REPEAT_BUDGET`] seconds in total (at most [`MAX_REPEATS`] runs);
@@ -123,17 +123,17 @@ pub struct Measurement {
     pub variant: String,
     /// Whether this is the option's reference (the accurate end).
     pub reference: bool,
-    /// Wall time [s] (median of repeats for short runs).
+    /// Wall time \[s\] (median of repeats for short runs).
     pub time_s: f64,
     /// Error against the reference (absolute in the quantity's unit, and relative).
     pub error: CurveError,
-    /// What `error` measures (e.g. `P(λ) over the sweep [kPa]`, `∂P/∂F at a point [kPa]`).
+    /// What `error` measures (e.g. `P(λ) over the sweep \[kPa\]`, `∂P/∂F at a point \[kPa\]`).
     pub quantity: String,
     /// Max abs error of γ over the sweep (0D) or of the centre γ (FE) [-], when meaningful.
     pub gamma_error: Option<f64>,
     /// Newton iterations of the whole sweep (FE).
     pub iterations: Option<usize>,
-    /// Time per Newton iteration (assembly + factorisation + solve) [s] (FE).
+    /// Time per Newton iteration (assembly + factorisation + solve) \[s\] (FE).
     pub per_iteration_s: Option<f64>,
     /// Free dofs (FE).
     pub dofs: Option<usize>,

@@ -2,9 +2,9 @@
 //!
 //! Every option a user can turn to trade accuracy for speed (activation law, derivative route,
 //! frozen tangent, mesh, Newton tolerance, 0D versus FE) is run at each of its variants, timed
-//! (wall time [s], median of repeats for anything short, see [`measure::time_median`]) and compared
+//! (wall time \[s\], median of repeats for anything short, see [`measure::time_median`]) and compared
 //! with a reference computed at the accurate end of the same option, on what a user reads off a
-//! run: the nominal stress P(λ) over the sweep [kPa] (max abs and max rel error), the activation γ
+//! run: the nominal stress P(λ) over the sweep \[kPa\] (max abs and max rel error), the activation γ
 //! [-] (0D) or the centre γ (FE). The error machinery ([`measure`]) is independent of the options
 //! and is tested on cases with a known answer.
 //!

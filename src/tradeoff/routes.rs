@@ -30,7 +30,7 @@ const AXI_IN_FULL: [usize; 5] = [0, 2, 6, 8, 4];
 ///   transpose) + (Ŵ_γγ g′² + Ŵ_γ g″) ∂λ_f/∂F ⊗ ∂λ_f/∂F + Ŵ_γ g′ ∂²λ_f/∂F², with
 ///   ∂²λ_f/∂F_iJ∂F_kL = δ_ik M_JL / λ_f − (F m)_i m_J (F m)_k m_L / λ_f³.
 ///
-/// Stress [kPa], tangent [kPa]; the same quantities as the fast route, computed independently of
+/// Stress \[kPa\], tangent \[kPa\]; the same quantities as the fast route, computed independently of
 /// the invariant calculus and the active-strain map.
 #[derive(Debug, Clone, Copy)]
 pub struct OracleRoute<'a, E> {

@@ -10,7 +10,7 @@
 //! | Newton tolerance (FE) | 1e-6, 1e-8, 1e-10 | 1e-12 | P(λ), centre γ |
 //! | 0D vs FE (sliding bases: homogeneous) | FE | 0D (the exact solution) | P(λ), γ |
 //!
-//! Times are wall times [s]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
+//! Times are wall times \[s\]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
 //! or one material-point call.
 
 use super::measure::{curve_error, finalise, time_median, CurveError, Measurement};
@@ -142,15 +142,15 @@ fn uniaxial_stretches(scene: &Scene) -> Vec<f64> {
 /// One FE sweep, timed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeRun {
-    /// Wall time of mesh, set-up and sweep [s] (median of repeats if under 1 s).
+    /// Wall time of mesh, set-up and sweep \[s\] (median of repeats if under 1 s).
     pub time_s: f64,
-    /// Nominal axial stress P [kPa] at each requested stretch (NaN where not reached).
+    /// Nominal axial stress P \[kPa\] at each requested stretch (NaN where not reached).
     pub stress: Vec<f64>,
     /// γ at the quadrature point nearest the centre [-] at each stretch.
     pub gamma_centre: Vec<f64>,
     /// Newton iterations of the whole sweep (rejected steps included).
     pub iterations: usize,
-    /// Assembly + factorisation + solve time per Newton iteration [s].
+    /// Assembly + factorisation + solve time per Newton iteration \[s\].
     pub per_iteration_s: f64,
     /// Free dofs.
     pub dofs: usize,
@@ -285,7 +285,7 @@ fn with_tolerance(tolerance: f64) -> SolverOptions {
 
 const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
 
-/// P(λ) [kPa] and γ(λ) [-] along a 0D sweep.
+/// P(λ) \[kPa\] and γ(λ) [-] along a 0D sweep.
 type Curves = (Vec<f64>, Vec<f64>);
 
 /// Activation law, 0D along the fibres.

@@ -54,7 +54,7 @@ impl ExplicitLaw {
         (self.a, self.b)
     }
 
-    /// P_pas(λ) of eq. D:Ppas [kPa].
+    /// P_pas(λ) of eq. D:Ppas \[kPa\].
     fn passive_stress<T: Scalar>(&self, l: T) -> T {
         let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
         let f = 1.0 - 2.0 * w0 / 3.0;
