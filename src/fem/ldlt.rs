@@ -200,6 +200,18 @@ fn matvec(pattern: &Pattern, values: &[f64], x: &[f64], y: &mut [f64]) {
     }
 }
 
+/// An approximate inverse M⁻¹ applied in place, for right-preconditioned GMRES.
+pub trait Preconditioner {
+    /// x ← M⁻¹ x.
+    fn apply(&mut self, x: &mut [f64]);
+}
+
+impl Preconditioner for SymmetricPartLdlt {
+    fn apply(&mut self, x: &mut [f64]) {
+        SymmetricPartLdlt::apply(self, x);
+    }
+}
+
 /// Workspace of restarted, right-preconditioned GMRES (allocated once).
 #[derive(Debug)]
 pub struct Gmres {
@@ -238,7 +250,7 @@ impl Gmres {
         &mut self,
         pattern: &Pattern,
         values: &[f64],
-        pre: &mut SymmetricPartLdlt,
+        pre: &mut impl Preconditioner,
         rhs: &mut [f64],
         tol: f64,
         max_iter: usize,

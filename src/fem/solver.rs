@@ -225,6 +225,11 @@ pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
     gmres: Gmres,
     use_lu: bool,
     rhs_copy: Vec<f64>,
+    /// The LU holds the factorisation of an earlier tangent (used as a GMRES preconditioner).
+    lu_stale: bool,
+    /// GMRES with the symmetric-part LDLᵀ has failed once: the tangent is strongly
+    /// non-symmetric, so keep one LU and reuse it as preconditioner until GMRES slows.
+    prefer_lu: bool,
     material: &'m M,
     options: SolverOptions,
     timings: Timings,
@@ -341,6 +346,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             gmres,
             use_lu: false,
             rhs_copy: vec![0.0; n_free],
+            lu_stale: false,
+            prefer_lu: false,
             material,
             options,
             timings: Timings::default(),
@@ -460,6 +467,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
                     .map_err(|detail| StepFailure::SingularTangent { detail })?,
             );
         }
+        self.lu_stale = false;
         match self.lu.as_mut() {
             Some(lu) => lu
                 .factorise(&self.asm.pattern, &self.asm.values)
@@ -471,6 +479,13 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     }
 
     fn factorise(&mut self) -> Result<(), StepFailure> {
+        if self.prefer_lu && self.lu.as_ref().is_some_and(SparseLu::is_factorised) {
+            // Keep the LU of an earlier tangent; `solve` uses it to precondition GMRES on the
+            // current tangent and refactorises only when that stops working.
+            self.use_lu = true;
+            self.lu_stale = true;
+            return Ok(());
+        }
         let t = Instant::now();
         let r = match self.ldlt.as_mut() {
             Some(ldlt) => match ldlt.factorise(&self.asm.pattern, &self.asm.values) {
@@ -505,7 +520,23 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     }
 
     fn solve_inner(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
-        if !self.use_lu {
+        if self.use_lu && self.lu_stale {
+            if let Some(lu) = self.lu.as_mut() {
+                self.rhs_copy.copy_from_slice(rhs);
+                let (pattern, values) = (&self.asm.pattern, &self.asm.values);
+                if let Some(it) = self.gmres.solve(pattern, values, lu, rhs, 1e-12, 30) {
+                    self.timings.krylov_iterations += it;
+                    return Ok(());
+                }
+                rhs.copy_from_slice(&self.rhs_copy);
+            }
+            // The earlier LU no longer preconditions well: factorise the current tangent.
+            let t = Instant::now();
+            let r = self.factorise_lu();
+            self.timings.factorisation += t.elapsed();
+            self.timings.factorisations += 1;
+            r?;
+        } else if !self.use_lu {
             if let Some(ldlt) = self.ldlt.as_mut() {
                 self.rhs_copy.copy_from_slice(rhs);
                 let pattern = &self.asm.pattern;
@@ -514,9 +545,10 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
                     self.timings.krylov_iterations += it;
                     return Ok(());
                 }
-                // GMRES did not converge: exact LU of the same matrix.
+                // GMRES did not converge: exact LU of the same matrix, kept for later solves.
                 rhs.copy_from_slice(&self.rhs_copy);
                 self.timings.lu_fallbacks += 1;
+                self.prefer_lu = true;
             }
             self.use_lu = true;
             self.factorise_lu()?;
