@@ -6,7 +6,7 @@
 //! of a tetanised muscle become active data by subtracting the model's passive stress
 //! ([`active_from_total`]): P_act,i = P_i − P_pas(λ_i).
 
-use super::{least_squares, Bounds, Data, FitError, FitReport, FitSetup, Residuals, Selection};
+use super::{Bounds, Data, FitError, FitReport, FitSetup, Residuals, Selection};
 use crate::active::ActiveCurve;
 use crate::material::Muscle;
 use crate::uniaxial::along_fibres;
@@ -83,13 +83,7 @@ pub fn fit_active_curve(
         selection: &selection,
         data,
     };
-    let report = least_squares(
-        &problem,
-        &selection.names,
-        &selection.start,
-        &selection.bounds,
-        &setup.options,
-    )?;
+    let report = selection.solve(&problem, &setup.options)?;
     let v = selection.assemble_values(&report.values);
     let curve = ActiveCurve::new(v[0], v[1], v[2], v[3])?;
     Ok(ActiveFit { curve, report })

@@ -8,7 +8,7 @@
 //! one step). d ∈ [0, 1]; a best d outside it (a muscle stronger than the reference) is reported
 //! as not converged.
 
-use super::{least_squares, Bounds, Data, FitError, FitReport, FitSetup, Residuals};
+use super::{Bounds, Data, FitError, FitReport, FitSetup, Residuals};
 use crate::active::ActiveCurve;
 use crate::material::Muscle;
 use crate::uniaxial::along_fibres;
@@ -63,13 +63,7 @@ pub fn fit_damage<E: StrainEnergy>(
         active,
         data,
     };
-    let report = least_squares(
-        &problem,
-        &selection.names,
-        &selection.start,
-        &selection.bounds,
-        &setup.options,
-    )?;
+    let report = selection.solve(&problem, &setup.options)?;
     Ok(DamageFit {
         damage: report.values[0],
         report,

@@ -10,7 +10,7 @@
 //! the target being exactly the total stress the implicit law reproduces. P_tot = ∂Ŵ/∂λ along the
 //! fibres is evaluated with λ as a dual number nested over the (a, b) dual.
 
-use super::{least_squares, Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
+use super::{Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
 use crate::active::law::check_damage;
 use crate::active::{fibre_path_energy, ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use crate::energy::GiantesioMusesti;
@@ -144,13 +144,7 @@ pub fn fit_explicit_law(
         energy: *energy,
         reference,
     };
-    let report = least_squares(
-        &problem,
-        &selection.names,
-        &selection.start,
-        &selection.bounds,
-        &setup.options,
-    )?;
+    let report = selection.solve(&problem, &setup.options)?;
     let v = selection.assemble_values(&report.values);
     let law = ExplicitLaw::new(v[0], v[1], *energy, *curve)?;
     let (max_activation_error, max_stress_error) =

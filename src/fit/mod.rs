@@ -231,6 +231,15 @@ pub(crate) struct Selection {
 }
 
 impl Selection {
+    /// Fits `problem` over the selected free parameters from their starts within their bounds.
+    pub fn solve<R: Residuals>(
+        &self,
+        problem: &R,
+        options: &FitOptions,
+    ) -> Result<FitReport, FitError> {
+        least_squares(problem, &self.names, &self.start, &self.bounds, options)
+    }
+
     /// All parameters as scalars: the free ones from θ, the others fixed.
     pub fn assemble<T: Scalar>(&self, theta: &[T]) -> Vec<T> {
         let mut all: Vec<T> = self.all.iter().map(|&v| T::from(v)).collect();

@@ -16,7 +16,7 @@
 //! arithmetic from the converged root, a = a* − w_a/w_aa (exact first derivatives, since
 //! w_a(a*) = 0).
 
-use super::{least_squares, Data, FitError, FitReport, FitSetup, Parametric, Residuals, Selection};
+use super::{Data, FitError, FitReport, FitSetup, Parametric, Residuals, Selection};
 use crate::energy::Invariants;
 use crate::material::Muscle;
 use crate::uniaxial::across_fibres;
@@ -141,13 +141,7 @@ pub fn fit_passive<E: Parametric>(
         selection: &selection,
         sets,
     };
-    let report = least_squares(
-        &problem,
-        &selection.names,
-        &selection.start,
-        &selection.bounds,
-        &setup.options,
-    )?;
+    let report = selection.solve(&problem, &setup.options)?;
     let energy = energy.rebuilt(&selection.assemble_values(&report.values))?;
     Ok(PassiveFit { energy, report })
 }
