@@ -1,6 +1,6 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
-use crate::active::coupling::{couple, Coupling};
+use crate::active::coupling::{couple, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
@@ -84,7 +84,21 @@ impl<E: StrainEnergy> Muscle<E> {
         entries: &Entries<N>,
     ) -> Result<MuscleResponse<N>> {
         let fibre_stretch = kinematics.fibre_stretch();
-        let law = self.activation(fibre_stretch)?;
+        // The law's derivatives enter only the consistent stress and the exact tangents.
+        let needs_slope = !matches!(
+            (order, self.coupling),
+            (Order::Energy, _)
+                | (Order::Stress, Coupling::Frozen(_))
+                | (Order::Tangent, Coupling::Frozen(FrozenTangent::Symmetric))
+        );
+        let law = if needs_slope {
+            self.activation(fibre_stretch)?
+        } else {
+            LawValue {
+                gamma: self.law.activation(fibre_stretch, self.damage)?,
+                ..LawValue::default()
+            }
+        };
         let j = SVector::from(kinematics.invariants);
         let d = invariant_derivatives(&self.energy, &j, law.gamma, order)?;
         let mut out = MuscleResponse {
@@ -127,6 +141,6 @@ impl<E: StrainEnergy> crate::fem::AxisymmetricMaterial for Muscle<E> {
     fn point_fields(&self, f: &crate::fem::AxiF) -> Result<(f64, f64)> {
         let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
         let lambda = kin.fibre_stretch();
-        Ok((self.activation(lambda)?.gamma, lambda))
+        Ok((self.law.activation(lambda, self.damage)?, lambda))
     }
 }

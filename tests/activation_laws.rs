@@ -86,6 +86,11 @@ fn check_derivatives(law: &impl ActivationLaw, name: &str, range: (f64, f64)) {
     for i in 0..=40 {
         let l = range.0 + (range.1 - range.0) * i as f64 / 40.0;
         let v = law.evaluate(l, 0.2).unwrap();
+        assert_eq!(
+            law.activation(l, 0.2).unwrap(),
+            v.gamma,
+            "{name}: gamma alone = gamma with derivatives"
+        );
         let (up, down) = (
             law.evaluate(l + h, 0.2).unwrap(),
             law.evaluate(l - h, 0.2).unwrap(),

@@ -91,19 +91,23 @@ impl<E: StrainEnergy> EnergyLaw<E> {
     }
 }
 
-impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+impl<E: StrainEnergy> EnergyLaw<E> {
+    /// (1 − d) ∫ P_act, and whether γ is 0 there (no work and no zero-work branch).
+    fn work(&self, lambda: f64, damage: f64) -> Result<(f64, bool)> {
         check_damage(damage)?;
         positive("fibre stretch", lambda)?;
         let scale = 1.0 - damage;
         let work = scale * self.curve.integral(lambda);
         let zero_work = self.below_minimum == BelowMinimum::ZeroWork && scale > 0.0;
-        if work <= 0.0 && !zero_work {
-            return Ok(LawValue::default());
-        }
-        let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+        Ok((work, work <= 0.0 && !zero_work))
+    }
+}
+
+impl<E: StrainEnergy> EnergyLaw<E> {
+    /// The first root above 0 of Ŵ(λ, γ) − W_pas(λ) − work.
+    fn root(&self, lambda: f64, damage: f64, work: f64) -> Result<f64> {
         let passive = fibre_path_energy(&self.energy, lambda, 0.0);
-        let gamma = first_activation_root(
+        first_activation_root(
             || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
             |g| {
                 let (w, w_g) = first_derivative(
@@ -112,7 +116,26 @@ impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
                 );
                 (w - passive - work, w_g)
             },
-        )?;
+        )
+    }
+}
+
+impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
+    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
+        match self.work(lambda, damage)? {
+            (_, true) => Ok(0.0),
+            (work, false) => self.root(lambda, damage, work),
+        }
+    }
+
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        let (work, inactive) = self.work(lambda, damage)?;
+        if inactive {
+            return Ok(LawValue::default());
+        }
+        let gamma = self.root(lambda, damage, work)?;
+        let scale = 1.0 - damage;
+        let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);
         let at = PathPartials::at(&self.energy, lambda, gamma)?;
         let pas = PathPartials::at(&self.energy, lambda, 0.0)?;
         Ok(implicit_derivatives(

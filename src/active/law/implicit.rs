@@ -45,22 +45,30 @@ impl<E: StrainEnergy> ImplicitLaw<E> {
 }
 
 impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
         check_damage(damage)?;
-        let scale = 1.0 - damage;
-        let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
         positive("fibre stretch", lambda)?;
+        let t = self.curve.value(lambda) * (1.0 - damage);
         if t <= 0.0 {
-            return Ok(LawValue::default());
+            return Ok(0.0);
         }
         let (p_pas, _) = fibre_stress_and_slope(&self.energy, lambda, 0.0);
-        let gamma = first_activation_root(
+        first_activation_root(
             || format!("implicit activation law at lambda = {lambda}, d = {damage}"),
             |g| {
                 let (p, dp) = fibre_stress_and_slope(&self.energy, lambda, g);
                 (p - p_pas - t, dp)
             },
-        )?;
+        )
+    }
+
+    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+        let gamma = self.activation(lambda, damage)?;
+        let scale = 1.0 - damage;
+        let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+        if t <= 0.0 {
+            return Ok(LawValue::default());
+        }
         let at = PathPartials::at(&self.energy, lambda, gamma)?;
         let passive = PathPartials::at(&self.energy, lambda, 0.0)?;
         Ok(implicit_derivatives(

@@ -41,6 +41,11 @@ pub trait ActivationLaw {
     /// γ, dγ/dλ and d²γ/dλ² at fibre stretch `lambda` [-] and damage `damage` ∈ [0, 1].
     fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue>;
 
+    /// γ alone, without its derivatives (cheaper for the laws that solve for γ).
+    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
+        Ok(self.evaluate(lambda, damage)?.gamma)
+    }
+
     /// γ on a generic scalar: the second-order Taylor expansion of [`evaluate`](Self::evaluate)
     /// about the real part, which carries exact first and second derivatives through any dual
     /// number of order ≤ 2.
@@ -105,6 +110,16 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
             Law::Implicit(l) => l.evaluate(lambda, damage),
             Law::Explicit(l) => l.evaluate(lambda, damage),
             Law::Energy(l) => l.evaluate(lambda, damage),
+        }
+    }
+
+    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
+        match self {
+            Law::Passive => Ok(0.0),
+            Law::Constant(l) => l.activation(lambda, damage),
+            Law::Implicit(l) => l.activation(lambda, damage),
+            Law::Explicit(l) => l.activation(lambda, damage),
+            Law::Energy(l) => l.activation(lambda, damage),
         }
     }
 
