@@ -15,7 +15,7 @@ use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
-use crate::uniaxial::along_fibres;
+use crate::uniaxial::{fibre_kinematics, nominal_along};
 use crate::{Error, Result};
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
 
@@ -136,17 +136,16 @@ pub fn along_fibres_stability<E: StrainEnergy>(
     lambda: f64,
     samples: usize,
 ) -> Result<UniaxialStability> {
-    let point = along_fibres(muscle, lambda)?;
-    let t = lambda.sqrt().recip();
-    let f = Matrix3::from_diagonal(&Vector3::new(lambda, t, t));
-    let r = muscle.respond(&Kinematics::new(&f, &Vector3::x())?, Order::Tangent, &FULL)?;
+    let kin = fibre_kinematics(lambda)?;
+    let (f, t) = (kin.f, lambda.sqrt().recip());
+    let r = muscle.respond(&kin, Order::Tangent, &FULL)?;
     let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
     let df = [(0, 1.0), (4, -t / (2.0 * lambda)), (8, -t / (2.0 * lambda))];
     let rate = |row: usize| df.iter().map(|&(b, v)| k[(row, b)] * v).sum::<f64>();
     let slope = rate(0) - lambda.powf(-1.5) * rate(4) + 1.5 * lambda.powf(-2.5) * p[4];
     Ok(UniaxialStability {
         lambda,
-        stress: point.stress,
+        stress: nominal_along(&p, lambda),
         slope,
         ellipticity: strong_ellipticity(&k, &f, samples)?,
     })
@@ -159,13 +158,9 @@ pub fn along_fibres_stability<E: StrainEnergy>(
 /// the energy), never inf or NaN.
 pub fn representable_stretch<E: StrainEnergy>(muscle: &Muscle<E>, order: Order) -> Result<f64> {
     let ok = |l: f64| -> bool {
-        let t = l.sqrt().recip();
-        Kinematics::new(
-            &Matrix3::from_diagonal(&Vector3::new(l, t, t)),
-            &Vector3::x(),
-        )
-        .and_then(|kin| muscle.respond(&kin, order, &FULL))
-        .is_ok()
+        fibre_kinematics(l)
+            .and_then(|kin| muscle.respond(&kin, order, &FULL))
+            .is_ok()
     };
     if !ok(1.0) {
         return Err(Error::NoSolution {

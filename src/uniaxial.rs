@@ -14,7 +14,7 @@ use crate::material::Muscle;
 use crate::response::Order;
 use crate::roots::newton_bisection;
 use crate::{Error, Result};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, SVector, Vector3};
 
 /// One point of a uniaxial test.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,24 +36,30 @@ fn fibre() -> Vector3<f64> {
     Vector3::new(1.0, 0.0, 0.0)
 }
 
-fn check_stretch(lambda: f64) -> Result<f64> {
-    positive("lambda", lambda)
+/// The homogeneous state along the fibres (m = e₁): F = diag(λ, λ^-½, λ^-½).
+pub fn fibre_kinematics(lambda: f64) -> Result<Kinematics> {
+    positive("lambda", lambda)?;
+    let t = lambda.sqrt().recip();
+    Kinematics::new(
+        &Matrix3::from_diagonal(&Vector3::new(lambda, t, t)),
+        &fibre(),
+    )
+}
+
+/// Nominal stress along the fibres from ∂Ψ/∂F (entries row by row) in that state:
+/// P₁₁ − p/λ with the lateral pressure p = F₂₂ ∂Ψ/∂F₂₂.
+pub(crate) fn nominal_along(p: &SVector<f64, 9>, lambda: f64) -> f64 {
+    p[0] - p[4] * lambda.sqrt().recip() / lambda
 }
 
 /// Uniaxial tension along the fibres.
 pub fn along_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
-    check_stretch(lambda)?;
+    let kin = fibre_kinematics(lambda)?;
     let t = lambda.sqrt().recip();
-    let kin = Kinematics::new(
-        &Matrix3::from_diagonal(&Vector3::new(lambda, t, t)),
-        &fibre(),
-    )?;
     let r = muscle.respond(&kin, Order::Stress, &FULL)?;
-    let p = r.stress.unwrap_or_default();
-    let pressure = p[4] * t;
     Ok(UniaxialPoint {
         lambda,
-        stress: p[0] - pressure / lambda,
+        stress: nominal_along(&r.stress.unwrap_or_default(), lambda),
         gamma: r.gamma,
         fibre_stretch: r.fibre_stretch,
         lateral: [t, t],
@@ -62,7 +68,7 @@ pub fn along_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<
 
 /// Uniaxial tension across the fibres (stretch along e₂, fibres along e₁).
 pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
-    check_stretch(lambda)?;
+    positive("lambda", lambda)?;
     let state = |a: f64| -> Result<(Kinematics, f64)> {
         let f33 = 1.0 / (a * lambda);
         Ok((
