@@ -3,7 +3,8 @@
 //! diagnosed at the quadrature points of the failed trial state (strong ellipticity, law jumps).
 //!
 //! `cargo run --release --example cylinder_sweep -- NR NZ explicit|energy [sliding]`
-//! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver)
+//! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver,
+//! `REUSE=no` to factorise every Newton iteration)
 //! prints `d lambda P gamma_centre newton_iterations` rows and the diagnoses.
 
 use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, Law};
@@ -49,6 +50,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut options = SolverOptions::default();
     if std::env::var("LINEAR").as_deref() == Ok("lu") {
         options.linear_solver = activemuscle::fem::LinearSolver::Lu;
+    }
+    if std::env::var("REUSE").as_deref() == Ok("no") {
+        options.reuse_factorisation = false;
     }
     println!(
         "# {nr}x{nz} {bases:?} {} law, {} coupling",

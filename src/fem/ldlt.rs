@@ -51,7 +51,7 @@ impl SymmetricPartLdlt {
         node_adjacency: &Pattern,
     ) -> Result<Self, String> {
         let n = pattern.n;
-        let par = faer::get_global_parallelism();
+        let par = Par::Seq;
         // Position of the transposed entry of every nonzero (the pattern is structurally symmetric).
         let mut transpose_of = vec![0u32; pattern.row_idx.len()];
         for j in 0..n {
@@ -212,12 +212,15 @@ impl Preconditioner for SymmetricPartLdlt {
     }
 }
 
-/// Workspace of restarted, right-preconditioned GMRES (allocated once).
+/// Workspace of restarted, flexible right-preconditioned GMRES (FGMRES, Saad 1993): the
+/// preconditioned vectors z_k = M⁻¹ v_k are kept, so x = x₀ + Z y needs no further
+/// application of M⁻¹ (allocated once; z vectors as they are first needed).
 #[derive(Debug)]
 pub struct Gmres {
     restart: usize,
     v: Vec<Vec<f64>>,
-    z: Vec<f64>,
+    zs: Vec<Vec<f64>>,
+    n: usize,
     w: Vec<f64>,
     h: Vec<Vec<f64>>,
     cs: Vec<f64>,
@@ -233,7 +236,8 @@ impl Gmres {
         Self {
             restart,
             v: vec![vec![0.0; n]; restart + 1],
-            z: vec![0.0; n],
+            zs: Vec::new(),
+            n,
             w: vec![0.0; n],
             h: vec![vec![0.0; restart]; restart + 1],
             cs: vec![0.0; restart],
@@ -277,9 +281,12 @@ impl Gmres {
             for k in 0..self.restart {
                 total += 1;
                 k_used = k + 1;
-                self.z.copy_from_slice(&self.v[k]);
-                pre.apply(&mut self.z);
-                matvec(pattern, values, &self.z, &mut self.w);
+                if self.zs.len() <= k {
+                    self.zs.push(vec![0.0; self.n]);
+                }
+                self.zs[k].copy_from_slice(&self.v[k]);
+                pre.apply(&mut self.zs[k]);
+                matvec(pattern, values, &self.zs[k], &mut self.w);
                 for i in 0..=k {
                     let hik: f64 = self.w.iter().zip(&self.v[i]).map(|(a, b)| a * b).sum();
                     self.h[i][k] = hik;
@@ -313,7 +320,7 @@ impl Gmres {
                     break;
                 }
             }
-            // y = H⁻¹ g (upper triangular), x += M⁻¹ V y.
+            // y = H⁻¹ g (upper triangular), x += Z y.
             let mut y = [0.0f64; 64];
             for i in (0..k_used).rev() {
                 let mut s = self.g[i];
@@ -322,15 +329,10 @@ impl Gmres {
                 }
                 y[i] = s / self.h[i][i];
             }
-            self.z.fill(0.0);
             for (j, yj) in y.iter().enumerate().take(k_used) {
-                for (zi, vi) in self.z.iter_mut().zip(&self.v[j]) {
-                    *zi += yj * vi;
+                for (xi, zi) in self.x.iter_mut().zip(&self.zs[j]) {
+                    *xi += yj * zi;
                 }
-            }
-            pre.apply(&mut self.z);
-            for (xi, zi) in self.x.iter_mut().zip(&self.z) {
-                *xi += zi;
             }
             // True residual.
             matvec(pattern, values, &self.x, &mut self.w);

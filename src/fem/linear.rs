@@ -34,7 +34,7 @@ fn symbolic_view(p: &Pattern) -> SymbolicSparseColMatRef<'_, u32> {
 impl SparseLu {
     /// Symbolic analysis of `pattern`.
     pub fn new(pattern: &Pattern) -> Result<Self, String> {
-        let par = faer::get_global_parallelism();
+        let par = Par::Seq;
         let symbolic = factorize_symbolic_lu(symbolic_view(pattern), Default::default())
             .map_err(|e| format!("symbolic LU: {e:?}"))?;
         let factor_scratch = MemBuffer::try_new(

@@ -20,6 +20,7 @@ pub mod linear;
 pub mod material;
 pub mod mesh;
 pub mod solver;
+pub mod tangent_solver;
 pub mod vtk;
 
 pub use dofs::Bases;

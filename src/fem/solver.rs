@@ -18,10 +18,10 @@ use super::assembly::Pattern;
 use super::dofs::{Bases, DofMap};
 use super::element::{deformation, geometry, jacobian, jacobian_gradient, N_P, N_QP, N_U};
 use super::error::{FemError, FemResult, StepFailure};
-use super::ldlt::{Gmres, SymmetricPartLdlt};
-use super::linear::SparseLu;
+use super::ldlt::SymmetricPartLdlt;
 use super::material::{AxiF, AxisymmetricMaterial};
 use super::mesh::Mesh;
+use super::tangent_solver::TangentSolver;
 use nalgebra::SVector;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -66,6 +66,10 @@ pub struct SolverOptions {
     pub max_backtracks: usize,
     /// Linear solver of the Newton system.
     pub linear_solver: LinearSolver,
+    /// Keep the factorisation of an earlier tangent as long as GMRES preconditioned by it is
+    /// cheaper than a new factorisation (the solve stays exact to 10⁻¹²; see
+    /// [`super::tangent_solver`]). `false`: factorise every Newton iteration.
+    pub reuse_factorisation: bool,
     /// Optional VTK output.
     pub vtk: Option<VtkOutput>,
 }
@@ -82,6 +86,7 @@ impl Default for SolverOptions {
             easy_iterations: 5,
             max_backtracks: 8,
             linear_solver: LinearSolver::SymmetricPartGmres,
+            reuse_factorisation: true,
             vtk: None,
         }
     }
@@ -176,11 +181,13 @@ pub struct Timings {
     pub residual_assembly: Duration,
     /// Number of residual-only assemblies.
     pub residual_assemblies: usize,
-    /// Numeric LU factorisations.
+    /// Newton iterations (each: one full assembly, one tangent update, one solve).
+    pub newton_iterations: usize,
+    /// Numeric factorisations (LDLᵀ or LU).
     pub factorisation: Duration,
     /// Number of factorisations.
     pub factorisations: usize,
-    /// Triangular solves.
+    /// Linear solves (GMRES and triangular solves, factorisations excluded).
     pub solve: Duration,
     /// Number of solves.
     pub solves: usize,
@@ -188,6 +195,15 @@ pub struct Timings {
     pub krylov_iterations: usize,
     /// Solves that fell back to the sparse LU.
     pub lu_fallbacks: usize,
+}
+
+impl Timings {
+    /// Wall-clock seconds per Newton iteration: all assemblies, factorisations and solves
+    /// divided by the Newton iterations.
+    pub fn per_newton_iteration(&self) -> f64 {
+        let total = self.assembly + self.residual_assembly + self.factorisation + self.solve;
+        total.as_secs_f64() / self.newton_iterations.max(1) as f64
+    }
 }
 
 /// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
@@ -220,16 +236,7 @@ pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
     mesh: Mesh,
     dofs: DofMap,
     asm: Assembler,
-    lu: Option<SparseLu>,
-    ldlt: Option<SymmetricPartLdlt>,
-    gmres: Gmres,
-    use_lu: bool,
-    rhs_copy: Vec<f64>,
-    /// The LU holds the factorisation of an earlier tangent (used as a GMRES preconditioner).
-    lu_stale: bool,
-    /// GMRES with the symmetric-part LDLᵀ has failed once: the tangent is strongly
-    /// non-symmetric, so keep one LU and reuse it as preconditioner until GMRES slows.
-    prefer_lu: bool,
+    linear: TangentSolver,
     material: &'m M,
     options: SolverOptions,
     timings: Timings,
@@ -307,20 +314,17 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         }
         let dofs = DofMap::new(&mesh, bases);
         let asm = Assembler::new(&mesh, &dofs)?;
-        let (lu, ldlt) = match options.linear_solver {
-            LinearSolver::Lu => (
-                Some(SparseLu::new(&asm.pattern).map_err(FemError::LinearSolver)?),
-                None,
-            ),
+        let ldlt = match options.linear_solver {
+            LinearSolver::Lu => None,
             LinearSolver::SymmetricPartGmres => {
                 let (node_dofs, adjacency) = node_structure(&mesh, &dofs);
-                let ldlt = SymmetricPartLdlt::new(&asm.pattern, &node_dofs, &adjacency)
-                    .map_err(FemError::LinearSolver)?;
-                (None, Some(ldlt))
+                Some(
+                    SymmetricPartLdlt::new(&asm.pattern, &node_dofs, &adjacency)
+                        .map_err(FemError::LinearSolver)?,
+                )
             }
         };
-        let n_free = dofs.n_free;
-        let gmres = Gmres::new(n_free, 40);
+        let linear = TangentSolver::new(dofs.n_free, ldlt, options.reuse_factorisation);
         // Quadrature point nearest to the centre (r = 0, z = L/2).
         let target = [0.0, 0.5 * mesh.length];
         let mut centre = (0, 0);
@@ -341,13 +345,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             mesh,
             dofs,
             asm,
-            lu,
-            ldlt,
-            gmres,
-            use_lu: false,
-            rhs_copy: vec![0.0; n_free],
-            lu_stale: false,
-            prefer_lu: false,
+            linear,
             material,
             options,
             timings: Timings::default(),
@@ -460,107 +458,25 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         ru.max(rp)
     }
 
-    fn factorise_lu(&mut self) -> Result<(), StepFailure> {
-        if self.lu.is_none() {
-            self.lu = Some(
-                SparseLu::new(&self.asm.pattern)
-                    .map_err(|detail| StepFailure::SingularTangent { detail })?,
-            );
-        }
-        self.lu_stale = false;
-        match self.lu.as_mut() {
-            Some(lu) => lu
-                .factorise(&self.asm.pattern, &self.asm.values)
-                .map_err(|detail| StepFailure::SingularTangent { detail }),
-            None => Err(StepFailure::SingularTangent {
-                detail: "no LU".into(),
-            }),
-        }
-    }
-
+    /// The tangent just assembled becomes the matrix of the next solves (see [`TangentSolver`]).
     fn factorise(&mut self) -> Result<(), StepFailure> {
-        if self.prefer_lu && self.lu.as_ref().is_some_and(SparseLu::is_factorised) {
-            // Keep the LU of an earlier tangent; `solve` uses it to precondition GMRES on the
-            // current tangent and refactorises only when that stops working.
-            self.use_lu = true;
-            self.lu_stale = true;
-            return Ok(());
-        }
-        let t = Instant::now();
-        let r = match self.ldlt.as_mut() {
-            Some(ldlt) => match ldlt.factorise(&self.asm.pattern, &self.asm.values) {
-                Ok(_) => {
-                    self.use_lu = false;
-                    Ok(())
-                }
-                Err(_) => {
-                    // LDLᵀ breakdown (e.g. a zero pivot): exact LU instead.
-                    self.use_lu = true;
-                    self.timings.lu_fallbacks += 1;
-                    self.factorise_lu()
-                }
-            },
-            None => {
-                self.use_lu = true;
-                self.factorise_lu()
-            }
-        };
-        self.timings.factorisation += t.elapsed();
-        self.timings.factorisations += 1;
-        r
+        self.linear
+            .update(&self.asm.pattern, &self.asm.values, &mut self.timings)
+            .map_err(|detail| StepFailure::SingularTangent { detail })
     }
 
-    /// Solves K y = rhs in place with the current factorisation (GMRES + LDLᵀ, or LU).
+    /// Solves K y = rhs in place, exactly to round-off (see [`TangentSolver`]).
     fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
         let t = Instant::now();
-        let r = self.solve_inner(rhs);
-        self.timings.solve += t.elapsed();
+        let factorising = self.timings.factorisation;
+        let r = self
+            .linear
+            .solve(&self.asm.pattern, &self.asm.values, rhs, &mut self.timings)
+            .map_err(|detail| StepFailure::SingularTangent { detail });
+        // Factorisations triggered inside the solve are counted as factorisation only.
+        self.timings.solve += t.elapsed() - (self.timings.factorisation - factorising);
         self.timings.solves += 1;
         r
-    }
-
-    fn solve_inner(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
-        if self.use_lu && self.lu_stale {
-            if let Some(lu) = self.lu.as_mut() {
-                self.rhs_copy.copy_from_slice(rhs);
-                let (pattern, values) = (&self.asm.pattern, &self.asm.values);
-                if let Some(it) = self.gmres.solve(pattern, values, lu, rhs, 1e-12, 30) {
-                    self.timings.krylov_iterations += it;
-                    return Ok(());
-                }
-                rhs.copy_from_slice(&self.rhs_copy);
-            }
-            // The earlier LU no longer preconditions well: factorise the current tangent.
-            let t = Instant::now();
-            let r = self.factorise_lu();
-            self.timings.factorisation += t.elapsed();
-            self.timings.factorisations += 1;
-            r?;
-        } else if !self.use_lu {
-            if let Some(ldlt) = self.ldlt.as_mut() {
-                self.rhs_copy.copy_from_slice(rhs);
-                let pattern = &self.asm.pattern;
-                let values = &self.asm.values;
-                if let Some(it) = self.gmres.solve(pattern, values, ldlt, rhs, 1e-12, 200) {
-                    self.timings.krylov_iterations += it;
-                    return Ok(());
-                }
-                // GMRES did not converge: exact LU of the same matrix, kept for later solves.
-                rhs.copy_from_slice(&self.rhs_copy);
-                self.timings.lu_fallbacks += 1;
-                self.prefer_lu = true;
-            }
-            self.use_lu = true;
-            self.factorise_lu()?;
-        }
-        match self.lu.as_mut() {
-            Some(lu) => lu
-                .solve_in_place(rhs)
-                .map_err(|detail| StepFailure::SingularTangent { detail }),
-            None => Err(StepFailure::SingularTangent {
-                detail: "no factorisation".into(),
-            }),
-        }
     }
 
     /// Newton's method at the stretch already set in `x` (prescribed dofs included).
@@ -586,6 +502,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let mut phi = self.scaled_residual(scale);
         record.initial_residual = phi;
         for _ in 0..self.options.max_iterations {
+            self.timings.newton_iterations += 1;
             if !have_tangent {
                 if let Err(e) = self.assemble(x, true) {
                     self.failed_trial = Some(State {
