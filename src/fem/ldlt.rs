@@ -16,8 +16,10 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LdltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
+    SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
@@ -107,7 +109,12 @@ impl SymmetricPartLdlt {
             a,
             Side::Lower,
             SymmetricOrdering::Custom(PermRef::new_checked(&perm, &perm_inv, n)),
-            Default::default(),
+            // Supernodal always: as fast as or faster than simplicial at every size measured
+            // (945–148k dofs), and its supernodes also serve the pattern LU.
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
         )
         .map_err(|e| format!("symbolic LDLT: {e:?}"))?;
         let factor_scratch = MemBuffer::try_new(
@@ -185,6 +192,11 @@ impl SymmetricPartLdlt {
     pub fn is_factorised(&self) -> bool {
         self.factorised
     }
+
+    /// The symbolic analysis (ordering and supernodes), shared with [`super::pattern_lu`].
+    pub fn symbolic(&self) -> &SymbolicCholesky<u32> {
+        &self.symbolic
+    }
 }
 
 /// y = K x for K in compressed columns.
@@ -248,8 +260,12 @@ impl Gmres {
         }
     }
 
-    /// Solves K x = b (b in `rhs`, x returned in `rhs`) to ‖b − K x‖ ≤ `tol` ‖b‖ with at most
-    /// `max_iter` iterations. Returns the iterations used, or `None` if the tolerance was not met.
+    /// Solves K x = b (b in `rhs`, x returned in `rhs`) to the normwise backward error
+    /// ‖b − K x‖ ≤ `tol` (‖K‖_F ‖x‖ + ‖b‖) with at most `max_iter` iterations. (A relative
+    /// residual ‖b − K x‖ ≤ tol ‖b‖ is out of reach of any solver once the condition number
+    /// exceeds tol/ε; the backward error is what a direct solve with partial pivoting attains,
+    /// ≈ 1e-16 times a modest growth factor.) Returns the iterations used, or `None` if the
+    /// tolerance was not met.
     pub fn solve(
         &mut self,
         pattern: &Pattern,
@@ -263,12 +279,16 @@ impl Gmres {
         if bnorm == 0.0 {
             return Some(0);
         }
+        let knorm = values.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let norm = |v: &[f64]| v.iter().map(|v| v * v).sum::<f64>().sqrt();
         self.x.fill(0.0);
         self.r.copy_from_slice(rhs);
         let mut total = 0;
+        // Estimate of ‖x‖ for the inner stopping test (exact once M⁻¹ = K⁻¹: x = β z₀).
+        let mut x_estimate = 0.0f64;
         while total < max_iter {
-            let beta = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
-            if beta <= tol * bnorm {
+            let beta = norm(&self.r);
+            if beta <= tol * (knorm * norm(&self.x) + bnorm) {
                 rhs.copy_from_slice(&self.x);
                 return Some(total);
             }
@@ -286,6 +306,9 @@ impl Gmres {
                 }
                 self.zs[k].copy_from_slice(&self.v[k]);
                 pre.apply(&mut self.zs[k]);
+                if k == 0 {
+                    x_estimate = x_estimate.max(norm(&self.x) + beta * norm(&self.zs[0]));
+                }
                 matvec(pattern, values, &self.zs[k], &mut self.w);
                 for i in 0..=k {
                     let hik: f64 = self.w.iter().zip(&self.v[i]).map(|(a, b)| a * b).sum();
@@ -316,7 +339,8 @@ impl Gmres {
                 self.h[k + 1][k] = 0.0;
                 self.g[k + 1] = -self.sn[k] * self.g[k];
                 self.g[k] *= self.cs[k];
-                if self.g[k + 1].abs() <= 0.1 * tol * bnorm || total >= max_iter {
+                let target = 0.1 * tol * (knorm * x_estimate + bnorm);
+                if self.g[k + 1].abs() <= target || total >= max_iter {
                     break;
                 }
             }
@@ -340,8 +364,8 @@ impl Gmres {
                 *ri = bi - wi;
             }
         }
-        let beta = self.r.iter().map(|v| v * v).sum::<f64>().sqrt();
-        if beta <= tol * bnorm && self.x.iter().all(|v| v.is_finite()) {
+        let beta = norm(&self.r);
+        if beta <= tol * (knorm * norm(&self.x) + bnorm) && self.x.iter().all(|v| v.is_finite()) {
             rhs.copy_from_slice(&self.x);
             Some(total)
         } else {

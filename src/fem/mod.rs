@@ -19,6 +19,7 @@ pub mod ldlt;
 pub mod linear;
 pub mod material;
 pub mod mesh;
+pub mod pattern_lu;
 pub mod solver;
 pub mod tangent_solver;
 pub mod vtk;

@@ -67,7 +67,7 @@ pub struct SolverOptions {
     /// Linear solver of the Newton system.
     pub linear_solver: LinearSolver,
     /// Keep the factorisation of an earlier tangent as long as GMRES preconditioned by it is
-    /// cheaper than a new factorisation (the solve stays exact to 10⁻¹²; see
+    /// cheaper than a new factorisation (the solve stays exact to round-off; see
     /// [`super::tangent_solver`]). `false`: factorise every Newton iteration.
     pub reuse_factorisation: bool,
     /// Optional VTK output.
@@ -460,6 +460,13 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
 
     /// The tangent just assembled becomes the matrix of the next solves (see [`TangentSolver`]).
     fn factorise(&mut self) -> Result<(), StepFailure> {
+        if let Some(k) = self.asm.values.iter().position(|v| !v.is_finite()) {
+            return Err(StepFailure::Material(crate::Error::NonFinite {
+                quantity: "assembled tangent",
+                value: self.asm.values[k],
+                context: format!("at nonzero {k}"),
+            }));
+        }
         self.linear
             .update(&self.asm.pattern, &self.asm.values, &mut self.timings)
             .map_err(|detail| StepFailure::SingularTangent { detail })

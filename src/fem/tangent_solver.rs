@@ -1,31 +1,29 @@
 //! The Newton system K Δx = −R: which factorisation to compute, when to reuse an old one.
 //!
-//! Every solve is exact to round-off: GMRES iterates on the current tangent K until
-//! ‖b − K x‖ ≤ 10⁻¹² ‖b‖, and a factorisation only preconditions it. Three factorisations serve:
+//! Every solve is exact to round-off: GMRES iterates on the current tangent K until the
+//! normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct solve with
+//! partial pivoting attains), and a factorisation only preconditions it. The factorisations:
 //!
-//! - LDLᵀ of the symmetric part (K + Kᵀ)/2 (`ldlt`), cheap (pattern of K, no pivoting); for a
+//! - LDLᵀ of the symmetric part (K + Kᵀ)/2 ([`super::ldlt`]): pattern of K, no pivoting; for a
 //!   symmetric tangent GMRES converges in one iteration;
-//! - sparse LU of K (`linear`), used once GMRES on the LDLᵀ has failed (a strongly
-//!   non-symmetric tangent, e.g. the frozen active-strain model), and from then on preferred;
-//! - the LDLᵀ of an **earlier** tangent (`reuse`): between Newton iterations and load
-//!   steps the tangent changes little, so the last factorisation is kept and GMRES preconditioned
-//!   by it usually converges in a few iterations. It is replaced by a fresh factorisation as soon
-//!   as GMRES would cost more than factorising afresh: the iteration budget is
-//!   k_fresh + t_factorise / t_iteration (at least 2, at most the restart length 40), where
-//!   k_fresh is the iteration count of the last solve with a fresh factorisation (1 for the
-//!   direct LU), all measured on this problem. A failed attempt factorises the current tangent.
-//!   Renewal rule: once a solve with the kept factorisation costs more than the average cost
-//!   per solve since that factorisation (factorisation included), the next tangent is
-//!   factorised afresh — with solve costs that grow as the tangent drifts away, this minimises
-//!   the average cost per solve.
+//! - once GMRES on it needs more than 40 iterations (a strongly non-symmetric tangent, e.g. the
+//!   frozen active-strain model), an LU of K on the LDLᵀ's supernodes ([`super::pattern_lu`]:
+//!   same fill as the LDLᵀ, pivoting inside the diagonal blocks), from then on preferred;
+//! - faer's LU with partial pivoting ([`super::linear`]) for a tangent on which the pattern
+//!   LU meets a zero pivot or does not precondition (after three such tangents in a row, for
+//!   good), or when `LinearSolver::Lu` is chosen.
 //!
-//!   Only the LDLᵀ is reused. Applying faer's LU costs 1/8–1/20 of factorising it, several
-//!   times an LDLᵀ application (its fill is bounded by the Cholesky factor of KᵀK, not of K),
-//!   so GMRES on an earlier LU is
-//!   dearer than a fresh LU: the frozen explicit-law sweep on 16 × 64 cells (d = 0.5, `cargo run
-//!   --release --example cylinder_sweep -- 16 64 explicit`) took 13.8 s with LU reuse against
-//!   7.2 s without. LDLᵀ reuse cut the linear-solve time of the energy-law sweep on 12 × 48
-//!   cells from 1.19 s to 0.92 s (same stresses to the printed digits).
+//! Reuse (`SolverOptions::reuse_factorisation`): between Newton iterations and load steps the
+//! tangent changes little, so the last LDLᵀ or pattern LU is kept and GMRES preconditioned by
+//! it usually converges in a few iterations. The iteration budget of such a solve is
+//! k_fresh + t_factorise / t_iteration (at least 2, at most the restart length 40), where
+//! k_fresh is the iteration count of the last solve with a fresh factorisation, all measured on
+//! this problem; a failed attempt factorises the current tangent. Renewal rule: once a solve
+//! with the kept factorisation costs more than the average cost per solve since that
+//! factorisation (factorisation included), the next tangent is factorised afresh — with solve
+//! costs that grow as the tangent drifts away, this minimises the average cost per solve.
+//! faer's LU is never reused: applying it costs 1/8–1/20 of factorising it (its fill is bounded
+//! by the Cholesky factor of KᵀK, not of K), so GMRES on an earlier one is dearer than a fresh one.
 //!
 //! Factorisations run sequentially (`Par::Seq`): on 2 cores faer's parallel supernodal
 //! factorisation was 1.3–1.9× slower at 9k–150k dofs (`cargo run --release --example
@@ -34,13 +32,18 @@
 use super::assembly::Pattern;
 use super::ldlt::{Gmres, SymmetricPartLdlt};
 use super::linear::SparseLu;
+use super::pattern_lu::PatternLu;
 use super::solver::Timings;
 use std::time::Instant;
 
-/// Relative residual to which every linear solve is converged.
+/// Normwise backward error to which every linear solve is converged.
 const TOLERANCE: f64 = 1e-12;
-/// GMRES iterations allowed with a fresh LDLᵀ of the symmetric part before switching to the LU.
-const FRESH_LDLT_ITERATIONS: usize = 200;
+/// GMRES iterations allowed with a fresh LDLᵀ of the symmetric part before switching to an LU.
+const FRESH_LDLT_ITERATIONS: usize = 40;
+/// GMRES iterations allowed with a fresh pattern LU (exact up to its pivots: one or two).
+const FRESH_PATTERN_LU_ITERATIONS: usize = 20;
+/// Consecutive failures of the pattern LU after which faer's LU is used for good.
+const PATTERN_LU_STRIKES: usize = 3;
 /// Bounds of the iteration budget with a reused factorisation.
 const REUSE_BUDGET: (usize, usize) = (2, 40);
 
@@ -48,6 +51,7 @@ const REUSE_BUDGET: (usize, usize) = (2, 40);
 enum Factor {
     None,
     Ldlt,
+    PatternLu,
     Lu,
 }
 
@@ -55,6 +59,12 @@ enum Factor {
 #[derive(Debug)]
 pub struct TangentSolver {
     ldlt: Option<SymmetricPartLdlt>,
+    pattern_lu: Option<PatternLu>,
+    /// Consecutive factorisations in which the pattern LU met a zero pivot or did not
+    /// precondition (each time faer's LU took over for that tangent).
+    pattern_lu_strikes: usize,
+    /// Use faer's LU for the current tangent (the pattern LU just failed on it).
+    skip_pattern_lu: bool,
     lu: Option<SparseLu>,
     gmres: Gmres,
     rhs_copy: Vec<f64>,
@@ -84,6 +94,9 @@ impl TangentSolver {
         let prefer_lu = ldlt.is_none();
         Self {
             ldlt,
+            pattern_lu: None,
+            pattern_lu_strikes: 0,
+            skip_pattern_lu: false,
             lu: None,
             gmres: Gmres::new(n, 40),
             rhs_copy: vec![0.0; n],
@@ -108,7 +121,8 @@ impl TangentSolver {
         values: &[f64],
         timings: &mut Timings,
     ) -> Result<(), String> {
-        if self.reuse && self.current == Factor::Ldlt && !self.refresh {
+        let cheap = matches!(self.current, Factor::Ldlt | Factor::PatternLu);
+        if self.reuse && cheap && !self.refresh {
             self.stale = true;
             return Ok(());
         }
@@ -137,17 +151,30 @@ impl TangentSolver {
             }
             self.factorise(pattern, values, timings)?;
         }
-        if self.current == Factor::Ldlt {
+        for _ in 0..2 {
+            let max_iter = match self.current {
+                Factor::Ldlt => FRESH_LDLT_ITERATIONS,
+                Factor::PatternLu => FRESH_PATTERN_LU_ITERATIONS,
+                _ => break,
+            };
             let t = Instant::now();
-            if let Some(its) = self.krylov(pattern, values, rhs, FRESH_LDLT_ITERATIONS, timings) {
+            if let Some(its) = self.krylov(pattern, values, rhs, max_iter, timings) {
                 self.iteration_seconds = t.elapsed().as_secs_f64() / its.max(1) as f64;
+                if self.current == Factor::PatternLu {
+                    self.pattern_lu_strikes = 0;
+                }
                 self.fresh_iterations = its;
                 self.cycle_seconds += t.elapsed().as_secs_f64();
                 self.cycle_solves += 1;
                 return Ok(());
             }
-            // GMRES on the symmetric part does not converge: LU from now on.
+            // GMRES on the symmetric part does not converge: LU from now on (the pattern
+            // LU first; faer's pivoting LU if that does not precondition either).
             timings.lu_fallbacks += 1;
+            if self.current == Factor::PatternLu {
+                self.pattern_lu_strikes += 1;
+                self.skip_pattern_lu = true;
+            }
             self.prefer_lu = true;
             self.factorise(pattern, values, timings)?;
         }
@@ -184,6 +211,22 @@ impl TangentSolver {
                 }
             }
         }
+        let skip = std::mem::take(&mut self.skip_pattern_lu);
+        if self.current == Factor::None && !skip && self.pattern_lu_strikes < PATTERN_LU_STRIKES {
+            if self.pattern_lu.is_none() {
+                if let Some(ldlt) = self.ldlt.as_ref() {
+                    self.pattern_lu = PatternLu::new(pattern, ldlt.symbolic()).ok();
+                }
+            }
+            match self.pattern_lu.as_mut().map(|p| p.factorise(values)) {
+                Some(Ok(())) => {
+                    self.current = Factor::PatternLu;
+                    r = Ok(());
+                }
+                Some(Err(_)) => self.pattern_lu_strikes += 1,
+                None => self.pattern_lu_strikes = PATTERN_LU_STRIKES,
+            }
+        }
         if self.current == Factor::None {
             if self.lu.is_none() {
                 self.lu = Some(SparseLu::new(pattern)?);
@@ -218,6 +261,10 @@ impl TangentSolver {
             Factor::Ldlt => self.ldlt.as_mut().and_then(|ldlt| {
                 self.gmres
                     .solve(pattern, values, ldlt, rhs, TOLERANCE, max_iter)
+            }),
+            Factor::PatternLu => self.pattern_lu.as_mut().and_then(|lu| {
+                self.gmres
+                    .solve(pattern, values, lu, rhs, TOLERANCE, max_iter)
             }),
             Factor::Lu => self.lu.as_mut().and_then(|lu| {
                 self.gmres
