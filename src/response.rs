@@ -58,6 +58,17 @@ fn invariants_of<T: Copy>(v: &SVector<T, 5>) -> Invariants<T> {
     Invariants::from_array([v[0], v[1], v[2], v[3], v[4]])
 }
 
+/// The first non-finite entry of `x`, if any. The test over all entries is one branch-free pass
+/// (the compiler vectorises it); the search runs only when it fails.
+#[inline(always)]
+fn first_non_finite(x: &[f64]) -> Option<f64> {
+    if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
+        None
+    } else {
+        x.iter().copied().find(|v| !v.is_finite())
+    }
+}
+
 fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f64) -> Error {
     Error::NonFinite {
         quantity,
@@ -71,6 +82,7 @@ fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f6
 
 /// W, its gradient and its Hessian at the elastic invariants `ie`, to the order asked; over four
 /// invariants (det C held) when the energy does not use det C.
+#[inline(always)]
 fn energy_derivatives<E: StrainEnergy>(
     energy: &E,
     ie: &SVector<f64, 5>,
@@ -138,6 +150,7 @@ fn energy_derivatives<E: StrainEnergy>(
 }
 
 /// Derivatives of the active-strain energy in invariant space, to the order asked.
+#[inline(always)]
 pub fn invariant_derivatives<E: StrainEnergy>(
     energy: &E,
     j: &SVector<f64, 5>,
@@ -158,16 +171,16 @@ pub fn invariant_derivatives<E: StrainEnergy>(
         second: None,
     };
     let Some(g) = g else { return Ok(out) };
-    if let Some(bad) = g.iter().find(|x| !x.is_finite()) {
-        return Err(non_finite("energy gradient", *bad, j, gamma));
+    if let Some(bad) = first_non_finite(g.as_slice()) {
+        return Err(non_finite("energy gradient", bad, j, gamma));
     }
     let ie_gamma = map.rate(j);
     let a_t_g = map.transpose_apply(&g);
     out.d_j = a_t_g * c;
     out.d_gamma = -w + c * g.dot(&ie_gamma);
     if let Some(h) = h {
-        if let Some(bad) = h.iter().find(|x| !x.is_finite()) {
-            return Err(non_finite("energy Hessian", *bad, j, gamma));
+        if let Some(bad) = first_non_finite(h.as_slice()) {
+            return Err(non_finite("energy Hessian", bad, j, gamma));
         }
         let h_ie_gamma = h * ie_gamma;
         out.second = Some(SecondDerivatives {
@@ -199,6 +212,7 @@ pub struct Response<const N: usize> {
 }
 
 /// Ŵ(F, γ) and, to the order asked, its derivatives in F and γ (γ held fixed: no law).
+#[inline(always)]
 pub fn active_response<E: StrainEnergy, const N: usize>(
     energy: &E,
     kinematics: &Kinematics,
@@ -221,12 +235,40 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     }
     let grad = kinematics.gradients(entries);
     out.denergy_dgamma = Some(d.d_gamma);
-    out.stress = Some(grad.transpose() * d.d_j);
+    out.stress = Some(grad.tr_mul(&d.d_j));
     if let Some(s) = d.second {
-        out.tangent =
-            Some(grad.transpose() * s.d_jj * grad + kinematics.curvature(&d.d_j, entries));
-        out.dstress_dgamma = Some(grad.transpose() * s.d_jgamma);
+        let mut t = kinematics.curvature(&d.d_j, entries);
+        if energy.uses_det_c() {
+            add_congruence::<5, N>(&mut t, &grad, &s.d_jj);
+        } else {
+            add_congruence::<4, N>(&mut t, &grad, &s.d_jj);
+        }
+        out.tangent = Some(t);
+        out.dstress_dgamma = Some(grad.tr_mul(&s.d_jgamma));
         out.d2energy_dgamma2 = Some(s.d_gammagamma);
     }
     Ok(out)
+}
+
+/// T += Dᵀ K D for a symmetric K (∂²Ŵ/∂j∂j at γ held) whose rows and columns beyond the first
+/// `R` invariants are zero (R = 4 for an energy without det C): E = K D over those rows once,
+/// then the upper triangle (Dᵀ E)_ab = Σ_j D_ja E_jb, mirrored.
+#[inline(always)]
+fn add_congruence<const R: usize, const N: usize>(
+    t: &mut SMatrix<f64, N, N>,
+    d: &SMatrix<f64, 5, N>,
+    k: &SMatrix<f64, 5, 5>,
+) {
+    let e: [[f64; N]; R] = std::array::from_fn(|j| {
+        std::array::from_fn(|b| (0..R).map(|l| k[(j, l)] * d[(l, b)]).sum())
+    });
+    for a in 0..N {
+        for b in a..N {
+            let v: f64 = (0..R).map(|j| d[(j, a)] * e[j][b]).sum();
+            t[(a, b)] += v;
+            if b != a {
+                t[(b, a)] += v;
+            }
+        }
+    }
 }
