@@ -137,7 +137,7 @@ impl StrainMap {
     }
 
     /// X A, by columns.
-    #[inline]
+    #[inline(always)]
     fn right(&self, x: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
         let mut y = *x;
         for r in 0..5 {
@@ -149,7 +149,7 @@ impl StrainMap {
     }
 
     /// Aᵀ H A for a symmetric H.
-    #[inline]
+    #[inline(always)]
     pub fn congruence(&self, h: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
         self.right(&self.right(h).transpose())
     }
