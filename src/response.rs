@@ -58,6 +58,17 @@ fn invariants_of<T: Copy>(v: &SVector<T, 5>) -> Invariants<T> {
     Invariants::from_array([v[0], v[1], v[2], v[3], v[4]])
 }
 
+/// The first non-finite entry of `x`, if any. The test over all entries is one branch-free pass
+/// (the compiler vectorises it); the search runs only when it fails.
+#[inline(always)]
+fn first_non_finite(x: &[f64]) -> Option<f64> {
+    if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
+        None
+    } else {
+        x.iter().copied().find(|v| !v.is_finite())
+    }
+}
+
 fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f64) -> Error {
     Error::NonFinite {
         quantity,
@@ -71,73 +82,71 @@ fn non_finite(quantity: &'static str, value: f64, j: &SVector<f64, 5>, gamma: f6
 
 /// W, its gradient and its Hessian at the elastic invariants `ie`, to the order asked; over four
 /// invariants (det C held) when the energy does not use det C.
+#[inline(always)]
 fn energy_derivatives<E: StrainEnergy>(
     energy: &E,
     ie: &SVector<f64, 5>,
     order: Order,
 ) -> (f64, Option<SVector<f64, 5>>, Option<SMatrix<f64, 5, 5>>) {
-    let w_of = |v: &SVector<f64, 5>| energy.energy(&invariants_of(v));
-    if order == Order::Energy {
-        return (w_of(ie), None, None);
-    }
-    if energy.uses_det_c() {
-        return match order {
-            Order::Stress => {
-                let (w, g) = gradient(
-                    |v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)),
-                    ie,
-                );
-                (w, Some(g), None)
-            }
-            _ => {
-                let (w, g, h) = hessian(
-                    |v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)),
-                    ie,
-                );
-                (w, Some(g), Some(h))
-            }
-        };
-    }
-    let four = ie.fixed_rows::<4>(0).into_owned();
-    let det_c = ie[4];
-    let pad = |g: SVector<f64, 4>| SVector::<f64, 5>::from([g[0], g[1], g[2], g[3], 0.0]);
     match order {
+        Order::Energy => (energy.energy(&invariants_of(ie)), None, None),
         Order::Stress => {
-            let (w, g) = gradient(
-                |v: SVector<DualSVec64<4>, 4>| {
-                    energy.energy(&Invariants::from_array([
-                        v[0],
-                        v[1],
-                        v[2],
-                        v[3],
-                        DualSVec64::from_re(det_c),
-                    ]))
-                },
-                &four,
-            );
-            (w, Some(pad(g)), None)
+            let (w, g) = energy_gradient(energy, ie);
+            (w, Some(g), None)
         }
-        _ => {
-            let (w, g, h) = hessian(
-                |v: SVector<Dual2SVec64<4>, 4>| {
-                    energy.energy(&Invariants::from_array([
-                        v[0],
-                        v[1],
-                        v[2],
-                        v[3],
-                        Dual2SVec64::from_re(det_c),
-                    ]))
-                },
-                &four,
-            );
-            let mut h5 = SMatrix::<f64, 5, 5>::zeros();
-            h5.fixed_view_mut::<4, 4>(0, 0).copy_from(&h);
-            (w, Some(pad(g)), Some(h5))
+        Order::Tangent => {
+            let (w, g, h) = energy_hessian(energy, ie);
+            (w, Some(g), Some(h))
         }
     }
 }
 
+/// W and its gradient, over four invariants when the energy does not use det C.
+#[inline(always)]
+fn energy_gradient<E: StrainEnergy>(energy: &E, ie: &SVector<f64, 5>) -> (f64, SVector<f64, 5>) {
+    if energy.uses_det_c() {
+        return gradient(
+            |v: SVector<DualSVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+            ie,
+        );
+    }
+    let det_c = ie[4];
+    let (w, g) = gradient(
+        |v: SVector<DualSVec64<4>, 4>| {
+            let det_c = DualSVec64::from_re(det_c);
+            energy.energy(&Invariants::from_array([v[0], v[1], v[2], v[3], det_c]))
+        },
+        &ie.fixed_rows::<4>(0).into_owned(),
+    );
+    (w, SVector::from([g[0], g[1], g[2], g[3], 0.0]))
+}
+
+/// W, its gradient and its Hessian, over four invariants when the energy does not use det C.
+#[inline(always)]
+fn energy_hessian<E: StrainEnergy>(
+    energy: &E,
+    ie: &SVector<f64, 5>,
+) -> (f64, SVector<f64, 5>, SMatrix<f64, 5, 5>) {
+    if energy.uses_det_c() {
+        return hessian(
+            |v: SVector<Dual2SVec64<5>, 5>| energy.energy(&invariants_of(&v)),
+            ie,
+        );
+    }
+    let det_c = ie[4];
+    let (w, g, h) = hessian(
+        |v: SVector<Dual2SVec64<4>, 4>| {
+            let det_c = Dual2SVec64::from_re(det_c);
+            energy.energy(&Invariants::from_array([v[0], v[1], v[2], v[3], det_c]))
+        },
+        &ie.fixed_rows::<4>(0).into_owned(),
+    );
+    let h = SMatrix::<f64, 5, 5>::from_fn(|r, c| if r < 4 && c < 4 { h[(r, c)] } else { 0.0 });
+    (w, SVector::from([g[0], g[1], g[2], g[3], 0.0]), h)
+}
+
 /// Derivatives of the active-strain energy in invariant space, to the order asked.
+#[inline(always)]
 pub fn invariant_derivatives<E: StrainEnergy>(
     energy: &E,
     j: &SVector<f64, 5>,
@@ -158,25 +167,31 @@ pub fn invariant_derivatives<E: StrainEnergy>(
         second: None,
     };
     let Some(g) = g else { return Ok(out) };
-    if let Some(bad) = g.iter().find(|x| !x.is_finite()) {
-        return Err(non_finite("energy gradient", *bad, j, gamma));
-    }
+    // Finiteness is checked on the chained derivatives: a non-finite g or H shows there, and so
+    // does a finite one that the map's s² = (1 − γ)⁻² factors overflow.
     let ie_gamma = map.rate(j);
     let a_t_g = map.transpose_apply(&g);
     out.d_j = a_t_g * c;
     out.d_gamma = -w + c * g.dot(&ie_gamma);
+    if let Some(bad) = first_non_finite(out.d_j.as_slice()).or(first_non_finite(&[out.d_gamma])) {
+        return Err(non_finite("energy gradient", bad, j, gamma));
+    }
     if let Some(h) = h {
-        if let Some(bad) = h.iter().find(|x| !x.is_finite()) {
-            return Err(non_finite("energy Hessian", *bad, j, gamma));
-        }
         let h_ie_gamma = h * ie_gamma;
-        out.second = Some(SecondDerivatives {
+        let second = SecondDerivatives {
             d_jj: map.congruence(&h) * c,
             d_jgamma: -a_t_g
                 + (map.rate_transpose_apply(&g) + map.transpose_apply(&h_ie_gamma)) * c,
             d_gammagamma: -2.0 * g.dot(&ie_gamma)
                 + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&map.rate2(j))),
-        });
+        };
+        if let Some(bad) = first_non_finite(second.d_jj.as_slice())
+            .or(first_non_finite(second.d_jgamma.as_slice()))
+            .or(first_non_finite(&[second.d_gammagamma]))
+        {
+            return Err(non_finite("energy Hessian", bad, j, gamma));
+        }
+        out.second = Some(second);
     }
     Ok(out)
 }
@@ -199,6 +214,7 @@ pub struct Response<const N: usize> {
 }
 
 /// Ŵ(F, γ) and, to the order asked, its derivatives in F and γ (γ held fixed: no law).
+#[inline(always)]
 pub fn active_response<E: StrainEnergy, const N: usize>(
     energy: &E,
     kinematics: &Kinematics,
@@ -221,12 +237,40 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     }
     let grad = kinematics.gradients(entries);
     out.denergy_dgamma = Some(d.d_gamma);
-    out.stress = Some(grad.transpose() * d.d_j);
+    out.stress = Some(grad.tr_mul(&d.d_j));
     if let Some(s) = d.second {
-        out.tangent =
-            Some(grad.transpose() * s.d_jj * grad + kinematics.curvature(&d.d_j, entries));
-        out.dstress_dgamma = Some(grad.transpose() * s.d_jgamma);
+        let mut t = kinematics.curvature(&d.d_j, entries);
+        if energy.uses_det_c() {
+            add_congruence::<5, N>(&mut t, &grad, &s.d_jj);
+        } else {
+            add_congruence::<4, N>(&mut t, &grad, &s.d_jj);
+        }
+        out.tangent = Some(t);
+        out.dstress_dgamma = Some(grad.tr_mul(&s.d_jgamma));
         out.d2energy_dgamma2 = Some(s.d_gammagamma);
     }
     Ok(out)
+}
+
+/// T += Dᵀ K D for a symmetric K (∂²Ŵ/∂j∂j at γ held) whose rows and columns beyond the first
+/// `R` invariants are zero (R = 4 for an energy without det C): E = K D over those rows once,
+/// then the upper triangle (Dᵀ E)_ab = Σ_j D_ja E_jb, mirrored.
+#[inline(always)]
+fn add_congruence<const R: usize, const N: usize>(
+    t: &mut SMatrix<f64, N, N>,
+    d: &SMatrix<f64, 5, N>,
+    k: &SMatrix<f64, 5, 5>,
+) {
+    let e: [[f64; N]; R] = std::array::from_fn(|j| {
+        std::array::from_fn(|b| (0..R).map(|l| k[(j, l)] * d[(l, b)]).sum())
+    });
+    for a in 0..N {
+        for b in a..N {
+            let v: f64 = (0..R).map(|j| d[(j, a)] * e[j][b]).sum();
+            t[(a, b)] += v;
+            if b != a {
+                t[(b, a)] += v;
+            }
+        }
+    }
 }

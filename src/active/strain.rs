@@ -77,6 +77,7 @@ pub(crate) struct StrainMap {
 }
 
 impl StrainMap {
+    #[inline]
     pub fn new(gamma: f64) -> Self {
         let c = 1.0 - gamma;
         let s = 1.0 / c;
@@ -91,6 +92,7 @@ impl StrainMap {
     }
 
     /// Ie = A j.
+    #[inline]
     pub fn apply(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
         SVector::from([
             j[0] + (self.s2 - 1.0) * j[1],
@@ -102,6 +104,7 @@ impl StrainMap {
     }
 
     /// Aᵀ y.
+    #[inline]
     pub fn transpose_apply(&self, y: &SVector<f64, 5>) -> SVector<f64, 5> {
         SVector::from([
             y[0],
@@ -113,24 +116,28 @@ impl StrainMap {
     }
 
     /// dIe/dγ = (dA/dγ) j.
+    #[inline]
     pub fn rate(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
         let (a, b) = (2.0 * self.s3, -2.0 * self.c);
         SVector::from([a * j[1], a * j[1], b * j[3], b * j[3], a * j[4]])
     }
 
     /// d²Ie/dγ² = (d²A/dγ²) j.
+    #[inline]
     pub fn rate2(&self, j: &SVector<f64, 5>) -> SVector<f64, 5> {
         let a = 6.0 * self.s4;
         SVector::from([a * j[1], a * j[1], 2.0 * j[3], 2.0 * j[3], a * j[4]])
     }
 
     /// (dA/dγ)ᵀ y.
+    #[inline]
     pub fn rate_transpose_apply(&self, y: &SVector<f64, 5>) -> SVector<f64, 5> {
         let (a, b) = (2.0 * self.s3, -2.0 * self.c);
         SVector::from([0.0, a * (y[0] + y[1]), 0.0, b * (y[2] + y[3]), a * y[4]])
     }
 
     /// X A, by columns.
+    #[inline(always)]
     fn right(&self, x: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
         let mut y = *x;
         for r in 0..5 {
@@ -142,6 +149,7 @@ impl StrainMap {
     }
 
     /// Aᵀ H A for a symmetric H.
+    #[inline(always)]
     pub fn congruence(&self, h: &SMatrix<f64, 5, 5>) -> SMatrix<f64, 5, 5> {
         self.right(&self.right(h).transpose())
     }
