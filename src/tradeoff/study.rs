@@ -3,6 +3,7 @@
 //! | option | variants | reference | error on |
 //! |---|---|---|---|
 //! | activation law (0D along the fibres) | explicit (frozen), energy (consistent) | implicit (frozen): reproduces P_pas + P_act | P(λ), γ(λ) |
+//! | activation law (FE, clamped cylinder) | explicit (frozen), energy (consistent) | implicit (frozen) | P(λ), centre γ |
 //! | derivative route at a point | oracle (9-entry F), central differences | fast AD | ∂P/∂F |
 //! | derivative route in the FE | oracle, central differences | fast AD | P(λ), centre γ |
 //! | frozen tangent (FE) | symmetric approximation | exact | P(λ), centre γ |
@@ -18,10 +19,11 @@ use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use crate::active::{Coupling, FrozenTangent};
 use crate::energy::Energy;
 use crate::fem::{AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Mesh, SolverOptions};
-use crate::scene::schema::{CouplingKind, DirectionKind, LawKind};
-use crate::scene::{ModelChoice, Scene, Study};
+use crate::scene::schema::{DirectionKind, LawKind};
+use crate::scene::{Scene, Study};
 use crate::uniaxial::along_fibres;
 use crate::Muscle;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// A failure of the trade-off run: which option and variant, and why.
@@ -41,9 +43,60 @@ impl From<crate::fem::FemError> for TradeoffError {
     }
 }
 
+/// The options a user trades, in run order; a scene names them in `options = [...]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionGroup {
+    /// Activation law, 0D along the fibres.
+    ActivationLaw,
+    /// Activation law in the clamped cylinder (FE).
+    ActivationLawFe,
+    /// Derivative route, at one material point and in the FE.
+    DerivativeRoute,
+    /// Exact versus symmetric frozen tangent (FE).
+    FrozenTangent,
+    /// Mesh refinement of the clamped cylinder.
+    Mesh,
+    /// Newton tolerance (FE).
+    NewtonTolerance,
+    /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
+    ZeroDVsFe,
+}
+
+impl OptionGroup {
+    /// Every group, in run order.
+    pub const ALL: [Self; 7] = [
+        Self::ActivationLaw,
+        Self::ActivationLawFe,
+        Self::DerivativeRoute,
+        Self::FrozenTangent,
+        Self::Mesh,
+        Self::NewtonTolerance,
+        Self::ZeroDVsFe,
+    ];
+
+    /// The name a scene uses (`activation-law-fe`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::ActivationLaw => "activation-law",
+            Self::ActivationLawFe => "activation-law-fe",
+            Self::DerivativeRoute => "derivative-route",
+            Self::FrozenTangent => "frozen-tangent",
+            Self::Mesh => "mesh",
+            Self::NewtonTolerance => "newton-tolerance",
+            Self::ZeroDVsFe => "zero-d-vs-fe",
+        }
+    }
+}
+
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TradeoffOptions {
+    /// The option groups to measure (run in the order of [`OptionGroup::ALL`]).
+    pub groups: Vec<OptionGroup>,
+    /// The cylinder of every FE variant; `None`: the scene's first cylinder study's (R, L,
+    /// grading), or R = 1, L = 4, grading 3 without one.
+    pub geometry: Option<Geometry>,
     /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
     pub meshes: Vec<(usize, usize)>,
     /// Mesh of the FE derivative-route, frozen-tangent, tolerance and sliding (0D vs FE)
@@ -51,6 +104,9 @@ pub struct TradeoffOptions {
     pub fe_mesh: Option<(usize, usize)>,
     /// Stretches of every FE sweep.
     pub fe_stretches: Vec<f64>,
+    /// Stretches of the 0D activation-law curves; `None`: the scene's first uniaxial study along
+    /// the fibres, or 0.65:0.01:1.60.
+    pub curve_stretches: Option<Vec<f64>>,
     /// Newton tolerances, loose to tight; the last is the reference.
     pub tolerances: Vec<f64>,
     /// Relative step of the central-difference tangent.
@@ -62,9 +118,12 @@ pub struct TradeoffOptions {
 impl Default for TradeoffOptions {
     fn default() -> Self {
         Self {
+            groups: OptionGroup::ALL.to_vec(),
+            geometry: None,
             meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
             fe_mesh: None,
             fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
+            curve_stretches: None,
             tolerances: vec![1e-6, 1e-8, 1e-10, 1e-12],
             fd_step: 1e-6,
             verbose: false,
@@ -77,6 +136,7 @@ struct Resolved {
     meshes: Vec<(usize, usize)>,
     fe_mesh: (usize, usize),
     fe_stretches: Vec<f64>,
+    curve_stretches: Vec<f64>,
     tolerances: Vec<f64>,
     fd_step: f64,
 }
@@ -101,10 +161,10 @@ pub struct Geometry {
     pub grading: f64,
 }
 
-/// The cylinder of the scene's first cylinder study (R, L, grading), or R = 1, L = 4, grading 3.
-fn geometry(scene: &Scene) -> (Geometry, (usize, usize)) {
-    scene
-        .studies
+/// The cylinder of the first cylinder study among `studies` (R, L, grading) and its mesh
+/// (nr, nz), or R = 1, L = 4, grading 3 on 4 × 16 cells without one.
+pub fn scene_cylinder(studies: &[Study]) -> (Geometry, (usize, usize)) {
+    studies
         .iter()
         .find_map(|s| match s {
             Study::Cylinder(c) => Some((
@@ -127,10 +187,9 @@ fn geometry(scene: &Scene) -> (Geometry, (usize, usize)) {
         ))
 }
 
-/// Stretches of the scene's first uniaxial study along the fibres, or 0.65:0.01:1.60.
-fn uniaxial_stretches(scene: &Scene) -> Vec<f64> {
-    scene
-        .studies
+/// Stretches of the first uniaxial study along the fibres among `studies`, or 0.65:0.01:1.60.
+pub fn scene_curve_stretches(studies: &[Study]) -> Vec<f64> {
+    studies
         .iter()
         .find_map(|s| match s {
             Study::Uniaxial(u) if u.direction == DirectionKind::Along => Some(u.stretches.clone()),
@@ -291,16 +350,17 @@ type Curves = (Vec<f64>, Vec<f64>);
 /// Activation law, 0D along the fibres.
 fn activation_law(
     scene: &Scene,
+    o: &Resolved,
     run: &mut Runner,
     findings: &mut Vec<String>,
 ) -> Result<(), TradeoffError> {
     const OPTION: &str = "activation law (0D)";
-    let stretches = uniaxial_stretches(scene);
+    let stretches = &o.curve_stretches;
     let curve = |m: &Muscle<Energy>| -> Result<(f64, Curves), TradeoffError> {
         time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
-            for &l in &stretches {
+            for &l in stretches {
                 let pt = along_fibres(m, l)?;
                 p.push(pt.stress);
                 g.push(pt.gamma);
@@ -308,17 +368,12 @@ fn activation_law(
             Ok((p, g))
         })
     };
-    let implicit = scene.muscle(ModelChoice {
-        law: LawKind::Implicit,
-        coupling: CouplingKind::Frozen,
-        damage: 0.0,
-    })?;
-    let implicit = Muscle::new(scene.material.clone(), implicit.law().clone(), 0.0, EXACT)?;
+    let implicit = muscle(scene, LawKind::Implicit, EXACT)?;
     let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
     // The reference reproduces the target P_pas + P_act.
     let passive = Muscle::passive(scene.material.clone());
     let mut target = Vec::with_capacity(stretches.len());
-    for &l in &stretches {
+    for &l in stretches {
         target.push(along_fibres(&passive, l)?.stress + scene.curve.value(l));
     }
     let check = curve_error(&target, &p_ref);
@@ -376,6 +431,99 @@ fn activation_law(
                 ge
             ));
         }
+        run.push(r);
+    }
+    Ok(())
+}
+
+/// The FE sweeps of the activation-law option: the cylinder on `cells` with `bases`, swept to
+/// `stretches` with the implicit law (frozen, exact tangent: the reference), the explicit law
+/// (frozen) and the energy law (consistent), each timed. Rows in that order, named `option`.
+pub fn activation_law_fe_rows(
+    scene: &Scene,
+    option: &str,
+    geom: Geometry,
+    cells: (usize, usize),
+    bases: Bases,
+    stretches: &[f64],
+) -> Result<Vec<Measurement>, TradeoffError> {
+    let sweep = |law: LawKind, coupling: Coupling| -> Result<FeRun, TradeoffError> {
+        fe_run(
+            &muscle(scene, law, coupling)?,
+            geom,
+            cells,
+            bases,
+            stretches,
+            &tight(),
+        )
+    };
+    let reference = sweep(LawKind::Implicit, EXACT)?;
+    let mut rows = vec![fe_row(
+        option,
+        "implicit (frozen)",
+        true,
+        &reference,
+        &reference,
+    )];
+    for (name, law, coupling) in [
+        ("explicit (frozen)", LawKind::Explicit, EXACT),
+        ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
+    ] {
+        let r = sweep(law, coupling)?;
+        let mut row = fe_row(option, name, false, &r, &reference);
+        // Where is the stress error largest?
+        if let Some((i, d)) = r
+            .stress
+            .iter()
+            .zip(&reference.stress)
+            .map(|(a, b)| (a - b).abs())
+            .enumerate()
+            .filter(|(_, d)| d.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+        {
+            let largest = format!("largest P error at λ = {}: {d:.3} kPa", stretches[i]);
+            row.note = if row.note.is_empty() {
+                largest
+            } else {
+                format!("{largest}; {}", row.note)
+            };
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Activation law in the clamped cylinder.
+fn activation_law_fe(
+    scene: &Scene,
+    geom: Geometry,
+    o: &Resolved,
+    run: &mut Runner,
+    findings: &mut Vec<String>,
+) -> Result<(), TradeoffError> {
+    let rows = activation_law_fe_rows(
+        scene,
+        "activation law (FE)",
+        geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+    )?;
+    if let [reference, explicit, ..] = rows.as_slice() {
+        findings.push(format!(
+            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
+            o.fe_mesh.0,
+            o.fe_mesh.1,
+            o.fe_stretches.len(),
+            reference.time_s / explicit.time_s,
+            explicit.time_s,
+            reference.time_s,
+            explicit.error.max_abs,
+            100.0 * explicit.error.max_rel,
+            explicit.gamma_error.unwrap_or(f64::NAN)
+        ));
+    }
+    for r in rows {
         run.push(r);
     }
     Ok(())
@@ -681,7 +829,8 @@ fn zero_d_vs_fe(
     Ok(())
 }
 
-/// Runs every option for `scene` (its material, activation and first cylinder's geometry).
+/// Runs the chosen option groups for `scene` (its material and activation; the geometry and
+/// stretches of `o`, or of the scene's studies where `o` leaves them out).
 pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, TradeoffError> {
     let verbose = o.verbose;
     if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
@@ -689,11 +838,17 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
             "need at least one mesh, tolerance and FE stretch".into(),
         ));
     }
-    let (geom, scene_cells) = geometry(scene);
+    let (scene_geom, scene_cells) = scene_cylinder(&scene.studies);
+    let geom = o.geometry.unwrap_or(scene_geom);
+    let o_groups = &o.groups;
     let o = &Resolved {
         fe_mesh: o.fe_mesh.unwrap_or(scene_cells),
         meshes: o.meshes.clone(),
         fe_stretches: o.fe_stretches.clone(),
+        curve_stretches: o
+            .curve_stretches
+            .clone()
+            .unwrap_or_else(|| scene_curve_stretches(&scene.studies)),
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
     };
@@ -703,12 +858,21 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
         started: Instant::now(),
     };
     let mut findings = Vec::new();
-    activation_law(scene, &mut runner, &mut findings)?;
-    derivative_route(scene, geom, o, &mut runner)?;
-    frozen_tangent(scene, geom, o, &mut runner)?;
-    mesh(scene, geom, o, &mut runner, &mut findings)?;
-    tolerance(scene, geom, o, &mut runner)?;
-    zero_d_vs_fe(scene, geom, o, &mut runner)?;
+    for group in OptionGroup::ALL {
+        if !o_groups.contains(&group) {
+            continue;
+        }
+        let (run, findings) = (&mut runner, &mut findings);
+        match group {
+            OptionGroup::ActivationLaw => activation_law(scene, o, run, findings)?,
+            OptionGroup::ActivationLawFe => activation_law_fe(scene, geom, o, run, findings)?,
+            OptionGroup::DerivativeRoute => derivative_route(scene, geom, o, run)?,
+            OptionGroup::FrozenTangent => frozen_tangent(scene, geom, o, run)?,
+            OptionGroup::Mesh => mesh(scene, geom, o, run, findings)?,
+            OptionGroup::NewtonTolerance => tolerance(scene, geom, o, run)?,
+            OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, geom, o, run)?,
+        }
+    }
     let mut rows = runner.rows;
     finalise(&mut rows);
     Ok(TradeoffResults { rows, findings })
