@@ -1,6 +1,7 @@
 //! Every kind of bad scene input gives a non-zero exit and a message naming the file, the key,
 //! the value and the rule; the binary is run as a user runs it.
 
+use std::ffi::OsStr;
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -14,6 +15,18 @@ fn scene_file(name: &str, text: &str) -> PathBuf {
     let p = dir.join(format!("{name}.toml"));
     std::fs::write(&p, text).expect("write scene");
     p
+}
+
+/// Runs the binary with `args`; asserts success and returns its standard output.
+fn succeeds(args: &[&OsStr]) -> String {
+    let out = Command::new(BIN).args(args).output().expect("run binary");
+    assert!(
+        out.status.success(),
+        "{:?}: {}",
+        args,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
 /// Runs `check` on `text`; asserts failure and that stderr names the file and every `needle`.
@@ -41,17 +54,7 @@ fn rejected(name: &str, text: &str, needles: &[&str]) {
 #[test]
 fn a_valid_scene_is_accepted_and_printed_resolved() {
     let path = scene_file("valid", STUDY);
-    let out = Command::new(BIN)
-        .arg("check")
-        .arg(&path)
-        .output()
-        .expect("run binary");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = succeeds(&["check".as_ref(), path.as_ref()]);
     // Defaults are the chapter's values.
     for v in [
         "mu = 0.1599",
@@ -68,15 +71,7 @@ fn a_valid_scene_is_accepted_and_printed_resolved() {
 #[test]
 fn the_shipped_paper_scene_is_valid() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/paper.toml");
-    let out = Command::new(BIN)
-        .args(["check", path])
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeds(&["check".as_ref(), path.as_ref()]);
 }
 
 #[test]
@@ -270,19 +265,13 @@ const TRADEOFF: &str =
 fn tradeoff_takes_a_scene_and_measures_only_its_options() {
     let path = scene_file("tradeoff", TRADEOFF);
     let dir = out_dir("tradeoff");
-    let out = Command::new(BIN)
-        .arg("tradeoff")
-        .arg(&path)
-        .arg("--out")
-        .arg(&dir)
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeds(&[
+        "tradeoff".as_ref(),
+        path.as_ref(),
+        "--out".as_ref(),
+        dir.as_ref(),
+        "--quiet".as_ref(),
+    ]);
     let csv = std::fs::read_to_string(dir.join("tradeoff.csv")).expect("tradeoff.csv");
     let rows: Vec<&str> = csv.lines().skip(1).collect();
     assert_eq!(rows.len(), 3, "{csv}");
@@ -306,19 +295,13 @@ fn a_tradeoff_study_writes_its_table_and_figures_into_the_run_and_its_report() {
         &format!("{TRADEOFF}\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n"),
     );
     let dir = out_dir("tradeoff-run");
-    let out = Command::new(BIN)
-        .arg("run")
-        .arg(&path)
-        .arg("--out")
-        .arg(&dir)
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeds(&[
+        "run".as_ref(),
+        path.as_ref(),
+        "--out".as_ref(),
+        dir.as_ref(),
+        "--quiet".as_ref(),
+    ]);
     for f in [
         "tradeoff.csv",
         "tradeoff.md",
@@ -341,15 +324,7 @@ fn a_tradeoff_study_writes_its_table_and_figures_into_the_run_and_its_report() {
 #[test]
 fn the_shipped_tradeoff_scene_is_valid() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/tradeoff.toml");
-    let out = Command::new(BIN)
-        .args(["check", path])
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeds(&["check".as_ref(), path.as_ref()]);
 }
 
 #[test]
@@ -364,18 +339,8 @@ fn check_prints_the_parameters_of_the_energies_that_run() {
          [[study]]\nkind = \"fit\"\nfit = \"passive\"\nstretch = [1.0, 1.1, 1.2, 1.3]\n\
          reference = { energy = \"ehret-bol-itskov\", beta = 3.0 }\n",
     );
-    let out = Command::new(BIN)
-        .arg("check")
-        .arg(&path)
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let printed: SceneFile =
-        toml::from_str(&String::from_utf8_lossy(&out.stdout)).expect("check prints TOML");
+    let stdout = succeeds(&["check".as_ref(), path.as_ref()]);
+    let printed: SceneFile = toml::from_str(&stdout).expect("check prints TOML");
     let values = |e: &EnergySpec| (e.energy, e.mu, e.alpha, e.beta, e.w0);
     let m = &printed.material;
     assert_eq!(
@@ -424,5 +389,26 @@ fn check_prints_the_parameters_of_the_energies_that_run() {
             Some(3.0),
             Some(ebi.w0())
         )
+    );
+}
+
+#[test]
+fn a_bad_tradeoff_study_is_named_with_file_line_key_value_and_rule() {
+    rejected(
+        "tradeoff_meshes",
+        "[[study]]\nkind = \"tradeoff\"\nmeshes = [[4, 16], [2, 8]]\n",
+        &[
+            "tradeoff_meshes.toml:3: study[0].meshes[1] = [2, 8]",
+            "coarse to fine",
+        ],
+    );
+    rejected(
+        "tradeoff_option",
+        "[[study]]\nkind = \"tradeoff\"\noptions = [\"mesh\", \"element\"]\n",
+        &[
+            "tradeoff_option.toml:3: study[0].options",
+            "element",
+            "activation-law-fe",
+        ],
     );
 }

@@ -131,8 +131,9 @@ impl Default for TradeoffOptions {
     }
 }
 
-/// Options with the FE mesh resolved.
+/// Options with the geometry, FE mesh and stretches resolved.
 struct Resolved {
+    geom: Geometry,
     meshes: Vec<(usize, usize)>,
     fe_mesh: (usize, usize),
     fe_stretches: Vec<f64>,
@@ -344,6 +345,24 @@ fn with_tolerance(tolerance: f64) -> SolverOptions {
 
 const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
 
+impl Resolved {
+    /// One timed sweep of `material` on the FE mesh of the clamped cylinder.
+    fn clamped<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        material: &M,
+        options: &SolverOptions,
+    ) -> Result<FeRun, TradeoffError> {
+        fe_run(
+            material,
+            self.geom,
+            self.fe_mesh,
+            Bases::Clamped,
+            &self.fe_stretches,
+            options,
+        )
+    }
+}
+
 /// P(λ) \[kPa\] and γ(λ) [-] along a 0D sweep.
 type Curves = (Vec<f64>, Vec<f64>);
 
@@ -496,7 +515,6 @@ pub fn activation_law_fe_rows(
 /// Activation law in the clamped cylinder.
 fn activation_law_fe(
     scene: &Scene,
-    geom: Geometry,
     o: &Resolved,
     run: &mut Runner,
     findings: &mut Vec<String>,
@@ -504,7 +522,7 @@ fn activation_law_fe(
     let rows = activation_law_fe_rows(
         scene,
         "activation law (FE)",
-        geom,
+        o.geom,
         o.fe_mesh,
         Bases::Clamped,
         &o.fe_stretches,
@@ -540,12 +558,7 @@ fn max_rel(a: &nalgebra::SMatrix<f64, 5, 5>, b: &nalgebra::SMatrix<f64, 5, 5>) -
 }
 
 /// Derivative routes at one material point and in the FE.
-fn derivative_route(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn derivative_route(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     let fast = muscle(scene, LawKind::Explicit, EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
@@ -585,14 +598,7 @@ fn derivative_route(
         run.push(Measurement::new(POINT, name, false, t, quantity, e));
     }
     const FE: &str = "derivative route (FE)";
-    let reference = fe_run(
-        &fast,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let reference = o.clamped(&fast, &tight())?;
     run.push(fe_row(
         FE,
         "fast AD (invariants)",
@@ -601,26 +607,14 @@ fn derivative_route(
         &reference,
     ));
     for (name, m) in variants {
-        let r = fe_run(
-            m,
-            geom,
-            o.fe_mesh,
-            Bases::Clamped,
-            &o.fe_stretches,
-            &tight(),
-        )?;
+        let r = o.clamped(m, &tight())?;
         run.push(fe_row(FE, name, false, &r, &reference));
     }
     Ok(())
 }
 
 /// Exact versus symmetric frozen tangent in the FE.
-fn frozen_tangent(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn frozen_tangent(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "frozen tangent (FE)";
     let exact = muscle(scene, LawKind::Explicit, EXACT)?;
     let symmetric = muscle(
@@ -628,14 +622,7 @@ fn frozen_tangent(
         LawKind::Explicit,
         Coupling::Frozen(FrozenTangent::Symmetric),
     )?;
-    let reference = fe_run(
-        &exact,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let reference = o.clamped(&exact, &tight())?;
     run.push(fe_row(
         OPTION,
         "exact (non-symmetric)",
@@ -643,14 +630,7 @@ fn frozen_tangent(
         &reference,
         &reference,
     ));
-    let r = fe_run(
-        &symmetric,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let r = o.clamped(&symmetric, &tight())?;
     run.push(fe_row(
         OPTION,
         "symmetric, 25 its/step",
@@ -663,14 +643,7 @@ fn frozen_tangent(
         max_iterations: 50,
         ..with_tolerance(1e-6)
     };
-    let r = fe_run(
-        &symmetric,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &patient,
-    )?;
+    let r = o.clamped(&symmetric, &patient)?;
     run.push(fe_row(
         OPTION,
         "symmetric, tol 1e-6, 50 its/step",
@@ -684,7 +657,6 @@ fn frozen_tangent(
 /// Mesh refinement of the clamped cylinder.
 fn mesh(
     scene: &Scene,
-    geom: Geometry,
     o: &Resolved,
     run: &mut Runner,
     findings: &mut Vec<String>,
@@ -695,7 +667,7 @@ fn mesh(
     for &cells in &o.meshes {
         runs.push((
             cells,
-            fe_run(&m, geom, cells, Bases::Clamped, &o.fe_stretches, &tight())?,
+            fe_run(&m, o.geom, cells, Bases::Clamped, &o.fe_stretches, &tight())?,
         ));
     }
     let Some((_, finest)) = runs.last().cloned() else {
@@ -740,27 +712,12 @@ fn mesh(
 }
 
 /// Newton tolerance in the FE.
-fn tolerance(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn tolerance(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "Newton tolerance (FE)";
     let m = muscle(scene, LawKind::Explicit, EXACT)?;
     let mut runs = Vec::new();
     for &tol in &o.tolerances {
-        runs.push((
-            tol,
-            fe_run(
-                &m,
-                geom,
-                o.fe_mesh,
-                Bases::Clamped,
-                &o.fe_stretches,
-                &with_tolerance(tol),
-            )?,
-        ));
+        runs.push((tol, o.clamped(&m, &with_tolerance(tol))?));
     }
     let Some((_, reference)) = runs.last().cloned() else {
         return Ok(());
@@ -778,12 +735,7 @@ fn tolerance(
 }
 
 /// 0D versus FE on the sliding cylinder, whose exact solution is homogeneous.
-fn zero_d_vs_fe(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn zero_d_vs_fe(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "0D vs FE (sliding)";
     let m = muscle(scene, LawKind::Explicit, EXACT)?;
     let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
@@ -808,7 +760,7 @@ fn zero_d_vs_fe(
     r.gamma_error = Some(0.0);
     run.push(r);
     for cells in [o.meshes[0], o.fe_mesh] {
-        let fe = fe_run(&m, geom, cells, Bases::Sliding, &o.fe_stretches, &tight())?;
+        let fe = fe_run(&m, o.geom, cells, Bases::Sliding, &o.fe_stretches, &tight())?;
         let reference = FeRun {
             stress: p0.clone(),
             gamma_centre: g0.clone(),
@@ -839,9 +791,9 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
         ));
     }
     let (scene_geom, scene_cells) = scene_cylinder(&scene.studies);
-    let geom = o.geometry.unwrap_or(scene_geom);
     let o_groups = &o.groups;
     let o = &Resolved {
+        geom: o.geometry.unwrap_or(scene_geom),
         fe_mesh: o.fe_mesh.unwrap_or(scene_cells),
         meshes: o.meshes.clone(),
         fe_stretches: o.fe_stretches.clone(),
@@ -865,12 +817,12 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
         let (run, findings) = (&mut runner, &mut findings);
         match group {
             OptionGroup::ActivationLaw => activation_law(scene, o, run, findings)?,
-            OptionGroup::ActivationLawFe => activation_law_fe(scene, geom, o, run, findings)?,
-            OptionGroup::DerivativeRoute => derivative_route(scene, geom, o, run)?,
-            OptionGroup::FrozenTangent => frozen_tangent(scene, geom, o, run)?,
-            OptionGroup::Mesh => mesh(scene, geom, o, run, findings)?,
-            OptionGroup::NewtonTolerance => tolerance(scene, geom, o, run)?,
-            OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, geom, o, run)?,
+            OptionGroup::ActivationLawFe => activation_law_fe(scene, o, run, findings)?,
+            OptionGroup::DerivativeRoute => derivative_route(scene, o, run)?,
+            OptionGroup::FrozenTangent => frozen_tangent(scene, o, run)?,
+            OptionGroup::Mesh => mesh(scene, o, run, findings)?,
+            OptionGroup::NewtonTolerance => tolerance(scene, o, run)?,
+            OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, o, run)?,
         }
     }
     let mut rows = runner.rows;
