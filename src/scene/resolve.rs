@@ -366,13 +366,12 @@ pub(super) fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<
             v
         }
     };
-    if v.is_empty() {
-        return Err(ctx.err(
-            key,
-            "[]",
-            "the stretch list is empty: give at least one stretch",
-        ));
-    }
+    non_empty(
+        ctx,
+        key,
+        &v,
+        "the stretch list is empty: give at least one stretch",
+    )?;
     if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
         return Err(ctx.err(key, bad, "every stretch must be finite and > 0"));
     }
@@ -382,19 +381,48 @@ pub(super) fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<
 }
 
 pub(super) fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
-    if v.is_empty() {
-        return Err(ctx.err(
-            key,
-            "[]",
-            "the damage list is empty: give at least one d ∈ [0, 1]",
-        ));
-    }
+    non_empty(
+        ctx,
+        key,
+        v,
+        "the damage list is empty: give at least one d ∈ [0, 1]",
+    )?;
     for (i, d) in v.iter().enumerate() {
         if !(0.0..=1.0).contains(d) {
             return Err(ctx.err(format!("{key}[{i}]"), d, "damage d must lie in [0, 1]"));
         }
     }
     Ok(v.to_vec())
+}
+
+/// Every law × coupling × damage, in that order of nesting.
+pub(super) fn models(
+    laws: &[LawKind],
+    couplings: &[CouplingKind],
+    damages: &[f64],
+) -> Vec<ModelChoice> {
+    let mut models = Vec::with_capacity(laws.len() * couplings.len() * damages.len());
+    for &law in laws {
+        for &coupling in couplings {
+            for &damage in damages {
+                models.push(ModelChoice {
+                    law,
+                    coupling,
+                    damage,
+                });
+            }
+        }
+    }
+    models
+}
+
+/// A list that must not be empty; `rule` says what to give.
+pub(super) fn non_empty<T>(ctx: &Ctx, key: &str, v: &[T], rule: &str) -> Result<(), SceneError> {
+    if v.is_empty() {
+        Err(ctx.err(key, "[]", rule))
+    } else {
+        Ok(())
+    }
 }
 
 /// A length or tolerance: finite and > 0.
@@ -672,18 +700,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                         )
                     })?;
                 }
-                let mut models = Vec::new();
-                for &law in &laws {
-                    for &coupling in &couplings {
-                        for &d in &damage {
-                            models.push(ModelChoice {
-                                law,
-                                coupling,
-                                damage: d,
-                            });
-                        }
-                    }
-                }
+                let models = models(&laws, &couplings, &damage);
                 let passive = s.passive.unwrap_or(true);
                 if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty()
                 {

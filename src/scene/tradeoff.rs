@@ -12,7 +12,7 @@
 //! | `radius`, `length`, `grading` | the cylinder | the first cylinder study's, or 1, 4, 3 |
 //! | `tolerances` | Newton tolerances, loose to tight (the last is the reference) | 1e-6, 1e-8, 1e-10, 1e-12 |
 
-use super::resolve::{cell_count, only_keys, positive, Ctx};
+use super::resolve::{cell_count, grading, non_empty, only_keys, positive, Ctx};
 use super::schema::StudySpec;
 use super::SceneError;
 use crate::tradeoff::study::{Geometry, OptionGroup, TradeoffOptions};
@@ -68,16 +68,15 @@ pub(super) fn resolve_tradeoff(
     let defaults = TradeoffOptions::default();
 
     let groups = s.options.clone().unwrap_or_else(|| defaults.groups.clone());
-    if groups.is_empty() {
-        return Err(ctx.err(
-            k("options"),
-            "[]",
-            format!(
-                "name at least one option group of {:?}",
-                OptionGroup::ALL.map(OptionGroup::key)
-            ),
-        ));
-    }
+    non_empty(
+        ctx,
+        &k("options"),
+        &groups,
+        &format!(
+            "name at least one option group of {:?}",
+            OptionGroup::ALL.map(OptionGroup::key)
+        ),
+    )?;
     for (j, g) in groups.iter().enumerate() {
         if groups[..j].contains(g) {
             return Err(ctx.err(
@@ -91,13 +90,12 @@ pub(super) fn resolve_tradeoff(
     let meshes = match &s.meshes {
         None => defaults.meshes.clone(),
         Some(v) => {
-            if v.is_empty() {
-                return Err(ctx.err(
-                    k("meshes"),
-                    "[]",
-                    "give at least one mesh [nr, nz] (the last is the reference)",
-                ));
-            }
+            non_empty(
+                ctx,
+                &k("meshes"),
+                v,
+                "give at least one mesh [nr, nz] (the last is the reference)",
+            )?;
             let mut meshes = Vec::with_capacity(v.len());
             for (j, [nr, nz]) in v.iter().enumerate() {
                 let at = format!("{key}.meshes[{j}]");
@@ -123,13 +121,12 @@ pub(super) fn resolve_tradeoff(
     let tolerances = match &s.tolerances {
         None => defaults.tolerances.clone(),
         Some(v) => {
-            if v.is_empty() {
-                return Err(ctx.err(
-                    k("tolerances"),
-                    "[]",
-                    "give at least one Newton tolerance (the last is the reference)",
-                ));
-            }
+            non_empty(
+                ctx,
+                &k("tolerances"),
+                v,
+                "give at least one Newton tolerance (the last is the reference)",
+            )?;
             for (j, t) in v.iter().enumerate() {
                 let at = format!("{key}.tolerances[{j}]");
                 if !(t.is_finite() && *t > 0.0 && *t < 1.0) {
@@ -162,7 +159,7 @@ pub(super) fn resolve_tradeoff(
             .transpose()?,
         grading: s
             .grading
-            .map(|g| super::resolve::grading(ctx, &k("grading"), g))
+            .map(|g| grading(ctx, &k("grading"), g))
             .transpose()?,
         nr: s.nr.map(|v| cell_count(ctx, &k("nr"), v)).transpose()?,
         nz: s.nz.map(|v| cell_count(ctx, &k("nz"), v)).transpose()?,

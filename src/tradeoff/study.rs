@@ -218,40 +218,6 @@ pub struct FeRun {
     pub failures: Vec<String>,
 }
 
-fn fe_once<M: AxisymmetricMaterial + ?Sized>(
-    material: &M,
-    geom: Geometry,
-    cells: (usize, usize),
-    bases: Bases,
-    stretches: &[f64],
-    options: &SolverOptions,
-) -> Result<FeRun, TradeoffError> {
-    let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
-    let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
-    let sweep = solver.sweep(stretches)?;
-    let t = solver.timings();
-    let mut stress = vec![f64::NAN; stretches.len()];
-    let mut gamma_centre = vec![f64::NAN; stretches.len()];
-    let mut iterations = 0;
-    for r in &sweep.results {
-        iterations += r.steps.iter().map(|s| s.iterations.len()).sum::<usize>();
-        if let Some(i) = stretches.iter().position(|&s| s == r.stretch) {
-            stress[i] = r.nominal_stress;
-            gamma_centre[i] = r.gamma_centre;
-        }
-    }
-    let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
-    Ok(FeRun {
-        time_s: 0.0,
-        stress,
-        gamma_centre,
-        iterations,
-        per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
-        dofs: solver.n_free_dofs(),
-        failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
-    })
-}
-
 /// Runs and times one FE sweep of `material` on a `cells` = (nr, nz) mesh of `geom`.
 pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     material: &M,
@@ -261,8 +227,33 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     stretches: &[f64],
     options: &SolverOptions,
 ) -> Result<FeRun, TradeoffError> {
-    let (time_s, mut run) =
-        time_median(|| fe_once(material, geom, cells, bases, stretches, options))?;
+    let once = || -> Result<FeRun, TradeoffError> {
+        let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
+        let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
+        let sweep = solver.sweep(stretches)?;
+        let t = solver.timings();
+        let mut stress = vec![f64::NAN; stretches.len()];
+        let mut gamma_centre = vec![f64::NAN; stretches.len()];
+        let mut iterations = 0;
+        for r in &sweep.results {
+            iterations += r.steps.iter().map(|s| s.iterations.len()).sum::<usize>();
+            if let Some(i) = stretches.iter().position(|&s| s == r.stretch) {
+                stress[i] = r.nominal_stress;
+                gamma_centre[i] = r.gamma_centre;
+            }
+        }
+        let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
+        Ok(FeRun {
+            time_s: 0.0,
+            stress,
+            gamma_centre,
+            iterations,
+            per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
+            dofs: solver.n_free_dofs(),
+            failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
+        })
+    };
+    let (time_s, mut run) = time_median(once)?;
     run.time_s = time_s;
     Ok(run)
 }
