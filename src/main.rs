@@ -3,11 +3,12 @@
 
 use activemuscle::output::csv::{tables, to_csv};
 use activemuscle::output::figures::figures;
-use activemuscle::output::plot::render;
+use activemuscle::output::plot::{render, Figure};
 use activemuscle::output::report::{html, RunInfo};
 use activemuscle::output::Staging;
 use activemuscle::scene::run::{run, Results, RunOptions};
 use activemuscle::scene::{Scene, Study};
+use activemuscle::tradeoff::{report, TradeoffOptions};
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -45,10 +46,12 @@ enum Command {
     },
     /// Measure speed against accuracy for every option that trades one for the other.
     ///
-    /// Activation law, derivative route, frozen tangent, mesh, Newton tolerance and 0D vs FE, each
-    /// timed (wall time) and compared with a reference at its accurate end. Writes into DIR:
-    /// tradeoff.csv, tradeoff.md, tradeoff_*.png/svg (log–log error vs time, Pareto front) and
-    /// tradeoff.html (self-contained). Uses the scene's material, activation and cylinder geometry.
+    /// Activation law (0D and FE), derivative route, frozen tangent, mesh, Newton tolerance and 0D
+    /// vs FE, each timed (wall time) and compared with a reference at its accurate end. Writes
+    /// into DIR: tradeoff.csv, tradeoff.md, tradeoff_*.png/svg (log–log error vs time, Pareto
+    /// front) and tradeoff.html (self-contained). Uses the scene's material and activation; the
+    /// options of its `kind = "tradeoff"` study if it has one (see scenes/tradeoff.toml), else
+    /// every option on its first cylinder study's geometry.
     Tradeoff {
         /// Scene file (TOML). Omit to use the chapter's (scenes/paper.toml, embedded).
         scene: Option<PathBuf>,
@@ -108,6 +111,16 @@ fn describe(scene: &Scene) -> Vec<String> {
                 st.models.len() + usize::from(st.passive),
                 st.stretches.len(),
                 st.normals
+            )),
+            Study::Tradeoff(t) => v.push(format!(
+                "{}: option groups {}",
+                t.name,
+                t.options
+                    .groups
+                    .iter()
+                    .map(|g| g.key())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             )),
         }
     }
@@ -243,8 +256,29 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
         staging.adopt(&rel).map_err(|e| e.to_string())?;
         files.push(rel.display().to_string());
     }
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    if let Some(t) = &results.tradeoff {
+        let (staged, pngs) = report::stage(
+            t,
+            &mut staging,
+            &scene.title,
+            &command,
+            start.elapsed().as_secs_f64(),
+        )
+        .map_err(|e| e.to_string())?;
+        files.extend(staged);
+        for f in pngs {
+            let figure = Figure {
+                heading: format!("Speed versus accuracy: {}", f.option),
+                caption: report::caption(&f.option, &t.rows),
+                stem: f.stem,
+                panels: Vec::new(),
+            };
+            rendered.push((figure, f.png));
+        }
+    }
     let info = RunInfo {
-        command: std::env::args().collect::<Vec<_>>().join(" "),
+        command,
         wall: start.elapsed(),
         version: env!("CARGO_PKG_VERSION").to_string(),
         rustc: rustc_version(),
@@ -260,12 +294,17 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
 }
 
 fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
-    use activemuscle::tradeoff::{report, run as run_tradeoff, TradeoffOptions};
+    use activemuscle::tradeoff::run as run_tradeoff;
     let start = Instant::now();
     let scene = load(scene)?;
+    // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
+    let chosen = scene.studies.iter().find_map(|s| match s {
+        Study::Tradeoff(t) => Some(t.options.clone()),
+        _ => None,
+    });
     let options = TradeoffOptions {
         verbose: !quiet,
-        ..TradeoffOptions::default()
+        ..chosen.unwrap_or_default()
     };
     let results = run_tradeoff(&scene, &options).map_err(|e| e.to_string())?;
     let command = std::env::args().collect::<Vec<_>>().join(" ");

@@ -1,6 +1,7 @@
 //! Every kind of bad scene input gives a non-zero exit and a message naming the file, the key,
 //! the value and the rule; the binary is run as a user runs it.
 
+use std::ffi::OsStr;
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -14,6 +15,18 @@ fn scene_file(name: &str, text: &str) -> PathBuf {
     let p = dir.join(format!("{name}.toml"));
     std::fs::write(&p, text).expect("write scene");
     p
+}
+
+/// Runs the binary with `args`; asserts success and returns its standard output.
+fn succeeds(args: &[&OsStr]) -> String {
+    let out = Command::new(BIN).args(args).output().expect("run binary");
+    assert!(
+        out.status.success(),
+        "{:?}: {}",
+        args,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
 /// Runs `check` on `text`; asserts failure and that stderr names the file and every `needle`.
@@ -41,17 +54,7 @@ fn rejected(name: &str, text: &str, needles: &[&str]) {
 #[test]
 fn a_valid_scene_is_accepted_and_printed_resolved() {
     let path = scene_file("valid", STUDY);
-    let out = Command::new(BIN)
-        .arg("check")
-        .arg(&path)
-        .output()
-        .expect("run binary");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = succeeds(&["check".as_ref(), path.as_ref()]);
     // Defaults are the chapter's values.
     for v in [
         "mu = 0.1599",
@@ -68,15 +71,7 @@ fn a_valid_scene_is_accepted_and_printed_resolved() {
 #[test]
 fn the_shipped_paper_scene_is_valid() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/paper.toml");
-    let out = Command::new(BIN)
-        .args(["check", path])
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    succeeds(&["check".as_ref(), path.as_ref()]);
 }
 
 #[test]
@@ -252,4 +247,168 @@ fn a_failed_run_leaves_no_outputs() {
         .expect("run binary");
     assert!(!out.status.success());
     assert!(!dir.join("curves.csv").exists() && !dir.join("report.html").exists());
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "activemuscle-cli-scene-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+const TRADEOFF: &str =
+    "[[study]]\nkind = \"tradeoff\"\noptions = [\"activation-law\"]\nstretch = [1.0, 1.1, 1.2]\n";
+
+#[test]
+fn tradeoff_takes_a_scene_and_measures_only_its_options() {
+    let path = scene_file("tradeoff", TRADEOFF);
+    let dir = out_dir("tradeoff");
+    succeeds(&[
+        "tradeoff".as_ref(),
+        path.as_ref(),
+        "--out".as_ref(),
+        dir.as_ref(),
+        "--quiet".as_ref(),
+    ]);
+    let csv = std::fs::read_to_string(dir.join("tradeoff.csv")).expect("tradeoff.csv");
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 3, "{csv}");
+    assert!(rows.iter().all(|r| r.starts_with("activation law (0D),")));
+    assert!(rows[0].contains("3 stretches"), "{csv}");
+    for f in [
+        "tradeoff.md",
+        "tradeoff.html",
+        "tradeoff_activation_law_0d.png",
+        "tradeoff_activation_law_0d.svg",
+    ] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    assert!(!dir.join("tradeoff_mesh_clamped.png").exists());
+}
+
+#[test]
+fn a_tradeoff_study_writes_its_table_and_figures_into_the_run_and_its_report() {
+    let path = scene_file(
+        "tradeoff_run",
+        &format!("{TRADEOFF}\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n"),
+    );
+    let dir = out_dir("tradeoff-run");
+    succeeds(&[
+        "run".as_ref(),
+        path.as_ref(),
+        "--out".as_ref(),
+        dir.as_ref(),
+        "--quiet".as_ref(),
+    ]);
+    for f in [
+        "tradeoff.csv",
+        "tradeoff.md",
+        "tradeoff_activation_law_0d.png",
+        "curves.csv",
+    ] {
+        assert!(dir.join(f).exists(), "{f} missing");
+    }
+    let report = std::fs::read_to_string(dir.join("report.html")).expect("report.html");
+    for needle in [
+        "Speed versus accuracy: activation law (0D)",
+        "activation law (0D) · explicit (frozen)",
+        "Explicit law (0D, 3 stretches)",
+        "tradeoff.csv",
+    ] {
+        assert!(report.contains(needle), "report lacks {needle:?}");
+    }
+}
+
+#[test]
+fn the_shipped_tradeoff_scene_is_valid() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/tradeoff.toml");
+    succeeds(&["check".as_ref(), path.as_ref()]);
+}
+
+#[test]
+fn check_prints_the_parameters_of_the_energies_that_run() {
+    use activemuscle::energy::{EhretBolItskov, GiantesioMusesti};
+    use activemuscle::scene::schema::{EnergyKind, EnergySpec, SceneFile};
+    let path = scene_file(
+        "energies",
+        "[material]\nenergy = \"ehret-bol-itskov\"\nmu = 0.2\nalpha = 15.0\nbeta = 2.0\nw0 = 0.6\n\
+         [[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n\
+         compare = [{ energy = \"ehret-bol-itskov\", alpha = 10.0 }, { energy = \"giantesio-musesti\" }]\n\
+         [[study]]\nkind = \"fit\"\nfit = \"passive\"\nstretch = [1.0, 1.1, 1.2, 1.3]\n\
+         reference = { energy = \"ehret-bol-itskov\", beta = 3.0 }\n",
+    );
+    let stdout = succeeds(&["check".as_ref(), path.as_ref()]);
+    let printed: SceneFile = toml::from_str(&stdout).expect("check prints TOML");
+    let values = |e: &EnergySpec| (e.energy, e.mu, e.alpha, e.beta, e.w0);
+    let m = &printed.material;
+    assert_eq!(
+        (m.energy, m.mu, m.alpha, m.beta, m.w0),
+        (
+            EnergyKind::EhretBolItskov,
+            Some(0.2),
+            Some(15.0),
+            Some(2.0),
+            Some(0.6)
+        )
+    );
+    // What is left out is the chapter's value, as the library states it.
+    let (ebi, gm) = (EhretBolItskov::paper(), GiantesioMusesti::paper());
+    let compare = printed.studies[0]
+        .compare
+        .as_ref()
+        .expect("compare printed");
+    assert_eq!(
+        values(&compare[0]),
+        (
+            EnergyKind::EhretBolItskov,
+            Some(ebi.mu()),
+            Some(10.0),
+            Some(ebi.beta()),
+            Some(ebi.w0())
+        )
+    );
+    assert_eq!(
+        values(&compare[1]),
+        (
+            EnergyKind::GiantesioMusesti,
+            Some(gm.mu()),
+            Some(gm.alpha()),
+            None,
+            Some(gm.w0())
+        )
+    );
+    let reference = printed.studies[1].reference.as_ref().expect("reference");
+    assert_eq!(
+        values(reference),
+        (
+            EnergyKind::EhretBolItskov,
+            Some(ebi.mu()),
+            Some(ebi.alpha()),
+            Some(3.0),
+            Some(ebi.w0())
+        )
+    );
+}
+
+#[test]
+fn a_bad_tradeoff_study_is_named_with_file_line_key_value_and_rule() {
+    rejected(
+        "tradeoff_meshes",
+        "[[study]]\nkind = \"tradeoff\"\nmeshes = [[4, 16], [2, 8]]\n",
+        &[
+            "tradeoff_meshes.toml:3: study[0].meshes[1] = [2, 8]",
+            "coarse to fine",
+        ],
+    );
+    rejected(
+        "tradeoff_option",
+        "[[study]]\nkind = \"tradeoff\"\noptions = [\"mesh\", \"element\"]\n",
+        &[
+            "tradeoff_option.toml:3: study[0].options",
+            "element",
+            "activation-law-fe",
+        ],
+    );
 }

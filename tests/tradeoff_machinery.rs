@@ -7,8 +7,11 @@ use activemuscle::active::{
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxiF, AxisymmetricMaterial, Bases, NeoHookean, SolverOptions};
+use activemuscle::scene::Scene;
 use activemuscle::tradeoff::measure::finalise;
-use activemuscle::tradeoff::study::{fe_row, fe_run, FeRun, Geometry};
+use activemuscle::tradeoff::study::{
+    activation_law_fe_rows, fe_row, fe_run, run, FeRun, Geometry, OptionGroup, TradeoffOptions,
+};
 use activemuscle::tradeoff::{
     curve_error, pareto_front, time_median, CurveError, FiniteDifferenceTangent, Measurement,
     OracleRoute,
@@ -282,4 +285,105 @@ fn finite_difference_tangent_agrees_to_its_expected_accuracy() {
         }
     }
     assert!(FiniteDifferenceTangent::new(&NeoHookean::new(1.0).unwrap(), 0.0).is_err());
+}
+
+/// P(λ) and γ(λ) along the fibres (0D), straight from the library.
+fn curve_0d(m: &Muscle<GiantesioMusesti>) -> (Vec<f64>, Vec<f64>) {
+    STRETCHES
+        .iter()
+        .map(|&l| {
+            let p = activemuscle::uniaxial::along_fibres(m, l).unwrap();
+            (p.stress, p.gamma)
+        })
+        .unzip()
+}
+
+#[test]
+fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
+    // Sliding bases: the FE solution is homogeneous uniaxial tension, so the stress error of a
+    // law against the implicit law in the FE is the 0D error between the two laws.
+    let scene = Scene::paper().unwrap();
+    let rows = activation_law_fe_rows(
+        &scene,
+        "activation law (FE, sliding)",
+        geometry(),
+        (2, 8),
+        Bases::Sliding,
+        &STRETCHES,
+    )
+    .unwrap();
+    let (e, c) = (GiantesioMusesti::paper(), ActiveCurve::paper());
+    let frozen = Coupling::Frozen(FrozenTangent::Exact);
+    let (p_ref, g_ref) =
+        curve_0d(&Muscle::new(e, Law::Implicit(ImplicitLaw::new(e, c)), 0.0, frozen).unwrap());
+    let variants = [
+        (
+            "explicit (frozen)",
+            Muscle::new(e, Law::Explicit(ExplicitLaw::paper()), 0.0, frozen).unwrap(),
+        ),
+        (
+            "energy (consistent)",
+            Muscle::new(
+                e,
+                Law::Energy(EnergyLaw::new(e, c)),
+                0.0,
+                Coupling::Consistent,
+            )
+            .unwrap(),
+        ),
+    ];
+    assert_eq!(rows.len(), 3);
+    assert!(rows[0].reference && rows[0].variant == "implicit (frozen)");
+    assert_eq!(rows[0].error, CurveError::ZERO);
+    for (row, (name, m)) in rows[1..].iter().zip(&variants) {
+        assert_eq!(row.variant, *name);
+        assert!(!row.reference && row.time_s > 0.0 && row.iterations.unwrap() > 0);
+        let (p, g) = curve_0d(m);
+        let expected = curve_error(&p_ref, &p);
+        let expected_gamma = curve_error(&g_ref, &g).max_abs;
+        // The explicit law misses the stress; the energy law (consistent) reproduces it with
+        // another γ: both kinds of error must come out as they are.
+        assert!(
+            expected.max_abs > 0.1 || expected_gamma > 0.01,
+            "{name}: the laws differ: {expected:?}, γ {expected_gamma:e}"
+        );
+        assert!(
+            (row.error.max_abs - expected.max_abs).abs() < 1e-7,
+            "{name}: reported {:?}, there is {expected:?}",
+            row.error
+        );
+        assert!((row.error.max_rel - expected.max_rel).abs() < 1e-9);
+        assert!((row.gamma_error.unwrap() - expected_gamma).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn the_study_runs_only_the_option_groups_asked_for() {
+    let scene = Scene::paper().unwrap();
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLawFe],
+        geometry: Some(geometry()),
+        fe_mesh: Some((1, 4)),
+        fe_stretches: vec![1.1, 1.17],
+        ..TradeoffOptions::default()
+    };
+    let results = run(&scene, &options).unwrap();
+    let variants: Vec<&str> = results.rows.iter().map(|r| r.variant.as_str()).collect();
+    assert_eq!(
+        variants,
+        [
+            "implicit (frozen)",
+            "explicit (frozen)",
+            "energy (consistent)"
+        ]
+    );
+    assert!(results
+        .rows
+        .iter()
+        .all(|r| r.option == "activation law (FE)"));
+    // Speed-ups are against the implicit law's time, measured in the same run.
+    let r = &results.rows[1];
+    assert!((r.speedup - results.rows[0].time_s / r.time_s).abs() < 1e-12);
+    assert_eq!(results.findings.len(), 1);
+    assert!(results.findings[0].contains("clamped cylinder (1 × 4 cells, 2 stretches)"));
 }

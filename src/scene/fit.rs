@@ -10,7 +10,7 @@
 //! `noise` \[kPa\] adds seeded Gaussian noise to synthetic data. Data files are read and checked
 //! when the scene is validated, so a bad file is reported by `check` with its name and line.
 
-use super::resolve::{damages, energy, filled, fmt_list, only_keys, Ctx};
+use super::resolve::{damages, energy, fmt_list, only_keys, written, Ctx};
 use super::schema::{DirectionKind, FitKind, MethodKind, ResidualKind, StressKind, StudySpec};
 use super::SceneError;
 use crate::active::ActiveCurve;
@@ -316,6 +316,7 @@ pub(super) fn resolve_fit(
     let residual = s.residual.unwrap_or(ResidualKind::Stress);
     let mut cases = Vec::new();
     let source;
+    let mut reference_spec = None;
     let mut truth: Vec<Option<f64>> = vec![None; free.len()];
     match fit {
         FitKind::Passive => match (&s.data, &s.reference) {
@@ -337,15 +338,8 @@ pub(super) fn resolve_fit(
                 });
             }
             (None, Some(spec)) => {
-                let reference = energy(
-                    ctx,
-                    &k("reference"),
-                    spec.energy,
-                    spec.mu,
-                    spec.alpha,
-                    spec.beta,
-                    spec.w0,
-                )?;
+                let reference = energy(ctx, &k("reference"), spec)?;
+                reference_spec = Some(written(&reference));
                 let lambdas = need_stretch("a reference curve")?;
                 let muscle = Muscle::passive(reference.clone());
                 let data = synthetic(ctx, &k("stretch"), &lambdas, &mut noise, |l| {
@@ -539,7 +533,7 @@ pub(super) fn resolve_fit(
     r.free = Some(free.clone());
     r.method = Some(s.method.unwrap_or(MethodKind::GaussNewton));
     r.max_iterations = Some(max_iterations);
-    r.reference = s.reference.as_ref().map(filled);
+    r.reference = reference_spec;
     if fit == FitKind::Passive {
         r.direction = Some(direction);
     }

@@ -80,6 +80,40 @@ pub fn key_path(text: &str, offset: usize) -> String {
     }
 }
 
+/// The line (1-based) of `text` that writes `key` (`study[1].damage[2]`), or else the nearest
+/// enclosing key or table that the text writes (`study[1].damage`, then `study[1]`): the reverse
+/// of [`key_path`], for the errors that validation finds after parsing. `None` if the text
+/// writes none of them (a value left to its default in a table the file does not open).
+pub fn line_of(text: &str, key: &str) -> Option<usize> {
+    let mut key = key;
+    loop {
+        if let Some(line) = written_at(text, key) {
+            return Some(line);
+        }
+        key = &key[..key.rfind(['.', '['])?];
+    }
+}
+
+/// The line whose key or table header is exactly `key`.
+fn written_at(text: &str, key: &str) -> Option<usize> {
+    let mut start = 0;
+    for (n, line) in text.split_inclusive('\n').enumerate() {
+        let body = strip_comment(line).trim();
+        let at = if body.starts_with('[') {
+            Some(start + line.len() - line.trim_start().len())
+        } else if body.contains('=') && !starts_inside_value(body) {
+            line.find('=').map(|eq| start + eq + 1)
+        } else {
+            None
+        };
+        if at.is_some_and(|at| key_path(text, at) == key) {
+            return Some(n + 1);
+        }
+        start += line.len();
+    }
+    None
+}
+
 fn push(path: &mut String, key: &str) {
     if key.is_empty() {
         return;
@@ -109,7 +143,7 @@ fn starts_inside_value(body: &str) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::key_path;
+    use super::{key_path, line_of};
 
     const DOC: &str = "title = \"x\"\n[material]\nmu = 1\n[[study]]\nkind = \"uniaxial\"\n[[study]]\nkind = \"cylinder\"\nstretch = { from = 0.7, to = 1.6, stepp = 0.05 }\nvtk = [\n  0.7,\n  1.0 ]\n";
 
@@ -126,5 +160,19 @@ mod tests {
         assert_eq!(at("stepp"), "study[1].stretch.stepp");
         assert_eq!(at("1.6"), "study[1].stretch.to");
         assert_eq!(at("1.0 ]"), "study[1].vtk");
+    }
+
+    #[test]
+    fn finds_the_line_of_a_key_or_of_what_encloses_it() {
+        assert_eq!(line_of(DOC, "title"), Some(1));
+        assert_eq!(line_of(DOC, "material.mu"), Some(3));
+        assert_eq!(line_of(DOC, "material.alpha"), Some(2));
+        assert_eq!(line_of(DOC, "study[0]"), Some(4));
+        assert_eq!(line_of(DOC, "study[1].kind"), Some(7));
+        assert_eq!(line_of(DOC, "study[1].stretch.step"), Some(8));
+        assert_eq!(line_of(DOC, "study[1].vtk[1]"), Some(9));
+        assert_eq!(line_of(DOC, "study[1].nr"), Some(6));
+        assert_eq!(line_of(DOC, "activation.damage[0]"), None);
+        assert_eq!(line_of(DOC, "(file)"), None);
     }
 }

@@ -1,7 +1,7 @@
 //! Scene files: what to compute, written in TOML.
 //!
 //! A scene names a material (`[material]`), the activation (`[activation]`) and a list of studies
-//! (`[[study]]`, kind `uniaxial`, `cylinder`, `fit` or `stability`). Every key is optional unless a study cannot do
+//! (`[[study]]`, kind `uniaxial`, `cylinder`, `fit`, `stability` or `tradeoff`). Every key is optional unless a study cannot do
 //! without it; defaults are the chapter's values (Tables D:parpass, D:paratt; a = 1.0133,
 //! b = 0.2050). Unknown keys, wrong types and values that break a rule are errors that name the
 //! file, the key path, the value and the rule ([`SceneError`]). `scenes/paper.toml` is the
@@ -15,11 +15,13 @@ mod resolve;
 pub mod run;
 pub mod schema;
 pub mod stability;
+pub mod tradeoff;
 
 pub use fit::{FitCase, FitOutcome, FitStudy};
-pub use keypath::key_path;
+pub use keypath::{key_path, line_of};
 pub use resolve::{CylinderStudy, ModelChoice, Scene, Study, UniaxialStudy};
 pub use stability::{StabilityCurve, StabilityPoint, StabilityStudy};
+pub use tradeoff::TradeoffStudy;
 
 use std::fmt;
 use std::path::Path;
@@ -114,6 +116,10 @@ impl Scene {
                 line,
             }
         })?;
-        resolve::resolve(raw, text, file)
+        // Validation knows the key; the line is where the text writes it (or what encloses it).
+        resolve::resolve(raw, text, file).map_err(|e| SceneError {
+            line: e.line.or_else(|| keypath::line_of(text, &e.key)),
+            ..e
+        })
     }
 }

@@ -4,15 +4,20 @@
 
 use super::fit::{resolve_fit, FitStudy};
 use super::schema::{
-    ActivationSpec, BasesKind, CouplingKind, DirectionKind, EnergyKind, EnergySpec, ExplicitSpec,
-    LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, StudySpec, TangentKind,
+    ActivationSpec, BasesKind, BelowMinimumKind, CouplingKind, DirectionKind, EnergyKind,
+    EnergySpec, ExplicitSpec, LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, StudySpec,
+    TangentKind,
 };
 use super::stability::{resolve_stability, StabilityStudy};
+use super::tradeoff::{resolve_tradeoff, TradeoffStudy};
 use super::SceneError;
 use crate::active::{
-    ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+    ActiveCurve, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
+    ImplicitLaw, Law,
 };
 use crate::energy::{EhretBolItskov, Energy, GiantesioMusesti, NeoHookean};
+use crate::fit::Parametric;
+use crate::tradeoff::study::scene_cylinder;
 use crate::Muscle;
 
 /// A validated scene with every default resolved.
@@ -35,6 +40,8 @@ pub struct Scene {
     pub explicit: (f64, f64),
     /// Tangent used by the frozen model.
     pub frozen_tangent: TangentKind,
+    /// What the energy law does below λ_min.
+    pub below_minimum: BelowMinimum,
     /// Studies in file order.
     pub studies: Vec<Study>,
     /// The resolved scene as a TOML document (every default written out).
@@ -52,6 +59,8 @@ pub enum Study {
     Fit(FitStudy),
     /// Material stability along the fibres.
     Stability(StabilityStudy),
+    /// Speed versus accuracy.
+    Tradeoff(TradeoffStudy),
 }
 
 /// One activation model: law, coupling, damage.
@@ -123,6 +132,7 @@ impl Study {
             Study::Cylinder(s) => &s.name,
             Study::Fit(s) => &s.name,
             Study::Stability(s) => &s.name,
+            Study::Tradeoff(s) => &s.name,
         }
     }
 }
@@ -132,7 +142,9 @@ impl Scene {
     pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
         Ok(match kind {
             LawKind::Implicit => Law::Implicit(ImplicitLaw::new(self.material.clone(), self.curve)),
-            LawKind::Energy => Law::Energy(EnergyLaw::new(self.material.clone(), self.curve)),
+            LawKind::Energy => Law::Energy(
+                EnergyLaw::new(self.material.clone(), self.curve).below_minimum(self.below_minimum),
+            ),
             LawKind::Explicit => {
                 let gm = match &self.material {
                     Energy::GiantesioMusesti(gm) => *gm,
@@ -221,15 +233,16 @@ pub(super) fn fmt_list(v: &[f64]) -> String {
     format!("[{}]", items.join(", "))
 }
 
-pub(super) fn energy(
-    ctx: &Ctx,
-    key: &str,
-    kind: EnergyKind,
-    mu: Option<f64>,
-    alpha: Option<f64>,
-    beta: Option<f64>,
-    w0: Option<f64>,
-) -> Result<Energy, SceneError> {
+/// The energy `spec` describes, the chapter's values where it leaves a parameter out; errors
+/// name `key.<parameter>`.
+pub(super) fn energy(ctx: &Ctx, key: &str, spec: &EnergySpec) -> Result<Energy, SceneError> {
+    let EnergySpec {
+        energy: kind,
+        mu,
+        alpha,
+        beta,
+        w0,
+    } = *spec;
     let not_for = |name: &str, v: Option<f64>| -> Result<(), SceneError> {
         match v {
             Some(x) => Err(ctx.err(
@@ -251,13 +264,16 @@ pub(super) fn energy(
             )
             .map(Energy::GiantesioMusesti)
         }
-        EnergyKind::EhretBolItskov => EhretBolItskov::new(
-            mu.unwrap_or(0.1599),
-            alpha.unwrap_or(19.69),
-            beta.unwrap_or(1.190),
-            w0.unwrap_or(0.7388),
-        )
-        .map(Energy::EhretBolItskov),
+        EnergyKind::EhretBolItskov => {
+            let p = EhretBolItskov::paper();
+            EhretBolItskov::new(
+                mu.unwrap_or(p.mu()),
+                alpha.unwrap_or(p.alpha()),
+                beta.unwrap_or(p.beta()),
+                w0.unwrap_or(p.w0()),
+            )
+            .map(Energy::EhretBolItskov)
+        }
         EnergyKind::NeoHookean => {
             not_for("alpha", alpha)?;
             not_for("beta", beta)?;
@@ -283,20 +299,27 @@ pub(super) fn kind_name(kind: EnergyKind) -> &'static str {
     }
 }
 
-/// An energy spec with the defaults of its kind written out (for the printed scene).
-pub(super) fn filled(spec: &EnergySpec) -> EnergySpec {
-    let (mu, alpha, beta, w0) = match spec.energy {
-        EnergyKind::GiantesioMusesti => (Some(0.1599), Some(19.35), None, Some(0.7335)),
-        EnergyKind::EhretBolItskov => (Some(0.1599), Some(19.69), Some(1.190), Some(0.7388)),
-        EnergyKind::NeoHookean => (None, None, None, None),
+/// The spec of a built energy: its kind and every parameter it holds, given or default (what
+/// the printed scene shows, so that it is the energy that runs).
+pub(super) fn written(e: &Energy) -> EnergySpec {
+    let mut spec = EnergySpec {
+        energy: match e {
+            Energy::GiantesioMusesti(_) => EnergyKind::GiantesioMusesti,
+            Energy::EhretBolItskov(_) => EnergyKind::EhretBolItskov,
+            Energy::NeoHookean(_) => EnergyKind::NeoHookean,
+        },
+        ..EnergySpec::default()
     };
-    EnergySpec {
-        energy: spec.energy,
-        mu: spec.mu.or(mu),
-        alpha: spec.alpha.or(alpha),
-        beta: spec.beta.or(beta),
-        w0: spec.w0.or(w0),
+    for (name, value) in e.parameter_names().iter().zip(e.parameter_values()) {
+        let slot = match *name {
+            "mu" => &mut spec.mu,
+            "alpha" => &mut spec.alpha,
+            "beta" => &mut spec.beta,
+            _ => &mut spec.w0,
+        };
+        *slot = Some(value);
     }
+    spec
 }
 
 /// Stretch lists: finite, > 0, ascending without duplicates, reasonably short.
@@ -343,13 +366,12 @@ pub(super) fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<
             v
         }
     };
-    if v.is_empty() {
-        return Err(ctx.err(
-            key,
-            "[]",
-            "the stretch list is empty: give at least one stretch",
-        ));
-    }
+    non_empty(
+        ctx,
+        key,
+        &v,
+        "the stretch list is empty: give at least one stretch",
+    )?;
     if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
         return Err(ctx.err(key, bad, "every stretch must be finite and > 0"));
     }
@@ -359,19 +381,79 @@ pub(super) fn stretches(ctx: &Ctx, key: &str, spec: &StretchSpec) -> Result<Vec<
 }
 
 pub(super) fn damages(ctx: &Ctx, key: &str, v: &[f64]) -> Result<Vec<f64>, SceneError> {
-    if v.is_empty() {
-        return Err(ctx.err(
-            key,
-            "[]",
-            "the damage list is empty: give at least one d ∈ [0, 1]",
-        ));
-    }
+    non_empty(
+        ctx,
+        key,
+        v,
+        "the damage list is empty: give at least one d ∈ [0, 1]",
+    )?;
     for (i, d) in v.iter().enumerate() {
         if !(0.0..=1.0).contains(d) {
             return Err(ctx.err(format!("{key}[{i}]"), d, "damage d must lie in [0, 1]"));
         }
     }
     Ok(v.to_vec())
+}
+
+/// Every law × coupling × damage, in that order of nesting.
+pub(super) fn models(
+    laws: &[LawKind],
+    couplings: &[CouplingKind],
+    damages: &[f64],
+) -> Vec<ModelChoice> {
+    let mut models = Vec::with_capacity(laws.len() * couplings.len() * damages.len());
+    for &law in laws {
+        for &coupling in couplings {
+            for &damage in damages {
+                models.push(ModelChoice {
+                    law,
+                    coupling,
+                    damage,
+                });
+            }
+        }
+    }
+    models
+}
+
+/// A list that must not be empty; `rule` says what to give.
+pub(super) fn non_empty<T>(ctx: &Ctx, key: &str, v: &[T], rule: &str) -> Result<(), SceneError> {
+    if v.is_empty() {
+        Err(ctx.err(key, "[]", rule))
+    } else {
+        Ok(())
+    }
+}
+
+/// A length or tolerance: finite and > 0.
+pub(super) fn positive(ctx: &Ctx, key: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(ctx.err(key, v, "must be finite and > 0"))
+    }
+}
+
+/// A number of cells along one direction: an integer in [1, 10000].
+pub(super) fn cell_count(ctx: &Ctx, key: &str, v: i64) -> Result<usize, SceneError> {
+    if (1..=10_000).contains(&v) {
+        Ok(v as usize)
+    } else {
+        Err(ctx.err(
+            key,
+            v,
+            "the number of cells must be an integer in [1, 10000]",
+        ))
+    }
+}
+
+/// The middle/base cell-height ratio of a cylinder mesh: finite and ≥ 1.
+pub(super) fn grading(ctx: &Ctx, key: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() && v >= 1.0 {
+        Ok(v)
+    } else {
+        Err(ctx.err(key, v, "must be finite and ≥ 1 (1 = uniform)"))
+    }
 }
 
 /// Every key of a study besides `kind`, `name`, `stretch` and `damage`, and whether it is given.
@@ -407,6 +489,9 @@ fn given_keys(s: &StudySpec) -> Vec<(&'static str, bool)> {
         ("method", s.method.is_some()),
         ("max_iterations", s.max_iterations.is_some()),
         ("normals", s.normals.is_some()),
+        ("options", s.options.is_some()),
+        ("meshes", s.meshes.is_some()),
+        ("tolerances", s.tolerances.is_some()),
     ]
 }
 
@@ -449,7 +534,17 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
         w0,
         fibre,
     } = raw.material.clone();
-    let material = energy(&ctx, "material", kind, mu, alpha, beta, w0)?;
+    let material = energy(
+        &ctx,
+        "material",
+        &EnergySpec {
+            energy: kind,
+            mu,
+            alpha,
+            beta,
+            w0,
+        },
+    )?;
     let fibre = fibre.unwrap_or([1.0, 0.0, 0.0]);
     let norm = fibre.iter().map(|x| x * x).sum::<f64>().sqrt();
     if !(norm.is_finite() && norm > 1e-12) {
@@ -477,6 +572,11 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
     let default_law = act.law.unwrap_or_default();
     let default_coupling = act.coupling.unwrap_or_default();
     let frozen_tangent = act.frozen_tangent.unwrap_or_default();
+    let below_minimum_kind = act.below_minimum.unwrap_or_default();
+    let below_minimum = match below_minimum_kind {
+        BelowMinimumKind::ZeroWork => BelowMinimum::ZeroWork,
+        BelowMinimumKind::Inactive => BelowMinimum::Inactive,
+    };
     let default_damage = damages(
         &ctx,
         "activation.damage",
@@ -501,11 +601,13 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
         return Err(ctx.err(
             "study",
             "(none)",
-            "a scene needs at least one [[study]] (kind = \"uniaxial\" or \"cylinder\")",
+            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\" or \"tradeoff\")",
         ));
     }
     let mut studies = Vec::new();
     let mut resolved_studies = Vec::new();
+    // Trade-off studies take what they leave out from the first cylinder study, wherever it is.
+    let mut pending = Vec::new();
     for (i, s) in raw.studies.iter().enumerate() {
         let key = format!("study[{i}]");
         let k = |name: &str| format!("{key}.{name}");
@@ -532,6 +634,23 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
             StudyKind::Stability => {
                 let (study, resolved) = resolve_stability(&ctx, &key, s, kind, lambdas)?;
                 studies.push(Study::Stability(study));
+                resolved_studies.push(resolved);
+                continue;
+            }
+            StudyKind::Tradeoff => {
+                if let Some(first) = studies.iter().position(|s| matches!(s, Study::Tradeoff(_))) {
+                    return Err(ctx.err(
+                        k("kind"),
+                        "\"tradeoff\"",
+                        format!(
+                            "a scene holds at most one tradeoff study (study[{first}] is one): \
+                             its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures"
+                        ),
+                    ));
+                }
+                let (study, resolved, rest) = resolve_tradeoff(&ctx, &key, s, lambdas)?;
+                pending.push((studies.len(), rest));
+                studies.push(Study::Tradeoff(study));
                 resolved_studies.push(resolved);
                 continue;
             }
@@ -568,16 +687,8 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                     ));
                 }
                 let mut compare = Vec::new();
-                for (j, c) in s.compare.clone().unwrap_or_default().iter().enumerate() {
-                    compare.push(energy(
-                        &ctx,
-                        &format!("{key}.compare[{j}]"),
-                        c.energy,
-                        c.mu,
-                        c.alpha,
-                        c.beta,
-                        c.w0,
-                    )?);
+                for (j, c) in s.compare.iter().flatten().enumerate() {
+                    compare.push(energy(&ctx, &format!("{key}.compare[{j}]"), c)?);
                 }
                 let constant_gamma = s.constant_gamma.clone().unwrap_or_default();
                 for (j, g) in constant_gamma.iter().enumerate() {
@@ -589,18 +700,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                         )
                     })?;
                 }
-                let mut models = Vec::new();
-                for &law in &laws {
-                    for &coupling in &couplings {
-                        for &d in &damage {
-                            models.push(ModelChoice {
-                                law,
-                                coupling,
-                                damage: d,
-                            });
-                        }
-                    }
-                }
+                let models = models(&laws, &couplings, &damage);
                 let passive = s.passive.unwrap_or(true);
                 if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty()
                 {
@@ -615,7 +715,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                 r.laws = Some(laws);
                 r.couplings = Some(couplings);
                 r.constant_gamma = Some(constant_gamma.clone());
-                r.compare = Some(s.compare.iter().flatten().map(filled).collect());
+                r.compare = Some(compare.iter().map(written).collect());
                 let name = s.name.clone().unwrap_or_else(|| match direction {
                     DirectionKind::Along => "uniaxial along fibres".into(),
                     DirectionKind::Across => "uniaxial across fibres".into(),
@@ -651,39 +751,12 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                         "tolerance",
                     ],
                 )?;
-                let positive = |name: &str, v: f64| -> Result<f64, SceneError> {
-                    if v.is_finite() && v > 0.0 {
-                        Ok(v)
-                    } else {
-                        Err(ctx.err(k(name), v, "must be finite and > 0"))
-                    }
-                };
-                let radius = positive("radius", s.radius.unwrap_or(1.0))?;
-                let length = positive("length", s.length.unwrap_or(4.0))?;
-                let cells =
-                    |name: &str, v: Option<i64>, default: i64| -> Result<usize, SceneError> {
-                        let v = v.unwrap_or(default);
-                        if (1..=10_000).contains(&v) {
-                            Ok(v as usize)
-                        } else {
-                            Err(ctx.err(
-                                k(name),
-                                v,
-                                "the number of cells must be an integer in [1, 10000]",
-                            ))
-                        }
-                    };
-                let nr = cells("nr", s.nr, 6)?;
-                let nz = cells("nz", s.nz, 24)?;
-                let grading = s.grading.unwrap_or(1.0);
-                if !(grading.is_finite() && grading >= 1.0) {
-                    return Err(ctx.err(
-                        k("grading"),
-                        grading,
-                        "must be finite and ≥ 1 (1 = uniform)",
-                    ));
-                }
-                let tolerance = positive("tolerance", s.tolerance.unwrap_or(1e-10))?;
+                let radius = positive(&ctx, &k("radius"), s.radius.unwrap_or(1.0))?;
+                let length = positive(&ctx, &k("length"), s.length.unwrap_or(4.0))?;
+                let nr = cell_count(&ctx, &k("nr"), s.nr.unwrap_or(6))?;
+                let nz = cell_count(&ctx, &k("nz"), s.nz.unwrap_or(24))?;
+                let grading = grading(&ctx, &k("grading"), s.grading.unwrap_or(1.0))?;
+                let tolerance = positive(&ctx, &k("tolerance"), s.tolerance.unwrap_or(1e-10))?;
                 let law = s.law.unwrap_or(default_law);
                 explicit_ok(k("law"), law)?;
                 let coupling = s.coupling.unwrap_or(default_coupling);
@@ -740,13 +813,14 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
         resolved_studies.push(r);
     }
 
-    let material_spec = filled(&EnergySpec {
-        energy: kind,
-        mu,
-        alpha,
-        beta,
-        w0,
-    });
+    let cylinder = scene_cylinder(&studies);
+    for (i, rest) in pending {
+        if let Study::Tradeoff(t) = &mut studies[i] {
+            rest.complete(t, &mut resolved_studies[i], cylinder);
+        }
+    }
+
+    let material_spec = written(&material);
     let resolved = SceneFile {
         title: raw.title.clone(),
         material: MaterialSpec {
@@ -765,6 +839,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
             law: Some(default_law),
             coupling: Some(default_coupling),
             frozen_tangent: Some(frozen_tangent),
+            below_minimum: Some(below_minimum_kind),
             damage: Some(default_damage),
             explicit: Some(ExplicitSpec {
                 a: Some(explicit.0),
@@ -782,6 +857,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
         curve,
         explicit,
         frozen_tangent,
+        below_minimum,
         studies,
         resolved,
     })

@@ -9,6 +9,7 @@ use super::{Scene, Study};
 use crate::energy::{Energy, StrainEnergy};
 use crate::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions, VtkOutput};
 use crate::stability::diagnose_axisymmetric;
+use crate::tradeoff::{run as run_tradeoff, TradeoffOptions, TradeoffResults};
 use crate::uniaxial::{across_fibres, along_fibres, UniaxialPoint};
 use crate::Muscle;
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -112,6 +113,8 @@ pub struct Results {
     pub fits: Vec<FitOutcome>,
     /// Stability curves.
     pub stability: Vec<StabilityCurve>,
+    /// The trade-off study's measurements (a scene holds at most one).
+    pub tradeoff: Option<TradeoffResults>,
 }
 
 /// How to run.
@@ -296,6 +299,37 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Results, RunError> {
                     )],
                 };
                 out.stability.extend(curves);
+                summary
+            }
+            Study::Tradeoff(s) => {
+                rep.log(&format!(
+                    "{}: {} option group(s)",
+                    s.name,
+                    s.options.groups.len()
+                ));
+                let options = TradeoffOptions {
+                    verbose: options.verbose,
+                    ..s.options.clone()
+                };
+                let results = run_tradeoff(scene, &options)
+                    .map_err(|e| RunError(format!("{}: {e}", s.name)))?;
+                let measured = results
+                    .rows
+                    .iter()
+                    .filter(|r| r.error.max_rel.is_finite())
+                    .count();
+                let mut details = results.findings.clone();
+                details.extend(results.rows.iter().map(crate::tradeoff::report::line));
+                let summary = StudySummary {
+                    name: s.name.clone(),
+                    kind: "tradeoff",
+                    models: results.rows.len(),
+                    points: measured,
+                    requested: results.rows.len(),
+                    elapsed: Duration::ZERO,
+                    details,
+                };
+                out.tradeoff = Some(results);
                 summary
             }
         };

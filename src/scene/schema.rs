@@ -1,6 +1,7 @@
 //! The scene file as written: serde structures mirroring the TOML, every key optional except
 //! where a study cannot do without it. Defaults and rules live in `scene::resolve`.
 
+use crate::tradeoff::study::OptionGroup;
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 use std::collections::BTreeMap;
@@ -107,6 +108,18 @@ pub enum TangentKind {
     Symmetric,
 }
 
+/// What the energy law does below λ_min (`below_minimum = "..."`), see
+/// [`crate::active::BelowMinimum`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BelowMinimumKind {
+    /// γ continues on the zero-work root branch: γ and Ψ continuous across λ_min.
+    #[default]
+    ZeroWork,
+    /// γ = 0 below λ_min (the chapter's literal reading): γ jumps at λ_min.
+    Inactive,
+}
+
 /// `[activation]`.
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -125,6 +138,8 @@ pub struct ActivationSpec {
     pub coupling: Option<CouplingKind>,
     /// Tangent of the frozen model.
     pub frozen_tangent: Option<TangentKind>,
+    /// What the energy law does below λ_min.
+    pub below_minimum: Option<BelowMinimumKind>,
     /// Default damage values d ∈ [0, 1].
     pub damage: Option<Vec<f64>>,
     /// Coefficients of the explicit law (eq. D:gamma).
@@ -153,6 +168,8 @@ pub enum StudyKind {
     Fit,
     /// Material stability along the uniaxial path along the fibres (issue 7).
     Stability,
+    /// Speed versus accuracy of every option that trades one for the other (issue 6).
+    Tradeoff,
 }
 
 /// What a fit study fits (`fit = "..."`).
@@ -223,7 +240,7 @@ pub enum BasesKind {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct StudySpec {
-    /// `uniaxial` or `cylinder`.
+    /// `uniaxial`, `cylinder`, `fit`, `stability` or `tradeoff`.
     pub kind: StudyKind,
     /// Label in logs and the report.
     pub name: Option<String>,
@@ -295,6 +312,14 @@ pub struct StudySpec {
     // --- stability ---
     /// Sampled reference normals of the strong-ellipticity check (stability).
     pub normals: Option<i64>,
+    // --- tradeoff ---
+    /// Option groups to measure (tradeoff; default all).
+    pub options: Option<Vec<OptionGroup>>,
+    /// Meshes `[nr, nz]` of the mesh option, coarse to fine (tradeoff; the last is the reference).
+    pub meshes: Option<Vec<[i64; 2]>>,
+    /// Newton tolerances of the tolerance option, loose to tight (tradeoff; the last is the
+    /// reference).
+    pub tolerances: Option<Vec<f64>>,
 }
 
 /// Stretches: `[0.8, 1.0, 1.2]` or `{ from = 0.7, to = 1.6, step = 0.05, extra = [1.17] }`.

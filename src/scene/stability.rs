@@ -2,7 +2,7 @@
 //! law × coupling × d, where the curve softens (dP/dλ < 0) and where strong ellipticity is lost
 //! ([`crate::stability::along_fibres_stability`]).
 
-use super::resolve::{coupling_name, damages, law_name, only_keys, Ctx, ModelChoice};
+use super::resolve::{coupling_name, damages, law_name, models, only_keys, Ctx, ModelChoice};
 use super::schema::{CouplingKind, EnergyKind, LawKind, StretchSpec, StudySpec};
 use super::{Scene, SceneError};
 use crate::stability::along_fibres_stability;
@@ -90,18 +90,7 @@ pub(super) fn resolve_stability(
         ));
     }
     let passive = s.passive.unwrap_or(true);
-    let mut models = Vec::new();
-    for &law in &laws {
-        for &coupling in &couplings {
-            for &d in &damage {
-                models.push(ModelChoice {
-                    law,
-                    coupling,
-                    damage: d,
-                });
-            }
-        }
-    }
+    let models = models(&laws, &couplings, &damage);
     if !passive && models.is_empty() {
         return Err(ctx.err(
             key,

@@ -347,33 +347,59 @@ pub fn html(
     for (option, png) in figures {
         let _ = writeln!(
             h,
-            "<figure><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}: relative error \
-             of {} against wall time, log–log; filled markers and the dashed line are the Pareto front; \
-             zero errors (the reference) are drawn at {ERROR_FLOOR:.0e}.</figcaption></figure>",
+            "<figure><img alt=\"{}\" src=\"data:image/png;base64,{}\"><figcaption>{}</figcaption></figure>",
             e(option),
             base64::encode(png),
-            e(option),
-            e(results
-                .rows
-                .iter()
-                .find(|r| &r.option == option)
-                .map_or("", |r| r.quantity.as_str()))
+            e(&caption(option, &results.rows))
         );
     }
     h.push_str("</body></html>\n");
     h
 }
 
-/// Writes `tradeoff.csv`, `tradeoff.md` (the table), the figures and `tradeoff.html` into
-/// `out` atomically; returns the files written (relative names).
-pub fn write_all(
+/// One row in words, both axes with their numbers (the report's study table):
+/// `activation law (FE) · explicit (frozen): 5.4e-1 s, speed-up 1.06, max abs error 2.7e0, max rel error 1.4e-1`.
+pub fn line(r: &Measurement) -> String {
+    let mut s = format!(
+        "{} · {}{}: {} s, speed-up {}, max abs error {}, max rel error {}",
+        r.option,
+        r.variant,
+        if r.reference { " (reference)" } else { "" },
+        cell(Some(r.time_s), 2),
+        ratio(r.speedup),
+        cell(Some(r.error.max_abs), 1),
+        cell(Some(r.error.max_rel), 1),
+    );
+    if let Some(g) = r.gamma_error {
+        let _ = write!(s, ", γ error {}", cell(Some(g), 1));
+    }
+    if r.pareto {
+        s.push_str(", Pareto");
+    }
+    s
+}
+
+/// One option's figure, staged.
+#[derive(Debug, Clone)]
+pub struct StagedFigure {
+    /// The option it shows.
+    pub option: String,
+    /// File stem (`tradeoff_mesh_clamped` → `.png`, `.svg`).
+    pub stem: String,
+    /// The PNG bytes (for embedding in a report).
+    pub png: Vec<u8>,
+}
+
+/// Stages `tradeoff.csv`, `tradeoff.md` (the table), one figure per option and `tradeoff.html`
+/// in `staging` (committed by the caller); returns the files staged (relative names) and the
+/// figures.
+pub fn stage(
     results: &TradeoffResults,
-    out: &Path,
+    staging: &mut crate::output::Staging,
     title: &str,
     command: &str,
     wall_s: f64,
-) -> Result<Vec<String>, OutputError> {
-    let mut staging = crate::output::Staging::new(out)?;
+) -> Result<(Vec<String>, Vec<StagedFigure>), OutputError> {
     let mut files = Vec::new();
     staging.write("tradeoff.csv", &to_csv(&results.rows)?)?;
     files.push("tradeoff.csv".to_string());
@@ -389,13 +415,47 @@ pub fn write_all(
             .map_err(|e| OutputError(format!("cannot read back {}: {e}", png.display())))?;
         files.push(format!("{s}.png"));
         files.push(format!("{s}.svg"));
-        figures.push((option, bytes));
+        figures.push(StagedFigure {
+            option,
+            stem: s,
+            png: bytes,
+        });
     }
+    let pngs: Vec<(String, Vec<u8>)> = figures
+        .iter()
+        .map(|f| (f.option.clone(), f.png.clone()))
+        .collect();
     staging.write(
         "tradeoff.html",
-        html(title, command, wall_s, results, &figures).as_bytes(),
+        html(title, command, wall_s, results, &pngs).as_bytes(),
     )?;
     files.push("tradeoff.html".to_string());
+    Ok((files, figures))
+}
+
+/// Writes `tradeoff.csv`, `tradeoff.md` (the table), the figures and `tradeoff.html` into
+/// `out` atomically; returns the files written (relative names).
+pub fn write_all(
+    results: &TradeoffResults,
+    out: &Path,
+    title: &str,
+    command: &str,
+    wall_s: f64,
+) -> Result<Vec<String>, OutputError> {
+    let mut staging = crate::output::Staging::new(out)?;
+    let (files, _) = stage(results, &mut staging, title, command, wall_s)?;
     staging.commit()?;
     Ok(files)
+}
+
+/// The caption of an option's figure in a run's report.
+pub fn caption(option: &str, rows: &[Measurement]) -> String {
+    format!(
+        "{option}: relative error of {} against wall time, log–log; filled markers and the dashed \
+         line are the Pareto front, the reference is red; zero errors (the reference) are drawn at \
+         {ERROR_FLOOR:.0e}. Numbers in tradeoff.csv and tradeoff.md.",
+        rows.iter()
+            .find(|r| r.option == option)
+            .map_or("", |r| r.quantity.as_str())
+    )
 }

@@ -3,6 +3,7 @@
 //! | option | variants | reference | error on |
 //! |---|---|---|---|
 //! | activation law (0D along the fibres) | explicit (frozen), energy (consistent) | implicit (frozen): reproduces P_pas + P_act | P(λ), γ(λ) |
+//! | activation law (FE, clamped cylinder) | explicit (frozen), energy (consistent) | implicit (frozen) | P(λ), centre γ |
 //! | derivative route at a point | oracle (9-entry F), central differences | fast AD | ∂P/∂F |
 //! | derivative route in the FE | oracle, central differences | fast AD | P(λ), centre γ |
 //! | frozen tangent (FE) | symmetric approximation | exact | P(λ), centre γ |
@@ -18,10 +19,11 @@ use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use crate::active::{Coupling, FrozenTangent};
 use crate::energy::Energy;
 use crate::fem::{AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Mesh, SolverOptions};
-use crate::scene::schema::{CouplingKind, DirectionKind, LawKind};
-use crate::scene::{ModelChoice, Scene, Study};
+use crate::scene::schema::{DirectionKind, LawKind};
+use crate::scene::{Scene, Study};
 use crate::uniaxial::along_fibres;
 use crate::Muscle;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// A failure of the trade-off run: which option and variant, and why.
@@ -41,9 +43,60 @@ impl From<crate::fem::FemError> for TradeoffError {
     }
 }
 
+/// The options a user trades, in run order; a scene names them in `options = [...]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionGroup {
+    /// Activation law, 0D along the fibres.
+    ActivationLaw,
+    /// Activation law in the clamped cylinder (FE).
+    ActivationLawFe,
+    /// Derivative route, at one material point and in the FE.
+    DerivativeRoute,
+    /// Exact versus symmetric frozen tangent (FE).
+    FrozenTangent,
+    /// Mesh refinement of the clamped cylinder.
+    Mesh,
+    /// Newton tolerance (FE).
+    NewtonTolerance,
+    /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
+    ZeroDVsFe,
+}
+
+impl OptionGroup {
+    /// Every group, in run order.
+    pub const ALL: [Self; 7] = [
+        Self::ActivationLaw,
+        Self::ActivationLawFe,
+        Self::DerivativeRoute,
+        Self::FrozenTangent,
+        Self::Mesh,
+        Self::NewtonTolerance,
+        Self::ZeroDVsFe,
+    ];
+
+    /// The name a scene uses (`activation-law-fe`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::ActivationLaw => "activation-law",
+            Self::ActivationLawFe => "activation-law-fe",
+            Self::DerivativeRoute => "derivative-route",
+            Self::FrozenTangent => "frozen-tangent",
+            Self::Mesh => "mesh",
+            Self::NewtonTolerance => "newton-tolerance",
+            Self::ZeroDVsFe => "zero-d-vs-fe",
+        }
+    }
+}
+
 /// What to run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TradeoffOptions {
+    /// The option groups to measure (run in the order of [`OptionGroup::ALL`]).
+    pub groups: Vec<OptionGroup>,
+    /// The cylinder of every FE variant; `None`: the scene's first cylinder study's (R, L,
+    /// grading), or R = 1, L = 4, grading 3 without one.
+    pub geometry: Option<Geometry>,
     /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
     pub meshes: Vec<(usize, usize)>,
     /// Mesh of the FE derivative-route, frozen-tangent, tolerance and sliding (0D vs FE)
@@ -51,6 +104,9 @@ pub struct TradeoffOptions {
     pub fe_mesh: Option<(usize, usize)>,
     /// Stretches of every FE sweep.
     pub fe_stretches: Vec<f64>,
+    /// Stretches of the 0D activation-law curves; `None`: the scene's first uniaxial study along
+    /// the fibres, or 0.65:0.01:1.60.
+    pub curve_stretches: Option<Vec<f64>>,
     /// Newton tolerances, loose to tight; the last is the reference.
     pub tolerances: Vec<f64>,
     /// Relative step of the central-difference tangent.
@@ -62,9 +118,12 @@ pub struct TradeoffOptions {
 impl Default for TradeoffOptions {
     fn default() -> Self {
         Self {
+            groups: OptionGroup::ALL.to_vec(),
+            geometry: None,
             meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
             fe_mesh: None,
             fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
+            curve_stretches: None,
             tolerances: vec![1e-6, 1e-8, 1e-10, 1e-12],
             fd_step: 1e-6,
             verbose: false,
@@ -72,11 +131,13 @@ impl Default for TradeoffOptions {
     }
 }
 
-/// Options with the FE mesh resolved.
+/// Options with the geometry, FE mesh and stretches resolved.
 struct Resolved {
+    geom: Geometry,
     meshes: Vec<(usize, usize)>,
     fe_mesh: (usize, usize),
     fe_stretches: Vec<f64>,
+    curve_stretches: Vec<f64>,
     tolerances: Vec<f64>,
     fd_step: f64,
 }
@@ -101,10 +162,10 @@ pub struct Geometry {
     pub grading: f64,
 }
 
-/// The cylinder of the scene's first cylinder study (R, L, grading), or R = 1, L = 4, grading 3.
-fn geometry(scene: &Scene) -> (Geometry, (usize, usize)) {
-    scene
-        .studies
+/// The cylinder of the first cylinder study among `studies` (R, L, grading) and its mesh
+/// (nr, nz), or R = 1, L = 4, grading 3 on 4 × 16 cells without one.
+pub fn scene_cylinder(studies: &[Study]) -> (Geometry, (usize, usize)) {
+    studies
         .iter()
         .find_map(|s| match s {
             Study::Cylinder(c) => Some((
@@ -127,10 +188,9 @@ fn geometry(scene: &Scene) -> (Geometry, (usize, usize)) {
         ))
 }
 
-/// Stretches of the scene's first uniaxial study along the fibres, or 0.65:0.01:1.60.
-fn uniaxial_stretches(scene: &Scene) -> Vec<f64> {
-    scene
-        .studies
+/// Stretches of the first uniaxial study along the fibres among `studies`, or 0.65:0.01:1.60.
+pub fn scene_curve_stretches(studies: &[Study]) -> Vec<f64> {
+    studies
         .iter()
         .find_map(|s| match s {
             Study::Uniaxial(u) if u.direction == DirectionKind::Along => Some(u.stretches.clone()),
@@ -158,40 +218,6 @@ pub struct FeRun {
     pub failures: Vec<String>,
 }
 
-fn fe_once<M: AxisymmetricMaterial + ?Sized>(
-    material: &M,
-    geom: Geometry,
-    cells: (usize, usize),
-    bases: Bases,
-    stretches: &[f64],
-    options: &SolverOptions,
-) -> Result<FeRun, TradeoffError> {
-    let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
-    let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
-    let sweep = solver.sweep(stretches)?;
-    let t = solver.timings();
-    let mut stress = vec![f64::NAN; stretches.len()];
-    let mut gamma_centre = vec![f64::NAN; stretches.len()];
-    let mut iterations = 0;
-    for r in &sweep.results {
-        iterations += r.steps.iter().map(|s| s.iterations.len()).sum::<usize>();
-        if let Some(i) = stretches.iter().position(|&s| s == r.stretch) {
-            stress[i] = r.nominal_stress;
-            gamma_centre[i] = r.gamma_centre;
-        }
-    }
-    let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
-    Ok(FeRun {
-        time_s: 0.0,
-        stress,
-        gamma_centre,
-        iterations,
-        per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
-        dofs: solver.n_free_dofs(),
-        failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
-    })
-}
-
 /// Runs and times one FE sweep of `material` on a `cells` = (nr, nz) mesh of `geom`.
 pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     material: &M,
@@ -201,8 +227,33 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     stretches: &[f64],
     options: &SolverOptions,
 ) -> Result<FeRun, TradeoffError> {
-    let (time_s, mut run) =
-        time_median(|| fe_once(material, geom, cells, bases, stretches, options))?;
+    let once = || -> Result<FeRun, TradeoffError> {
+        let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
+        let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
+        let sweep = solver.sweep(stretches)?;
+        let t = solver.timings();
+        let mut stress = vec![f64::NAN; stretches.len()];
+        let mut gamma_centre = vec![f64::NAN; stretches.len()];
+        let mut iterations = 0;
+        for r in &sweep.results {
+            iterations += r.steps.iter().map(|s| s.iterations.len()).sum::<usize>();
+            if let Some(i) = stretches.iter().position(|&s| s == r.stretch) {
+                stress[i] = r.nominal_stress;
+                gamma_centre[i] = r.gamma_centre;
+            }
+        }
+        let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
+        Ok(FeRun {
+            time_s: 0.0,
+            stress,
+            gamma_centre,
+            iterations,
+            per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
+            dofs: solver.n_free_dofs(),
+            failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
+        })
+    };
+    let (time_s, mut run) = time_median(once)?;
     run.time_s = time_s;
     Ok(run)
 }
@@ -285,22 +336,41 @@ fn with_tolerance(tolerance: f64) -> SolverOptions {
 
 const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
 
+impl Resolved {
+    /// One timed sweep of `material` on the FE mesh of the clamped cylinder.
+    fn clamped<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        material: &M,
+        options: &SolverOptions,
+    ) -> Result<FeRun, TradeoffError> {
+        fe_run(
+            material,
+            self.geom,
+            self.fe_mesh,
+            Bases::Clamped,
+            &self.fe_stretches,
+            options,
+        )
+    }
+}
+
 /// P(λ) \[kPa\] and γ(λ) [-] along a 0D sweep.
 type Curves = (Vec<f64>, Vec<f64>);
 
 /// Activation law, 0D along the fibres.
 fn activation_law(
     scene: &Scene,
+    o: &Resolved,
     run: &mut Runner,
     findings: &mut Vec<String>,
 ) -> Result<(), TradeoffError> {
     const OPTION: &str = "activation law (0D)";
-    let stretches = uniaxial_stretches(scene);
+    let stretches = &o.curve_stretches;
     let curve = |m: &Muscle<Energy>| -> Result<(f64, Curves), TradeoffError> {
         time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
-            for &l in &stretches {
+            for &l in stretches {
                 let pt = along_fibres(m, l)?;
                 p.push(pt.stress);
                 g.push(pt.gamma);
@@ -308,17 +378,12 @@ fn activation_law(
             Ok((p, g))
         })
     };
-    let implicit = scene.muscle(ModelChoice {
-        law: LawKind::Implicit,
-        coupling: CouplingKind::Frozen,
-        damage: 0.0,
-    })?;
-    let implicit = Muscle::new(scene.material.clone(), implicit.law().clone(), 0.0, EXACT)?;
+    let implicit = muscle(scene, LawKind::Implicit, EXACT)?;
     let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
     // The reference reproduces the target P_pas + P_act.
     let passive = Muscle::passive(scene.material.clone());
     let mut target = Vec::with_capacity(stretches.len());
-    for &l in &stretches {
+    for &l in stretches {
         target.push(along_fibres(&passive, l)?.stress + scene.curve.value(l));
     }
     let check = curve_error(&target, &p_ref);
@@ -381,6 +446,98 @@ fn activation_law(
     Ok(())
 }
 
+/// The FE sweeps of the activation-law option: the cylinder on `cells` with `bases`, swept to
+/// `stretches` with the implicit law (frozen, exact tangent: the reference), the explicit law
+/// (frozen) and the energy law (consistent), each timed. Rows in that order, named `option`.
+pub fn activation_law_fe_rows(
+    scene: &Scene,
+    option: &str,
+    geom: Geometry,
+    cells: (usize, usize),
+    bases: Bases,
+    stretches: &[f64],
+) -> Result<Vec<Measurement>, TradeoffError> {
+    let sweep = |law: LawKind, coupling: Coupling| -> Result<FeRun, TradeoffError> {
+        fe_run(
+            &muscle(scene, law, coupling)?,
+            geom,
+            cells,
+            bases,
+            stretches,
+            &tight(),
+        )
+    };
+    let reference = sweep(LawKind::Implicit, EXACT)?;
+    let mut rows = vec![fe_row(
+        option,
+        "implicit (frozen)",
+        true,
+        &reference,
+        &reference,
+    )];
+    for (name, law, coupling) in [
+        ("explicit (frozen)", LawKind::Explicit, EXACT),
+        ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
+    ] {
+        let r = sweep(law, coupling)?;
+        let mut row = fe_row(option, name, false, &r, &reference);
+        // Where is the stress error largest?
+        if let Some((i, d)) = r
+            .stress
+            .iter()
+            .zip(&reference.stress)
+            .map(|(a, b)| (a - b).abs())
+            .enumerate()
+            .filter(|(_, d)| d.is_finite())
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+        {
+            let largest = format!("largest P error at λ = {}: {d:.3} kPa", stretches[i]);
+            row.note = if row.note.is_empty() {
+                largest
+            } else {
+                format!("{largest}; {}", row.note)
+            };
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Activation law in the clamped cylinder.
+fn activation_law_fe(
+    scene: &Scene,
+    o: &Resolved,
+    run: &mut Runner,
+    findings: &mut Vec<String>,
+) -> Result<(), TradeoffError> {
+    let rows = activation_law_fe_rows(
+        scene,
+        "activation law (FE)",
+        o.geom,
+        o.fe_mesh,
+        Bases::Clamped,
+        &o.fe_stretches,
+    )?;
+    if let [reference, explicit, ..] = rows.as_slice() {
+        findings.push(format!(
+            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
+            o.fe_mesh.0,
+            o.fe_mesh.1,
+            o.fe_stretches.len(),
+            reference.time_s / explicit.time_s,
+            explicit.time_s,
+            reference.time_s,
+            explicit.error.max_abs,
+            100.0 * explicit.error.max_rel,
+            explicit.gamma_error.unwrap_or(f64::NAN)
+        ));
+    }
+    for r in rows {
+        run.push(r);
+    }
+    Ok(())
+}
+
 /// The representative point of BENCHMARKS.md: fibre stretch ≈ 1.10.
 fn representative_point() -> AxiF {
     let t = 1.1f64.sqrt().recip();
@@ -392,12 +549,7 @@ fn max_rel(a: &nalgebra::SMatrix<f64, 5, 5>, b: &nalgebra::SMatrix<f64, 5, 5>) -
 }
 
 /// Derivative routes at one material point and in the FE.
-fn derivative_route(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn derivative_route(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     let fast = muscle(scene, LawKind::Explicit, EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
@@ -437,14 +589,7 @@ fn derivative_route(
         run.push(Measurement::new(POINT, name, false, t, quantity, e));
     }
     const FE: &str = "derivative route (FE)";
-    let reference = fe_run(
-        &fast,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let reference = o.clamped(&fast, &tight())?;
     run.push(fe_row(
         FE,
         "fast AD (invariants)",
@@ -453,26 +598,14 @@ fn derivative_route(
         &reference,
     ));
     for (name, m) in variants {
-        let r = fe_run(
-            m,
-            geom,
-            o.fe_mesh,
-            Bases::Clamped,
-            &o.fe_stretches,
-            &tight(),
-        )?;
+        let r = o.clamped(m, &tight())?;
         run.push(fe_row(FE, name, false, &r, &reference));
     }
     Ok(())
 }
 
 /// Exact versus symmetric frozen tangent in the FE.
-fn frozen_tangent(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn frozen_tangent(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "frozen tangent (FE)";
     let exact = muscle(scene, LawKind::Explicit, EXACT)?;
     let symmetric = muscle(
@@ -480,14 +613,7 @@ fn frozen_tangent(
         LawKind::Explicit,
         Coupling::Frozen(FrozenTangent::Symmetric),
     )?;
-    let reference = fe_run(
-        &exact,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let reference = o.clamped(&exact, &tight())?;
     run.push(fe_row(
         OPTION,
         "exact (non-symmetric)",
@@ -495,14 +621,7 @@ fn frozen_tangent(
         &reference,
         &reference,
     ));
-    let r = fe_run(
-        &symmetric,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &tight(),
-    )?;
+    let r = o.clamped(&symmetric, &tight())?;
     run.push(fe_row(
         OPTION,
         "symmetric, 25 its/step",
@@ -515,14 +634,7 @@ fn frozen_tangent(
         max_iterations: 50,
         ..with_tolerance(1e-6)
     };
-    let r = fe_run(
-        &symmetric,
-        geom,
-        o.fe_mesh,
-        Bases::Clamped,
-        &o.fe_stretches,
-        &patient,
-    )?;
+    let r = o.clamped(&symmetric, &patient)?;
     run.push(fe_row(
         OPTION,
         "symmetric, tol 1e-6, 50 its/step",
@@ -536,7 +648,6 @@ fn frozen_tangent(
 /// Mesh refinement of the clamped cylinder.
 fn mesh(
     scene: &Scene,
-    geom: Geometry,
     o: &Resolved,
     run: &mut Runner,
     findings: &mut Vec<String>,
@@ -547,7 +658,7 @@ fn mesh(
     for &cells in &o.meshes {
         runs.push((
             cells,
-            fe_run(&m, geom, cells, Bases::Clamped, &o.fe_stretches, &tight())?,
+            fe_run(&m, o.geom, cells, Bases::Clamped, &o.fe_stretches, &tight())?,
         ));
     }
     let Some((_, finest)) = runs.last().cloned() else {
@@ -592,27 +703,12 @@ fn mesh(
 }
 
 /// Newton tolerance in the FE.
-fn tolerance(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn tolerance(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "Newton tolerance (FE)";
     let m = muscle(scene, LawKind::Explicit, EXACT)?;
     let mut runs = Vec::new();
     for &tol in &o.tolerances {
-        runs.push((
-            tol,
-            fe_run(
-                &m,
-                geom,
-                o.fe_mesh,
-                Bases::Clamped,
-                &o.fe_stretches,
-                &with_tolerance(tol),
-            )?,
-        ));
+        runs.push((tol, o.clamped(&m, &with_tolerance(tol))?));
     }
     let Some((_, reference)) = runs.last().cloned() else {
         return Ok(());
@@ -630,12 +726,7 @@ fn tolerance(
 }
 
 /// 0D versus FE on the sliding cylinder, whose exact solution is homogeneous.
-fn zero_d_vs_fe(
-    scene: &Scene,
-    geom: Geometry,
-    o: &Resolved,
-    run: &mut Runner,
-) -> Result<(), TradeoffError> {
+fn zero_d_vs_fe(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "0D vs FE (sliding)";
     let m = muscle(scene, LawKind::Explicit, EXACT)?;
     let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
@@ -660,7 +751,7 @@ fn zero_d_vs_fe(
     r.gamma_error = Some(0.0);
     run.push(r);
     for cells in [o.meshes[0], o.fe_mesh] {
-        let fe = fe_run(&m, geom, cells, Bases::Sliding, &o.fe_stretches, &tight())?;
+        let fe = fe_run(&m, o.geom, cells, Bases::Sliding, &o.fe_stretches, &tight())?;
         let reference = FeRun {
             stress: p0.clone(),
             gamma_centre: g0.clone(),
@@ -681,7 +772,8 @@ fn zero_d_vs_fe(
     Ok(())
 }
 
-/// Runs every option for `scene` (its material, activation and first cylinder's geometry).
+/// Runs the chosen option groups for `scene` (its material and activation; the geometry and
+/// stretches of `o`, or of the scene's studies where `o` leaves them out).
 pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, TradeoffError> {
     let verbose = o.verbose;
     if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
@@ -689,11 +781,17 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
             "need at least one mesh, tolerance and FE stretch".into(),
         ));
     }
-    let (geom, scene_cells) = geometry(scene);
+    let (scene_geom, scene_cells) = scene_cylinder(&scene.studies);
+    let o_groups = &o.groups;
     let o = &Resolved {
+        geom: o.geometry.unwrap_or(scene_geom),
         fe_mesh: o.fe_mesh.unwrap_or(scene_cells),
         meshes: o.meshes.clone(),
         fe_stretches: o.fe_stretches.clone(),
+        curve_stretches: o
+            .curve_stretches
+            .clone()
+            .unwrap_or_else(|| scene_curve_stretches(&scene.studies)),
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
     };
@@ -703,12 +801,21 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
         started: Instant::now(),
     };
     let mut findings = Vec::new();
-    activation_law(scene, &mut runner, &mut findings)?;
-    derivative_route(scene, geom, o, &mut runner)?;
-    frozen_tangent(scene, geom, o, &mut runner)?;
-    mesh(scene, geom, o, &mut runner, &mut findings)?;
-    tolerance(scene, geom, o, &mut runner)?;
-    zero_d_vs_fe(scene, geom, o, &mut runner)?;
+    for group in OptionGroup::ALL {
+        if !o_groups.contains(&group) {
+            continue;
+        }
+        let (run, findings) = (&mut runner, &mut findings);
+        match group {
+            OptionGroup::ActivationLaw => activation_law(scene, o, run, findings)?,
+            OptionGroup::ActivationLawFe => activation_law_fe(scene, o, run, findings)?,
+            OptionGroup::DerivativeRoute => derivative_route(scene, o, run)?,
+            OptionGroup::FrozenTangent => frozen_tangent(scene, o, run)?,
+            OptionGroup::Mesh => mesh(scene, o, run, findings)?,
+            OptionGroup::NewtonTolerance => tolerance(scene, o, run)?,
+            OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, o, run)?,
+        }
+    }
     let mut rows = runner.rows;
     finalise(&mut rows);
     Ok(TradeoffResults { rows, findings })
