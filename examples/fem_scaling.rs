@@ -1,15 +1,19 @@
 //! Time per Newton iteration (assembly, factorisation, solve) against the number of dofs, for
 //! the clamped neo-Hookean cylinder (R = 1, L = 4, μ = 5 kPa) stretched to λ = 1.17 in one load
-//! step, with a fresh factorisation every Newton iteration and with factorisation reuse (the
-//! default; see `activemuscle::fem::tangent_solver`).
+//! step: Q2/Q1 with a fresh factorisation every Newton iteration and with factorisation reuse
+//! (the default; see `activemuscle::fem::tangent_solver`), and Q1/P0 on the same cells and on
+//! cells halved in both directions (the same displacement nodes as Q2/Q1, so similar dofs).
 //!
 //! Anchor (issue #3): a mature Python/C++ FE framework (generated kernels, UMFPACK LU) needs
 //! ≈ 0.13 s per Newton iteration at 9.6k dofs and ≈ 1 s at 37.7k dofs (P2/P1) on this 2-core
-//! machine; the last column is that anchor divided by our time (interpolated as t ∝ dofs^1.5).
+//! machine; the column `anchor/x` is that anchor (interpolated through its two points as a power
+//! of the dofs) divided by our time.
 //!
 //! Run: `cargo run --release --example fem_scaling`.
 
-use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, NeoHookean, SolverOptions, Timings};
+use activemuscle::fem::{
+    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, Timings,
+};
 use std::time::Instant;
 
 /// Peak resident memory of the process so far (VmHWM) in MiB, if available.
@@ -27,11 +31,19 @@ fn anchor_seconds(dofs: usize) -> f64 {
     t0 * (dofs as f64 / d0).powf(slope)
 }
 
+struct Run {
+    dofs: usize,
+    setup: f64,
+    timings: Timings,
+    stress: f64,
+}
+
 fn run(
+    element: Element,
     nr: usize,
     nz: usize,
     reuse: bool,
-) -> Result<(usize, f64, Timings), Box<dyn std::error::Error>> {
+) -> Result<Run, Box<dyn std::error::Error>> {
     let material = NeoHookean::new(5.0)?;
     let t0 = Instant::now();
     let mesh = Mesh::structured(1.0, 4.0, nr, nz, 1.0)?;
@@ -39,12 +51,18 @@ fn run(
         initial_step: 0.17,
         max_step: 0.17,
         reuse_factorisation: reuse,
+        element,
         ..SolverOptions::default()
     };
     let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, &material, options)?;
     let setup = t0.elapsed().as_secs_f64();
-    solver.sweep(&[1.17])?.into_result()?;
-    Ok((solver.n_free_dofs(), setup, solver.timings()))
+    let results = solver.sweep(&[1.17])?.into_result()?;
+    Ok(Run {
+        dofs: solver.n_free_dofs(),
+        setup,
+        timings: solver.timings(),
+        stress: results[0].nominal_stress,
+    })
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -53,30 +71,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rayon::current_num_threads()
     );
     println!(
-        "{:>8} {:>7} {:>6} {:>5} {:>6} {:>6} {:>10} {:>10} {:>10} {:>11} {:>8} {:>8} {:>8}",
-        "mesh",
-        "dofs",
-        "reuse",
-        "its",
-        "facts",
-        "gmres",
-        "assembly/s",
-        "factor/s",
-        "solve/s",
-        "s/iteration",
-        "setup/s",
-        "MiB",
-        "anchor/x"
+        "{:>6} {:>8} {:>7} {:>5} {:>4} {:>5} {:>5} {:>10} {:>9} {:>8} {:>11} {:>7} {:>6} {:>8} {:>9}",
+        "elem", "mesh", "dofs", "reuse", "its", "facts", "gmres", "assembly/s", "factor/s",
+        "solve/s", "s/iteration", "setup/s", "MiB", "anchor/x", "P/kPa"
     );
     for (nr, nz) in [(5, 20), (8, 32), (16, 64), (32, 128), (48, 192), (64, 256)] {
-        for reuse in [false, true] {
-            let (dofs, setup, t) = run(nr, nz, reuse)?;
+        for (element, nr, nz, reuse) in [
+            (Element::Q2Q1, nr, nz, false),
+            (Element::Q2Q1, nr, nz, true),
+            (Element::Q1P0, nr, nz, true),
+            (Element::Q1P0, 2 * nr, 2 * nz, true),
+        ] {
+            let r = run(element, nr, nz, reuse)?;
+            let t = &r.timings;
             let per = |d: std::time::Duration, n: usize| d.as_secs_f64() / n.max(1) as f64;
             let it = t.per_newton_iteration();
             println!(
-                "{:>8} {:>7} {:>6} {:>5} {:>6} {:>6.1} {:>10.4} {:>10.4} {:>10.4} {:>11.4} {:>8.3} {:>8.0} {:>8.1}",
+                "{:>6} {:>8} {:>7} {:>5} {:>4} {:>5} {:>5.1} {:>10.4} {:>9.4} {:>8.4} {:>11.4} {:>7.3} {:>6.0} {:>8.1} {:>9.6}",
+                element.name(),
                 format!("{nr}x{nz}"),
-                dofs,
+                r.dofs,
                 if reuse { "yes" } else { "no" },
                 t.newton_iterations,
                 t.factorisations,
@@ -85,9 +99,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 per(t.factorisation, t.factorisations),
                 per(t.solve, t.solves),
                 it,
-                setup,
+                r.setup,
                 peak_memory_mib().unwrap_or(f64::NAN),
-                anchor_seconds(dofs) / it,
+                anchor_seconds(r.dofs) / it,
+                r.stress,
             );
         }
     }

@@ -1,23 +1,182 @@
 //! Parallel assembly of the residual and the tangent into a sparse matrix whose pattern is
 //! built once.
 //!
-//! Each element writes its residual (22) and tangent (22 × 22) into its own slot of a buffer
+//! Each element writes its residual (n dofs) and tangent (n × n) into its own slot of a buffer
 //! (no sharing, so the element loop runs in parallel without locks); each global entry is then
 //! gathered, again in parallel, from the list of element slots that contribute to it. Both
-//! lists are built once with the pattern; the hot loop allocates nothing.
+//! lists are built once with the pattern; the hot loop allocates nothing. The element loop is
+//! compiled once per [`Element`] with fixed-size matrices; the choice is made once per assembly.
 
 use super::dofs::DofMap;
 use super::element::{
-    element_residual_tangent, geometry, ElementMatrix, ElementVector, ReferenceElement, N_DOF, N_P,
-    N_QP, N_U,
+    deformation, Element, ElementMatrix, ElementVector, Q1P0Reference, Q2Q1Reference,
+    ReferenceElement,
 };
 use super::error::{FemError, FemResult};
-use super::material::AxisymmetricMaterial;
+use super::material::{AxiF, AxisymmetricMaterial};
 use super::mesh::Mesh;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
-const N_K: usize = N_DOF * N_DOF;
+/// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuadraturePoint {
+    /// Element index.
+    pub element: usize,
+    /// Quadrature point index in the element (0..9 for Q2/Q1, 0..4 for Q1/P0).
+    pub point: usize,
+    /// Radius.
+    pub r: f64,
+    /// Axial coordinate.
+    pub z: f64,
+    /// Volume weight dV.
+    pub dv: f64,
+    /// Deformation gradient entries.
+    pub f: AxiF,
+    /// Pressure p.
+    pub pressure: f64,
+}
+
+/// The cells of one element type: reference element, nodal coordinates and global dofs.
+#[derive(Debug, Clone)]
+struct Cells<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize> {
+    re: ReferenceElement<NN, NU, NP, ND, NQ>,
+    coords: Vec<[[f64; 2]; NN]>,
+    dofs: Vec<[u32; ND]>,
+}
+
+/// The mesh's cells, typed by element so that each element loop is monomorphised.
+#[derive(Debug, Clone)]
+enum Kernel {
+    Q2Q1(Box<Cells<9, 18, 4, 22, 9>>),
+    Q1P0(Box<Cells<4, 8, 1, 9, 4>>),
+}
+
+/// Element buffers and what the element loop needs besides the cells.
+struct Buffers<'a> {
+    rbuf: &'a mut [f64],
+    kbuf: &'a mut [f64],
+    gbuf: &'a mut [f64],
+    scale_buf: &'a mut [f64],
+    rates: &'a [f64],
+    n_free: usize,
+}
+
+impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>
+    Cells<NN, NU, NP, ND, NQ>
+{
+    /// Validates the connectivity and the geometry of every cell.
+    fn new(
+        re: ReferenceElement<NN, NU, NP, ND, NQ>,
+        mesh: &Mesh,
+        dofs: &DofMap,
+    ) -> FemResult<Self> {
+        let n_el = mesh.n_elements();
+        let mut coords = Vec::with_capacity(n_el);
+        let mut cell_dofs = Vec::with_capacity(n_el);
+        for (e, conn) in mesh.elements().enumerate() {
+            let mut x = [[0.0; 2]; NN];
+            for (a, &node) in conn.iter().enumerate() {
+                x[a] = *mesh
+                    .nodes
+                    .get(node as usize)
+                    .ok_or(FemError::InvalidInput {
+                        name: "element connectivity",
+                        value: format!("element {e} node {node}"),
+                        rule: "node index out of range",
+                    })?;
+            }
+            for q in 0..NQ {
+                if re.geometry(q, &x).is_none() {
+                    return Err(FemError::InvalidInput {
+                        name: "element geometry",
+                        value: format!("element {e}, nodes {x:?}"),
+                        rule: "mapping must be invertible, counter-clockwise, with r > 0 at quadrature points",
+                    });
+                }
+            }
+            coords.push(x);
+            let mut d = [0u32; ND];
+            d.copy_from_slice(dofs.cell_dofs(e));
+            cell_dofs.push(d);
+        }
+        Ok(Self {
+            re,
+            coords,
+            dofs: cell_dofs,
+        })
+    }
+
+    /// Element residuals (and tangents, K_fc d_c) at `x` into the buffers.
+    fn evaluate<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        x: &[f64],
+        material: &M,
+        tangent: bool,
+        buf: Buffers<'_>,
+    ) -> crate::Result<()> {
+        let re = &self.re;
+        let (rates, n_free) = (buf.rates, buf.n_free);
+        buf.rbuf
+            .par_chunks_mut(ND)
+            .zip(buf.kbuf.par_chunks_mut(ND * ND))
+            .zip(buf.gbuf.par_chunks_mut(ND))
+            .zip(buf.scale_buf.par_iter_mut())
+            .zip(self.coords.par_iter().zip(self.dofs.par_iter()))
+            .try_for_each(|((((rb, kb), gb), sc), (xe, d))| {
+                let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
+                let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
+                let mut r = ElementVector::<ND>::zeros();
+                let scale = if tangent {
+                    let mut k = ElementMatrix::<ND>::zeros();
+                    let s = re.residual_tangent(xe, &u, &p, material, &mut r, Some(&mut k))?;
+                    kb.copy_from_slice(k.as_slice());
+                    let mut g = ElementVector::<ND>::zeros();
+                    let mut any = false;
+                    for (j, &dj) in d.iter().enumerate() {
+                        if (dj as usize) >= n_free && rates[dj as usize] != 0.0 {
+                            g += k.column(j) * rates[dj as usize];
+                            any = true;
+                        }
+                    }
+                    if any {
+                        gb.copy_from_slice(g.as_slice());
+                    } else {
+                        gb.fill(0.0);
+                    }
+                    s
+                } else {
+                    re.residual_tangent(xe, &u, &p, material, &mut r, None)?
+                };
+                rb.copy_from_slice(r.as_slice());
+                *sc = scale.stress;
+                Ok(())
+            })
+    }
+
+    fn quadrature_points(&self, x: &[f64]) -> Vec<QuadraturePoint> {
+        let re = &self.re;
+        let mut out = Vec::with_capacity(self.coords.len() * NQ);
+        for (e, (xe, d)) in self.coords.iter().zip(&self.dofs).enumerate() {
+            let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
+            let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
+            for q in 0..NQ {
+                if let Some(g) = re.geometry(q, xe) {
+                    out.push(QuadraturePoint {
+                        element: e,
+                        point: q,
+                        r: g.r,
+                        z: g.z,
+                        dv: g.dv,
+                        f: deformation(&g.b, &u),
+                        pressure: re.m[q].dot(&p),
+                    });
+                }
+            }
+        }
+        out
+    }
+}
 
 /// Compressed-column pattern of the free–free block of the tangent.
 #[derive(Debug, Clone)]
@@ -33,9 +192,7 @@ pub struct Pattern {
 /// Builds the residual and tangent of the whole mesh.
 #[derive(Debug)]
 pub struct Assembler {
-    re: ReferenceElement,
-    coords: Vec<[[f64; 2]; 9]>,
-    element_dofs: Vec<[u32; N_DOF]>,
+    kernel: Kernel,
     n_free: usize,
     /// Sparsity pattern of the free–free tangent.
     pub pattern: Pattern,
@@ -83,54 +240,56 @@ fn counting_lists(n: usize, targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
 impl Assembler {
     /// Validates the element geometry and builds the pattern and the gather lists.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> FemResult<Self> {
-        let re = ReferenceElement::new();
-        let n_el = mesh.elements.len();
-        if n_el.checked_mul(N_K).is_none_or(|v| v >= u32::MAX as usize) {
+        let n_el = mesh.n_elements();
+        if mesh.element != dofs.element || dofs.element_dofs.len() != n_el * dofs.dofs_per_element()
+        {
+            return Err(FemError::InvalidInput {
+                name: "dof map",
+                value: format!(
+                    "{} dofs for {} {} cells",
+                    dofs.element_dofs.len(),
+                    n_el,
+                    mesh.element
+                ),
+                rule: "must be the numbering of this mesh",
+            });
+        }
+        let nd = dofs.dofs_per_element();
+        let nu = 2 * mesh.element.nodes();
+        let n_k = nd * nd;
+        if n_el.checked_mul(n_k).is_none_or(|v| v >= u32::MAX as usize) {
             return Err(FemError::InvalidInput {
                 name: "elements",
                 value: n_el.to_string(),
                 rule: "too many elements for 32-bit gather lists",
             });
         }
-        let mut coords = Vec::with_capacity(n_el);
-        for (e, conn) in mesh.elements.iter().enumerate() {
-            let mut x = [[0.0; 2]; 9];
-            for (a, &node) in conn.iter().enumerate() {
-                x[a] = *mesh
-                    .nodes
-                    .get(node as usize)
-                    .ok_or(FemError::InvalidInput {
-                        name: "element connectivity",
-                        value: format!("element {e} node {node}"),
-                        rule: "node index out of range",
-                    })?;
-            }
-            for q in 0..N_QP {
-                if geometry(&re, q, &x).is_none() {
-                    return Err(FemError::InvalidInput {
-                        name: "element geometry",
-                        value: format!("element {e}, nodes {x:?}"),
-                        rule: "mapping must be invertible, counter-clockwise, with r > 0 at quadrature points",
-                    });
-                }
-            }
-            coords.push(x);
-        }
+        let kernel = match mesh.element {
+            Element::Q2Q1 => Kernel::Q2Q1(Box::new(Cells::new(Q2Q1Reference::new(), mesh, dofs)?)),
+            Element::Q1P0 => Kernel::Q1P0(Box::new(Cells::new(Q1P0Reference::new(), mesh, dofs)?)),
+        };
         let n = dofs.n_free;
         let free = |g: u32| (g as usize) < n;
         // Column lists of the free–free pattern (no pressure–pressure block: K_pp = 0).
         let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
-        for d in &dofs.element_dofs {
-            for j in 0..N_DOF {
+        for d in dofs.element_dofs.chunks_exact(nd) {
+            for j in 0..nd {
                 if !free(d[j]) {
                     continue;
                 }
-                for i in 0..N_DOF {
-                    if free(d[i]) && !(i >= N_U && j >= N_U) {
+                for i in 0..nd {
+                    if free(d[i]) && !(i >= nu && j >= nu) {
                         cols[d[j] as usize].push(d[i]);
                     }
                 }
             }
+        }
+        if let Some(i) = cols.iter().position(Vec::is_empty) {
+            return Err(FemError::InvalidInput {
+                name: "mesh",
+                value: format!("free dof {i} of {} {} cells", n_el, mesh.element),
+                rule: "every free dof must couple to a free displacement dof (refine the mesh)",
+            });
         }
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0u32);
@@ -151,11 +310,11 @@ impl Assembler {
         drop(cols);
         let nnz = row_idx.len();
         // Position of every element-matrix entry in `values` (u32::MAX: not in the system).
-        let mut pos = vec![u32::MAX; n_el * N_K];
-        pos.par_chunks_mut(N_K)
-            .zip(dofs.element_dofs.par_iter())
+        let mut pos = vec![u32::MAX; n_el * n_k];
+        pos.par_chunks_mut(n_k)
+            .zip(dofs.element_dofs.par_chunks_exact(nd))
             .for_each(|(p, d)| {
-                for j in 0..N_DOF {
+                for j in 0..nd {
                     if !free(d[j]) {
                         continue;
                     }
@@ -164,10 +323,10 @@ impl Assembler {
                         col_ptr[d[j] as usize + 1] as usize,
                     );
                     let rows = &row_idx[lo..hi];
-                    for i in 0..N_DOF {
-                        if free(d[i]) && !(i >= N_U && j >= N_U) {
+                    for i in 0..nd {
+                        if free(d[i]) && !(i >= nu && j >= nu) {
                             if let Ok(k) = rows.binary_search(&d[i]) {
-                                p[i + N_DOF * j] = (lo + k) as u32;
+                                p[i + nd * j] = (lo + k) as u32;
                             }
                         }
                     }
@@ -175,14 +334,11 @@ impl Assembler {
             });
         let (val_ptr, val_src) = counting_lists(nnz, &pos);
         drop(pos);
-        let res_targets: Vec<u32> = dofs.element_dofs.iter().flatten().copied().collect();
-        let (res_ptr, res_src) = counting_lists(dofs.n_total, &res_targets);
+        let (res_ptr, res_src) = counting_lists(dofs.n_total, &dofs.element_dofs);
         let mut rates = vec![0.0; dofs.n_total];
         rates[dofs.n_free..].copy_from_slice(&dofs.prescribed_rate);
         Ok(Self {
-            re,
-            coords,
-            element_dofs: dofs.element_dofs.clone(),
+            kernel,
             n_free: n,
             pattern: Pattern {
                 n,
@@ -197,27 +353,29 @@ impl Assembler {
             val_src,
             res_ptr,
             res_src,
-            kbuf: vec![0.0; n_el * N_K],
-            rbuf: vec![0.0; n_el * N_DOF],
-            gbuf: vec![0.0; n_el * N_DOF],
+            kbuf: vec![0.0; n_el * n_k],
+            rbuf: vec![0.0; n_el * nd],
+            gbuf: vec![0.0; n_el * nd],
             scale_buf: vec![0.0; n_el],
             rates,
         })
     }
 
-    /// Nodal coordinates of each element.
-    pub fn coords(&self) -> &[[[f64; 2]; 9]] {
-        &self.coords
+    /// The element of the cells.
+    pub fn element(&self) -> Element {
+        match self.kernel {
+            Kernel::Q2Q1(_) => Element::Q2Q1,
+            Kernel::Q1P0(_) => Element::Q1P0,
+        }
     }
 
-    /// The tabulated reference element.
-    pub fn reference(&self) -> &ReferenceElement {
-        &self.re
-    }
-
-    /// Global dofs of each element.
-    pub fn element_dofs(&self) -> &[[u32; N_DOF]] {
-        &self.element_dofs
+    /// F, p, position and volume weight at every quadrature point of every cell for the dof
+    /// values `x` (all dofs), cell by cell.
+    pub fn quadrature_points(&self, x: &[f64]) -> Vec<QuadraturePoint> {
+        match &self.kernel {
+            Kernel::Q2Q1(cells) => cells.quadrature_points(x),
+            Kernel::Q1P0(cells) => cells.quadrature_points(x),
+        }
     }
 
     /// Assembles the residual at `x` (all dofs) and, if `tangent`, the free–free tangent and
@@ -228,45 +386,18 @@ impl Assembler {
         material: &M,
         tangent: bool,
     ) -> crate::Result<()> {
-        let re = &self.re;
-        let rates = &self.rates;
-        let n_free = self.n_free;
-        self.rbuf
-            .par_chunks_mut(N_DOF)
-            .zip(self.kbuf.par_chunks_mut(N_K))
-            .zip(self.gbuf.par_chunks_mut(N_DOF))
-            .zip(self.scale_buf.par_iter_mut())
-            .zip(self.coords.par_iter().zip(self.element_dofs.par_iter()))
-            .try_for_each(|((((rb, kb), gb), sc), (xe, d))| {
-                let u = SVector::<f64, N_U>::from_fn(|i, _| x[d[i] as usize]);
-                let p = SVector::<f64, N_P>::from_fn(|i, _| x[d[N_U + i] as usize]);
-                let mut r = ElementVector::zeros();
-                let scale = if tangent {
-                    let mut k = ElementMatrix::zeros();
-                    let s =
-                        element_residual_tangent(re, xe, &u, &p, material, &mut r, Some(&mut k))?;
-                    kb.copy_from_slice(k.as_slice());
-                    let mut g = ElementVector::zeros();
-                    let mut any = false;
-                    for (j, &dj) in d.iter().enumerate() {
-                        if (dj as usize) >= n_free && rates[dj as usize] != 0.0 {
-                            g += k.column(j) * rates[dj as usize];
-                            any = true;
-                        }
-                    }
-                    if any {
-                        gb.copy_from_slice(g.as_slice());
-                    } else {
-                        gb.fill(0.0);
-                    }
-                    s
-                } else {
-                    element_residual_tangent(re, xe, &u, &p, material, &mut r, None)?
-                };
-                rb.copy_from_slice(r.as_slice());
-                *sc = scale.stress;
-                Ok(())
-            })?;
+        let buf = Buffers {
+            rbuf: &mut self.rbuf,
+            kbuf: &mut self.kbuf,
+            gbuf: &mut self.gbuf,
+            scale_buf: &mut self.scale_buf,
+            rates: &self.rates,
+            n_free: self.n_free,
+        };
+        match &self.kernel {
+            Kernel::Q2Q1(cells) => cells.evaluate(x, material, tangent, buf)?,
+            Kernel::Q1P0(cells) => cells.evaluate(x, material, tangent, buf)?,
+        }
         let gather = |out: &mut [f64], ptr: &[u32], src: &[u32], buf: &[f64]| {
             out.par_iter_mut().enumerate().for_each(|(i, o)| {
                 *o = src[ptr[i] as usize..ptr[i + 1] as usize]

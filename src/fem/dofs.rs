@@ -1,11 +1,12 @@
 //! Degrees of freedom and Dirichlet conditions.
 //!
 //! Global numbering: free displacement dofs `[0, n_free_u)`, free pressure dofs
-//! `[n_free_u, n_free)`, prescribed dofs `[n_free, n_total)`. Prescribed dofs never enter the
+//! `[n_free_u, n_free)` (one per corner node for Q2/Q1, one per cell for Q1/P0, following the
+//! mesh's [`Element`]), prescribed dofs `[n_free, n_total)`. Prescribed dofs never enter the
 //! linear system (they are eliminated, not penalised); their values are x_c = (λ − 1) d_c, with
 //! d_c = L for u_z on z = L and 0 otherwise.
 
-use super::element::{N_DOF, N_U};
+use super::element::Element;
 use super::mesh::{Boundary, Mesh};
 
 /// Which displacement components the bases hold.
@@ -22,10 +23,14 @@ pub enum Bases {
 pub struct DofMap {
     /// Global dof of (u_r, u_z) at each node.
     pub node_u: Vec<[u32; 2]>,
-    /// Global pressure dof at each node (`u32::MAX` at nodes without one).
+    /// Global pressure dof at each node (`u32::MAX` at nodes without one; all of them for Q1/P0).
     pub node_p: Vec<u32>,
-    /// Global dofs of each element in local order.
-    pub element_dofs: Vec<[u32; N_DOF]>,
+    /// Global pressure dof of each cell (Q1/P0; empty for Q2/Q1).
+    pub element_p: Vec<u32>,
+    /// The element the numbering is for.
+    pub element: Element,
+    /// Global dofs of every cell in local order, [`Self::dofs_per_element`] per cell.
+    pub element_dofs: Vec<u32>,
     /// Number of free displacement dofs.
     pub n_free_u: usize,
     /// Number of free dofs (displacement and pressure).
@@ -39,7 +44,18 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// Numbers the dofs of `mesh` with the conditions of `bases`.
+    /// Dofs per cell: 2 per node, then the cell's pressure dofs.
+    pub fn dofs_per_element(&self) -> usize {
+        2 * self.element.nodes() + self.element.pressures()
+    }
+
+    /// The global dofs of cell `e` in local order.
+    pub fn cell_dofs(&self, e: usize) -> &[u32] {
+        let n = self.dofs_per_element();
+        &self.element_dofs[n * e..n * (e + 1)]
+    }
+
+    /// Numbers the dofs of `mesh` (for its [`Mesh::element`]) with the conditions of `bases`.
     pub fn new(mesh: &Mesh, bases: Bases) -> Self {
         let nn = mesh.n_nodes();
         let mut fixed = vec![[false; 2]; nn];
@@ -60,10 +76,13 @@ impl DofMap {
                 fixed[a as usize][0] = true;
             }
         }
+        let element = mesh.element;
         let mut has_p = vec![false; nn];
-        for e in &mesh.elements {
-            for &c in &e[..4] {
-                has_p[c as usize] = true;
+        if element == Element::Q2Q1 {
+            for e in mesh.elements() {
+                for &c in &e[..4] {
+                    has_p[c as usize] = true;
+                }
             }
         }
         let mut node_u = vec![[u32::MAX; 2]; nn];
@@ -84,6 +103,11 @@ impl DofMap {
                 next += 1;
             }
         }
+        let mut element_p = Vec::new();
+        if element == Element::Q1P0 {
+            element_p = (0..mesh.n_elements() as u32).map(|e| next + e).collect();
+            next += mesh.n_elements() as u32;
+        }
         let n_free = next as usize;
         let mut prescribed_rate = Vec::new();
         let mut top_axial = Vec::new();
@@ -99,24 +123,22 @@ impl DofMap {
                 }
             }
         }
-        let element_dofs = mesh
-            .elements
-            .iter()
-            .map(|e| {
-                let mut d = [0u32; N_DOF];
-                for (a, &node) in e.iter().enumerate() {
-                    d[2 * a] = node_u[node as usize][0];
-                    d[2 * a + 1] = node_u[node as usize][1];
-                }
-                for (c, &node) in e[..4].iter().enumerate() {
-                    d[N_U + c] = node_p[node as usize];
-                }
-                d
-            })
-            .collect();
+        let mut element_dofs =
+            Vec::with_capacity(mesh.n_elements() * (2 * element.nodes() + element.pressures()));
+        for (e, cell) in mesh.elements().enumerate() {
+            for &node in cell {
+                element_dofs.extend_from_slice(&node_u[node as usize]);
+            }
+            match element {
+                Element::Q2Q1 => element_dofs.extend(cell[..4].iter().map(|&c| node_p[c as usize])),
+                Element::Q1P0 => element_dofs.push(element_p[e]),
+            }
+        }
         Self {
             node_u,
             node_p,
+            element_p,
+            element,
             element_dofs,
             n_free_u,
             n_free,

@@ -1,29 +1,123 @@
-//! The Taylor–Hood Q2/Q1 axisymmetric element: shape functions, 3 × 3 Gauss quadrature,
-//! kinematics at a quadrature point and the element residual and tangent.
+//! The mixed u–p quadrilaterals a user trades speed for accuracy with ([`Element`]): shape
+//! functions and Gauss rule tabulated once ([`ReferenceElement`]), the map to a physical cell,
+//! and the element residual and tangent of the weak form.
 //!
-//! Local dof order: [u_r⁰, u_z⁰, …, u_r⁸, u_z⁸, p⁰, …, p³] (biquadratic displacement on the 9
-//! nodes, bilinear continuous pressure on the 4 corners).
+//! Local dof order: [u_r⁰, u_z⁰, …, u_r^{n−1}, u_z^{n−1}, p⁰, …]: the displacement on the cell's
+//! n nodes, then the pressure dofs (the 4 corner values for Q2/Q1, the one cell value for Q1/P0).
 
-use super::material::{AxiF, AxisymmetricMaterial};
+pub use super::kinematics::{deformation, jacobian, jacobian_gradient, jacobian_hessian};
+use super::material::AxisymmetricMaterial;
 use nalgebra::{SMatrix, SVector};
+use std::ops::AddAssign;
 
-/// Displacement dofs per element (9 nodes × 2).
-pub const N_U: usize = 18;
-/// Pressure dofs per element (4 corners).
-pub const N_P: usize = 4;
-/// All dofs per element.
-pub const N_DOF: usize = N_U + N_P;
-/// Quadrature points per element (3 × 3 Gauss).
-pub const N_QP: usize = 9;
+/// The mixed element: a user's choice between accuracy per dof and cost per dof.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum Element {
+    /// Taylor–Hood Q2/Q1: biquadratic displacement on 9 nodes, continuous bilinear pressure on
+    /// the 4 corners, 3 × 3 Gauss. Inf–sup stable; J = 1 holds weakly,
+    /// ∫ q (J − 1) dV = 0 for every continuous bilinear q. Second-order displacement.
+    #[default]
+    Q2Q1,
+    /// Q1/P0: bilinear displacement on the 4 corners, one constant pressure per cell, 2 × 2
+    /// Gauss: the axisymmetric hybrid element of commercial codes (e.g. Abaqus CAX4H).
+    /// Incompressibility holds in the mean per cell, ∫_e (J − 1) dV = 0. A third of the dofs
+    /// and 4–8 × less assembly time than Q2/Q1 on the same cells (`examples/fem_scaling.rs`),
+    /// but first-order displacement and not inf–sup stable (the pressure may oscillate from
+    /// cell to cell near constrained boundaries).
+    Q1P0,
+}
 
-/// Element vector.
-pub type ElementVector = SVector<f64, N_DOF>;
+impl Element {
+    /// Both elements, Q2/Q1 first.
+    pub const ALL: [Element; 2] = [Element::Q2Q1, Element::Q1P0];
+
+    /// Nodes per cell.
+    pub const fn nodes(self) -> usize {
+        match self {
+            Element::Q2Q1 => 9,
+            Element::Q1P0 => 4,
+        }
+    }
+
+    /// Quadrature points per cell.
+    pub const fn quadrature_points(self) -> usize {
+        match self {
+            Element::Q2Q1 => 9,
+            Element::Q1P0 => 4,
+        }
+    }
+
+    /// Pressure dofs per cell (shared with neighbours for Q2/Q1, the cell's own for Q1/P0).
+    pub const fn pressures(self) -> usize {
+        match self {
+            Element::Q2Q1 => 4,
+            Element::Q1P0 => 1,
+        }
+    }
+
+    /// Short name, "Q2/Q1" or "Q1/P0".
+    pub const fn name(self) -> &'static str {
+        match self {
+            Element::Q2Q1 => "Q2/Q1",
+            Element::Q1P0 => "Q1/P0",
+        }
+    }
+}
+
+impl std::str::FromStr for Element {
+    type Err = String;
+
+    /// "Q2Q1" or "Q2/Q1", "Q1P0" or "Q1/P0" (any case).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_uppercase().replace('/', "").as_str() {
+            "Q2Q1" => Ok(Element::Q2Q1),
+            "Q1P0" => Ok(Element::Q1P0),
+            _ => Err(format!("unknown element {s:?} (expected Q2/Q1 or Q1/P0)")),
+        }
+    }
+}
+
+impl std::fmt::Display for Element {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Element vector (`ND` dofs).
+pub type ElementVector<const ND: usize> = SVector<f64, ND>;
 /// Element matrix (column-major, as nalgebra stores it).
-pub type ElementMatrix = SMatrix<f64, N_DOF, N_DOF>;
-/// Strain–displacement operator: δF (5 entries) = B δu.
-pub type BMatrix = SMatrix<f64, 5, N_U>;
+pub type ElementMatrix<const ND: usize> = SMatrix<f64, ND, ND>;
+/// Strain–displacement operator: δF (5 entries) = B δu (`NU` displacement dofs).
+pub type BMatrix<const NU: usize> = SMatrix<f64, 5, NU>;
 
-/// (i, j) position of each node on the 3 × 3 lattice of the reference square (ξ, η) ∈ [−1, 1]².
+/// Shape functions and Gauss rule of one element, tabulated at its quadrature points: `NN`
+/// nodes, `NU` = 2 `NN` displacement dofs, `NP` pressure dofs, `ND` = `NU` + `NP` dofs, `NQ`
+/// points. Stable Rust cannot compute `NU` and `ND` from `NN` and `NP`, so they are spelled out
+/// once in [`Q2Q1Reference`] and [`Q1P0Reference`] and checked at compile time.
+#[derive(Debug, Clone, Copy)]
+pub struct ReferenceElement<
+    const NN: usize,
+    const NU: usize,
+    const NP: usize,
+    const ND: usize,
+    const NQ: usize,
+> {
+    /// N_a(ξ_q) for the displacement nodes.
+    pub n: [[f64; NN]; NQ],
+    /// ∂N_a/∂(ξ, η) at ξ_q.
+    pub dn: [[[f64; 2]; NN]; NQ],
+    /// M_c(ξ_q) for the pressure dofs.
+    pub m: [SVector<f64, NP>; NQ],
+    /// Gauss weights.
+    pub w: [f64; NQ],
+}
+
+/// Taylor–Hood Q2/Q1: 9 nodes, 4 corner pressures, 3 × 3 Gauss.
+pub type Q2Q1Reference = ReferenceElement<9, 18, 4, 22, 9>;
+/// Q1/P0: 4 nodes, 1 cell pressure, 2 × 2 Gauss.
+pub type Q1P0Reference = ReferenceElement<4, 8, 1, 9, 4>;
+
+/// (i, j) position of each Q2 node on the 3 × 3 lattice of the reference square (ξ, η) ∈ [−1, 1]².
 const LATTICE: [(usize, usize); 9] = [
     (0, 0),
     (2, 0),
@@ -43,65 +137,86 @@ fn lagrange2(x: f64) -> ([f64; 3], [f64; 3]) {
     )
 }
 
-/// Shape functions and their reference gradients tabulated at the quadrature points.
-#[derive(Debug, Clone)]
-pub struct ReferenceElement {
-    /// N_a(ξ_q) for the 9 displacement nodes.
-    pub n: [[f64; 9]; N_QP],
-    /// ∂N_a/∂(ξ, η) at ξ_q.
-    pub dn: [[[f64; 2]; 9]; N_QP],
-    /// M_c(ξ_q) for the 4 pressure nodes.
-    pub m: [[f64; N_P]; N_QP],
-    /// Gauss weights.
-    pub w: [f64; N_QP],
+/// The 1D linear Lagrange function of the left (`side` 0) or right (`side` 1) end at s.
+fn lagrange1(s: f64, side: usize) -> f64 {
+    if side == 0 {
+        0.5 * (1.0 - s)
+    } else {
+        0.5 * (1.0 + s)
+    }
 }
 
-impl Default for ReferenceElement {
+impl Q2Q1Reference {
+    /// Tabulates Q2 and Q1 shape functions at the 3 × 3 Gauss points.
+    pub fn new() -> Self {
+        let g = (0.6f64).sqrt();
+        Self::tabulate(
+            &[-g, 0.0, g],
+            &[5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0],
+            |xi, eta| {
+                let (lx, dlx) = lagrange2(xi);
+                let (ly, dly) = lagrange2(eta);
+                let mut n = [0.0; 9];
+                let mut dn = [[0.0; 2]; 9];
+                for (a, &(i, j)) in LATTICE.iter().enumerate() {
+                    n[a] = lx[i] * ly[j];
+                    dn[a] = [dlx[i] * ly[j], lx[i] * dly[j]];
+                }
+                (n, dn)
+            },
+            |xi, eta| {
+                let mut m = [0.0; 4];
+                for (c, &(i, j)) in LATTICE[..4].iter().enumerate() {
+                    m[c] = lagrange1(xi, i / 2) * lagrange1(eta, j / 2);
+                }
+                m
+            },
+        )
+    }
+}
+
+impl Default for Q2Q1Reference {
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl ReferenceElement {
-    /// Tabulates Q2 and Q1 shape functions at the 3 × 3 Gauss points.
+impl Q1P0Reference {
+    /// Tabulates Q1 shape functions (corners counter-clockwise from (−1, −1)) and the constant
+    /// pressure at the 2 × 2 Gauss points.
     pub fn new() -> Self {
-        let g = (0.6f64).sqrt();
-        let pts = [-g, 0.0, g];
-        let wts = [5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0];
-        let mut n = [[0.0; 9]; N_QP];
-        let mut dn = [[[0.0; 2]; 9]; N_QP];
-        let mut m = [[0.0; N_P]; N_QP];
-        let mut w = [0.0; N_QP];
-        for qj in 0..3 {
-            for qi in 0..3 {
-                let q = 3 * qj + qi;
-                let (xi, eta) = (pts[qi], pts[qj]);
-                w[q] = wts[qi] * wts[qj];
-                let (lx, dlx) = lagrange2(xi);
-                let (ly, dly) = lagrange2(eta);
-                for (a, &(i, j)) in LATTICE.iter().enumerate() {
-                    n[q][a] = lx[i] * ly[j];
-                    dn[q][a] = [dlx[i] * ly[j], lx[i] * dly[j]];
+        let g = 1.0 / 3.0f64.sqrt();
+        Self::tabulate(
+            &[-g, g],
+            &[1.0, 1.0],
+            |xi, eta| {
+                let mut n = [0.0; 4];
+                let mut dn = [[0.0; 2]; 4];
+                for (a, &(i, j)) in LATTICE[..4].iter().enumerate() {
+                    let (si, sj) = (i / 2, j / 2);
+                    let (sx, sy) = (
+                        if si == 0 { -0.5 } else { 0.5 },
+                        if sj == 0 { -0.5 } else { 0.5 },
+                    );
+                    n[a] = lagrange1(xi, si) * lagrange1(eta, sj);
+                    dn[a] = [sx * lagrange1(eta, sj), lagrange1(xi, si) * sy];
                 }
-                let l1 = |s: f64, side: usize| {
-                    if side == 0 {
-                        0.5 * (1.0 - s)
-                    } else {
-                        0.5 * (1.0 + s)
-                    }
-                };
-                for (c, &(i, j)) in LATTICE[..4].iter().enumerate() {
-                    m[q][c] = l1(xi, i / 2) * l1(eta, j / 2);
-                }
-            }
-        }
-        Self { n, dn, m, w }
+                (n, dn)
+            },
+            |_, _| [1.0],
+        )
     }
 }
 
-/// Geometry of one quadrature point in physical space.
+impl Default for Q1P0Reference {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Geometry of one quadrature point in physical space (`NU` element displacement dofs).
 #[derive(Debug, Clone, Copy)]
-pub struct QuadratureGeometry {
+pub struct QuadratureGeometry<const NU: usize> {
     /// Radius r at the point (> 0).
     pub r: f64,
     /// Axial coordinate z.
@@ -109,92 +224,7 @@ pub struct QuadratureGeometry {
     /// Volume weight dV = 2π r det(∂x/∂ξ) w.
     pub dv: f64,
     /// B operator (δF = B δu).
-    pub b: BMatrix,
-}
-
-/// Maps the reference point `q` to the element with nodal coordinates `x`. Returns `None`
-/// when the mapping is not invertible or the point is not at r > 0.
-pub fn geometry(re: &ReferenceElement, q: usize, x: &[[f64; 2]; 9]) -> Option<QuadratureGeometry> {
-    let (mut r, mut z) = (0.0, 0.0);
-    let (mut r_xi, mut r_eta, mut z_xi, mut z_eta) = (0.0, 0.0, 0.0, 0.0);
-    for (a, xa) in x.iter().enumerate() {
-        r += re.n[q][a] * xa[0];
-        z += re.n[q][a] * xa[1];
-        r_xi += re.dn[q][a][0] * xa[0];
-        r_eta += re.dn[q][a][1] * xa[0];
-        z_xi += re.dn[q][a][0] * xa[1];
-        z_eta += re.dn[q][a][1] * xa[1];
-    }
-    let det = r_xi * z_eta - r_eta * z_xi;
-    if !(det > 0.0 && r > 0.0) {
-        return None;
-    }
-    // Inverse Jacobian: ∂ξ/∂r = z_η/det, ∂ξ/∂z = −r_η/det, ∂η/∂r = −z_ξ/det, ∂η/∂z = r_ξ/det.
-    let (xi_r, xi_z, eta_r, eta_z) = (z_eta / det, -r_eta / det, -z_xi / det, r_xi / det);
-    let mut b = BMatrix::zeros();
-    for a in 0..9 {
-        let [dxi, deta] = re.dn[q][a];
-        let dr = dxi * xi_r + deta * eta_r;
-        let dz = dxi * xi_z + deta * eta_z;
-        // u_r column: δF_rr = ∂δu_r/∂r, δF_rz = ∂δu_r/∂z, δF_θθ = δu_r / r.
-        b[(0, 2 * a)] = dr;
-        b[(1, 2 * a)] = dz;
-        b[(4, 2 * a)] = re.n[q][a] / r;
-        // u_z column: δF_zr = ∂δu_z/∂r, δF_zz = ∂δu_z/∂z.
-        b[(2, 2 * a + 1)] = dr;
-        b[(3, 2 * a + 1)] = dz;
-    }
-    Some(QuadratureGeometry {
-        r,
-        z,
-        dv: 2.0 * std::f64::consts::PI * r * det * re.w[q],
-        b,
-    })
-}
-
-/// F = I + B u on the five entries [F_rr, F_rz, F_zr, F_zz, F_θθ].
-#[inline]
-pub fn deformation(b: &BMatrix, u: &SVector<f64, N_U>) -> AxiF {
-    let mut f = b * u;
-    f[0] += 1.0;
-    f[3] += 1.0;
-    f[4] += 1.0;
-    f
-}
-
-/// J = F_θθ (F_rr F_zz − F_rz F_zr).
-#[inline]
-pub fn jacobian(f: &AxiF) -> f64 {
-    f[4] * (f[0] * f[3] - f[1] * f[2])
-}
-
-/// ∂J/∂F on the five entries.
-#[inline]
-pub fn jacobian_gradient(f: &AxiF) -> AxiF {
-    AxiF::new(
-        f[4] * f[3],
-        -f[4] * f[2],
-        -f[4] * f[1],
-        f[4] * f[0],
-        f[0] * f[3] - f[1] * f[2],
-    )
-}
-
-/// ∂²J/∂F∂F on the five entries (symmetric).
-#[inline]
-pub fn jacobian_hessian(f: &AxiF) -> SMatrix<f64, 5, 5> {
-    let mut h = SMatrix::<f64, 5, 5>::zeros();
-    let mut set = |i: usize, j: usize, v: f64| {
-        h[(i, j)] = v;
-        h[(j, i)] = v;
-    };
-    set(0, 3, f[4]);
-    set(0, 4, f[3]);
-    set(1, 2, -f[4]);
-    set(1, 4, -f[2]);
-    set(2, 4, -f[1]);
-    set(3, 4, f[0]);
-    h
+    pub b: BMatrix<NU>,
 }
 
 /// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
@@ -204,98 +234,173 @@ pub struct ElementScale {
     pub stress: f64,
 }
 
-/// Residual and (optionally) tangent of one element.
-///
-/// Weak form (Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV, dV = 2π r dr dz, q and δu test functions):
-///
-/// R_u(δu) = ∫ (P(F) − p ∂J/∂F) : δF dV,      δF = B δu,
-/// R_p(q)  = −∫ q (J − 1) dV,
-///
-/// and its linearisation (A = ∂P/∂F, possibly non-symmetric; H = ∂²J/∂F∂F):
-///
-/// K_uu = ∫ Bᵀ (A − p H) B dV,   K_up = −∫ Bᵀ ∂J/∂F M dV,   K_pu = −∫ M (∂J/∂F)ᵀ B dV,   K_pp = 0.
-///
-/// `x` holds the element's nodal coordinates (validated by the caller: see [`geometry`]).
-pub fn element_residual_tangent<M: AxisymmetricMaterial + ?Sized>(
-    re: &ReferenceElement,
-    x: &[[f64; 2]; 9],
-    u: &SVector<f64, N_U>,
-    p: &SVector<f64, N_P>,
-    material: &M,
-    residual: &mut ElementVector,
-    tangent: Option<&mut ElementMatrix>,
-) -> crate::Result<ElementScale> {
-    residual.fill(0.0);
-    let mut scale = ElementScale::default();
-    match tangent {
-        None => {
-            for q in 0..N_QP {
-                let g = &geometry_checked(re, q, x)?;
-                let f = deformation(&g.b, u);
-                let m = SVector::<f64, N_P>::from_row_slice(&re.m[q]);
-                let pq = m.dot(p);
-                let pk = material.stress(&f)?;
-                let dj = jacobian_gradient(&f);
-                let s = pk - dj * pq;
-                scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                let ru = g.b.tr_mul(&s) * g.dv;
-                residual.fixed_rows_mut::<N_U>(0).add_assign(&ru);
-                let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
-                residual.fixed_rows_mut::<N_P>(N_U).add_assign(&rp);
+impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>
+    ReferenceElement<NN, NU, NP, ND, NQ>
+{
+    const SIZES_ARE_CONSISTENT: () = assert!(NU == 2 * NN && ND == NU + NP);
+
+    /// Tabulates `shape` (N_a and ∂N_a/∂(ξ, η)) and `pressure` (M_c) at the tensor-product
+    /// Gauss rule of the 1D `points` and `weights` (point q = k j + i at (ξ_i, η_j)).
+    fn tabulate(
+        points: &[f64],
+        weights: &[f64],
+        shape: impl Fn(f64, f64) -> ([f64; NN], [[f64; 2]; NN]),
+        pressure: impl Fn(f64, f64) -> [f64; NP],
+    ) -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::SIZES_ARE_CONSISTENT;
+        let k = points.len();
+        assert_eq!(k * k, NQ, "Gauss rule size");
+        let mut n = [[0.0; NN]; NQ];
+        let mut dn = [[[0.0; 2]; NN]; NQ];
+        let mut m = [SVector::<f64, NP>::zeros(); NQ];
+        let mut w = [0.0; NQ];
+        for qj in 0..k {
+            for qi in 0..k {
+                let q = k * qj + qi;
+                let (xi, eta) = (points[qi], points[qj]);
+                w[q] = weights[qi] * weights[qj];
+                (n[q], dn[q]) = shape(xi, eta);
+                m[q] = SVector::<f64, NP>::from(pressure(xi, eta));
             }
         }
-        Some(k) => {
-            k.fill(0.0);
-            for q in 0..N_QP {
-                let g = &geometry_checked(re, q, x)?;
-                let f = deformation(&g.b, u);
-                let m = SVector::<f64, N_P>::from_row_slice(&re.m[q]);
-                let pq = m.dot(p);
-                let (pk, a) = material.stress_tangent(&f)?;
-                let dj = jacobian_gradient(&f);
-                let s = pk - dj * pq;
-                scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                let ru = g.b.tr_mul(&s) * g.dv;
-                residual.fixed_rows_mut::<N_U>(0).add_assign(&ru);
-                let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
-                residual.fixed_rows_mut::<N_P>(N_U).add_assign(&rp);
-                // K_uu += Bᵀ D B with D = (A − p H) dV.
-                let d = (a - jacobian_hessian(&f) * pq) * g.dv;
-                // B is sparse: a u_r column is (∂N/∂r, ∂N/∂z, 0, 0, N/r), a u_z column
-                // (0, 0, ∂N/∂r, ∂N/∂z, 0); only those entries are multiplied.
-                let db = d * g.b;
-                for j in 0..N_U {
-                    let c = db.column(j);
-                    for a in 0..9 {
-                        let (ra, za) = (2 * a, 2 * a + 1);
-                        k[(ra, j)] +=
-                            g.b[(0, ra)] * c[0] + g.b[(1, ra)] * c[1] + g.b[(4, ra)] * c[4];
-                        k[(za, j)] += g.b[(2, za)] * c[2] + g.b[(3, za)] * c[3];
-                    }
-                }
-                // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
-                let bdj = g.b.tr_mul(&dj) * (-g.dv);
-                let kup = bdj * m.transpose();
-                k.fixed_view_mut::<N_U, N_P>(0, N_U).add_assign(&kup);
-                k.fixed_view_mut::<N_P, N_U>(N_U, 0)
-                    .add_assign(&kup.transpose());
-            }
-        }
+        Self { n, dn, m, w }
     }
-    Ok(scale)
-}
 
-use std::ops::AddAssign;
+    /// Maps the reference point `q` to the cell with nodal coordinates `x`. Returns `None`
+    /// when the mapping is not invertible or the point is not at r > 0.
+    pub fn geometry(&self, q: usize, x: &[[f64; 2]; NN]) -> Option<QuadratureGeometry<NU>> {
+        let (mut r, mut z) = (0.0, 0.0);
+        let (mut r_xi, mut r_eta, mut z_xi, mut z_eta) = (0.0, 0.0, 0.0, 0.0);
+        for (a, xa) in x.iter().enumerate() {
+            r += self.n[q][a] * xa[0];
+            z += self.n[q][a] * xa[1];
+            r_xi += self.dn[q][a][0] * xa[0];
+            r_eta += self.dn[q][a][1] * xa[0];
+            z_xi += self.dn[q][a][0] * xa[1];
+            z_eta += self.dn[q][a][1] * xa[1];
+        }
+        let det = r_xi * z_eta - r_eta * z_xi;
+        if !(det > 0.0 && r > 0.0) {
+            return None;
+        }
+        // Inverse Jacobian: ∂ξ/∂r = z_η/det, ∂ξ/∂z = −r_η/det, ∂η/∂r = −z_ξ/det, ∂η/∂z = r_ξ/det.
+        let (xi_r, xi_z, eta_r, eta_z) = (z_eta / det, -r_eta / det, -z_xi / det, r_xi / det);
+        let mut b = BMatrix::<NU>::zeros();
+        for a in 0..NN {
+            let [dxi, deta] = self.dn[q][a];
+            let dr = dxi * xi_r + deta * eta_r;
+            let dz = dxi * xi_z + deta * eta_z;
+            // u_r column: δF_rr = ∂δu_r/∂r, δF_rz = ∂δu_r/∂z, δF_θθ = δu_r / r.
+            b[(0, 2 * a)] = dr;
+            b[(1, 2 * a)] = dz;
+            b[(4, 2 * a)] = self.n[q][a] / r;
+            // u_z column: δF_zr = ∂δu_z/∂r, δF_zz = ∂δu_z/∂z.
+            b[(2, 2 * a + 1)] = dr;
+            b[(3, 2 * a + 1)] = dz;
+        }
+        Some(QuadratureGeometry {
+            r,
+            z,
+            dv: 2.0 * std::f64::consts::PI * r * det * self.w[q],
+            b,
+        })
+    }
 
-/// [`geometry`] for a mesh already validated; a degenerate point becomes an error, not a panic.
-fn geometry_checked(
-    re: &ReferenceElement,
-    q: usize,
-    x: &[[f64; 2]; 9],
-) -> crate::Result<QuadratureGeometry> {
-    geometry(re, q, x).ok_or_else(|| crate::Error::NonFinite {
-        quantity: "element geometry",
-        value: f64::NAN,
-        context: format!("degenerate element mapping at quadrature point {q}, nodes {x:?}"),
-    })
+    /// [`Self::geometry`] for a mesh already validated; a degenerate point becomes an error, not a panic.
+    pub fn geometry_checked(
+        &self,
+        q: usize,
+        x: &[[f64; 2]; NN],
+    ) -> crate::Result<QuadratureGeometry<NU>> {
+        self.geometry(q, x).ok_or_else(|| crate::Error::NonFinite {
+            quantity: "element geometry",
+            value: f64::NAN,
+            context: format!("degenerate element mapping at quadrature point {q}, nodes {x:?}"),
+        })
+    }
+
+    /// Residual and (optionally) tangent of one element.
+    ///
+    /// Weak form (Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV, dV = 2π r dr dz, q and δu test functions):
+    ///
+    /// R_u(δu) = ∫ (P(F) − p ∂J/∂F) : δF dV,      δF = B δu,
+    /// R_p(q)  = −∫ q (J − 1) dV,
+    ///
+    /// and its linearisation (A = ∂P/∂F, possibly non-symmetric; H = ∂²J/∂F∂F):
+    ///
+    /// K_uu = ∫ Bᵀ (A − p H) B dV,   K_up = −∫ Bᵀ ∂J/∂F M dV,   K_pu = −∫ M (∂J/∂F)ᵀ B dV,   K_pp = 0.
+    ///
+    /// For Q1/P0 the only M is 1 on the cell, so R_p = −∫_e (J − 1) dV: incompressibility in
+    /// the mean per cell. `x` holds the cell's nodal coordinates (validated by the caller: see
+    /// [`Self::geometry`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        x: &[[f64; 2]; NN],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        residual: &mut ElementVector<ND>,
+        tangent: Option<&mut ElementMatrix<ND>>,
+    ) -> crate::Result<ElementScale> {
+        residual.fill(0.0);
+        let mut scale = ElementScale::default();
+        match tangent {
+            None => {
+                for q in 0..NQ {
+                    let g = &self.geometry_checked(q, x)?;
+                    let f = deformation(&g.b, u);
+                    let m = &self.m[q];
+                    let pq = m.dot(p);
+                    let pk = material.stress(&f)?;
+                    let dj = jacobian_gradient(&f);
+                    let s = pk - dj * pq;
+                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+                    let ru = g.b.tr_mul(&s) * g.dv;
+                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
+                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+                }
+            }
+            Some(k) => {
+                k.fill(0.0);
+                for q in 0..NQ {
+                    let g = &self.geometry_checked(q, x)?;
+                    let f = deformation(&g.b, u);
+                    let m = &self.m[q];
+                    let pq = m.dot(p);
+                    let (pk, a) = material.stress_tangent(&f)?;
+                    let dj = jacobian_gradient(&f);
+                    let s = pk - dj * pq;
+                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+                    let ru = g.b.tr_mul(&s) * g.dv;
+                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
+                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+                    // K_uu += Bᵀ D B with D = (A − p H) dV.
+                    let d = (a - jacobian_hessian(&f) * pq) * g.dv;
+                    // B is sparse: a u_r column is (∂N/∂r, ∂N/∂z, 0, 0, N/r), a u_z column
+                    // (0, 0, ∂N/∂r, ∂N/∂z, 0); only those entries are multiplied.
+                    let db = d * g.b;
+                    for j in 0..NU {
+                        let c = db.column(j);
+                        for a in 0..NN {
+                            let (ra, za) = (2 * a, 2 * a + 1);
+                            k[(ra, j)] +=
+                                g.b[(0, ra)] * c[0] + g.b[(1, ra)] * c[1] + g.b[(4, ra)] * c[4];
+                            k[(za, j)] += g.b[(2, za)] * c[2] + g.b[(3, za)] * c[3];
+                        }
+                    }
+                    // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
+                    let bdj = g.b.tr_mul(&dj) * (-g.dv);
+                    let kup = bdj * m.transpose();
+                    k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
+                    k.fixed_view_mut::<NP, NU>(NU, 0)
+                        .add_assign(&kup.transpose());
+                }
+            }
+        }
+        Ok(scale)
+    }
 }

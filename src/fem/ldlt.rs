@@ -23,6 +23,17 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
+/// Dofs without a node of their own (the pressure of a Q1/P0 cell): eliminated right after the
+/// last, in the node ordering, of the node groups `after` (the cell's nodes), so that their
+/// pivot is a Schur complement rather than the zero diagonal. At the end if `after` is empty.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Trailing {
+    /// Node groups (indices into `node_dofs`) that must come first.
+    pub after: Vec<u32>,
+    /// The dofs.
+    pub dofs: Vec<u32>,
+}
+
 /// LDLᵀ of the symmetric part, used as a preconditioner.
 pub struct SymmetricPartLdlt {
     n: usize,
@@ -46,11 +57,13 @@ impl std::fmt::Debug for SymmetricPartLdlt {
 
 impl SymmetricPartLdlt {
     /// Symbolic analysis. `node_dofs[a]` lists the free dofs of node a, displacement first,
-    /// `node_adjacency` is the node graph (nodes sharing an element).
+    /// `node_adjacency` is the node graph (nodes sharing an element), `trailing` the dofs that
+    /// follow groups of nodes (see [`Trailing`]; empty for Q2/Q1).
     pub fn new(
         pattern: &Pattern,
         node_dofs: &[Vec<u32>],
         node_adjacency: &Pattern,
+        trailing: &[Trailing],
     ) -> Result<Self, String> {
         let n = pattern.n;
         let par = Par::Seq;
@@ -92,9 +105,26 @@ impl SymmetricPartLdlt {
             )
             .map_err(|e| format!("AMD: {e:?}"))?;
         }
+        // Trailing dofs go right after the last of their node groups in that order.
+        let mut after_position: Vec<Vec<usize>> = vec![Vec::new(); nn + 1];
+        for (t, tr) in trailing.iter().enumerate() {
+            let last = tr
+                .after
+                .iter()
+                .map(|&a| node_perm_inv[a as usize] as usize)
+                .max()
+                .unwrap_or(nn);
+            after_position[last].push(t);
+        }
         let mut perm = Vec::with_capacity(n);
-        for &a in &node_perm {
+        for (k, &a) in node_perm.iter().enumerate() {
             perm.extend_from_slice(&node_dofs[a as usize]);
+            for &t in &after_position[k] {
+                perm.extend_from_slice(&trailing[t].dofs);
+            }
+        }
+        for &t in &after_position[nn] {
+            perm.extend_from_slice(&trailing[t].dofs);
         }
         if perm.len() != n {
             return Err(format!("node ordering covers {} of {n} dofs", perm.len()));

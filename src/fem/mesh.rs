@@ -1,11 +1,15 @@
 //! Meshes of the half meridian plane [0, R] × [0, L] in (r, z).
 //!
-//! A [`Mesh`] is stored the way an unstructured mesh would be: node coordinates, 9-node
-//! element connectivity (corners counter-clockwise, then edge mid-nodes, then the centre, the
-//! VTK_BIQUADRATIC_QUAD order) and boundary node sets by tag. Nothing downstream uses the
-//! structured indexing of [`Mesh::structured`].
+//! A [`Mesh`] is stored the way an unstructured mesh would be: node coordinates, the
+//! [`Element`] its cells are made for, flat connectivity and boundary node sets by tag. A
+//! Q2/Q1 cell has 9 nodes (corners counter-clockwise, then edge mid-nodes, then the centre, the
+//! VTK_BIQUADRATIC_QUAD order), a Q1/P0 cell its 4 corners (VTK_QUAD order). Nothing downstream
+//! uses the structured indexing of [`Mesh::structured`]; [`Mesh::with_element`] turns the cells of
+//! one element into those of the other on the same geometry.
 
+use super::element::Element;
 use super::error::{FemError, FemResult};
+use std::collections::HashMap;
 
 /// Boundary parts of the meridian rectangle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -20,13 +24,16 @@ pub enum Boundary {
     Lateral,
 }
 
-/// An unstructured 9-node quadrilateral mesh of the meridian plane.
+/// An unstructured quadrilateral mesh of the meridian plane.
 #[derive(Debug, Clone)]
 pub struct Mesh {
     /// Node coordinates (r, z).
     pub nodes: Vec<[f64; 2]>,
-    /// Element connectivity: 4 corners counter-clockwise, 4 edge mid-nodes (edge 0–1, 1–2, 2–3, 3–0), centre.
-    pub elements: Vec<[u32; 9]>,
+    /// The element the cells are made for; it fixes the nodes per cell ([`Element::nodes`]).
+    pub element: Element,
+    /// Cell connectivity, [`Element::nodes`] entries per cell: 4 corners counter-clockwise, then
+    /// (9-node cells only) 4 edge mid-nodes (edge 0–1, 1–2, 2–3, 3–0) and the centre.
+    pub connectivity: Vec<u32>,
     /// Boundary node sets: (tag, sorted node indices).
     pub boundaries: Vec<(Boundary, Vec<u32>)>,
     /// Cylinder radius R.
@@ -75,8 +82,10 @@ fn z_breaks(length: f64, nz: usize, grading: f64) -> Vec<f64> {
 }
 
 impl Mesh {
-    /// Structured nr × nz mesh of [0, R] × [0, L] (uniform in r; in z uniform if `grading == 1`,
-    /// otherwise geometrically refined towards both bases with middle/base cell-height ratio `grading` ≥ 1).
+    /// Structured nr × nz mesh of [0, R] × [0, L] with 9-node (Q2/Q1) cells (uniform in r; in z
+    /// uniform if `grading == 1`, otherwise geometrically refined towards both bases with
+    /// middle/base cell-height ratio `grading` ≥ 1). For Q1/P0 cells on the same cells, see
+    /// [`Mesh::with_element`].
     pub fn structured(
         radius: f64,
         length: f64,
@@ -127,11 +136,11 @@ impl Mesh {
                 nodes.push([r, z]);
             }
         }
-        let mut elements = Vec::with_capacity(nr * nz);
+        let mut connectivity = Vec::with_capacity(9 * nr * nz);
         for cj in 0..nz {
             for ci in 0..nr {
                 let (i, j) = (2 * ci, 2 * cj);
-                elements.push([
+                connectivity.extend_from_slice(&[
                     id(i, j),
                     id(i + 2, j),
                     id(i + 2, j + 2),
@@ -150,7 +159,8 @@ impl Mesh {
         let top = (0..mr).map(|i| id(i, mz - 1)).collect();
         Ok(Self {
             nodes,
-            elements,
+            element: Element::Q2Q1,
+            connectivity,
             boundaries: vec![
                 (Boundary::Axis, axis),
                 (Boundary::Bottom, bottom),
@@ -160,6 +170,119 @@ impl Mesh {
             radius,
             length,
         })
+    }
+
+    /// The same cells for `element`: a 9-node mesh keeps only its corners (renumbered in their
+    /// order) for Q1/P0; a 4-node mesh gains straight-edge mid-nodes and centres for Q2/Q1
+    /// (numbered after the corners). Boundary sets follow (a new mid-node lies on a part when
+    /// both ends of its edge do). The mesh itself if it is already made for `element`.
+    pub fn with_element(self, element: Element) -> Self {
+        match (self.element, element) {
+            (Element::Q2Q1, Element::Q1P0) => self.corners(),
+            (Element::Q1P0, Element::Q2Q1) => self.biquadratic(),
+            _ => self,
+        }
+    }
+
+    fn corners(self) -> Self {
+        let mut new_id = vec![u32::MAX; self.nodes.len()];
+        for e in self.elements() {
+            for &a in &e[..4] {
+                new_id[a as usize] = 0;
+            }
+        }
+        // Number the corners in their old order (keeps a structured numbering structured).
+        let mut next = 0u32;
+        let mut nodes = Vec::new();
+        for (a, id) in new_id.iter_mut().enumerate() {
+            if *id != u32::MAX {
+                *id = next;
+                next += 1;
+                nodes.push(self.nodes[a]);
+            }
+        }
+        let mut connectivity = Vec::with_capacity(4 * self.n_elements());
+        for e in self.elements() {
+            connectivity.extend(e[..4].iter().map(|&a| new_id[a as usize]));
+        }
+        let boundaries = self
+            .boundaries
+            .iter()
+            .map(|(tag, set)| {
+                let kept = set
+                    .iter()
+                    .map(|&a| new_id[a as usize])
+                    .filter(|&a| a != u32::MAX)
+                    .collect();
+                (*tag, kept)
+            })
+            .collect();
+        Self {
+            nodes,
+            element: Element::Q1P0,
+            connectivity,
+            boundaries,
+            radius: self.radius,
+            length: self.length,
+        }
+    }
+
+    fn biquadratic(self) -> Self {
+        let mut nodes = self.nodes.clone();
+        let mut edge_node: HashMap<(u32, u32), u32> = HashMap::new();
+        let mut connectivity = Vec::with_capacity(9 * self.n_elements());
+        let mut new_boundaries = self.boundaries.clone();
+        let on = |set: &[u32], a: u32| set.binary_search(&a).is_ok();
+        for e in self.elements() {
+            let c = [e[0], e[1], e[2], e[3]];
+            let mut cell = [0u32; 9];
+            cell[..4].copy_from_slice(&c);
+            for k in 0..4 {
+                let (a, b) = (c[k], c[(k + 1) % 4]);
+                let key = (a.min(b), a.max(b));
+                cell[4 + k] = *edge_node.entry(key).or_insert_with(|| {
+                    let id = nodes.len() as u32;
+                    let (xa, xb) = (nodes[a as usize], nodes[b as usize]);
+                    nodes.push([0.5 * (xa[0] + xb[0]), 0.5 * (xa[1] + xb[1])]);
+                    for ((_, old), (_, new)) in
+                        self.boundaries.iter().zip(new_boundaries.iter_mut())
+                    {
+                        if on(old, a) && on(old, b) {
+                            new.push(id);
+                        }
+                    }
+                    id
+                });
+            }
+            let centre = c.iter().fold([0.0, 0.0], |s, &a| {
+                let x = nodes[a as usize];
+                [s[0] + 0.25 * x[0], s[1] + 0.25 * x[1]]
+            });
+            cell[8] = nodes.len() as u32;
+            nodes.push(centre);
+            connectivity.extend_from_slice(&cell);
+        }
+        for (_, set) in new_boundaries.iter_mut() {
+            set.sort_unstable();
+        }
+        Self {
+            nodes,
+            element: Element::Q2Q1,
+            connectivity,
+            boundaries: new_boundaries,
+            radius: self.radius,
+            length: self.length,
+        }
+    }
+
+    /// The cells, each as its [`Element::nodes`] node indices.
+    pub fn elements(&self) -> std::slice::ChunksExact<'_, u32> {
+        self.connectivity.chunks_exact(self.element.nodes())
+    }
+
+    /// Number of cells.
+    pub fn n_elements(&self) -> usize {
+        self.connectivity.len() / self.element.nodes()
     }
 
     /// The node set of a boundary part (empty if the mesh has none).

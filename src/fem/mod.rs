@@ -1,7 +1,9 @@
 //! Axisymmetric mixed displacement–pressure finite elements for the muscle cylinder.
 //!
 //! A cylinder of radius R and length L, fibres along z, is meshed in its meridian half plane
-//! (r, z) ∈ [0, R] × [0, L] with Taylor–Hood Q2/Q1 quadrilaterals. The solver minimises
+//! (r, z) ∈ [0, R] × [0, L] with quadrilaterals of the user's [`Element`]: Taylor–Hood Q2/Q1
+//! (default, inf–sup stable) or the cheaper Q1/P0 (incompressibility in the mean per cell),
+//! chosen in [`SolverOptions::element`]. The solver minimises
 //! (finds the saddle point of) Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV with
 //!
 //! F = [[1 + ∂u_r/∂r, 0, ∂u_r/∂z], [0, 1 + u_r/r, 0], [∂u_z/∂r, 0, 1 + ∂u_z/∂z]],
@@ -15,6 +17,7 @@ pub mod assembly;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod kinematics;
 pub mod ldlt;
 pub mod linear;
 pub mod material;
@@ -24,11 +27,13 @@ pub mod solver;
 pub mod tangent_solver;
 pub mod vtk;
 
+pub use assembly::QuadraturePoint;
 pub use dofs::Bases;
+pub use element::Element;
 pub use error::{FemError, FemResult, StepFailure};
 pub use material::{AxiF, AxisymmetricMaterial, NeoHookean};
 pub use mesh::{Boundary, Mesh};
 pub use solver::{
-    AxisymmetricSolver, IterationRecord, LinearSolver, QuadraturePoint, SolverOptions, State,
-    StepRecord, StretchResult, Sweep, Timings, VtkOutput,
+    AxisymmetricSolver, IterationRecord, LinearSolver, SolverOptions, State, StepRecord,
+    StretchResult, Sweep, Timings, VtkOutput,
 };

@@ -13,16 +13,15 @@
 //! ‖R_u‖₂ / (σ A) ≤ tol   and   ‖R_p‖₂ / V ≤ tol   (residual),
 //! ‖Δu‖_∞ / L ≤ tol   and   ‖Δp‖_∞ / σ ≤ tol   (last Newton increment).
 
-use super::assembly::Assembler;
-use super::assembly::Pattern;
+pub use super::assembly::QuadraturePoint;
+use super::assembly::{Assembler, Pattern};
 use super::dofs::{Bases, DofMap};
-use super::element::{deformation, geometry, jacobian, jacobian_gradient, N_P, N_QP, N_U};
+use super::element::{jacobian, jacobian_gradient, Element};
 use super::error::{FemError, FemResult, StepFailure};
-use super::ldlt::SymmetricPartLdlt;
-use super::material::{AxiF, AxisymmetricMaterial};
+use super::ldlt::{SymmetricPartLdlt, Trailing};
+use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
 use super::tangent_solver::TangentSolver;
-use nalgebra::SVector;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -70,6 +69,8 @@ pub struct SolverOptions {
     /// cheaper than a new factorisation (the solve stays exact to round-off; see
     /// [`super::tangent_solver`]). `false`: factorise every Newton iteration.
     pub reuse_factorisation: bool,
+    /// The element (the solver turns the mesh's cells into this element's: [`Mesh::with_element`]).
+    pub element: Element,
     /// Optional VTK output.
     pub vtk: Option<VtkOutput>,
 }
@@ -87,6 +88,7 @@ impl Default for SolverOptions {
             max_backtracks: 8,
             linear_solver: LinearSolver::SymmetricPartGmres,
             reuse_factorisation: true,
+            element: Element::Q2Q1,
             vtk: None,
         }
     }
@@ -206,25 +208,6 @@ impl Timings {
     }
 }
 
-/// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct QuadraturePoint {
-    /// Element index.
-    pub element: usize,
-    /// Quadrature point index in the element (0..9).
-    pub point: usize,
-    /// Radius.
-    pub r: f64,
-    /// Axial coordinate.
-    pub z: f64,
-    /// Volume weight dV.
-    pub dv: f64,
-    /// Deformation gradient entries.
-    pub f: AxiF,
-    /// Pressure p.
-    pub pressure: f64,
-}
-
 struct Converged {
     stretch: f64,
     x: Vec<f64>,
@@ -249,7 +232,8 @@ pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
 impl<M: AxisymmetricMaterial + ?Sized> std::fmt::Debug for AxisymmetricSolver<'_, M> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("AxisymmetricSolver")
-            .field("elements", &self.mesh.elements.len())
+            .field("element", &self.mesh.element)
+            .field("elements", &self.mesh.n_elements())
             .field("dofs", &self.dofs.n_total)
             .field("free_dofs", &self.dofs.n_free)
             .finish()
@@ -288,6 +272,8 @@ fn norm_inf(v: &[f64]) -> f64 {
 
 impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     /// Sets up dofs, pattern and symbolic factorisation for `mesh` with `bases` and `material`.
+    /// The cells are those of `options.element` on `mesh`'s geometry ([`Mesh::with_element`]:
+    /// Q1/P0 on a 9-node mesh uses its corners).
     pub fn new(
         mesh: Mesh,
         bases: Bases,
@@ -312,14 +298,15 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
                 rule: "must be ≥ 1",
             });
         }
+        let mesh = mesh.with_element(options.element);
         let dofs = DofMap::new(&mesh, bases);
         let asm = Assembler::new(&mesh, &dofs)?;
         let ldlt = match options.linear_solver {
             LinearSolver::Lu => None,
             LinearSolver::SymmetricPartGmres => {
-                let (node_dofs, adjacency) = node_structure(&mesh, &dofs);
+                let (node_dofs, adjacency, trailing) = node_structure(&mesh, &dofs);
                 Some(
-                    SymmetricPartLdlt::new(&asm.pattern, &node_dofs, &adjacency)
+                    SymmetricPartLdlt::new(&asm.pattern, &node_dofs, &adjacency, &trailing)
                         .map_err(FemError::LinearSolver)?,
                 )
             }
@@ -329,15 +316,11 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let target = [0.0, 0.5 * mesh.length];
         let mut centre = (0, 0);
         let mut best = f64::INFINITY;
-        for (e, x) in asm.coords().iter().enumerate() {
-            for q in 0..N_QP {
-                if let Some(g) = geometry(asm.reference(), q, x) {
-                    let d = (g.r - target[0]).powi(2) + (g.z - target[1]).powi(2);
-                    if d < best {
-                        best = d;
-                        centre = (e, q);
-                    }
-                }
+        for q in asm.quadrature_points(&vec![0.0; dofs.n_total]) {
+            let d = (q.r - target[0]).powi(2) + (q.z - target[1]).powi(2);
+            if d < best {
+                best = d;
+                centre = (q.element, q.point);
             }
         }
         let n = dofs.n_total;
@@ -356,7 +339,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         })
     }
 
-    /// The mesh.
+    /// The mesh solved on: the cells of [`SolverOptions::element`] (for Q1/P0 on a 9-node mesh,
+    /// its corners), numbered as [`Self::dofs`] numbers them.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
     }
@@ -397,33 +381,12 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
 
     /// F, p, position and volume weight at every quadrature point of `state`.
     pub fn quadrature_points(&self, state: &State) -> Vec<QuadraturePoint> {
-        let re = self.asm.reference();
-        let mut out = Vec::with_capacity(self.asm.coords().len() * N_QP);
-        for (e, (xe, d)) in self
-            .asm
-            .coords()
-            .iter()
-            .zip(self.asm.element_dofs())
-            .enumerate()
-        {
-            let u = SVector::<f64, N_U>::from_fn(|i, _| state.x[d[i] as usize]);
-            let p = SVector::<f64, N_P>::from_fn(|i, _| state.x[d[N_U + i] as usize]);
-            for q in 0..N_QP {
-                if let Some(g) = geometry(re, q, xe) {
-                    let m = SVector::<f64, N_P>::from_row_slice(&re.m[q]);
-                    out.push(QuadraturePoint {
-                        element: e,
-                        point: q,
-                        r: g.r,
-                        z: g.z,
-                        dv: g.dv,
-                        f: deformation(&g.b, &u),
-                        pressure: m.dot(&p),
-                    });
-                }
-            }
-        }
-        out
+        self.asm.quadrature_points(&state.x)
+    }
+
+    /// The element in use.
+    pub fn element(&self) -> Element {
+        self.mesh.element
     }
 
     fn assemble(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
@@ -833,11 +796,12 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     }
 
     /// Writes `state` as a VTK XML unstructured grid (ASCII) in the (r, z) plane: point data u
-    /// (u_r, u_z, 0) and p (Q1-interpolated to all nodes); cell data J, γ, λ_f, P_zz (nominal,
+    /// (u_r, u_z, 0) and p (Q2/Q1: Q1-interpolated to all nodes; Q1/P0: volume-weighted mean of
+    /// the cell pressures around each node); cell data J, γ, λ_f, P_zz (nominal,
     /// pressure included) as volume-weighted averages over the cell's quadrature points.
     pub fn write_vtu(&self, state: &State, path: &std::path::Path) -> FemResult<()> {
         let qps = self.quadrature_points(state);
-        let n_el = self.mesh.elements.len();
+        let n_el = self.mesh.n_elements();
         let mut cell = vec![[0.0f64; 5]; n_el]; // J, γ, λ_f, P_zz, Σ dV
         for q in &qps {
             let (gamma, lf) = self.material.point_fields(&q.f)?;
@@ -851,25 +815,45 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             c[4] += q.dv;
         }
         let mut pressure = vec![0.0f64; self.mesh.n_nodes()];
-        for conn in &self.mesh.elements {
-            let pc: Vec<f64> = conn[..4]
-                .iter()
-                .map(|&a| state.x[self.dofs.node_p[a as usize] as usize])
-                .collect();
-            // Q1 interpolation at the reference positions of the 9 nodes.
-            let vals = [
-                pc[0],
-                pc[1],
-                pc[2],
-                pc[3],
-                0.5 * (pc[0] + pc[1]),
-                0.5 * (pc[1] + pc[2]),
-                0.5 * (pc[2] + pc[3]),
-                0.5 * (pc[3] + pc[0]),
-                0.25 * (pc[0] + pc[1] + pc[2] + pc[3]),
-            ];
-            for (a, v) in conn.iter().zip(vals) {
-                pressure[*a as usize] = v;
+        match self.mesh.element {
+            Element::Q2Q1 => {
+                for conn in self.mesh.elements() {
+                    let pc: Vec<f64> = conn[..4]
+                        .iter()
+                        .map(|&a| state.x[self.dofs.node_p[a as usize] as usize])
+                        .collect();
+                    // Q1 interpolation at the reference positions of the 9 nodes.
+                    let vals = [
+                        pc[0],
+                        pc[1],
+                        pc[2],
+                        pc[3],
+                        0.5 * (pc[0] + pc[1]),
+                        0.5 * (pc[1] + pc[2]),
+                        0.5 * (pc[2] + pc[3]),
+                        0.5 * (pc[3] + pc[0]),
+                        0.25 * (pc[0] + pc[1] + pc[2] + pc[3]),
+                    ];
+                    for (a, v) in conn.iter().zip(vals) {
+                        pressure[*a as usize] = v;
+                    }
+                }
+            }
+            Element::Q1P0 => {
+                // The cell-constant pressure, volume-averaged over the cells around each node.
+                let mut weight = vec![0.0f64; self.mesh.n_nodes()];
+                for (e, conn) in self.mesh.elements().enumerate() {
+                    let pe = state.x[self.dofs.element_p[e] as usize];
+                    for &a in conn {
+                        pressure[a as usize] += pe * cell[e][4];
+                        weight[a as usize] += cell[e][4];
+                    }
+                }
+                for (p, w) in pressure.iter_mut().zip(&weight) {
+                    if *w > 0.0 {
+                        *p /= w;
+                    }
+                }
             }
         }
         let u: Vec<[f64; 2]> = self
@@ -892,11 +876,12 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
 }
 
 /// Dof groups for the LDLᵀ ordering and their adjacency graph. One group per node with free
-/// displacement dofs: those dofs, then the node's pressure dof. A pressure dof whose node has no
-/// free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first, so it
-/// joins the group of a neighbouring node (sharing an element) and is eliminated after that
-/// node's displacement dofs, which couple to it.
-fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern) {
+/// displacement dofs: those dofs, then the node's pressure dof (Q2/Q1). A pressure dof whose node
+/// has no free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first,
+/// so it joins the group of a neighbouring node (sharing an element) and is eliminated after that
+/// node's displacement dofs, which couple to it. A Q1/P0 cell pressure is eliminated right after
+/// the last of its cell's node groups (the third return value).
+fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
     let nf = dofs.n_free as u32;
     let nn_all = mesh.n_nodes();
     let mut group_of = vec![u32::MAX; nn_all];
@@ -910,7 +895,7 @@ fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern) {
     }
     // Node neighbours through elements.
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nn_all];
-    for e in &mesh.elements {
+    for e in mesh.elements() {
         for &a in e {
             neighbours[a as usize].extend(e.iter().copied().filter(|&b| b != a));
         }
@@ -938,9 +923,23 @@ fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern) {
         // No displacement dof anywhere near (degenerate mesh): keep them, the LU will cope.
         groups.push(orphans);
     }
+    let trailing = dofs
+        .element_p
+        .iter()
+        .zip(mesh.elements())
+        .filter(|(&p, _)| p < nf)
+        .map(|(&p, e)| Trailing {
+            after: e
+                .iter()
+                .map(|&a| group_of[a as usize])
+                .filter(|&g| g != u32::MAX)
+                .collect(),
+            dofs: vec![p],
+        })
+        .collect();
     let ng = groups.len();
     let mut cols: Vec<Vec<u32>> = vec![Vec::new(); ng];
-    for e in &mesh.elements {
+    for e in mesh.elements() {
         for &a in e {
             let ga = group_of[a as usize];
             if ga == u32::MAX {
@@ -973,5 +972,6 @@ fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern) {
             col_ptr,
             row_idx,
         },
+        trailing,
     )
 }

@@ -1,5 +1,6 @@
 //! VTK XML unstructured-grid (`.vtu`, ASCII) writer for ParaView.
 
+use super::element::Element;
 use super::mesh::Mesh;
 use std::io::Write;
 
@@ -22,9 +23,12 @@ fn refuse_non_finite(
 
 /// VTK cell type of the 9-node biquadratic quadrilateral.
 const VTK_BIQUADRATIC_QUAD: u8 = 28;
+/// VTK cell type of the 4-node bilinear quadrilateral.
+const VTK_QUAD: u8 = 9;
 
-/// Writes the mesh in the (x, y) = (r, z) plane with point data `u` (as a 3-vector) and `p`, and
-/// cell data J, γ, λ_f, P_zz from `cells` (one [J, γ, λ_f, P_zz] per element).
+/// Writes the mesh in the (x, y) = (r, z) plane (9-node cells as VTK_BIQUADRATIC_QUAD, 4-node
+/// cells as VTK_QUAD) with point data `u` (as a 3-vector) and `p`, and cell data J, γ, λ_f,
+/// P_zz from `cells` (one [J, γ, λ_f, P_zz] per element).
 pub fn write_vtu(
     path: &std::path::Path,
     mesh: &Mesh,
@@ -39,7 +43,11 @@ pub fn write_vtu(
         refuse_non_finite(name, cells.iter().map(|c| c[k]), "cell")?;
     }
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
-    let (nn, ne) = (mesh.nodes.len(), mesh.elements.len());
+    let (nn, ne) = (mesh.nodes.len(), mesh.n_elements());
+    let cell_type = match mesh.element {
+        Element::Q2Q1 => VTK_BIQUADRATIC_QUAD,
+        Element::Q1P0 => VTK_QUAD,
+    };
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
@@ -60,7 +68,7 @@ pub fn write_vtu(
         w,
         r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#
     )?;
-    for e in &mesh.elements {
+    for e in mesh.elements() {
         let s: Vec<String> = e.iter().map(|a| a.to_string()).collect();
         writeln!(w, "{}", s.join(" "))?;
     }
@@ -70,12 +78,12 @@ pub fn write_vtu(
         r#"<DataArray type="Int64" Name="offsets" format="ascii">"#
     )?;
     for i in 0..ne {
-        writeln!(w, "{}", 9 * (i + 1))?;
+        writeln!(w, "{}", mesh.element.nodes() * (i + 1))?;
     }
     writeln!(w, "</DataArray>")?;
     writeln!(w, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
     for _ in 0..ne {
-        writeln!(w, "{VTK_BIQUADRATIC_QUAD}")?;
+        writeln!(w, "{cell_type}")?;
     }
     writeln!(w, "</DataArray>")?;
     writeln!(w, "</Cells>")?;
