@@ -18,7 +18,9 @@ use super::measure::{curve_error, finalise, time_median, CurveError, Measurement
 use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use crate::active::{Coupling, FrozenTangent};
 use crate::energy::Energy;
-use crate::fem::{AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Mesh, SolverOptions};
+use crate::fem::{
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions,
+};
 use crate::scene::schema::{DirectionKind, LawKind};
 use crate::scene::{Scene, Study};
 use crate::uniaxial::along_fibres;
@@ -57,6 +59,8 @@ pub enum OptionGroup {
     FrozenTangent,
     /// Mesh refinement of the clamped cylinder.
     Mesh,
+    /// Element (Q2/Q1 or Q1/P0) in the clamped cylinder.
+    Element,
     /// Newton tolerance (FE).
     NewtonTolerance,
     /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
@@ -65,12 +69,13 @@ pub enum OptionGroup {
 
 impl OptionGroup {
     /// Every group, in run order.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::ActivationLaw,
         Self::ActivationLawFe,
         Self::DerivativeRoute,
         Self::FrozenTangent,
         Self::Mesh,
+        Self::Element,
         Self::NewtonTolerance,
         Self::ZeroDVsFe,
     ];
@@ -83,6 +88,7 @@ impl OptionGroup {
             Self::DerivativeRoute => "derivative-route",
             Self::FrozenTangent => "frozen-tangent",
             Self::Mesh => "mesh",
+            Self::Element => "element",
             Self::NewtonTolerance => "newton-tolerance",
             Self::ZeroDVsFe => "zero-d-vs-fe",
         }
@@ -702,6 +708,70 @@ fn mesh(
     Ok(())
 }
 
+/// Element: Q2/Q1 and the cheaper Q1/P0 (on the FE mesh and on cells halved once and twice)
+/// against Q2/Q1 on cells halved once (the accurate end), clamped cylinder, explicit law.
+fn element(
+    scene: &Scene,
+    o: &Resolved,
+    run: &mut Runner,
+    findings: &mut Vec<String>,
+) -> Result<(), TradeoffError> {
+    const OPTION: &str = "element (clamped)";
+    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let (nr, nz) = o.fe_mesh;
+    let with = |element| SolverOptions { element, ..tight() };
+    let reference = fe_run(
+        &m,
+        o.geom,
+        (2 * nr, 2 * nz),
+        Bases::Clamped,
+        &o.fe_stretches,
+        &with(Element::Q2Q1),
+    )?;
+    let mut best = None;
+    for (element, k) in [
+        (Element::Q2Q1, 1),
+        (Element::Q1P0, 1),
+        (Element::Q1P0, 2),
+        (Element::Q1P0, 4),
+    ] {
+        let cells = (k * nr, k * nz);
+        let r = fe_run(
+            &m,
+            o.geom,
+            cells,
+            Bases::Clamped,
+            &o.fe_stretches,
+            &with(element),
+        )?;
+        let row = fe_row(
+            OPTION,
+            &format!("{element} {} × {} cells", cells.0, cells.1),
+            false,
+            &r,
+            &reference,
+        );
+        if element == Element::Q1P0 && row.error.max_rel.is_finite() {
+            best = Some((cells, row.error.max_rel, r.time_s));
+        }
+        run.push(row);
+    }
+    run.push(fe_row(
+        OPTION,
+        &format!("Q2/Q1 {} × {} cells", 2 * nr, 2 * nz),
+        true,
+        &reference,
+        &reference,
+    ));
+    if let Some((cells, rel, time)) = best {
+        findings.push(format!(
+            "Element: Q1/P0 on {} × {} cells misses Q2/Q1 on {} × {} by {:.1e} (relative) in {:.2} s against {:.2} s.",
+            cells.0, cells.1, 2 * nr, 2 * nz, rel, time, reference.time_s
+        ));
+    }
+    Ok(())
+}
+
 /// Newton tolerance in the FE.
 fn tolerance(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
     const OPTION: &str = "Newton tolerance (FE)";
@@ -812,6 +882,7 @@ pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, Tradeo
             OptionGroup::DerivativeRoute => derivative_route(scene, o, run)?,
             OptionGroup::FrozenTangent => frozen_tangent(scene, o, run)?,
             OptionGroup::Mesh => mesh(scene, o, run, findings)?,
+            OptionGroup::Element => element(scene, o, run, findings)?,
             OptionGroup::NewtonTolerance => tolerance(scene, o, run)?,
             OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, o, run)?,
         }
