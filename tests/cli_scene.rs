@@ -404,10 +404,10 @@ fn a_bad_tradeoff_study_is_named_with_file_line_key_value_and_rule() {
     );
     rejected(
         "tradeoff_option",
-        "[[study]]\nkind = \"tradeoff\"\noptions = [\"mesh\", \"element\"]\n",
+        "[[study]]\nkind = \"tradeoff\"\noptions = [\"mesh\", \"quadrature\"]\n",
         &[
             "tradeoff_option.toml:3: study[0].options",
-            "element",
+            "quadrature",
             "activation-law-fe",
         ],
     );

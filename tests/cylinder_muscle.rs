@@ -170,3 +170,40 @@ fn coarsest_mesh_runs_and_unreachable_targets_stop_with_the_largest_stretch_reac
         other => panic!("expected one TargetNotReached, got {other:?}"),
     }
 }
+
+/// The frozen model's non-symmetric tangent on the clamped cylinder: the default solver
+/// (LDLᵀ-preconditioned GMRES, then the LU on the LDLᵀ's pattern, with factorisation reuse) and
+/// faer's partial-pivoting LU alone give the same stresses.
+#[test]
+fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
+    let gm = GiantesioMusesti::paper();
+    let muscle = Muscle::new(
+        gm,
+        Law::Explicit(ExplicitLaw::paper()),
+        0.5,
+        Coupling::Frozen(FrozenTangent::Exact),
+    )
+    .unwrap();
+    let targets = [0.8, 1.17, 1.4];
+    let run = |options: SolverOptions| {
+        let mesh = Mesh::structured(1.0, 4.0, 6, 24, 3.0).unwrap();
+        let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, options).unwrap();
+        let results = solver.sweep(&targets).unwrap().into_result().unwrap();
+        let stresses: Vec<f64> = results.iter().map(|r| r.nominal_stress).collect();
+        (stresses, solver.timings())
+    };
+    let (default, t) = run(SolverOptions::default());
+    let (lu, t_lu) = run(SolverOptions {
+        linear_solver: activemuscle::fem::LinearSolver::Lu,
+        reuse_factorisation: false,
+        ..SolverOptions::default()
+    });
+    println!("default: {default:?} {t:?}\nLU: {lu:?} {t_lu:?}");
+    assert!(t.pattern_lu_factorisations > 0, "{t:?}");
+    // One switch from the LDLᵀ to the LU; a pattern LU that failed to precondition would add more.
+    assert_eq!(t.lu_fallbacks, 1, "{t:?}");
+    assert_eq!(t_lu.pattern_lu_factorisations, 0);
+    for (a, b) in default.iter().zip(&lu) {
+        assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} vs {b}");
+    }
+}

@@ -197,6 +197,8 @@ pub struct Timings {
     pub krylov_iterations: usize,
     /// Solves that fell back to the sparse LU.
     pub lu_fallbacks: usize,
+    /// Factorisations by the LU on the LDLᵀ's pattern (non-symmetric tangents).
+    pub pattern_lu_factorisations: usize,
 }
 
 impl Timings {

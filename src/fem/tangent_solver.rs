@@ -221,6 +221,7 @@ impl TangentSolver {
             match self.pattern_lu.as_mut().map(|p| p.factorise(values)) {
                 Some(Ok(())) => {
                     self.current = Factor::PatternLu;
+                    timings.pattern_lu_factorisations += 1;
                     r = Ok(());
                 }
                 Some(Err(_)) => self.pattern_lu_strikes += 1,
