@@ -3,8 +3,7 @@
 //! diagnosed at the quadrature points of the failed trial state (strong ellipticity, law jumps).
 //!
 //! `cargo run --release --example cylinder_sweep -- NR NZ explicit|energy [sliding]`
-//! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver,
-//! `REUSE=no` to factorise every Newton iteration)
+//! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver)
 //! prints `d lambda P gamma_centre newton_iterations` rows and the diagnoses.
 
 use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, Law};
@@ -50,9 +49,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut options = SolverOptions::default();
     if std::env::var("LINEAR").as_deref() == Ok("lu") {
         options.linear_solver = activemuscle::fem::LinearSolver::Lu;
-    }
-    if std::env::var("REUSE").as_deref() == Ok("no") {
-        options.reuse_factorisation = false;
     }
     println!(
         "# {nr}x{nz} {bases:?} {} law, {} coupling",

@@ -172,7 +172,7 @@ fn coarsest_mesh_runs_and_unreachable_targets_stop_with_the_largest_stretch_reac
 }
 
 /// The frozen model's non-symmetric tangent on the clamped cylinder: the default solver
-/// (LDLᵀ-preconditioned GMRES, then the LU on the LDLᵀ's pattern, with factorisation reuse) and
+/// (LDLᵀ-preconditioned GMRES, then the LU on the LDLᵀ's pattern as preconditioner) and
 /// faer's partial-pivoting LU alone give the same stresses.
 #[test]
 fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
@@ -195,7 +195,6 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
     let (default, t) = run(SolverOptions::default());
     let (lu, t_lu) = run(SolverOptions {
         linear_solver: activemuscle::fem::LinearSolver::Lu,
-        reuse_factorisation: false,
         ..SolverOptions::default()
     });
     println!("default: {default:?} {t:?}\nLU: {lu:?} {t_lu:?}");

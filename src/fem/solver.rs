@@ -65,10 +65,6 @@ pub struct SolverOptions {
     pub max_backtracks: usize,
     /// Linear solver of the Newton system.
     pub linear_solver: LinearSolver,
-    /// Keep the factorisation of an earlier tangent as long as GMRES preconditioned by it is
-    /// cheaper than a new factorisation (the solve stays exact to round-off; see
-    /// [`super::tangent_solver`]). `false`: factorise every Newton iteration.
-    pub reuse_factorisation: bool,
     /// The element (the solver turns the mesh's cells into this element's: [`Mesh::with_element`]).
     pub element: Element,
     /// Optional VTK output.
@@ -87,7 +83,6 @@ impl Default for SolverOptions {
             easy_iterations: 5,
             max_backtracks: 8,
             linear_solver: LinearSolver::SymmetricPartGmres,
-            reuse_factorisation: true,
             element: Element::Q2Q1,
             vtk: None,
         }
@@ -313,7 +308,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
                 )
             }
         };
-        let linear = TangentSolver::new(dofs.n_free, ldlt, options.reuse_factorisation);
+        let linear = TangentSolver::new(dofs.n_free, ldlt);
         // Quadrature point nearest to the centre (r = 0, z = L/2).
         let target = [0.0, 0.5 * mesh.length];
         let mut centre = (0, 0);
@@ -423,7 +418,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         ru.max(rp)
     }
 
-    /// The tangent just assembled becomes the matrix of the next solves (see [`TangentSolver`]).
+    /// Factorises the tangent just assembled (see [`TangentSolver`]).
     fn factorise(&mut self) -> Result<(), StepFailure> {
         if let Some(k) = self.asm.values.iter().position(|v| !v.is_finite()) {
             return Err(StepFailure::Material(crate::Error::NonFinite {
@@ -433,7 +428,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             }));
         }
         self.linear
-            .update(&self.asm.pattern, &self.asm.values, &mut self.timings)
+            .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
             .map_err(|detail| StepFailure::SingularTangent { detail })
     }
 
