@@ -412,3 +412,45 @@ fn a_bad_tradeoff_study_is_named_with_file_line_key_value_and_rule() {
         ],
     );
 }
+
+/// `element = "Q1/P0"` reaches the solver: on sliding bases the FE reproduces the 0D curve (the
+/// run's own verification line) with the Q1/P0 dof count; an unknown element is named.
+#[test]
+fn a_cylinder_study_chooses_its_element() {
+    let path = scene_file(
+        "q1p0",
+        "[[study]]\nkind = \"cylinder\"\nbases = \"sliding\"\nelement = \"Q1/P0\"\nnr = 3\nnz = 6\nlaw = \"explicit\"\nstretch = [0.9, 1.0, 1.17]\n",
+    );
+    let dir = out_dir("q1p0");
+    let stdout = succeeds(&[
+        OsStr::new("run"),
+        path.as_os_str(),
+        OsStr::new("--out"),
+        dir.as_os_str(),
+        OsStr::new("--quiet"),
+    ]);
+    let line = stdout
+        .lines()
+        .find(|l| l.contains("max |P_FE − P_0D| = "))
+        .expect("verification line");
+    let err: f64 = line
+        .split("max |P_FE − P_0D| = ")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .and_then(|t| t.parse().ok())
+        .expect("a number");
+    assert!(err < 1e-8, "{line}");
+    let report = std::fs::read_to_string(dir.join("report.html")).expect("report");
+    assert!(
+        report.contains("3 × 6 Q1/P0 cells"),
+        "element named in the report"
+    );
+    // Q1/P0 on 3 × 6 cells, sliding: 4 × 7 nodes, u_r fixed on the axis (7), u_z on both bases
+    // (8), 18 cell pressures → 56 − 15 + 18 = 59 free dofs.
+    assert!(report.contains("59 dofs"), "Q1/P0 dof count");
+    rejected(
+        "element",
+        "[[study]]\nkind = \"cylinder\"\nstretch = [0.9, 1.0]\nelement = \"Q3\"\n",
+        &["element.toml:4", "study[0].element", "Q3", "Q1/P0"],
+    );
+}

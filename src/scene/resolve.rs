@@ -4,9 +4,9 @@
 
 use super::fit::{resolve_fit, FitStudy};
 use super::schema::{
-    ActivationSpec, BasesKind, BelowMinimumKind, CouplingKind, DirectionKind, EnergyKind,
-    EnergySpec, ExplicitSpec, LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind, StudySpec,
-    TangentKind,
+    ActivationSpec, BasesKind, BelowMinimumKind, CouplingKind, DirectionKind, ElementKind,
+    EnergyKind, EnergySpec, ExplicitSpec, LawKind, MaterialSpec, SceneFile, StretchSpec, StudyKind,
+    StudySpec, TangentKind,
 };
 use super::stability::{resolve_stability, StabilityStudy};
 use super::tradeoff::{resolve_tradeoff, TradeoffStudy};
@@ -110,6 +110,8 @@ pub struct CylinderStudy {
     pub grading: f64,
     /// Base conditions.
     pub bases: BasesKind,
+    /// Finite element.
+    pub element: ElementKind,
     /// Target stretches, ascending.
     pub stretches: Vec<f64>,
     /// Activation law.
@@ -745,6 +747,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                         "nz",
                         "grading",
                         "bases",
+                        "element",
                         "law",
                         "coupling",
                         "vtk",
@@ -771,6 +774,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                     }
                 }
                 let bases = s.bases.unwrap_or(BasesKind::Clamped);
+                let element = s.element.unwrap_or(ElementKind::Q2Q1);
                 let name = s.name.clone().unwrap_or_else(|| {
                     format!(
                         "cylinder {} {} {}",
@@ -789,6 +793,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                 r.nz = Some(nz as i64);
                 r.grading = Some(grading);
                 r.bases = Some(bases);
+                r.element = Some(element);
                 r.law = Some(law);
                 r.coupling = Some(coupling);
                 r.vtk = Some(vtk.clone());
@@ -801,6 +806,7 @@ pub(super) fn resolve(raw: SceneFile, text: &str, file: &str) -> Result<Scene, S
                     nz,
                     grading,
                     bases,
+                    element,
                     stretches: lambdas,
                     law,
                     coupling,

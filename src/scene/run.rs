@@ -3,7 +3,7 @@
 
 use super::fit::{run_fit, FitOutcome};
 use super::resolve::{coupling_name, law_name, CylinderStudy, ModelChoice, UniaxialStudy};
-use super::schema::{BasesKind, DirectionKind};
+use super::schema::{BasesKind, DirectionKind, ElementKind};
 use super::stability::{run_stability, StabilityCurve};
 use super::{Scene, Study};
 use crate::energy::{Energy, StrainEnergy};
@@ -509,7 +509,7 @@ fn cylinder(
         .collect();
     for m in &models {
         rep.log(&format!(
-            "{}: {} bases, {}, R = {}, L = {}, {} × {} Q2/Q1 cells (grading {})",
+            "{}: {} bases, {}, R = {}, L = {}, {} × {} {} cells (grading {})",
             s.name,
             bases,
             model_label(scene, m),
@@ -517,6 +517,7 @@ fn cylinder(
             s.length,
             s.nr,
             s.nz,
+            fe_element(s.element),
             s.grading
         ));
     }
@@ -552,6 +553,7 @@ fn cylinder(
             };
             let opts = SolverOptions {
                 tolerance: s.tolerance,
+                element: fe_element(s.element),
                 vtk,
                 ..SolverOptions::default()
             };
@@ -627,11 +629,12 @@ fn cylinder(
     pb.finish_and_clear();
     let mut points = 0;
     let mut details = vec![format!(
-        "R = {}, L = {}, {} × {} cells (grading {}), {bases} bases, {} stretches",
+        "R = {}, L = {}, {} × {} {} cells (grading {}), {bases} bases, {} stretches",
         s.radius,
         s.length,
         s.nr,
         s.nz,
+        fe_element(s.element),
         s.grading,
         s.stretches.len()
     )];
@@ -680,5 +683,13 @@ fn describe_failure(f: &FemError) -> String {
              the step to {attempted:.5} failed even at the smallest load step ({cause})"
         ),
         other => other.to_string(),
+    }
+}
+
+/// The FE element a scene names.
+fn fe_element(e: ElementKind) -> crate::fem::Element {
+    match e {
+        ElementKind::Q2Q1 => crate::fem::Element::Q2Q1,
+        ElementKind::Q1P0 => crate::fem::Element::Q1P0,
     }
 }

@@ -236,6 +236,17 @@ pub enum BasesKind {
     Clamped,
 }
 
+/// Finite element of a cylinder study.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+pub enum ElementKind {
+    /// Taylor–Hood: biquadratic displacement, continuous bilinear pressure (default).
+    #[serde(rename = "Q2/Q1")]
+    Q2Q1,
+    /// Bilinear displacement, one pressure per cell (cheaper, less accurate).
+    #[serde(rename = "Q1/P0")]
+    Q1P0,
+}
+
 /// One `[[study]]`. Keys that do not belong to the study's kind are rejected by validation.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -274,6 +285,8 @@ pub struct StudySpec {
     pub grading: Option<f64>,
     /// `clamped` or `sliding` (cylinder).
     pub bases: Option<BasesKind>,
+    /// `"Q2/Q1"` (default) or `"Q1/P0"` (cylinder).
+    pub element: Option<ElementKind>,
     /// Activation law (cylinder; default `activation.law`).
     pub law: Option<LawKind>,
     /// Coupling (cylinder; default `activation.coupling`).
