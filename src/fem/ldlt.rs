@@ -6,10 +6,11 @@
 //! LDLᵀ works on the pattern of K. The saddle point is factorised without pivoting thanks to the
 //! ordering: approximate minimum degree on the node graph, and within each node the displacement
 //! dofs before the pressure dof, so a pressure pivot is a Schur complement rather than the zero
-//! diagonal. A zero pivot (or a non-finite factor) is reported and the caller uses the LU
+//! diagonal. A zero pivot (or a non-finite factor) is reported and the caller uses an LU
 //! instead. For a symmetric tangent S = K and GMRES converges in one iteration; for a
-//! non-symmetric one in a few. If GMRES does not reach its tolerance the caller falls back to the
-//! LU (see [`super::linear`]), so the Newton direction is always exact to round-off.
+//! non-symmetric one in a few, or not at all when K is far from symmetric: the caller then
+//! switches to an LU ([`super::tangent_solver`]), so the Newton direction is always exact to
+//! round-off.
 
 use super::assembly::Pattern;
 use faer::dyn_stack::{MemBuffer, MemStack};

@@ -38,7 +38,8 @@ pub struct VtkOutput {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LinearSolver {
     /// GMRES on K preconditioned by LDLᵀ of (K + Kᵀ)/2 (fast; for a symmetric K one iteration),
-    /// falling back to the sparse LU when GMRES does not converge.
+    /// then by the LU on the LDLᵀ's pattern when GMRES does not converge, faer's LU as last
+    /// resort (see [`super::tangent_solver`]).
     SymmetricPartGmres,
     /// faer's sparse LU with partial pivoting (COLAMD ordering) only.
     Lu,
