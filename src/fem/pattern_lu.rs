@@ -2,9 +2,11 @@
 //!
 //! K = Qᵀ L U Q with the fill-reducing symmetric ordering Q of the LDLᵀ (approximate minimum
 //! degree on the node graph, each node's displacement dofs before its pressure dof). With
-//! pivoting confined to the supernodes' diagonal blocks, L and Uᵀ have the structure of the Cholesky factor of K's (symmetric) pattern, so
-//! the factor is as sparse as the LDLᵀ of the symmetric part and several times sparser than a
-//! partial-pivoting LU, whose fill is bounded by the Cholesky factor of KᵀK instead. The
+//! pivoting confined to the supernodes' diagonal blocks, L and Uᵀ have the structure of the
+//! Cholesky factor of K's (symmetric) pattern, so the factor is as sparse as the LDLᵀ of the
+//! symmetric part and sparser than a partial-pivoting LU, whose fill is bounded by the
+//! Cholesky factor of KᵀK instead (factorisation at 9 360 dofs: ≈ 15–20 ms against faer's
+//! LU ≈ 45 ms, `cargo run --release --example cylinder_sweep -- 16 64 explicit`). The
 //! supernodes of faer's symbolic Cholesky are processed right-looking: for a supernode with
 //! diagonal block D (w × w) and off-diagonal rows R,
 //!
@@ -163,7 +165,7 @@ impl PatternLu {
         let (w, r) = (e - b, self.rows[s].len());
         let (l_all, ut_all) = (&mut self.l, &mut self.ut);
         let l = &mut l_all[self.l_ptr[s]..self.l_ptr[s + 1]];
-        // D = L₁₁ U₁₁ in place (unblocked, column-major, leading dimension w + r).
+        // P D = L₁₁ U₁₁ in place (unblocked, column-major, leading dimension w + r).
         let ld = w + r;
         let ut = &mut ut_all[self.ut_ptr[s]..self.ut_ptr[s + 1]];
         for k in 0..w {
