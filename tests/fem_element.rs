@@ -106,11 +106,7 @@ fn q1p0_newton_with_the_exact_nonsymmetric_tangent_converges_quadratically() {
         .chain(step.iterations.iter().map(|i| i.residual))
         .collect();
     println!("Q1/P0, exact tangent, scaled residuals: {:?}", sci(&r));
-    let orders: Vec<f64> = r
-        .windows(3)
-        .filter(|w| w[2] > 1e-13 && w.iter().all(|v| *v > 0.0))
-        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
-        .collect();
+    let orders = common::observed_orders(&r);
     println!("observed orders: {orders:.3?}");
     let last = *orders
         .last()

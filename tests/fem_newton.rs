@@ -51,12 +51,7 @@ fn exact_nonsymmetric_tangent_converges_quadratically() {
     });
     let r = residuals(&exact);
     println!("exact tangent, scaled residuals: {:?}", sci(&r));
-    // Observed order p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}), over iterations above the round-off floor.
-    let orders: Vec<f64> = r
-        .windows(3)
-        .filter(|w| w[2] > 1e-13 && w.iter().all(|v| *v > 0.0))
-        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
-        .collect();
+    let orders = common::observed_orders(&r);
     println!("observed orders: {orders:.3?}");
     let last = *orders
         .last()

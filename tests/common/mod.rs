@@ -33,3 +33,13 @@ impl AxisymmetricMaterial for NonSymmetric {
         Ok((0.0, axial_stretch(f)))
     }
 }
+
+/// Observed orders of convergence p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}) of a residual history,
+/// over the iterations above the round-off floor (1e-13).
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn observed_orders(r: &[f64]) -> Vec<f64> {
+    r.windows(3)
+        .filter(|w| w[2] > 1e-13 && w.iter().all(|v| *v > 0.0))
+        .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
+        .collect()
+}
