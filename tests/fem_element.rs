@@ -258,14 +258,7 @@ fn q1p0_vtu_output_has_bilinear_cells_with_the_homogeneous_values() {
     solver.sweep(&[lambda]).unwrap().into_result().unwrap();
     let text = std::fs::read_to_string(directory.join("lambda_1.3000.vtu")).unwrap();
     assert!(text.contains(r#"NumberOfPoints="12" NumberOfCells="6""#));
-    let block = |name: &str| -> Vec<f64> {
-        let start = text.find(&format!("Name=\"{name}\"")).unwrap();
-        let body = &text[start..];
-        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-        body.split_whitespace()
-            .map(|v| v.parse().unwrap())
-            .collect()
-    };
+    let block = |name: &str| common::vtu_data_array(&text, name);
     assert!(block("types").iter().all(|&t| t == 9.0), "VTK_QUAD cells");
     assert_eq!(block("offsets").last(), Some(&24.0));
     let exact = mu * (lambda - lambda.powi(-2));

@@ -86,14 +86,7 @@ fn vtu_output_holds_the_fields_with_the_homogeneous_values() {
         assert!(text.contains(&format!("Name={name}")), "missing {name}");
     }
     // Cell data: the uniaxial state, P_zz = μ(λ − λ⁻²), J = 1, fibre stretch λ, in every cell.
-    let block = |name: &str| -> Vec<f64> {
-        let start = text.find(&format!("Name=\"{name}\"")).unwrap();
-        let body = &text[start..];
-        let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
-        body.split_whitespace()
-            .map(|v| v.parse().unwrap())
-            .collect()
-    };
+    let block = |name: &str| common::vtu_data_array(&text, name);
     let pzz = block("P_zz");
     assert_eq!(pzz.len(), 6);
     let exact = mu * (lambda - lambda.powi(-2));

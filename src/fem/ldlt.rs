@@ -45,7 +45,6 @@ pub struct SymmetricPartLdlt {
     factor_scratch: MemBuffer,
     solve_scratch: MemBuffer,
     par: Par,
-    factorised: bool,
 }
 
 impl std::fmt::Debug for SymmetricPartLdlt {
@@ -164,13 +163,11 @@ impl SymmetricPartLdlt {
             factor_scratch,
             solve_scratch,
             par,
-            factorised: false,
         })
     }
 
     /// Factorises S = (K + Kᵀ)/2.
     pub fn factorise(&mut self, pattern: &Pattern, values: &[f64]) -> Result<(), String> {
-        self.factorised = false;
         let mut scale = 0.0f64;
         for (k, s) in self.s_values.iter_mut().enumerate() {
             *s = 0.5 * (values[k] + values[self.transpose_of[k] as usize]);
@@ -204,7 +201,6 @@ impl SymmetricPartLdlt {
         if self.l_values.iter().any(|v| !v.is_finite()) {
             return Err("non-finite LDLT factor (zero pivot)".into());
         }
-        self.factorised = true;
         Ok(())
     }
 
@@ -217,11 +213,6 @@ impl SymmetricPartLdlt {
             self.par,
             MemStack::new(&mut self.solve_scratch),
         );
-    }
-
-    /// Whether a factorisation is available.
-    pub fn is_factorised(&self) -> bool {
-        self.factorised
     }
 
     /// The symbolic analysis (ordering and supernodes), shared with [`super::pattern_lu`].
@@ -301,7 +292,7 @@ impl Gmres {
         &mut self,
         pattern: &Pattern,
         values: &[f64],
-        pre: &mut impl Preconditioner,
+        pre: &mut dyn Preconditioner,
         rhs: &mut [f64],
         tol: f64,
         max_iter: usize,

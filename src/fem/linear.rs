@@ -76,11 +76,6 @@ impl SparseLu {
         Ok(())
     }
 
-    /// Whether a numeric factorisation is available.
-    pub fn is_factorised(&self) -> bool {
-        self.factorised
-    }
-
     /// Solves A x = b in place; fails if there is no factorisation or the solution is not finite.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), String> {
         if !self.factorised {
@@ -100,16 +95,6 @@ impl SparseLu {
                 rhs[i]
             )),
             None => Ok(()),
-        }
-    }
-}
-
-/// The LU of an earlier tangent as a preconditioner of the current one (a failed solve leaves x
-/// non-finite, which GMRES reports as no convergence).
-impl super::ldlt::Preconditioner for SparseLu {
-    fn apply(&mut self, x: &mut [f64]) {
-        if self.solve_in_place(x).is_err() {
-            x.fill(f64::NAN);
         }
     }
 }

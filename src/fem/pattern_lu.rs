@@ -264,11 +264,6 @@ impl PatternLu {
         Ok(())
     }
 
-    /// Whether a factorisation is available.
-    pub fn is_factorised(&self) -> bool {
-        self.factorised
-    }
-
     /// x ← K⁻¹ x with the factorisation (fails if there is none).
     pub fn solve_in_place(&mut self, x: &mut [f64]) -> Result<(), String> {
         if !self.factorised {

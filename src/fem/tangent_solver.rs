@@ -25,7 +25,7 @@
 //! fem_scaling`), and the cores are better spent on the element loop.
 
 use super::assembly::Pattern;
-use super::ldlt::{Gmres, SymmetricPartLdlt};
+use super::ldlt::{Gmres, Preconditioner, SymmetricPartLdlt};
 use super::linear::SparseLu;
 use super::pattern_lu::PatternLu;
 use super::solver::Timings;
@@ -188,21 +188,19 @@ impl TangentSolver {
         timings: &mut Timings,
     ) -> Option<usize> {
         self.rhs_copy.copy_from_slice(rhs);
-        let its = match self.current {
-            Factor::Ldlt => self.ldlt.as_mut().and_then(|ldlt| {
-                self.gmres
-                    .solve(pattern, values, ldlt, rhs, TOLERANCE, max_iter)
-            }),
-            Factor::PatternLu => self.pattern_lu.as_mut().and_then(|lu| {
-                self.gmres
-                    .solve(pattern, values, lu, rhs, TOLERANCE, max_iter)
-            }),
-            Factor::Lu => self.lu.as_mut().and_then(|lu| {
-                self.gmres
-                    .solve(pattern, values, lu, rhs, TOLERANCE, max_iter)
-            }),
-            Factor::None => None,
+        let pre: Option<&mut dyn Preconditioner> = match self.current {
+            Factor::Ldlt => self.ldlt.as_mut().map(|p| p as &mut dyn Preconditioner),
+            Factor::PatternLu => self
+                .pattern_lu
+                .as_mut()
+                .map(|p| p as &mut dyn Preconditioner),
+            // faer's LU solves directly (see `solve`).
+            Factor::Lu | Factor::None => None,
         };
+        let its = pre.and_then(|pre| {
+            self.gmres
+                .solve(pattern, values, pre, rhs, TOLERANCE, max_iter)
+        });
         match its {
             Some(its) => timings.krylov_iterations += its,
             None => rhs.copy_from_slice(&self.rhs_copy),

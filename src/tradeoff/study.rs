@@ -248,13 +248,12 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
                 gamma_centre[i] = r.gamma_centre;
             }
         }
-        let busy = t.assembly + t.residual_assembly + t.factorisation + t.solve;
         Ok(FeRun {
             time_s: 0.0,
             stress,
             gamma_centre,
             iterations,
-            per_iteration_s: busy.as_secs_f64() / iterations.max(1) as f64,
+            per_iteration_s: t.per_newton_iteration(),
             dofs: solver.n_free_dofs(),
             failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
         })

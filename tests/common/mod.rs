@@ -43,3 +43,14 @@ pub fn observed_orders(r: &[f64]) -> Vec<f64> {
         .map(|w| (w[2] / w[1]).ln() / (w[1] / w[0]).ln())
         .collect()
 }
+
+/// The numbers of the `<DataArray Name="name">` of a VTU file's text.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn vtu_data_array(text: &str, name: &str) -> Vec<f64> {
+    let start = text.find(&format!("Name=\"{name}\"")).unwrap();
+    let body = &text[start..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    body.split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
