@@ -158,7 +158,11 @@ fn draw<DB: DrawingBackend>(
     if !x0.is_finite() || x0 <= 0.0 {
         (x0, x1, y0, y1) = (1e-6, 1.0, ERROR_FLOOR, 1.0);
     }
-    let (x0, x1) = (x0 / 3.0, x1 * 6.0);
+    let (mut x0, mut x1) = (x0 / 3.0, x1 * 6.0);
+    // At least two decades of time, so that only decades carry labels (a narrower log axis gets
+    // labels at 2e-1 … 9e-1 that run into each other).
+    let widen = (100.0 / (x1 / x0)).max(1.0).sqrt();
+    (x0, x1) = (x0 / widen, x1 * widen);
     let (y0, y1) = (y0 / 10.0, y1 * 10.0);
     let mut chart = ChartBuilder::on(root)
         .caption(option, ("sans-serif", 22))
