@@ -237,6 +237,88 @@ fn counting_lists(n: usize, targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
     (ptr, src)
 }
 
+/// The pattern of the free–free tangent of `mesh` numbered by `dofs` (`nu` displacement dofs
+/// per cell; no pressure–pressure block: K_pp = 0).
+fn free_pattern(dofs: &DofMap, nu: usize, mesh: &Mesh) -> FemResult<Pattern> {
+    let (n, nd) = (dofs.n_free, dofs.dofs_per_element());
+    let free = |g: u32| (g as usize) < n;
+    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for d in dofs.element_dofs.chunks_exact(nd) {
+        for j in 0..nd {
+            if !free(d[j]) {
+                continue;
+            }
+            for i in 0..nd {
+                if free(d[i]) && !(i >= nu && j >= nu) {
+                    cols[d[j] as usize].push(d[i]);
+                }
+            }
+        }
+    }
+    if let Some(i) = cols.iter().position(Vec::is_empty) {
+        return Err(FemError::InvalidInput {
+            name: "mesh",
+            value: format!(
+                "free dof {i} of {} {} cells",
+                mesh.n_elements(),
+                mesh.element
+            ),
+            rule: "every free dof must couple to a free displacement dof (refine the mesh)",
+        });
+    }
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0u32);
+    let mut row_idx = Vec::new();
+    for c in cols.iter_mut() {
+        c.sort_unstable();
+        c.dedup();
+        row_idx.extend_from_slice(c);
+        if row_idx.len() >= u32::MAX as usize {
+            return Err(FemError::InvalidInput {
+                name: "pattern",
+                value: row_idx.len().to_string(),
+                rule: "too many nonzeros for 32-bit indices",
+            });
+        }
+        col_ptr.push(row_idx.len() as u32);
+    }
+    Ok(Pattern {
+        n,
+        col_ptr,
+        row_idx,
+    })
+}
+
+/// Position in the tangent's values of every element-matrix entry (u32::MAX: not in the system).
+fn value_positions(dofs: &DofMap, pattern: &Pattern, nu: usize) -> Vec<u32> {
+    let (n, nd) = (dofs.n_free, dofs.dofs_per_element());
+    let free = |g: u32| (g as usize) < n;
+    let n_k = nd * nd;
+    let mut pos = vec![u32::MAX; dofs.element_dofs.len() / nd * n_k];
+    pos.par_chunks_mut(n_k)
+        .zip(dofs.element_dofs.par_chunks_exact(nd))
+        .for_each(|(p, d)| {
+            for j in 0..nd {
+                if !free(d[j]) {
+                    continue;
+                }
+                let (lo, hi) = (
+                    pattern.col_ptr[d[j] as usize] as usize,
+                    pattern.col_ptr[d[j] as usize + 1] as usize,
+                );
+                let rows = &pattern.row_idx[lo..hi];
+                for i in 0..nd {
+                    if free(d[i]) && !(i >= nu && j >= nu) {
+                        if let Ok(k) = rows.binary_search(&d[i]) {
+                            p[i + nd * j] = (lo + k) as u32;
+                        }
+                    }
+                }
+            }
+        });
+    pos
+}
+
 impl Assembler {
     /// Validates the element geometry and builds the pattern and the gather lists.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> FemResult<Self> {
@@ -269,69 +351,9 @@ impl Assembler {
             Element::Q1P0 => Kernel::Q1P0(Box::new(Cells::new(Q1P0Reference::new(), mesh, dofs)?)),
         };
         let n = dofs.n_free;
-        let free = |g: u32| (g as usize) < n;
-        // Column lists of the free–free pattern (no pressure–pressure block: K_pp = 0).
-        let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
-        for d in dofs.element_dofs.chunks_exact(nd) {
-            for j in 0..nd {
-                if !free(d[j]) {
-                    continue;
-                }
-                for i in 0..nd {
-                    if free(d[i]) && !(i >= nu && j >= nu) {
-                        cols[d[j] as usize].push(d[i]);
-                    }
-                }
-            }
-        }
-        if let Some(i) = cols.iter().position(Vec::is_empty) {
-            return Err(FemError::InvalidInput {
-                name: "mesh",
-                value: format!("free dof {i} of {} {} cells", n_el, mesh.element),
-                rule: "every free dof must couple to a free displacement dof (refine the mesh)",
-            });
-        }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        col_ptr.push(0u32);
-        let mut row_idx = Vec::new();
-        for c in cols.iter_mut() {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            if row_idx.len() >= u32::MAX as usize {
-                return Err(FemError::InvalidInput {
-                    name: "pattern",
-                    value: row_idx.len().to_string(),
-                    rule: "too many nonzeros for 32-bit indices",
-                });
-            }
-            col_ptr.push(row_idx.len() as u32);
-        }
-        drop(cols);
-        let nnz = row_idx.len();
-        // Position of every element-matrix entry in `values` (u32::MAX: not in the system).
-        let mut pos = vec![u32::MAX; n_el * n_k];
-        pos.par_chunks_mut(n_k)
-            .zip(dofs.element_dofs.par_chunks_exact(nd))
-            .for_each(|(p, d)| {
-                for j in 0..nd {
-                    if !free(d[j]) {
-                        continue;
-                    }
-                    let (lo, hi) = (
-                        col_ptr[d[j] as usize] as usize,
-                        col_ptr[d[j] as usize + 1] as usize,
-                    );
-                    let rows = &row_idx[lo..hi];
-                    for i in 0..nd {
-                        if free(d[i]) && !(i >= nu && j >= nu) {
-                            if let Ok(k) = rows.binary_search(&d[i]) {
-                                p[i + nd * j] = (lo + k) as u32;
-                            }
-                        }
-                    }
-                }
-            });
+        let pattern = free_pattern(dofs, nu, mesh)?;
+        let nnz = pattern.row_idx.len();
+        let pos = value_positions(dofs, &pattern, nu);
         let (val_ptr, val_src) = counting_lists(nnz, &pos);
         drop(pos);
         let (res_ptr, res_src) = counting_lists(dofs.n_total, &dofs.element_dofs);
@@ -340,11 +362,7 @@ impl Assembler {
         Ok(Self {
             kernel,
             n_free: n,
-            pattern: Pattern {
-                n,
-                col_ptr,
-                row_idx,
-            },
+            pattern,
             values: vec![0.0; nnz],
             residual: vec![0.0; dofs.n_total],
             rate_force: vec![0.0; dofs.n_total],

@@ -13,6 +13,8 @@
 //! round-off.
 
 use super::assembly::Pattern;
+use super::dofs::DofMap;
+use super::mesh::Mesh;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
@@ -56,6 +58,13 @@ impl std::fmt::Debug for SymmetricPartLdlt {
 }
 
 impl SymmetricPartLdlt {
+    /// Symbolic analysis for the tangent of `mesh` numbered by `dofs`, in the node ordering of
+    /// [`dof_ordering`].
+    pub fn for_mesh(pattern: &Pattern, mesh: &Mesh, dofs: &DofMap) -> Result<Self, String> {
+        let (node_dofs, adjacency, trailing) = node_structure(mesh, dofs);
+        Self::new(pattern, &node_dofs, &adjacency, &trailing)
+    }
+
     /// Symbolic analysis. `node_dofs[a]` lists the free dofs of node a, displacement first,
     /// `node_adjacency` is the node graph (nodes sharing an element), `trailing` the dofs that
     /// follow groups of nodes (see [`Trailing`]; empty for Q2/Q1).
@@ -67,65 +76,8 @@ impl SymmetricPartLdlt {
     ) -> Result<Self, String> {
         let n = pattern.n;
         let par = Par::Seq;
-        // Position of the transposed entry of every nonzero (the pattern is structurally symmetric).
-        let mut transpose_of = vec![0u32; pattern.row_idx.len()];
-        for j in 0..n {
-            let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
-            for (k, &i) in range.clone().zip(&pattern.row_idx[range]) {
-                let i = i as usize;
-                let col =
-                    &pattern.row_idx[pattern.col_ptr[i] as usize..pattern.col_ptr[i + 1] as usize];
-                let pos = col
-                    .binary_search(&(j as u32))
-                    .map_err(|_| "tangent pattern is not structurally symmetric".to_string())?;
-                transpose_of[k] = pattern.col_ptr[i] + pos as u32;
-            }
-        }
-        // AMD on the node graph, then node-wise expansion (displacement dofs, then pressure).
-        let nn = node_adjacency.n;
-        let mut node_perm = vec![0u32; nn];
-        let mut node_perm_inv = vec![0u32; nn];
-        {
-            let a = SymbolicSparseColMatRef::new_checked(
-                nn,
-                nn,
-                &node_adjacency.col_ptr,
-                None,
-                &node_adjacency.row_idx,
-            );
-            let mut mem =
-                MemBuffer::try_new(amd::order_scratch::<u32>(nn, node_adjacency.row_idx.len()))
-                    .map_err(|_| "out of memory for AMD".to_string())?;
-            amd::order(
-                &mut node_perm,
-                &mut node_perm_inv,
-                a,
-                amd::Control::default(),
-                MemStack::new(&mut mem),
-            )
-            .map_err(|e| format!("AMD: {e:?}"))?;
-        }
-        // Trailing dofs go right after the last of their node groups in that order.
-        let mut after_position: Vec<Vec<usize>> = vec![Vec::new(); nn + 1];
-        for (t, tr) in trailing.iter().enumerate() {
-            let last = tr
-                .after
-                .iter()
-                .map(|&a| node_perm_inv[a as usize] as usize)
-                .max()
-                .unwrap_or(nn);
-            after_position[last].push(t);
-        }
-        let mut perm = Vec::with_capacity(n);
-        for (k, &a) in node_perm.iter().enumerate() {
-            perm.extend_from_slice(&node_dofs[a as usize]);
-            for &t in &after_position[k] {
-                perm.extend_from_slice(&trailing[t].dofs);
-            }
-        }
-        for &t in &after_position[nn] {
-            perm.extend_from_slice(&trailing[t].dofs);
-        }
+        let transpose_of = transpose_positions(pattern)?;
+        let perm = dof_ordering(node_dofs, node_adjacency, trailing)?;
         if perm.len() != n {
             return Err(format!("node ordering covers {} of {n} dofs", perm.len()));
         }
@@ -221,6 +173,184 @@ impl SymmetricPartLdlt {
     }
 }
 
+/// Position of the transposed entry of every nonzero (the pattern must be structurally
+/// symmetric).
+fn transpose_positions(pattern: &Pattern) -> Result<Vec<u32>, String> {
+    let mut transpose_of = vec![0u32; pattern.row_idx.len()];
+    for j in 0..pattern.n {
+        let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
+        for (k, &i) in range.clone().zip(&pattern.row_idx[range]) {
+            let i = i as usize;
+            let col =
+                &pattern.row_idx[pattern.col_ptr[i] as usize..pattern.col_ptr[i + 1] as usize];
+            let pos = col
+                .binary_search(&(j as u32))
+                .map_err(|_| "tangent pattern is not structurally symmetric".to_string())?;
+            transpose_of[k] = pattern.col_ptr[i] + pos as u32;
+        }
+    }
+    Ok(transpose_of)
+}
+
+/// The elimination order of the dofs: approximate minimum degree on the node graph
+/// `node_adjacency`, each node's dofs `node_dofs[a]` in their order (displacement, then
+/// pressure), and every [`Trailing`] group right after the last of its node groups.
+pub fn dof_ordering(
+    node_dofs: &[Vec<u32>],
+    node_adjacency: &Pattern,
+    trailing: &[Trailing],
+) -> Result<Vec<u32>, String> {
+    let nn = node_adjacency.n;
+    let mut node_perm = vec![0u32; nn];
+    let mut node_perm_inv = vec![0u32; nn];
+    let a = SymbolicSparseColMatRef::new_checked(
+        nn,
+        nn,
+        &node_adjacency.col_ptr,
+        None,
+        &node_adjacency.row_idx,
+    );
+    let mut mem = MemBuffer::try_new(amd::order_scratch::<u32>(nn, node_adjacency.row_idx.len()))
+        .map_err(|_| "out of memory for AMD".to_string())?;
+    amd::order(
+        &mut node_perm,
+        &mut node_perm_inv,
+        a,
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| format!("AMD: {e:?}"))?;
+    // Trailing dofs go right after the last of their node groups in that order.
+    let mut after_position: Vec<Vec<usize>> = vec![Vec::new(); nn + 1];
+    for (t, tr) in trailing.iter().enumerate() {
+        let last = tr
+            .after
+            .iter()
+            .map(|&a| node_perm_inv[a as usize] as usize)
+            .max()
+            .unwrap_or(nn);
+        after_position[last].push(t);
+    }
+    let mut perm = Vec::new();
+    for (k, &a) in node_perm.iter().enumerate() {
+        perm.extend_from_slice(&node_dofs[a as usize]);
+        for &t in &after_position[k] {
+            perm.extend_from_slice(&trailing[t].dofs);
+        }
+    }
+    for &t in &after_position[nn] {
+        perm.extend_from_slice(&trailing[t].dofs);
+    }
+    Ok(perm)
+}
+
+/// Dof groups for the LDLᵀ ordering and their adjacency graph. One group per node with free
+/// displacement dofs: those dofs, then the node's pressure dof (Q2/Q1). A pressure dof whose node
+/// has no free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first,
+/// so it joins the group of a neighbouring node (sharing an element) and is eliminated after that
+/// node's displacement dofs, which couple to it. A Q1/P0 cell pressure is eliminated right after
+/// the last of its cell's node groups (the third return value).
+pub fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
+    let (group_of, groups) = node_groups(mesh, dofs);
+    let nf = dofs.n_free as u32;
+    let trailing = dofs
+        .element_p
+        .iter()
+        .zip(mesh.elements())
+        .filter(|(&p, _)| p < nf)
+        .map(|(&p, e)| Trailing {
+            after: e
+                .iter()
+                .map(|&a| group_of[a as usize])
+                .filter(|&g| g != u32::MAX)
+                .collect(),
+            dofs: vec![p],
+        })
+        .collect();
+    let adjacency = group_adjacency(mesh, &group_of, groups.len());
+    (groups, adjacency, trailing)
+}
+
+/// The group of every node (`u32::MAX`: none) and the free dofs of every group (see
+/// [`node_structure`]).
+fn node_groups(mesh: &Mesh, dofs: &DofMap) -> (Vec<u32>, Vec<Vec<u32>>) {
+    let nf = dofs.n_free as u32;
+    let nn_all = mesh.n_nodes();
+    let mut group_of = vec![u32::MAX; nn_all];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    for (a, g) in group_of.iter_mut().enumerate() {
+        let d: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
+        if !d.is_empty() {
+            *g = groups.len() as u32;
+            groups.push(d);
+        }
+    }
+    // Node neighbours through elements.
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nn_all];
+    for e in mesh.elements() {
+        for &a in e {
+            neighbours[a as usize].extend(e.iter().copied().filter(|&b| b != a));
+        }
+    }
+    let mut orphans = Vec::new();
+    for a in 0..nn_all {
+        let p = dofs.node_p[a];
+        if p >= nf {
+            continue;
+        }
+        let host = if group_of[a] != u32::MAX {
+            Some(group_of[a])
+        } else {
+            neighbours[a]
+                .iter()
+                .map(|&b| group_of[b as usize])
+                .find(|&g| g != u32::MAX)
+        };
+        match host {
+            Some(g) => groups[g as usize].push(p),
+            None => orphans.push(p),
+        }
+    }
+    if !orphans.is_empty() {
+        // No displacement dof anywhere near (degenerate mesh): keep them, the LU will cope.
+        groups.push(orphans);
+    }
+    (group_of, groups)
+}
+
+/// The graph of `ng` groups: two groups are adjacent when their nodes share an element.
+fn group_adjacency(mesh: &Mesh, group_of: &[u32], ng: usize) -> Pattern {
+    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); ng];
+    for e in mesh.elements() {
+        for &a in e {
+            let ga = group_of[a as usize];
+            if ga == u32::MAX {
+                continue;
+            }
+            for &b in e {
+                let gb = group_of[b as usize];
+                if gb != u32::MAX {
+                    cols[ga as usize].push(gb);
+                }
+            }
+        }
+    }
+    let mut col_ptr = vec![0u32];
+    let mut row_idx = Vec::new();
+    for (j, c) in cols.iter_mut().enumerate() {
+        c.push(j as u32);
+        c.sort_unstable();
+        c.dedup();
+        row_idx.extend_from_slice(c);
+        col_ptr.push(row_idx.len() as u32);
+    }
+    Pattern {
+        n: ng,
+        col_ptr,
+        row_idx,
+    }
+}
+
 /// y = K x for K in compressed columns.
 fn matvec(pattern: &Pattern, values: &[f64], x: &[f64], y: &mut [f64]) {
     y.fill(0.0);
@@ -248,7 +378,8 @@ impl Preconditioner for SymmetricPartLdlt {
 
 /// Workspace of restarted, flexible right-preconditioned GMRES (FGMRES, Saad 1993): the
 /// preconditioned vectors z_k = M⁻¹ v_k are kept, so x = x₀ + Z y needs no further
-/// application of M⁻¹ (allocated once; z vectors as they are first needed).
+/// application of M⁻¹ (allocated once; the Krylov vectors v_k and z_k as they are first
+/// needed, so a solve in one iteration holds three vectors, not 2 × restart).
 #[derive(Debug)]
 pub struct Gmres {
     restart: usize,
@@ -265,11 +396,79 @@ pub struct Gmres {
 }
 
 impl Gmres {
+    /// Step k of the Arnoldi process with Givens rotations: z_k = M⁻¹ v_k, w = K z_k
+    /// orthogonalised against v_0 … v_k, v_{k+1} = w / ‖w‖, then H's column k rotated to upper
+    /// triangular form and the rotated residual g updated. None on breakdown.
+    fn arnoldi_step(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        pre: &mut dyn Preconditioner,
+        k: usize,
+    ) -> Option<()> {
+        if self.zs.len() <= k {
+            self.zs.push(vec![0.0; self.n]);
+        }
+        self.zs[k].copy_from_slice(&self.v[k]);
+        pre.apply(&mut self.zs[k]);
+        matvec(pattern, values, &self.zs[k], &mut self.w);
+        for i in 0..=k {
+            let hik: f64 = self.w.iter().zip(&self.v[i]).map(|(a, b)| a * b).sum();
+            self.h[i][k] = hik;
+            for (wj, vj) in self.w.iter_mut().zip(&self.v[i]) {
+                *wj -= hik * vj;
+            }
+        }
+        let hk1 = self.w.iter().map(|v| v * v).sum::<f64>().sqrt();
+        self.h[k + 1][k] = hk1;
+        if self.v.len() <= k + 1 {
+            self.v.push(vec![0.0; self.n]);
+        }
+        if hk1 > 0.0 {
+            for (vj, wj) in self.v[k + 1].iter_mut().zip(&self.w) {
+                *vj = wj / hk1;
+            }
+        }
+        for i in 0..k {
+            let t = self.cs[i] * self.h[i][k] + self.sn[i] * self.h[i + 1][k];
+            self.h[i + 1][k] = -self.sn[i] * self.h[i][k] + self.cs[i] * self.h[i + 1][k];
+            self.h[i][k] = t;
+        }
+        let d = (self.h[k][k].powi(2) + self.h[k + 1][k].powi(2)).sqrt();
+        if d == 0.0 || !d.is_finite() {
+            return None;
+        }
+        self.cs[k] = self.h[k][k] / d;
+        self.sn[k] = self.h[k + 1][k] / d;
+        self.h[k][k] = d;
+        self.h[k + 1][k] = 0.0;
+        self.g[k + 1] = -self.sn[k] * self.g[k];
+        self.g[k] *= self.cs[k];
+        Some(())
+    }
+
+    /// x += Z y with y = H⁻¹ g over the first `k_used` Arnoldi vectors (H upper triangular).
+    fn update_solution(&mut self, k_used: usize) {
+        let mut y = [0.0f64; 64];
+        for i in (0..k_used).rev() {
+            let mut s = self.g[i];
+            for (hij, yj) in self.h[i][i + 1..k_used].iter().zip(&y[i + 1..k_used]) {
+                s -= hij * yj;
+            }
+            y[i] = s / self.h[i][i];
+        }
+        for (j, yj) in y.iter().enumerate().take(k_used) {
+            for (xi, zi) in self.x.iter_mut().zip(&self.zs[j]) {
+                *xi += yj * zi;
+            }
+        }
+    }
+
     /// Workspace for dimension `n` and restart length `restart`.
     pub fn new(n: usize, restart: usize) -> Self {
         Self {
             restart,
-            v: vec![vec![0.0; n]; restart + 1],
+            v: vec![vec![0.0; n]],
             zs: Vec::new(),
             n,
             w: vec![0.0; n],
@@ -323,63 +522,16 @@ impl Gmres {
             for k in 0..self.restart {
                 total += 1;
                 k_used = k + 1;
-                if self.zs.len() <= k {
-                    self.zs.push(vec![0.0; self.n]);
-                }
-                self.zs[k].copy_from_slice(&self.v[k]);
-                pre.apply(&mut self.zs[k]);
+                self.arnoldi_step(pattern, values, pre, k)?;
                 if k == 0 {
                     x_estimate = x_estimate.max(norm(&self.x) + beta * norm(&self.zs[0]));
                 }
-                matvec(pattern, values, &self.zs[k], &mut self.w);
-                for i in 0..=k {
-                    let hik: f64 = self.w.iter().zip(&self.v[i]).map(|(a, b)| a * b).sum();
-                    self.h[i][k] = hik;
-                    for (wj, vj) in self.w.iter_mut().zip(&self.v[i]) {
-                        *wj -= hik * vj;
-                    }
-                }
-                let hk1 = self.w.iter().map(|v| v * v).sum::<f64>().sqrt();
-                self.h[k + 1][k] = hk1;
-                if hk1 > 0.0 {
-                    for (vj, wj) in self.v[k + 1].iter_mut().zip(&self.w) {
-                        *vj = wj / hk1;
-                    }
-                }
-                for i in 0..k {
-                    let t = self.cs[i] * self.h[i][k] + self.sn[i] * self.h[i + 1][k];
-                    self.h[i + 1][k] = -self.sn[i] * self.h[i][k] + self.cs[i] * self.h[i + 1][k];
-                    self.h[i][k] = t;
-                }
-                let d = (self.h[k][k].powi(2) + self.h[k + 1][k].powi(2)).sqrt();
-                if d == 0.0 || !d.is_finite() {
-                    return None;
-                }
-                self.cs[k] = self.h[k][k] / d;
-                self.sn[k] = self.h[k + 1][k] / d;
-                self.h[k][k] = d;
-                self.h[k + 1][k] = 0.0;
-                self.g[k + 1] = -self.sn[k] * self.g[k];
-                self.g[k] *= self.cs[k];
                 let target = 0.1 * tol * (knorm * x_estimate + bnorm);
                 if self.g[k + 1].abs() <= target || total >= max_iter {
                     break;
                 }
             }
-            // y = H⁻¹ g (upper triangular), x += Z y.
-            let mut y = [0.0f64; 64];
-            for i in (0..k_used).rev() {
-                let mut s = self.g[i];
-                for (hij, yj) in self.h[i][i + 1..k_used].iter().zip(&y[i + 1..k_used]) {
-                    s -= hij * yj;
-                }
-                y[i] = s / self.h[i][i];
-            }
-            for (j, yj) in y.iter().enumerate().take(k_used) {
-                for (xi, zi) in self.x.iter_mut().zip(&self.zs[j]) {
-                    *xi += yj * zi;
-                }
-            }
+            self.update_solution(k_used);
             // True residual.
             matvec(pattern, values, &self.x, &mut self.w);
             for ((ri, bi), wi) in self.r.iter_mut().zip(rhs.iter()).zip(&self.w) {

@@ -600,9 +600,8 @@ fn cylinder(
                         .points
                         .push((r.stretch, r.nominal_stress, p0.stress));
                 }
-                if s.vtk.iter().any(|v| (v - r.stretch).abs() < 1e-12) && options.vtk_dir.is_some()
-                {
-                    vtk_files.push(sub.join(format!("lambda_{:.4}.vtu", r.stretch)));
+                if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
+                    vtk_files.push(sub.join(file));
                 }
             }
             let notes = sweep
