@@ -242,20 +242,31 @@ fn counting_lists(n: usize, targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
 fn free_pattern(dofs: &DofMap, nu: usize, mesh: &Mesh) -> FemResult<Pattern> {
     let (n, nd) = (dofs.n_free, dofs.dofs_per_element());
     let free = |g: u32| (g as usize) < n;
-    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
+    let couples = |i: usize, j: usize| !(i >= nu && j >= nu);
+    // Two passes over the cells into one flat buffer (column j's rows, duplicates included, at
+    // start[j]..), then each column sorted and deduplicated in place: one allocation, not one
+    // per column.
+    let mut start = vec![0usize; n + 1];
     for d in dofs.element_dofs.chunks_exact(nd) {
-        for j in 0..nd {
-            if !free(d[j]) {
-                continue;
-            }
-            for i in 0..nd {
-                if free(d[i]) && !(i >= nu && j >= nu) {
-                    cols[d[j] as usize].push(d[i]);
-                }
+        for j in (0..nd).filter(|&j| free(d[j])) {
+            start[d[j] as usize + 1] += (0..nd).filter(|&i| free(d[i]) && couples(i, j)).count();
+        }
+    }
+    for j in 0..n {
+        start[j + 1] += start[j];
+    }
+    let mut flat = vec![0u32; start[n]];
+    let mut fill = start.clone();
+    for d in dofs.element_dofs.chunks_exact(nd) {
+        for j in (0..nd).filter(|&j| free(d[j])) {
+            for i in (0..nd).filter(|&i| free(d[i]) && couples(i, j)) {
+                flat[fill[d[j] as usize]] = d[i];
+                fill[d[j] as usize] += 1;
             }
         }
     }
-    if let Some(i) = cols.iter().position(Vec::is_empty) {
+    drop(fill);
+    if let Some(i) = (0..n).find(|&j| start[j] == start[j + 1]) {
         return Err(FemError::InvalidInput {
             name: "mesh",
             value: format!(
@@ -268,20 +279,31 @@ fn free_pattern(dofs: &DofMap, nu: usize, mesh: &Mesh) -> FemResult<Pattern> {
     }
     let mut col_ptr = Vec::with_capacity(n + 1);
     col_ptr.push(0u32);
-    let mut row_idx = Vec::new();
-    for c in cols.iter_mut() {
-        c.sort_unstable();
-        c.dedup();
-        row_idx.extend_from_slice(c);
-        if row_idx.len() >= u32::MAX as usize {
+    let mut len = 0usize;
+    for j in 0..n {
+        let column = &mut flat[start[j]..start[j + 1]];
+        column.sort_unstable();
+        let mut kept = 0;
+        for k in 0..column.len() {
+            if k == 0 || column[k] != column[kept - 1] {
+                column[kept] = column[k];
+                kept += 1;
+            }
+        }
+        flat.copy_within(start[j]..start[j] + kept, len);
+        len += kept;
+        if len >= u32::MAX as usize {
             return Err(FemError::InvalidInput {
                 name: "pattern",
-                value: row_idx.len().to_string(),
+                value: len.to_string(),
                 rule: "too many nonzeros for 32-bit indices",
             });
         }
-        col_ptr.push(row_idx.len() as u32);
+        col_ptr.push(len as u32);
     }
+    flat.truncate(len);
+    flat.shrink_to_fit();
+    let row_idx = flat;
     Ok(Pattern {
         n,
         col_ptr,

@@ -409,6 +409,7 @@ impl Continuation {
         }
         let mut have_tangent = true;
         let mut phi = system.residual_norm(system.scale());
+        let mut last_increment = f64::INFINITY;
         record.initial_residual = phi;
         for _ in 0..self.stepping.max_iterations {
             if self.cancelled() {
@@ -433,7 +434,7 @@ impl Continuation {
                 increment,
                 step_length: alpha,
             });
-            phi = residual;
+            (phi, last_increment) = (residual, increment);
             if residual <= tol && increment <= tol {
                 if !have_tangent {
                     // Leave the system evaluated at the converged state, tangent included.
@@ -446,6 +447,7 @@ impl Continuation {
         Err(StepFailure::MaxIterations {
             iterations: self.stepping.max_iterations,
             residual: phi,
+            increment: last_increment,
         })
     }
 

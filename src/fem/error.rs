@@ -10,15 +10,23 @@ pub enum StepFailure {
     #[error("material error at a trial state: {0}")]
     Material(crate::Error),
     /// Newton did not meet both convergence criteria within the allowed iterations.
-    #[error("no convergence in {iterations} Newton iterations (scaled residual {residual:.3e})")]
+    #[error(
+        "no convergence in {iterations} Newton iterations: scaled residual {residual:.3e} and \
+         scaled increment {increment:.3e}, both must reach the tolerance"
+    )]
     MaxIterations {
         /// Iterations performed.
         iterations: usize,
         /// Last scaled residual norm.
         residual: f64,
+        /// Last scaled increment norm.
+        increment: f64,
     },
     /// The backtracking line search found no step length that decreases the residual.
-    #[error("line search failed: no decrease of the scaled residual {residual:.3e} along the Newton direction")]
+    #[error(
+        "line search failed: no decrease of the scaled residual {residual:.3e} along the Newton \
+         direction (a residual at its round-off floor, or a poor direction)"
+    )]
     LineSearch {
         /// Scaled residual at the start of the search.
         residual: f64,
@@ -92,7 +100,7 @@ pub enum FemError {
     },
     /// The estimated memory of the solve exceeds the limit; nothing large was allocated.
     #[error(
-        "mesh of {mesh} ({dofs:.0} dofs) needs an estimated {} of memory, above the limit of {} \
+        "the solve on {mesh} ({dofs:.0} dofs) needs an estimated {} of memory, above the limit of {} \
          (SolverOptions::memory_limit; by default half the available memory): use a coarser mesh",
         bytes(*estimate),
         bytes(*limit as f64)

@@ -2,20 +2,25 @@
 //! before anything large is allocated, and the limit it is checked against.
 //!
 //! With n free dofs, z nonzeros of the tangent, f values of the LDLᵀ factor (supernodal, so
-//! dense diagonal blocks included), c cells of d dofs (p of them pressures) and N nodes, the
-//! resident memory of a sweep is dominated by (bytes):
+//! dense diagonal blocks included), c cells of d dofs (p of them pressures) with q quadrature
+//! points, N nodes and a process baseline of [`BASELINE`] bytes, the resident memory of a sweep
+//! is estimated as (bytes):
 //!
 //! - element buffers of the assembly: 8 d² c (tangents) + 4 (d² − p²) c (gather list) + 24 d c;
 //! - the tangent: 4 z (pattern) + 8 z (values) + 4 z (gather pointers); its symmetric part
 //!   and transpose map: 12 z;
-//! - the factors: 8 f (LDLᵀ) + 16 f (LU on the LDLᵀ's pattern, for non-symmetric tangents);
-//!   [`LinearSolver::Lu`]: faer's LU instead, [`LU_FILL`] times the LDLᵀ's fill;
-//! - vectors: 20 work vectors of n (Krylov basis, Newton, predictor, rate, results);
+//! - the factors: 8 f (LDLᵀ) + 16 f + 8 z (LU on the LDLᵀ's pattern, for non-symmetric
+//!   tangents) + [`FACTOR_SCRATCH`] n (faer's workspace); [`LinearSolver::Lu`]: faer's LU
+//!   instead, [`LU_FILL`] times the LDLᵀ's values;
+//! - vectors: 40 vectors of n (Krylov basis, Newton, predictor, rates, 20 stretches' results);
+//! - quadrature-point fields for results and diagnostics: 104 q c;
 //! - the mesh and dof map: 28 N + 8 d c.
 //!
-//! Before the symbolic factorisation f is the fill of a 2D mesh under a minimum-degree or
-//! nested-dissection ordering, f ≈ [`FILL`] · n log₂ n (measured on structured meshes, both
-//! elements: see the test `fill_model_bounds_the_measured_fill`); after it, f is exact.
+//! Before the symbolic factorisation f is modelled as [`FILL`] · n (log₂ n)² (a 2D mesh under a
+//! minimum-degree ordering); after it, f is exact. Measured (clamped cylinder R = 1, L = 4,
+//! 20 stretches, `cargo run --release --example fem_memory`): the estimate is within a factor
+//! 1.6 of the peak resident memory (VmHWM) from 2.4k to 148k dofs, both elements, symmetric
+//! (neo-Hookean) and non-symmetric (frozen muscle) tangents; see BENCHMARKS.md.
 
 use super::element::Element;
 use super::error::{FemError, FemResult};
@@ -25,9 +30,16 @@ use super::solver::LinearSolver;
 /// Limit used when the available memory cannot be read (no `/proc/meminfo`): 4 GiB.
 pub const FALLBACK_LIMIT: u64 = 4 << 30;
 
-/// Factor values per n log₂ n dofs of the LDLᵀ of a 2D mesh (upper envelope of the measured
-/// fill).
-pub const FILL: f64 = 2.5;
+/// Factor values per n (log₂ n)² of the LDLᵀ of the cylinder meshes: measured 0.39–0.41 for
+/// Q2/Q1 (9.4k–148k dofs), 0.48–0.49 for Q1/P0 (3.1k–12k dofs).
+pub const FILL: f64 = 0.5;
+
+/// Bytes per dof of faer's workspace for the numeric supernodal LDLᵀ (measured 465–479 from
+/// 9.4k to 148k dofs).
+pub const FACTOR_SCRATCH: f64 = 480.0;
+
+/// Resident memory of the process before the solve \[bytes\] (measured 2.7 MiB).
+pub const BASELINE: f64 = 3.0 * 1024.0 * 1024.0;
 
 /// faer's partial-pivoting LU against the LDLᵀ: its fill is bounded by the Cholesky factor of
 /// KᵀK (measured ≈ 3× the LDLᵀ's values on the cylinder meshes).
@@ -129,7 +141,7 @@ impl MemoryEstimate {
         // Distinct couplings per cell: every entry of the element matrix but the
         // pressure–pressure block, shared with the neighbours on edges and corners.
         let nonzeros = (d * d - p * p) * c.cells * SHARED;
-        let fill = FILL * dofs * dofs.max(2.0).log2();
+        let fill = FILL * dofs * dofs.max(2.0).log2().powi(2);
         let mut e = Self {
             mesh: mesh.to_string(),
             dofs,
@@ -160,15 +172,18 @@ impl MemoryEstimate {
         let (c, linear) = (self.counts, self.linear);
         let d = (2 * c.element.nodes() + c.element.pressures()) as f64;
         let p = c.element.pressures() as f64;
+        let q = c.element.quadrature_points() as f64;
+        let (n, z, f) = (self.dofs, self.nonzeros, self.factor_values);
         let element_buffers = (8.0 * d * d + 4.0 * (d * d - p * p) + 24.0 * d) * c.cells;
-        let tangent = 28.0 * self.nonzeros;
+        let tangent = 28.0 * z;
         let factors = match linear {
-            LinearSolver::SymmetricPartGmres => 24.0 * self.factor_values,
-            LinearSolver::Lu => 8.0 * LU_FILL * self.factor_values,
+            LinearSolver::SymmetricPartGmres => 24.0 * f + 8.0 * z + FACTOR_SCRATCH * n,
+            LinearSolver::Lu => 8.0 * LU_FILL * f,
         };
-        let vectors = 20.0 * 8.0 * self.dofs;
+        let vectors = 40.0 * 8.0 * n;
+        let fields = 104.0 * q * c.cells;
         let mesh = 28.0 * c.nodes + 8.0 * d * c.cells;
-        element_buffers + tangent + factors + vectors + mesh
+        BASELINE + element_buffers + tangent + factors + vectors + fields + mesh
     }
 
     /// Refuses with [`FemError::MemoryLimit`] an estimate above `limit` bytes.

@@ -145,8 +145,10 @@ impl Mesh {
                 rule: "mesh too large for 32-bit indices",
             });
         }
-        MemoryEstimate::structured(nr, nz, Element::Q1P0, LinearSolver::SymmetricPartGmres)
-            .check(memory::default_limit())?;
+        let mut cheapest =
+            MemoryEstimate::structured(nr, nz, Element::Q1P0, LinearSolver::SymmetricPartGmres);
+        cheapest.mesh = format!("{nr} × {nz} cells with the cheapest element, Q1/P0");
+        cheapest.check(memory::default_limit())?;
         let nodes = lattice(radius, &z_breaks(length, nz, grading), mr);
         let id = |i: usize, j: usize| (j * mr + i) as u32;
         let mut connectivity = Vec::with_capacity(9 * nr * nz);

@@ -44,10 +44,15 @@ pub enum LinearSolver {
     Lu,
 }
 
+/// The smallest admissible [`SolverOptions::tolerance`], 4 ε: the scaled residual and
+/// increment of a solution in f64 are at least of the order of one rounding.
+pub const MIN_TOLERANCE: f64 = 4.0 * f64::EPSILON;
+
 /// Tolerances, load-stepping controls and limits.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverOptions {
-    /// Relative tolerance on the scaled residual and increment (see [`super::problem`]).
+    /// Relative tolerance on the scaled residual and increment (see [`super::problem`]); at
+    /// least [`MIN_TOLERANCE`].
     pub tolerance: f64,
     /// Stress floor added to σ in the force scale \[kPa\] (guards the stress-free state).
     pub stress_floor: f64,
@@ -119,6 +124,15 @@ impl SolverOptions {
     /// Every option in its admissible range.
     fn validate(&self) -> FemResult<()> {
         check_positive("tolerance", self.tolerance)?;
+        if self.tolerance < MIN_TOLERANCE {
+            return Err(FemError::InvalidInput {
+                name: "tolerance",
+                value: self.tolerance.to_string(),
+                rule:
+                    "must be ≥ 4 ε ≈ 8.9e-16: a scaled residual of f64 numbers does not go below \
+                       its round-off",
+            });
+        }
         check_positive("initial_step", self.initial_step)?;
         check_positive("max_step", self.max_step)?;
         check_positive("min_step", self.min_step)?;
@@ -207,6 +221,7 @@ pub struct AxisymmetricSolver<'m, M: AxisymmetricMaterial + ?Sized> {
     options: SolverOptions,
     /// Index, among the quadrature points, of the one nearest to the centre (r = 0, z = L/2).
     centre: usize,
+    estimate: MemoryEstimate,
 }
 
 impl<M: AxisymmetricMaterial + ?Sized> std::fmt::Debug for AxisymmetricSolver<'_, M> {
@@ -261,9 +276,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         };
         // The exact counts, before any factor value is written.
         let factor_values = ldlt.as_ref().map(|l| l.symbolic().len_val());
-        estimate
-            .with_counts(dofs.n_free, asm.pattern.row_idx.len(), factor_values)
-            .check(limit)?;
+        let estimate = estimate.with_counts(dofs.n_free, asm.pattern.row_idx.len(), factor_values);
+        estimate.check(limit)?;
         let linear = TangentSolver::new(dofs.n_free, ldlt);
         let centre = nearest_to_centre(&asm.quadrature_points(&vec![0.0; dofs.n_total]), &mesh);
         let driver = Continuation::new(dofs.n_total, options.stepping(), options.cancel.clone());
@@ -273,7 +287,14 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             driver,
             options,
             centre,
+            estimate,
         })
+    }
+
+    /// The memory estimate of this solve (exact dofs, nonzeros and factor size) checked
+    /// against [`SolverOptions::memory_limit`].
+    pub fn memory_estimate(&self) -> &MemoryEstimate {
+        &self.estimate
     }
 
     /// The mesh solved on: the cells of [`SolverOptions::element`] (for Q1/P0 on a 9-node mesh,
