@@ -504,3 +504,183 @@ fn rate<S: NonlinearSystem>(system: &mut S) -> Result<Vec<f64>, StepFailure> {
     system.load_rate(&mut v)?;
     Ok(v)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// R(y; λ) = sinh(y) − (λ − 1) on one free unknown y, with x = (y, c), c = λ − 1
+    /// prescribed: the solution is y = asinh(λ − 1). Trial states with y above `limit` are
+    /// refused, as a material would refuse an overflowing state.
+    struct Sinh {
+        residual: f64,
+        tangent: f64,
+        rate_force: f64,
+        limit: f64,
+    }
+
+    impl NonlinearSystem for Sinh {
+        fn unknowns(&self) -> usize {
+            2
+        }
+        fn free(&self) -> usize {
+            1
+        }
+        fn apply_load(&self, x: &mut [f64], load: f64) {
+            x[1] = load - 1.0;
+        }
+        fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
+            if x[0] > self.limit {
+                return Err(crate::Error::NonFinite {
+                    quantity: "test residual",
+                    value: f64::INFINITY,
+                    context: format!("y = {}", x[0]),
+                });
+            }
+            self.residual = x[0].sinh() - x[1];
+            if tangent {
+                self.tangent = x[0].cosh();
+                self.rate_force = -1.0;
+            }
+            Ok(())
+        }
+        fn scale(&self) -> f64 {
+            1.0
+        }
+        fn residual_norm(&self, scale: f64) -> f64 {
+            self.residual.abs() / scale
+        }
+        fn increment_norm(&self, dx: &[f64], step: f64, _scale: f64) -> f64 {
+            (dx[0] * step).abs()
+        }
+        fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
+            dx[0] = -self.residual / self.tangent;
+            Ok(())
+        }
+        fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure> {
+            rate[0] = -self.rate_force / self.tangent;
+            rate[1] = 1.0;
+            Ok(())
+        }
+    }
+
+    #[derive(Default)]
+    struct Collect {
+        reached: Vec<(f64, f64, Vec<StepRecord>)>,
+        accepted: usize,
+    }
+
+    impl Observer<Sinh> for Collect {
+        fn reached(
+            &mut self,
+            _system: &mut Sinh,
+            load: f64,
+            x: &[f64],
+            steps: Vec<StepRecord>,
+        ) -> FemResult<()> {
+            self.reached.push((load, x[0], steps));
+            Ok(())
+        }
+        fn step_accepted(&mut self, _record: &StepRecord) {
+            self.accepted += 1;
+        }
+    }
+
+    fn stepping() -> Stepping {
+        Stepping {
+            tolerance: 1e-13,
+            max_iterations: 25,
+            initial_step: 0.05,
+            max_step: 0.5,
+            min_step: 1e-4,
+            easy_iterations: 5,
+            max_backtracks: 8,
+            max_steps: 1000,
+        }
+    }
+
+    fn system(limit: f64) -> Sinh {
+        Sinh {
+            residual: 0.0,
+            tangent: 1.0,
+            rate_force: 0.0,
+            limit,
+        }
+    }
+
+    #[test]
+    fn the_driver_follows_the_closed_form_path_in_both_directions() {
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let failures = driver
+            .sweep(
+                &mut system(f64::INFINITY),
+                &[0.2, 1.0, 3.0, 6.0],
+                &mut observer,
+            )
+            .unwrap();
+        assert!(failures.is_empty());
+        let loads: Vec<f64> = observer.reached.iter().map(|r| r.0).collect();
+        assert_eq!(loads, [1.0, 3.0, 6.0, 0.2]);
+        for (load, y, steps) in &observer.reached {
+            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
+            assert!(steps.iter().all(|s| s.failure.is_none()));
+        }
+        let accepted: usize = observer.reached.iter().map(|r| r.2.len()).sum();
+        // λ = 1 is its own (reference) record, not a load step.
+        assert_eq!(observer.accepted, accepted - 1);
+        // Steps grow from 0.05 to max_step along the easy path.
+        let up = &observer.reached[2].2;
+        assert!((up.last().unwrap().to - up.last().unwrap().from - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_refused_trial_cuts_the_step_down_to_the_last_admissible_load() {
+        let limit = 1.0;
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let failures = driver
+            .sweep(&mut system(limit), &[1.5, 3.0], &mut observer)
+            .unwrap();
+        match failures.as_slice() {
+            [(
+                FemError::TargetNotReached {
+                    target,
+                    reached,
+                    attempted,
+                    cause: StepFailure::Material(_),
+                    ..
+                },
+                Some(trial),
+            )] => {
+                // y ≤ 1 holds up to λ = 1 + sinh(1): the path stops within one minimum step.
+                let edge = 1.0 + limit.sinh();
+                assert_eq!(*target, 3.0);
+                assert!(*reached <= edge && *reached > edge - 2e-4, "{reached}");
+                assert!(*attempted > edge);
+                assert!(trial.x[0] > limit);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(observer.reached.len(), 1);
+    }
+
+    #[test]
+    fn the_load_steps_of_a_direction_are_capped() {
+        let mut driver = Continuation::new(
+            2,
+            Stepping {
+                max_steps: 4,
+                ..stepping()
+            },
+            None,
+        );
+        let failures = driver
+            .sweep(&mut system(f64::INFINITY), &[6.0], &mut Collect::default())
+            .unwrap();
+        assert!(matches!(
+            failures.as_slice(),
+            [(FemError::StepLimit { steps: 4, .. }, _)]
+        ));
+    }
+}
