@@ -16,7 +16,6 @@ use super::assembly::Pattern;
 use super::dofs::DofMap;
 use super::mesh::Mesh;
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
@@ -38,12 +37,22 @@ pub struct Trailing {
 }
 
 /// LDLᵀ of the symmetric part, used as a preconditioner.
+///
+/// The matrix is handed to faer already permuted (Q S Qᵀ, lower triangle, in the elimination
+/// order Q of [`dof_ordering`]): one pass over the lower entries forms (K + Kᵀ)/2 in that
+/// order, instead of a symmetrisation pass and faer's own permutation pass.
 pub struct SymmetricPartLdlt {
     n: usize,
     symbolic: SymbolicCholesky<u32>,
-    l_values: Vec<f64>,
+    /// perm[k] = original index of the k-th eliminated dof.
+    perm: Vec<u32>,
+    /// Lower triangle of Q S Qᵀ: pattern and, per entry, the positions in K's values of the
+    /// entry and its transpose.
+    lower: Pattern,
+    sources: Vec<[u32; 2]>,
     s_values: Vec<f64>,
-    transpose_of: Vec<u32>,
+    l_values: Vec<f64>,
+    work: Vec<f64>,
     factor_scratch: MemBuffer,
     solve_scratch: MemBuffer,
     par: Par,
@@ -76,7 +85,6 @@ impl SymmetricPartLdlt {
     ) -> Result<Self, String> {
         let n = pattern.n;
         let par = Par::Seq;
-        let transpose_of = transpose_positions(pattern)?;
         let perm = dof_ordering(node_dofs, node_adjacency, trailing)?;
         if perm.len() != n {
             return Err(format!("node ordering covers {} of {n} dofs", perm.len()));
@@ -85,12 +93,11 @@ impl SymmetricPartLdlt {
         for (k, &i) in perm.iter().enumerate() {
             perm_inv[i as usize] = k as u32;
         }
-        let a =
-            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+        let (full, _) = permuted(pattern, &perm_inv, false)?;
         let symbolic = factorize_symbolic_cholesky(
-            a,
+            SymbolicSparseColMatRef::new_checked(n, n, &full.col_ptr, None, &full.row_idx),
             Side::Lower,
-            SymmetricOrdering::Custom(PermRef::new_checked(&perm, &perm_inv, n)),
+            SymmetricOrdering::Identity,
             // Supernodal always: as fast as or faster than simplicial at every size measured
             // (945–148k dofs), and its supernodes also serve the pattern LU.
             CholeskySymbolicParams {
@@ -99,46 +106,50 @@ impl SymmetricPartLdlt {
             },
         )
         .map_err(|e| format!("symbolic LDLT: {e:?}"))?;
+        drop(full);
+        let (lower, sources) = permuted(pattern, &perm_inv, true)?;
         let factor_scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
         )
         .map_err(|_| "out of memory for LDLT scratch".to_string())?;
         let solve_scratch = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, par))
             .map_err(|_| "out of memory for LDLT scratch".to_string())?;
-        let l_values = vec![0.0; symbolic.len_val()];
         Ok(Self {
             n,
+            l_values: vec![0.0; symbolic.len_val()],
             symbolic,
-            l_values,
-            s_values: vec![0.0; pattern.row_idx.len()],
-            transpose_of,
+            perm,
+            s_values: vec![0.0; lower.row_idx.len()],
+            lower,
+            sources,
+            work: vec![0.0; n],
             factor_scratch,
             solve_scratch,
             par,
         })
     }
 
-    /// Factorises S = (K + Kᵀ)/2.
-    pub fn factorise(&mut self, pattern: &Pattern, values: &[f64]) -> Result<(), String> {
+    /// Factorises S = (K + Kᵀ)/2 (K with the pattern the analysis was made for).
+    pub fn factorise(&mut self, values: &[f64]) -> Result<(), String> {
         let mut scale = 0.0f64;
-        for (k, s) in self.s_values.iter_mut().enumerate() {
-            *s = 0.5 * (values[k] + values[self.transpose_of[k] as usize]);
+        for (s, &[k, t]) in self.s_values.iter_mut().zip(&self.sources) {
+            *s = 0.5 * (values[k as usize] + values[t as usize]);
             scale = scale.max(s.abs());
         }
         if !scale.is_finite() {
             return Err("non-finite tangent".into());
         }
         let n = self.n;
+        let (col_ptr, row_idx) = (&self.lower.col_ptr, &self.lower.row_idx);
         let a = SparseColMatRef::new(
-            SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx),
+            SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx),
             &self.s_values,
         );
         // No sign regularisation: K_uu − p H is legitimately indefinite in incompressible
         // elasticity (positive only on the constraint kernel), so pivot signs are not known in
         // advance. A zero pivot is an error and the caller falls back to the LU.
         let reg = faer::linalg::cholesky::ldlt::factor::LdltRegularization::default();
-        let info = self
-            .symbolic
+        self.symbolic
             .factorize_numeric_ldlt(
                 &mut self.l_values,
                 a,
@@ -149,7 +160,6 @@ impl SymmetricPartLdlt {
                 Default::default(),
             )
             .map_err(|e| format!("LDLT: {e:?}"))?;
-        let _ = info;
         if self.l_values.iter().any(|v| !v.is_finite()) {
             return Err("non-finite LDLT factor (zero pivot)".into());
         }
@@ -158,19 +168,69 @@ impl SymmetricPartLdlt {
 
     /// x ← S⁻¹ x.
     pub fn apply(&mut self, x: &mut [f64]) {
-        let n = x.len();
+        for (w, &i) in self.work.iter_mut().zip(&self.perm) {
+            *w = x[i as usize];
+        }
         LdltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(x, n, 1),
+            MatMut::from_column_major_slice_mut(&mut self.work, self.n, 1),
             self.par,
             MemStack::new(&mut self.solve_scratch),
         );
+        for (w, &i) in self.work.iter().zip(&self.perm) {
+            x[i as usize] = *w;
+        }
     }
 
-    /// The symbolic analysis (ordering and supernodes), shared with [`super::pattern_lu`].
+    /// The symbolic analysis of the permuted matrix (supernodes), shared with
+    /// [`super::pattern_lu`].
     pub fn symbolic(&self) -> &SymbolicCholesky<u32> {
         &self.symbolic
     }
+
+    /// The elimination order: `perm()[k]` is the original index of the k-th eliminated dof.
+    pub fn perm(&self) -> &[u32] {
+        &self.perm
+    }
+}
+
+/// The pattern of Q K Qᵀ (`perm_inv` maps an original index to its place), whole or (`lower`)
+/// its lower triangle, rows sorted; with, per entry, the positions in K's values of the
+/// original entry and of its transpose (K must be structurally symmetric).
+fn permuted(
+    pattern: &Pattern,
+    perm_inv: &[u32],
+    lower: bool,
+) -> Result<(Pattern, Vec<[u32; 2]>), String> {
+    let n = pattern.n;
+    let transpose_of = transpose_positions(pattern)?;
+    let mut entries: Vec<(u32, u32, [u32; 2])> = Vec::with_capacity(pattern.row_idx.len());
+    for j in 0..n {
+        for k in pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize {
+            let (pi, pj) = (perm_inv[pattern.row_idx[k] as usize], perm_inv[j]);
+            if !lower || pi >= pj {
+                entries.push((pj, pi, [k as u32, transpose_of[k]]));
+            }
+        }
+    }
+    entries.sort_unstable_by_key(|&(col, row, _)| (col, row));
+    let mut col_ptr = vec![0u32; n + 1];
+    for &(col, _, _) in &entries {
+        col_ptr[col as usize + 1] += 1;
+    }
+    for j in 0..n {
+        col_ptr[j + 1] += col_ptr[j];
+    }
+    let row_idx = entries.iter().map(|e| e.1).collect();
+    let sources = entries.iter().map(|e| e.2).collect();
+    Ok((
+        Pattern {
+            n,
+            col_ptr,
+            row_idx,
+        },
+        sources,
+    ))
 }
 
 /// Position of the transposed entry of every nonzero (the pattern must be structurally

@@ -59,9 +59,14 @@ pub struct PatternLu {
 }
 
 impl PatternLu {
-    /// Set-up for `pattern` with the supernodal structure of `symbolic` (which must be
-    /// supernodal and carry the ordering).
-    pub fn new(pattern: &Pattern, symbolic: &SymbolicCholesky<u32>) -> Result<Self, String> {
+    /// Set-up for `pattern` with the supernodal structure of `symbolic`, the analysis of the
+    /// matrix permuted by `perm` (`perm[k]`: original index of the k-th eliminated dof; faer's
+    /// own ordering composed with it if the analysis carries one).
+    pub fn new(
+        pattern: &Pattern,
+        symbolic: &SymbolicCholesky<u32>,
+        perm: &[u32],
+    ) -> Result<Self, String> {
         let n = pattern.n;
         let sn = match symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => s,
@@ -70,8 +75,8 @@ impl PatternLu {
             }
         };
         let perm: Vec<u32> = match symbolic.perm() {
-            Some(p) => p.arrays().0.to_vec(),
-            None => (0..n as u32).collect(),
+            Some(p) => p.arrays().0.iter().map(|&k| perm[k as usize]).collect(),
+            None => perm.to_vec(),
         };
         let mut perm_inv = vec![0u32; n];
         for (k, &i) in perm.iter().enumerate() {
@@ -439,7 +444,8 @@ mod tests {
             },
         )
         .unwrap();
-        let mut lu = PatternLu::new(&pattern, &symbolic).unwrap();
+        let identity: Vec<u32> = (0..n as u32).collect();
+        let mut lu = PatternLu::new(&pattern, &symbolic, &identity).unwrap();
         lu.factorise(&values).unwrap();
         let x_true: Vec<f64> = (0..n).map(|i| ((i * 13) % 17) as f64 - 8.0).collect();
         // b = A x.

@@ -136,7 +136,7 @@ impl TangentSolver {
         let mut r = Err(String::new());
         if !self.prefer_lu {
             if let Some(ldlt) = self.ldlt.as_mut() {
-                r = ldlt.factorise(pattern, values);
+                r = ldlt.factorise(values);
                 if r.is_ok() {
                     self.current = Factor::Ldlt;
                 } else {
@@ -148,7 +148,7 @@ impl TangentSolver {
         if self.current == Factor::None && !skip && self.pattern_lu_strikes < PATTERN_LU_STRIKES {
             if self.pattern_lu.is_none() {
                 if let Some(ldlt) = self.ldlt.as_ref() {
-                    self.pattern_lu = PatternLu::new(pattern, ldlt.symbolic()).ok();
+                    self.pattern_lu = PatternLu::new(pattern, ldlt.symbolic(), ldlt.perm()).ok();
                 }
             }
             match self.pattern_lu.as_mut().map(|p| p.factorise(values)) {
