@@ -67,10 +67,16 @@ impl std::fmt::Debug for SymmetricPartLdlt {
 }
 
 impl SymmetricPartLdlt {
-    /// Symbolic analysis for the tangent of `mesh` numbered by `dofs`, in the node ordering of
-    /// [`dof_ordering`].
-    pub fn for_mesh(pattern: &Pattern, mesh: &Mesh, dofs: &DofMap) -> Result<Self, String> {
-        let (node_dofs, adjacency, trailing) = node_structure(mesh, dofs);
+    /// Symbolic analysis for the system matrix of `mesh` numbered by `dofs` and `index` (the
+    /// system's index of every free dof, [`super::assembly::Assembler::system_index`]), in the
+    /// node ordering of [`dof_ordering`].
+    pub fn for_mesh(
+        pattern: &Pattern,
+        mesh: &Mesh,
+        dofs: &DofMap,
+        index: &[u32],
+    ) -> Result<Self, String> {
+        let (node_dofs, adjacency, trailing) = node_structure(mesh, dofs, index);
         Self::new(pattern, &node_dofs, &adjacency, &trailing)
     }
 
@@ -309,9 +315,15 @@ pub fn dof_ordering(
 /// has no free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first,
 /// so it joins the group of a neighbouring node (sharing an element) and is eliminated after that
 /// node's displacement dofs, which couple to it. A Q1/P0 cell pressure is eliminated right after
-/// the last of its cell's node groups (the third return value).
-pub fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
-    let (group_of, groups) = node_groups(mesh, dofs);
+/// the last of its cell's node groups (the third return value). Dofs are given in the system's
+/// numbering `index` (free dof → system index, `u32::MAX` if condensed out); a node without
+/// system dofs (a condensed centre node) has no group.
+pub fn node_structure(
+    mesh: &Mesh,
+    dofs: &DofMap,
+    index: &[u32],
+) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
+    let (group_of, groups) = node_groups(mesh, dofs, index);
     let nf = dofs.n_free as u32;
     let trailing = dofs
         .element_p
@@ -324,7 +336,7 @@ pub fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern, Ve
                 .map(|&a| group_of[a as usize])
                 .filter(|&g| g != u32::MAX)
                 .collect(),
-            dofs: vec![p],
+            dofs: vec![index[p as usize]],
         })
         .collect();
     let adjacency = group_adjacency(mesh, &group_of, groups.len());
@@ -333,15 +345,25 @@ pub fn node_structure(mesh: &Mesh, dofs: &DofMap) -> (Vec<Vec<u32>>, Pattern, Ve
 
 /// The group of every node (`u32::MAX`: none) and the free dofs of every group (see
 /// [`node_structure`]).
-fn node_groups(mesh: &Mesh, dofs: &DofMap) -> (Vec<u32>, Vec<Vec<u32>>) {
+fn node_groups(mesh: &Mesh, dofs: &DofMap, index: &[u32]) -> (Vec<u32>, Vec<Vec<u32>>) {
     let nf = dofs.n_free as u32;
     let nn_all = mesh.n_nodes();
     let mut group_of = vec![u32::MAX; nn_all];
     let mut groups: Vec<Vec<u32>> = Vec::new();
+    // A condensed centre node keeps its (empty) group: the minimum-degree ordering sees the
+    // graph of the uncondensed mesh, which orders the remaining nodes better (at 148k dofs the
+    // factor of the graph without the centre nodes was 22 % larger).
+    let mut has_u = Vec::new();
     for (a, g) in group_of.iter_mut().enumerate() {
-        let d: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
-        if !d.is_empty() {
+        let free: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
+        if !free.is_empty() {
+            let d: Vec<u32> = free
+                .iter()
+                .map(|&g| index[g as usize])
+                .filter(|&s| s != u32::MAX)
+                .collect();
             *g = groups.len() as u32;
+            has_u.push(!d.is_empty());
             groups.push(d);
         }
     }
@@ -364,8 +386,9 @@ fn node_groups(mesh: &Mesh, dofs: &DofMap) -> (Vec<u32>, Vec<Vec<u32>>) {
             neighbours[a]
                 .iter()
                 .map(|&b| group_of[b as usize])
-                .find(|&g| g != u32::MAX)
+                .find(|&g| g != u32::MAX && has_u[g as usize])
         };
+        let p = index[p as usize];
         match host {
             Some(g) => groups[g as usize].push(p),
             None => orphans.push(p),

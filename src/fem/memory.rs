@@ -6,7 +6,9 @@
 //! points, N nodes and a process baseline of [`BASELINE`] bytes, the resident memory of a sweep
 //! is estimated as (bytes):
 //!
-//! - element buffers of the assembly: 8 d² c (tangents) + 4 (d² − p²) c (gather list) + 24 d c;
+//! - element buffers of the assembly: 8 d² c (tangents) + 4 (d² − p²) c (gather list) + 24 d c
+//!   (Q2/Q1: 12 m² c for the condensed cell matrices, m = d − 2, and 8 (4 + 4m) c for the centre
+//!   nodes' data, [`super::condensation`]);
 //! - the tangent: 4 z (pattern) + 8 z (values) + 4 z (gather pointers); its symmetric part
 //!   and transpose map: 12 z;
 //! - the factors: 8 f (LDLᵀ) + 16 f + 8 z (LU on the LDLᵀ's pattern, for non-symmetric
@@ -174,7 +176,15 @@ impl MemoryEstimate {
         let p = c.element.pressures() as f64;
         let q = c.element.quadrature_points() as f64;
         let (n, z, f) = (self.dofs, self.nonzeros, self.factor_values);
-        let element_buffers = (8.0 * d * d + 4.0 * (d * d - p * p) + 24.0 * d) * c.cells;
+        let element_buffers = match c.element {
+            // The condensed cell matrix (m = d − 2, pressure block included) and the centre
+            // node's data for the expansion.
+            Element::Q2Q1 => {
+                let m = d - 2.0;
+                (12.0 * m * m + 8.0 * (4.0 + 4.0 * m) + 24.0 * d) * c.cells
+            }
+            Element::Q1P0 => (8.0 * d * d + 4.0 * (d * d - p * p) + 24.0 * d) * c.cells,
+        };
         let tangent = 28.0 * z;
         let factors = match linear {
             LinearSolver::SymmetricPartGmres => 24.0 * f + 8.0 * z + FACTOR_SCRATCH * n,

@@ -20,6 +20,7 @@
 //! writes fields; [`memory`] bounds the work before it starts.
 
 pub mod assembly;
+pub mod condensation;
 pub mod continuation;
 pub mod dofs;
 pub mod element;

@@ -85,6 +85,9 @@ pub struct MixedProblem<'m, M: AxisymmetricMaterial + ?Sized> {
     pub material: &'m M,
     linear: TangentSolver,
     stress_floor: f64,
+    /// Right-hand side on the free dofs, and the system's (condensed) right-hand side.
+    rhs: Vec<f64>,
+    system_rhs: Vec<f64>,
     /// Time spent per phase (Newton iterations are counted by the driver).
     pub timings: Timings,
 }
@@ -100,6 +103,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
         stress_floor: f64,
     ) -> Self {
         Self {
+            rhs: vec![0.0; dofs.n_free],
+            system_rhs: vec![0.0; asm.pattern.n],
             mesh,
             dofs,
             asm,
@@ -120,7 +125,21 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
             .sum()
     }
 
-    /// Solves K y = rhs in place, exactly to round-off (see [`TangentSolver`]).
+    /// x = K⁻¹ f on the free dofs for f in `rhs`: the condensed system solved, then expanded
+    /// ([`Assembler::condense`], [`Assembler::expand`]).
+    fn solve_free(&mut self, x: &mut [f64]) -> Result<(), StepFailure> {
+        let mut y = std::mem::take(&mut self.system_rhs);
+        self.asm.condense(&self.rhs, &mut y);
+        let solved = self.solve(&mut y);
+        if solved.is_ok() {
+            self.asm.expand(&self.rhs, &y, x);
+        }
+        self.system_rhs = y;
+        solved
+    }
+
+    /// Solves K y = rhs in place for the system matrix, exactly to round-off (see
+    /// [`TangentSolver`]).
     fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
         let t = Instant::now();
         let factorising = self.timings.factorisation;
@@ -196,20 +215,20 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         self.linear
             .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
             .map_err(|detail| StepFailure::SingularTangent { detail })?;
-        for (d, r) in dx.iter_mut().zip(&self.asm.residual) {
-            *d = -r;
+        for (f, r) in self.rhs.iter_mut().zip(&self.asm.residual) {
+            *f = -r;
         }
-        self.solve(dx)
+        self.solve_free(dx)
     }
 
     /// K_ff v_f = −K_fc d_c, v_c = d_c, with the last factorisation (the tangent at the previous
     /// iterate, within tolerance) preconditioning GMRES on the current tangent.
     fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure> {
         let nf = self.dofs.n_free;
-        for (vi, g) in rate[..nf].iter_mut().zip(&self.asm.rate_force[..nf]) {
-            *vi = -g;
+        for (f, g) in self.rhs.iter_mut().zip(&self.asm.rate_force) {
+            *f = -g;
         }
-        self.solve(&mut rate[..nf])?;
+        self.solve_free(&mut rate[..nf])?;
         rate[nf..].copy_from_slice(&self.dofs.prescribed_rate);
         Ok(())
     }

@@ -270,7 +270,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let ldlt = match options.linear_solver {
             LinearSolver::Lu => None,
             LinearSolver::SymmetricPartGmres => Some(
-                SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs)
+                SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs, asm.system_index())
                     .map_err(FemError::LinearSolver)?,
             ),
         };
@@ -278,7 +278,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let factor_values = ldlt.as_ref().map(|l| l.symbolic().len_val());
         let estimate = estimate.with_counts(dofs.n_free, asm.pattern.row_idx.len(), factor_values);
         estimate.check(limit)?;
-        let linear = TangentSolver::new(dofs.n_free, ldlt);
+        let linear = TangentSolver::new(asm.pattern.n, ldlt);
         let centre = nearest_to_centre(&asm.quadrature_points(&vec![0.0; dofs.n_total]), &mesh);
         let driver = Continuation::new(dofs.n_total, options.stepping(), options.cancel.clone());
         let problem = MixedProblem::new(mesh, dofs, asm, linear, material, options.stress_floor);
@@ -308,7 +308,9 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         &self.problem.dofs
     }
 
-    /// Number of dofs in the linear system (free dofs).
+    /// Number of free dofs (the unknowns of the discrete problem; the linear system of a
+    /// Newton iteration has fewer when the Q2/Q1 centre nodes are condensed out, see
+    /// [`super::condensation`]).
     pub fn n_free_dofs(&self) -> usize {
         self.problem.dofs.n_free
     }
