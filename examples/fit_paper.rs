@@ -12,12 +12,12 @@
 
 use activemuscle::active::{ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti};
-use activemuscle::fit::plot::FitPlot;
 use activemuscle::fit::{
     active_from_total, explicit_law_errors, fit_active_curve, fit_damage, fit_explicit_law,
     fit_passive, Data, Direction, ExplicitTarget, FitSetup,
 };
 use activemuscle::material::Muscle;
+use activemuscle::output::plot::{render, Figure, Panel, Scale, Series, Stroke};
 use activemuscle::uniaxial::along_fibres;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -54,6 +54,58 @@ fn points(data: &Data) -> Vec<(f64, f64)> {
 
 fn curve_of(lambda: &[f64], f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
     lambda.iter().map(|&l| (l, f(l))).collect()
+}
+
+/// Data (red circles) and model curves (the first solid, the others dashed) against λ, written
+/// as `<stem>.png` and `<stem>.svg`.
+struct FitPlot {
+    title: String,
+    y_label: String,
+    data_label: String,
+    data: Vec<(f64, f64)>,
+    curves: Vec<(String, Vec<(f64, f64)>)>,
+}
+
+impl FitPlot {
+    fn write(self, stem: &Path) -> Result<(), Box<dyn Error>> {
+        if let Some(dir) = stem.parent() {
+            std::fs::create_dir_all(dir)?;
+        }
+        let mut series = vec![Series::new(self.data_label, self.data, Stroke::Markers, 1)];
+        for (k, (label, points)) in self.curves.into_iter().enumerate() {
+            let stroke = if k == 0 {
+                Stroke::Solid
+            } else {
+                Stroke::Dashed
+            };
+            series.push(Series::new(
+                label,
+                points,
+                stroke,
+                if k == 0 { 0 } else { k + 1 },
+            ));
+        }
+        let figure = Figure {
+            stem: stem.display().to_string(),
+            heading: self.title.clone(),
+            caption: String::new(),
+            panels: vec![Panel {
+                title: self.title,
+                x_label: "stretch λ [-]".into(),
+                y_label: self.y_label,
+                series,
+                x_range: None,
+                y_range: None,
+                scale: Scale::Linear,
+            }],
+        };
+        render(
+            &figure,
+            &stem.with_extension("png"),
+            &stem.with_extension("svg"),
+        )?;
+        Ok(())
+    }
 }
 
 fn main() -> Result<(), Box<dyn Error>> {

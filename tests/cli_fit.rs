@@ -2,8 +2,10 @@
 //! their line, a fit that does not converge is reported as such and the run goes on, and the
 //! writers refuse non-finite numbers.
 
+use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
 use activemuscle::output::csv::{fits_csv, stability_csv};
-use activemuscle::scene::{FitOutcome, StabilityCurve, StabilityPoint};
+use activemuscle::studies::fit::{FitKind, FitOutcome};
+use activemuscle::studies::stability::{StabilityCurve, StabilityPoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -199,9 +201,7 @@ fn a_fit_from_a_data_file_is_reported_and_one_that_does_not_converge_says_so() {
 #[test]
 fn writers_refuse_non_finite_numbers_and_say_where() {
     let fit = FitOutcome {
-        study: 0,
-        study_name: "my fit".into(),
-        fit: "damage",
+        kind: FitKind::Damage,
         case: "true d = 0.3".into(),
         source: String::new(),
         points: 10,
@@ -219,16 +219,19 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
         extra: vec![],
         plot: Default::default(),
     };
-    let e = fits_csv(&[fit]).expect_err("NaN written").to_string();
+    let e = fits_csv(&[("my fit", &[fit])])
+        .expect_err("NaN written")
+        .to_string();
     assert!(
         e.contains("fitted value") && e.contains("my fit") && e.contains("parameter d"),
         "{e}"
     );
     let curve = StabilityCurve {
-        study: 0,
-        law: "implicit",
-        coupling: Some("frozen"),
-        d: Some(0.5),
+        model: Some(ModelChoice {
+            law: LawKind::Implicit,
+            coupling: CouplingKind::Frozen,
+            damage: 0.5,
+        }),
         points: vec![StabilityPoint {
             lambda: 1.2,
             stress: 10.0,
@@ -238,7 +241,7 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
             elliptic: true,
         }],
     };
-    let e = stability_csv(&[curve], &["map".into()])
+    let e = stability_csv(&[("map", &[curve])])
         .expect_err("inf written")
         .to_string();
     assert!(

@@ -19,13 +19,15 @@ use crate::uniaxial::along_fibres;
 use crate::Scalar;
 use num_dual::Dual;
 
-/// What the explicit law is fitted to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What the explicit law is fitted to (in a scene: `residual = "stress" | "activation"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ExplicitTarget {
     /// The implicit activation γ(λ) (dimensionless residuals).
     Activation,
     /// The total stress the implicit law reproduces (residuals in kPa; the chapter's choice:
     /// "a least square optimization on the resulting P_act").
+    #[default]
     Stress,
 }
 

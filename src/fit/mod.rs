@@ -25,16 +25,18 @@ mod error;
 mod explicit;
 mod parametric;
 mod passive;
-pub mod plot;
 pub mod solver;
 
+pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit, CURVE_PARAMETERS};
 pub use damage::{fit_damage, DamageFit};
 pub use data::Data;
 pub use error::FitError;
 pub use explicit::{explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget};
-pub use parametric::Parametric;
-pub use passive::{across_stress_with, fibre_stress_with, fit_passive, Direction, PassiveFit};
+pub use parametric::{parameter_bounds, Parametric};
+pub use passive::{
+    across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
+};
 pub use solver::{least_squares, residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
 
 use crate::Scalar;

@@ -74,8 +74,9 @@ impl Bounds {
     }
 }
 
-/// The search strategy.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The search strategy (in a scene: `method = "gauss-newton" | "nelder-mead"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Gauss–Newton with a backtracking line search (argmin `GaussNewtonLS`).
     #[default]

@@ -1,24 +1,31 @@
-//! The chapter's figures (and two of ours) built from the rows of a run. A figure whose data the
-//! scene did not compute is skipped.
+//! The chapter's figures (and two of ours) from the typed results of a run. A figure whose data
+//! the scene did not compute is skipped.
 
-use super::plot::{Figure, Panel, Series, Stroke};
-use crate::energy::StrainEnergy;
-use crate::scene::run::{Results, Row};
-use crate::scene::Scene;
+use super::plot::{Figure, Panel, Scale, Series, Stroke};
+use crate::fem::Bases;
+use crate::models::{CouplingKind, LawKind, ModelChoice};
+use crate::scene::{Results, Scene};
+use crate::studies::cylinder::CylinderResult;
+use crate::studies::fit::{FitKind, FitOutcome};
+use crate::studies::slug;
+use crate::studies::stability::StabilityCurve;
+use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
+use crate::uniaxial::Direction;
+use crate::StrainEnergy;
 
 const LAMBDA: &str = "stretch λ [-]";
 const STRESS: &str = "nominal stress P [kPa]";
 const GAMMA: &str = "activation γ [-]";
 
-fn curve(
-    rows: &[Row],
-    keep: impl Fn(&Row) -> bool,
-    y: impl Fn(&Row) -> Option<f64>,
+/// (λ, y) of every point of `curves` where `y` has a value, sorted by λ (stably: curves in run
+/// order).
+fn xy<'a>(
+    curves: impl Iterator<Item = &'a Curve>,
+    y: impl Fn(&CurvePoint) -> Option<f64>,
 ) -> Vec<(f64, f64)> {
-    let mut v: Vec<(f64, f64)> = rows
-        .iter()
-        .filter(|r| keep(r))
-        .filter_map(|r| y(r).map(|y| (r.lambda, y)))
+    let mut v: Vec<(f64, f64)> = curves
+        .flat_map(|c| c.points.iter())
+        .filter_map(|p| y(p).map(|y| (p.lambda, y)))
         .collect();
     v.sort_by(|a, b| a.0.total_cmp(&b.0));
     v
@@ -33,12 +40,7 @@ fn series(
     if points.is_empty() {
         None
     } else {
-        Some(Series {
-            label: label.into(),
-            points,
-            stroke,
-            colour,
-        })
+        Some(Series::new(label, points, stroke, colour))
     }
 }
 
@@ -57,7 +59,9 @@ fn panel(
             x_label: LAMBDA.into(),
             y_label: y_label.into(),
             series,
+            x_range: None,
             y_range,
+            scale: Scale::Linear,
         })
     }
 }
@@ -74,41 +78,87 @@ fn figure(stem: &str, heading: &str, caption: &str, panels: Vec<Option<Panel>>) 
     })
 }
 
-fn along(r: &Row) -> bool {
-    r.model == "uniaxial" && r.direction == Some("along")
+fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
 }
 
-fn active(r: &Row, law: &str, coupling: &str, d: f64) -> bool {
-    along(r) && r.law == law && r.coupling == Some(coupling) && r.d == Some(d)
+/// The uniaxial curves of a run, by direction.
+struct Uniaxial<'a> {
+    curves: Vec<(Direction, &'a Curve)>,
 }
 
-fn damages(rows: &[Row], keep: impl Fn(&Row) -> bool) -> Vec<f64> {
-    let mut d: Vec<f64> = rows
-        .iter()
-        .filter(|r| keep(r))
-        .filter_map(|r| r.d)
-        .collect();
-    d.sort_by(f64::total_cmp);
-    d.dedup();
-    d
+impl<'a> Uniaxial<'a> {
+    fn new(results: &'a Results) -> Self {
+        Self {
+            curves: results
+                .uniaxial()
+                .flat_map(|(_, u)| u.curves.iter().map(move |c| (u.direction, c)))
+                .collect(),
+        }
+    }
+
+    /// The curves in direction `d` that `keep` accepts.
+    fn curves<'b>(
+        &'b self,
+        d: Direction,
+        keep: impl Fn(&Curve) -> bool + 'b,
+    ) -> impl Iterator<Item = &'a Curve> + 'b {
+        self.curves
+            .iter()
+            .filter(move |(dir, c)| *dir == d && keep(c))
+            .map(|(_, c)| *c)
+    }
+
+    /// (λ, y) of the curves along the fibres that `keep` accepts.
+    fn along(
+        &self,
+        keep: impl Fn(&Curve) -> bool,
+        y: impl Fn(&CurvePoint) -> Option<f64>,
+    ) -> Vec<(f64, f64)> {
+        xy(self.curves(Direction::Along, keep), y)
+    }
+}
+
+fn passive(c: &Curve) -> bool {
+    c.model == CurveModel::Passive
+}
+
+fn active_model(c: &Curve) -> Option<ModelChoice> {
+    match c.model {
+        CurveModel::Active(m) => Some(m),
+        _ => None,
+    }
+}
+
+/// The curve of `law`, `coupling` at damage `d`.
+fn active(law: LawKind, coupling: CouplingKind, d: f64) -> impl Fn(&Curve) -> bool {
+    move |c| {
+        active_model(c).is_some_and(|m| m.law == law && m.coupling == coupling && m.damage == d)
+    }
 }
 
 /// Every figure the results support, in the chapter's order, then ours.
 pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
-    let rows = &results.rows;
-    let material = scene.material.name().to_string();
+    use CouplingKind::{Consistent, Frozen};
+    use LawKind::{Energy, Explicit, Implicit};
+    let u = Uniaxial::new(results);
+    let material = scene.models.energy.name().to_string();
+    let curve = scene.models.curve;
     let mut out = Vec::new();
     // Stress range in which the active model's features are visible (the passive exponential
     // reaches hundreds of kPa at λ = 1.6).
     let active_range = Some((-5.0, 160.0));
+    let p = |p: &CurvePoint| Some(p.stress);
+    let gamma = |p: &CurvePoint| Some(p.gamma);
+    let target = |p: &CurvePoint| Some(p.passive? + p.active_target?);
 
     // D:paragoneebi — passive energies along the fibres.
-    let mut energies: Vec<String> = rows
-        .iter()
-        .filter(|r| along(r) && r.law == "passive")
-        .map(|r| r.energy.clone())
+    let mut energies: Vec<&str> = u
+        .curves(Direction::Along, passive)
+        .map(|c| c.energy.as_str())
         .collect();
-    energies.dedup();
     energies.sort();
     energies.dedup();
     if energies.len() >= 2 {
@@ -116,20 +166,12 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             .iter()
             .enumerate()
             .map(|(i, e)| {
-                series(
-                    e.clone(),
-                    curve(
-                        rows,
-                        |r| along(r) && r.law == "passive" && &r.energy == e,
-                        |r| Some(r.p),
-                    ),
-                    if i == 0 {
-                        Stroke::Solid
-                    } else {
-                        Stroke::Dashed
-                    },
-                    i,
-                )
+                let stroke = if i == 0 {
+                    Stroke::Solid
+                } else {
+                    Stroke::Dashed
+                };
+                series(*e, u.along(|c| passive(c) && c.energy == *e, p), stroke, i)
             })
             .collect();
         out.extend(figure(
@@ -141,19 +183,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     }
 
     // D:biaxial — transverse isotropy.
-    let material = &material;
-    let passive_dir = |dir: &'static str| {
-        curve(
-            rows,
-            move |r| {
-                r.model == "uniaxial"
-                    && r.direction == Some(dir)
-                    && r.law == "passive"
-                    && &r.energy == material
-            },
-            |r| Some(r.p),
-        )
-    };
+    let passive_dir = |d: Direction| xy(u.curves(d, |c| passive(c) && c.energy == material), p);
     out.extend(figure(
         "fig_transverse_isotropy",
         "Fig. D:biaxial — transversely isotropic behaviour",
@@ -162,21 +192,23 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             "Passive stress along and across the fibres",
             STRESS,
             vec![
-                series("along the fibres", passive_dir("along"), Stroke::Solid, 0),
-                series("across the fibres", passive_dir("across"), Stroke::Dashed, 1),
+                series("along the fibres", passive_dir(Direction::Along), Stroke::Solid, 0),
+                series("across the fibres", passive_dir(Direction::Across), Stroke::Dashed, 1),
             ],
             Some((-5.0, 160.0)),
         )],
     ));
 
     // D:gamma-s-s — constant γ.
-    let mut gammas: Vec<f64> = rows
-        .iter()
-        .filter(|r| along(r) && r.law == "constant")
-        .filter_map(|r| r.gamma)
-        .collect();
-    gammas.sort_by(f64::total_cmp);
-    gammas.dedup();
+    let constant = |g: f64| move |c: &Curve| c.model == CurveModel::Constant(g);
+    let gammas = sorted_unique(
+        u.curves(Direction::Along, |_| true)
+            .filter_map(|c| match c.model {
+                CurveModel::Constant(g) => Some(g),
+                _ => None,
+            })
+            .collect(),
+    );
     out.extend(figure(
         "fig_constant_gamma",
         "Fig. D:gamma-s-s — stress–stretch curves for constant γ",
@@ -187,20 +219,19 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             gammas
                 .iter()
                 .enumerate()
-                .map(|(i, g)| series(format!("γ = {g}"), curve(rows, |r| along(r) && r.law == "constant" && r.gamma == Some(*g), |r| Some(r.p)), Stroke::Solid, i))
+                .map(|(i, g)| series(format!("γ = {g}"), u.along(constant(*g), p), Stroke::Solid, i))
                 .collect(),
             Some((-0.5, 3.0)),
         )],
     ));
 
     // D:fattiva — the active curve.
-    let lambdas: Vec<f64> = {
-        let mut l: Vec<f64> = rows.iter().filter(|r| along(r)).map(|r| r.lambda).collect();
-        l.sort_by(f64::total_cmp);
-        l.dedup();
-        l
-    };
-    let pact: Vec<(f64, f64)> = lambdas.iter().map(|&l| (l, scene.curve.value(l))).collect();
+    let lambdas = sorted_unique(
+        u.curves(Direction::Along, |_| true)
+            .flat_map(|c| c.points.iter().map(|p| p.lambda))
+            .collect(),
+    );
+    let pact: Vec<(f64, f64)> = lambdas.iter().map(|&l| (l, curve.value(l))).collect();
     out.extend(figure(
         "fig_active_curve",
         "Fig. D:fattiva — the active curve",
@@ -209,20 +240,20 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     ));
 
     // D:pactgamma — γ(λ) of the implicit law; P_tot, P_act, P_pas.
-    let implicit = |r: &Row| active(r, "implicit", "frozen", 0.0);
+    let implicit = active(Implicit, Frozen, 0.0);
     out.extend(figure(
         "fig_gamma_and_stresses",
         "Fig. D:pactgamma — γ(λ) and the stresses P_tot, P_act, P_pas",
         "Top: γ solving eq. D:eqgammaesplicita (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
         vec![
-            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", curve(rows, implicit, |r| r.gamma), Stroke::Solid, 0)], None),
+            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", u.along(&implicit, gamma), Stroke::Solid, 0)], None),
             panel(
                 "Total, active and passive stress",
                 STRESS,
                 vec![
-                    series("P_tot", curve(rows, implicit, |r| Some(r.p)), Stroke::Solid, 0),
-                    series("P_act", curve(rows, implicit, |r| r.p_act), Stroke::Dashed, 1),
-                    series("P_pas", curve(rows, implicit, |r| r.p_pas), Stroke::Dotted, 2),
+                    series("P_tot", u.along(&implicit, p), Stroke::Solid, 0),
+                    series("P_act", u.along(&implicit, |p| p.active_target), Stroke::Dashed, 1),
+                    series("P_pas", u.along(&implicit, |p| p.passive), Stroke::Dotted, 2),
                 ],
                 active_range,
             ),
@@ -230,7 +261,13 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     ));
 
     // D:figdpact — (1 − d) P_act.
-    let ds = damages(rows, |r| along(r) && r.law == "implicit");
+    let ds = sorted_unique(
+        u.curves(Direction::Along, |_| true)
+            .filter_map(active_model)
+            .filter(|m| m.law == Implicit)
+            .map(|m| m.damage)
+            .collect(),
+    );
     out.extend(figure(
         "fig_damage_active",
         "Fig. D:figdpact — (1 − d) P_act for d = 0 … 0.5",
@@ -254,6 +291,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     ));
 
     // D:figapprgamma — explicit (solid) vs implicit (dotted) γ.
+    let explicit = active(Explicit, Frozen, 0.0);
     out.extend(figure(
         "fig_explicit_vs_implicit_gamma",
         "Fig. D:figapprgamma — explicit γ (eq. D:gamma) vs the implicit solution",
@@ -262,15 +300,14 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             "Explicit and implicit γ",
             GAMMA,
             vec![
-                series("explicit, eq. D:gamma", curve(rows, |r| active(r, "explicit", "frozen", 0.0), |r| r.gamma), Stroke::Solid, 0),
-                series("implicit, eq. D:eqgammaesplicita", curve(rows, implicit, |r| r.gamma), Stroke::Dotted, 1),
+                series("explicit, eq. D:gamma", u.along(&explicit, gamma), Stroke::Solid, 0),
+                series("implicit, eq. D:eqgammaesplicita", u.along(&implicit, gamma), Stroke::Dotted, 1),
             ],
             None,
         )],
     ));
 
     // D:figapprgammaptot — P_tot with explicit γ.
-    let explicit = |r: &Row| active(r, "explicit", "frozen", 0.0);
     out.extend(figure(
         "fig_explicit_ptot",
         "Fig. D:figapprgammaptot — P_tot with the explicit γ",
@@ -279,50 +316,68 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             "P_tot with explicit γ",
             STRESS,
             vec![
-                series("P_tot, explicit γ", curve(rows, explicit, |r| Some(r.p)), Stroke::Solid, 0),
-                series("P_pas + P_act (target)", curve(rows, explicit, |r| Some(r.p_pas? + r.p_act?)), Stroke::Dashed, 1),
+                series("P_tot, explicit γ", u.along(&explicit, p), Stroke::Solid, 0),
+                series("P_pas + P_act (target)", u.along(&explicit, target), Stroke::Dashed, 1),
             ],
             active_range,
         )],
     ));
 
     // D:figfenics — the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
-    let cyl = |r: &Row| {
-        r.model == "cylinder"
-            && r.bases == Some("clamped")
-            && r.law == "explicit"
-            && r.coupling == Some("frozen")
+    let clamped: Vec<&CylinderResult> = results
+        .cylinders()
+        .map(|(_, c)| c)
+        .filter(|c| c.bases == Bases::Clamped)
+        .collect();
+    let sweep_points = |d: f64, y: fn(&crate::studies::cylinder::SweepPoint) -> f64| {
+        let mut v: Vec<(f64, f64)> = clamped
+            .iter()
+            .flat_map(|c| c.sweeps.iter())
+            .filter(|s| {
+                s.model.law == Explicit && s.model.coupling == Frozen && s.model.damage == d
+            })
+            .flat_map(|s| s.points.iter().map(|p| (p.lambda, y(p))))
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v
     };
-    let cds = damages(rows, cyl);
+    let cds = sorted_unique(
+        clamped
+            .iter()
+            .flat_map(|c| c.sweeps.iter())
+            .filter(|s| s.model.law == Explicit && s.model.coupling == Frozen)
+            .map(|s| s.model.damage)
+            .collect(),
+    );
     out.extend(figure(
         "fig_cylinder",
         "Fig. D:figfenics — the cylinder: γ and P_tot for d = 0 … 0.5",
         "Axisymmetric FE cylinder (R = 1, L = 4 unless the scene says otherwise), clamped bases, explicit law, frozen coupling. Top: γ at the centre of the cylinder; bottom: nominal axial stress (reaction / πR²).",
         vec![
-            panel("γ at the centre of the cylinder", GAMMA, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), curve(rows, |r| cyl(r) && r.d == Some(*d), |r| r.gamma), Stroke::Solid, i)).collect(), None),
-            panel("Nominal axial stress", STRESS, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), curve(rows, |r| cyl(r) && r.d == Some(*d), |r| Some(r.p)), Stroke::Solid, i)).collect(), active_range),
+            panel("γ at the centre of the cylinder", GAMMA, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), sweep_points(*d, |p| p.gamma_centre), Stroke::Solid, i)).collect(), None),
+            panel("Nominal axial stress", STRESS, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), sweep_points(*d, |p| p.stress), Stroke::Solid, i)).collect(), active_range),
         ],
     ));
 
     // Ours: frozen vs consistent.
     let mut s = Vec::new();
-    for (i, law) in ["implicit", "explicit", "energy"].iter().enumerate() {
+    for (i, law) in [Implicit, Explicit, Energy].into_iter().enumerate() {
         s.push(series(
-            format!("{law}, frozen"),
-            curve(rows, |r| active(r, law, "frozen", 0.0), |r| Some(r.p)),
+            format!("{}, frozen", law.name()),
+            u.along(active(law, Frozen, 0.0), p),
             Stroke::Solid,
             i,
         ));
         s.push(series(
-            format!("{law}, consistent"),
-            curve(rows, |r| active(r, law, "consistent", 0.0), |r| Some(r.p)),
+            format!("{}, consistent", law.name()),
+            u.along(active(law, Consistent, 0.0), p),
             Stroke::Dashed,
             i,
         ));
     }
     s.push(series(
         "P_pas + P_act (target)",
-        curve(rows, implicit, |r| Some(r.p_pas? + r.p_act?)),
+        u.along(&implicit, target),
         Stroke::Dotted,
         3,
     ));
@@ -335,33 +390,38 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         ));
     }
 
-    // Ours: FE vs 0D.
+    // Ours: FE vs 0D, at the smallest and the largest damage of each cylinder study.
     let mut s = Vec::new();
     let mut colour = 0;
-    for c in &results.fe_vs_0d {
-        let dmax = results
-            .fe_vs_0d
-            .iter()
-            .filter(|o| o.study == c.study)
-            .map(|o| o.d)
-            .fold(0.0, f64::max);
-        if !(c.d == 0.0 || c.d == dmax) {
-            continue;
+    for (_, c) in results.cylinders() {
+        let dmax = c.sweeps.iter().map(|w| w.model.damage).fold(0.0, f64::max);
+        for w in &c.sweeps {
+            if !(w.model.damage == 0.0 || w.model.damage == dmax) {
+                continue;
+            }
+            let short = w.label.split(", ").skip(1).collect::<Vec<_>>().join(", ");
+            let compared: Vec<(f64, f64, f64)> = w
+                .points
+                .iter()
+                .filter_map(|p| p.stress_0d.map(|z| (p.lambda, p.stress, z)))
+                .collect();
+            s.push(series(
+                format!(
+                    "FE {} bases: {short}",
+                    crate::studies::cylinder::bases_name(c.bases)
+                ),
+                compared.iter().map(|p| (p.0, p.1)).collect(),
+                Stroke::Markers,
+                colour,
+            ));
+            s.push(series(
+                format!("0D: {short}"),
+                compared.iter().map(|p| (p.0, p.2)).collect(),
+                Stroke::Solid,
+                colour,
+            ));
+            colour += 1;
         }
-        let short = c.label.split(", ").skip(1).collect::<Vec<_>>().join(", ");
-        s.push(series(
-            format!("FE {} bases: {short}", c.bases),
-            c.points.iter().map(|p| (p.0, p.1)).collect(),
-            Stroke::Markers,
-            colour,
-        ));
-        s.push(series(
-            format!("0D: {short}"),
-            c.points.iter().map(|p| (p.0, p.2)).collect(),
-            Stroke::Solid,
-            colour,
-        ));
-        colour += 1;
     }
     if !s.is_empty() {
         out.extend(figure(
@@ -371,170 +431,151 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             vec![panel("FE vs 0D", STRESS, s, active_range)],
         ));
     }
-    out.extend(fit_figures(results));
-    out.extend(stability_figures(results));
+    for (name, fits) in results.fits() {
+        out.extend(fit_figure(name, fits));
+    }
+    for (name, curves) in results.stability() {
+        out.extend(stability_figure(name, curves));
+    }
     out
 }
 
-/// One figure per fit study: data (markers), the fit (solid) and the model at the reference or
+/// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or
 /// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
-fn fit_figures(results: &Results) -> Vec<Figure> {
-    let mut studies: Vec<usize> = results.fits.iter().map(|f| f.study).collect();
-    studies.dedup();
-    let mut out = Vec::new();
-    for study in studies {
-        let fits: Vec<_> = results.fits.iter().filter(|f| f.study == study).collect();
-        let Some(first) = fits.first() else { continue };
-        let mut panels = Vec::new();
-        let status = |f: &crate::scene::FitOutcome| {
-            let values: Vec<String> = f
-                .names
-                .iter()
-                .zip(&f.values)
-                .map(|(n, v)| format!("{n} = {v:.4}"))
-                .collect();
-            format!(
-                "fit: {}{}",
-                values.join(", "),
-                if f.converged { "" } else { " (NOT converged)" }
-            )
-        };
-        if first.fit == "damage" {
-            let mut s = Vec::new();
-            for (i, f) in fits.iter().enumerate() {
-                s.push(series(
-                    f.case.clone(),
+fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
+    let first = fits.first()?;
+    let mut panels = Vec::new();
+    let status = |f: &FitOutcome| {
+        let values: Vec<String> = f
+            .names
+            .iter()
+            .zip(&f.values)
+            .map(|(n, v)| format!("{n} = {v:.4}"))
+            .collect();
+        format!(
+            "fit: {}{}",
+            values.join(", "),
+            if f.converged { "" } else { " (NOT converged)" }
+        )
+    };
+    if first.kind == FitKind::Damage {
+        let mut s = Vec::new();
+        for (i, f) in fits.iter().enumerate() {
+            s.push(series(
+                f.case.clone(),
+                f.plot.data.clone(),
+                Stroke::Markers,
+                i,
+            ));
+            s.push(series(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+        }
+        if let Some((label, points)) = &first.plot.start {
+            s.push(series(label.clone(), points.clone(), Stroke::Dashed, 7));
+        }
+        panels.push(panel(study, &first.plot.y_label, s, None));
+    } else {
+        for f in fits {
+            let mut s = vec![
+                series(
+                    f.plot.data_label.clone(),
                     f.plot.data.clone(),
                     Stroke::Markers,
-                    i,
-                ));
-                s.push(series(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
-            }
-            if let Some((label, points)) = &first.plot.start {
-                s.push(series(label.clone(), points.clone(), Stroke::Dashed, 7));
-            }
-            panels.push(panel(&first.study_name, &first.plot.y_label, s, None));
-        } else {
-            for f in &fits {
-                let mut s = vec![
-                    series(
-                        f.plot.data_label.clone(),
-                        f.plot.data.clone(),
-                        Stroke::Markers,
-                        1,
-                    ),
-                    series(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
-                ];
-                if let Some((label, points)) = &f.plot.start {
-                    s.push(series(label.clone(), points.clone(), Stroke::Dashed, 2));
-                }
-                panels.push(panel(
-                    &format!("{}: {}", f.study_name, f.case),
-                    &f.plot.y_label,
-                    s,
-                    None,
-                ));
-            }
-        }
-        let stem = prefixed("fit", &first.study_name);
-        out.extend(figure(
-            &stem,
-            &format!("Fit: {}", first.study_name),
-            &format!(
-                "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
-                first.fit, first.source
-            ),
-            panels.into_iter().flatten().map(Some).collect(),
-        ));
-    }
-    out
-}
-
-/// One figure per stability study, a panel per damage value: the stress along the fibres of each
-/// law × coupling (solid frozen, dashed consistent), with markers on the points where the curve
-/// softens (dP/dλ < 0) and, in black-ish, where strong ellipticity is lost.
-fn stability_figures(results: &Results) -> Vec<Figure> {
-    let mut studies: Vec<usize> = results.stability.iter().map(|c| c.study).collect();
-    studies.dedup();
-    let mut out = Vec::new();
-    for study in studies {
-        let curves: Vec<_> = results
-            .stability
-            .iter()
-            .filter(|c| c.study == study)
-            .collect();
-        let name = results
-            .studies
-            .get(study)
-            .map_or("stability".to_string(), |s| s.name.clone());
-        let mut ds: Vec<f64> = curves.iter().filter_map(|c| c.d).collect();
-        ds.sort_by(f64::total_cmp);
-        ds.dedup();
-        if ds.is_empty() {
-            ds.push(0.0);
-        }
-        let colour = |law: &str| match law {
-            "implicit" => 0,
-            "explicit" => 1,
-            "energy" => 2,
-            _ => 5,
-        };
-        let mut panels = Vec::new();
-        for d in &ds {
-            let mut s = Vec::new();
-            let (mut soft_labelled, mut lost_labelled) = (false, false);
-            for c in curves.iter().filter(|c| c.d.is_none() || c.d == Some(*d)) {
-                let stroke = if c.coupling == Some("consistent") {
-                    Stroke::Dashed
-                } else if c.law == "passive" {
-                    Stroke::Dotted
-                } else {
-                    Stroke::Solid
-                };
-                let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
-                s.push(series(c.label(), all, stroke, colour(c.law)));
-                let soft: Vec<(f64, f64)> = c
-                    .points
-                    .iter()
-                    .filter(|p| p.slope < 0.0)
-                    .map(|p| (p.lambda, p.stress))
-                    .collect();
-                let label = if soft.is_empty() || soft_labelled {
-                    String::new()
-                } else {
-                    soft_labelled = true;
-                    "dP/dλ < 0 (circles in the curve's colour)".to_string()
-                };
-                s.push(series(label, soft, Stroke::Markers, colour(c.law)));
-                let lost: Vec<(f64, f64)> = c
-                    .points
-                    .iter()
-                    .filter(|p| !p.elliptic)
-                    .map(|p| (p.lambda, p.stress))
-                    .collect();
-                let label = if lost.is_empty() || lost_labelled {
-                    String::new()
-                } else {
-                    lost_labelled = true;
-                    "strong ellipticity lost".to_string()
-                };
-                s.push(series(label, lost, Stroke::Markers, 6));
+                    1,
+                ),
+                series(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+            ];
+            if let Some((label, points)) = &f.plot.start {
+                s.push(series(label.clone(), points.clone(), Stroke::Dashed, 2));
             }
             panels.push(panel(
-                &format!("Stability along the fibres, d = {d}"),
-                STRESS,
+                &format!("{study}: {}", f.case),
+                &f.plot.y_label,
                 s,
-                Some((-5.0, 160.0)),
+                None,
             ));
         }
-        out.extend(figure(
-            &prefixed("stability", &name),
-            &format!("Material stability along the fibres: {name}"),
-            "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.",
-            panels.into_iter().flatten().map(Some).collect(),
+    }
+    figure(
+        &prefixed("fit", study),
+        &format!("Fit: {study}"),
+        &format!(
+            "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
+            first.kind.name(),
+            first.source
+        ),
+        panels.into_iter().flatten().map(Some).collect(),
+    )
+}
+
+/// The figure of a stability study, a panel per damage value: the stress along the fibres of
+/// each law × coupling (solid frozen, dashed consistent), with markers on the points where the
+/// curve softens (dP/dλ < 0) and, in pink, where strong ellipticity is lost.
+fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
+    let mut ds = sorted_unique(curves.iter().filter_map(StabilityCurve::damage).collect());
+    if ds.is_empty() {
+        ds.push(0.0);
+    }
+    let colour = |c: &StabilityCurve| match c.model.map(|m| m.law) {
+        Some(LawKind::Implicit) => 0,
+        Some(LawKind::Explicit) => 1,
+        Some(LawKind::Energy) => 2,
+        None => 5,
+    };
+    let mut panels = Vec::new();
+    for d in &ds {
+        let mut s = Vec::new();
+        let (mut soft_labelled, mut lost_labelled) = (false, false);
+        for c in curves
+            .iter()
+            .filter(|c| c.damage().is_none() || c.damage() == Some(*d))
+        {
+            let stroke = match c.model {
+                Some(m) if m.coupling == CouplingKind::Consistent => Stroke::Dashed,
+                None => Stroke::Dotted,
+                Some(_) => Stroke::Solid,
+            };
+            let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
+            s.push(series(c.label(), all, stroke, colour(c)));
+            let soft: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .filter(|p| p.slope < 0.0)
+                .map(|p| (p.lambda, p.stress))
+                .collect();
+            let label = if soft.is_empty() || soft_labelled {
+                String::new()
+            } else {
+                soft_labelled = true;
+                "dP/dλ < 0 (circles in the curve's colour)".to_string()
+            };
+            s.push(series(label, soft, Stroke::Markers, colour(c)));
+            let lost: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .filter(|p| !p.elliptic)
+                .map(|p| (p.lambda, p.stress))
+                .collect();
+            let label = if lost.is_empty() || lost_labelled {
+                String::new()
+            } else {
+                lost_labelled = true;
+                "strong ellipticity lost".to_string()
+            };
+            s.push(series(label, lost, Stroke::Markers, 6));
+        }
+        panels.push(panel(
+            &format!("Stability along the fibres, d = {d}"),
+            STRESS,
+            s,
+            Some((-5.0, 160.0)),
         ));
     }
-    out
+    figure(
+        &prefixed("stability", study),
+        &format!("Material stability along the fibres: {study}"),
+        "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.",
+        panels.into_iter().flatten().map(Some).collect(),
+    )
 }
 
 /// `fig_<kind>_<name>`, without repeating the kind when the name starts with it.
@@ -545,22 +586,4 @@ fn prefixed(kind: &str, name: &str) -> String {
     } else {
         format!("fig_{kind}_{s}")
     }
-}
-
-/// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).
-pub fn slug(text: &str) -> String {
-    let mut s: String = text
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    while s.contains("__") {
-        s = s.replace("__", "_");
-    }
-    s.trim_matches('_').to_string()
 }
