@@ -44,14 +44,6 @@ fn with_noise(data: &Data, sigma: f64, seed: u64) -> Result<Data, Box<dyn Error>
     Ok(Data::new(data.lambda().to_vec(), noisy)?)
 }
 
-fn points(data: &Data) -> Vec<(f64, f64)> {
-    data.lambda()
-        .iter()
-        .copied()
-        .zip(data.stress().iter().copied())
-        .collect()
-}
-
 fn curve_of(lambda: &[f64], f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
     lambda.iter().map(|&l| (l, f(l))).collect()
 }
@@ -142,7 +134,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         title: "Chapter's energy fitted to the EBI passive curve".into(),
         y_label: "P_pas [kPa]".into(),
         data_label: "EBI (eq. D:Webi)".into(),
-        data: points(&data),
+        data: data.points(),
         curves: vec![
             (
                 format!(
@@ -187,7 +179,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         title: "Active curve fitted to P_total − P_pas (noise 1 % of P_opt)".into(),
         y_label: "P_act [kPa]".into(),
         data_label: "data − P_pas".into(),
-        data: points(&active),
+        data: active.points(),
         curves: vec![
             ("fitted P_act".into(), curve_of(&fine, |l| c.value(l))),
             ("Table D:paratt".into(), curve_of(&fine, |l| curve.value(l))),
@@ -285,7 +277,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 ),
                 y_label: "P_total [kPa]".into(),
                 data_label: "weakened muscle".into(),
-                data: points(&noisy),
+                data: noisy.points(),
                 curves: vec![
                     (
                         format!("P_pas + (1 − d) P_act, fitted d = {df:.4}"),

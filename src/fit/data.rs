@@ -110,6 +110,15 @@ impl Data {
         &self.stress
     }
 
+    /// The points (λ_i, P_i).
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.lambda
+            .iter()
+            .copied()
+            .zip(self.stress.iter().copied())
+            .collect()
+    }
+
     /// Number of points.
     pub fn len(&self) -> usize {
         self.lambda.len()

@@ -3,6 +3,7 @@
 //! example's).
 
 use crate::app_error::AppError;
+use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -221,35 +222,41 @@ fn draw_panel<DB: DrawingBackend>(
         Scale::Linear => {
             let mut chart: ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>> =
                 builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc(panel.x_label.as_str())
-                .y_desc(panel.y_label.as_str())
-                .label_style(("sans-serif", 16))
-                .axis_desc_style(("sans-serif", 18))
-                .light_line_style(RGBColor(235, 235, 235))
-                .draw()
-                .map_err(e)?;
+            mesh(&mut chart, panel, None)?;
             draw_series(&mut chart, panel, y0, y1)
         }
         Scale::LogLog => {
             let mut chart = builder
                 .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
                 .map_err(e)?;
-            chart
-                .configure_mesh()
-                .x_desc(panel.x_label.as_str())
-                .y_desc(panel.y_label.as_str())
-                .label_style(("sans-serif", 16))
-                .axis_desc_style(("sans-serif", 18))
-                .x_label_formatter(&|v| format!("{v:.0e}"))
-                .y_label_formatter(&|v| format!("{v:.0e}"))
-                .light_line_style(RGBColor(235, 235, 235))
-                .draw()
-                .map_err(e)?;
+            mesh(&mut chart, panel, Some(&|v: &f64| format!("{v:.0e}")))?;
             draw_series(&mut chart, panel, y0, y1)
         }
     }
+}
+
+/// The grid, the tick labels (in `format` if given) and the axis labels of `panel`.
+fn mesh<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    panel: &Panel,
+    format: Option<&dyn Fn(&f64) -> String>,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let mut m = chart.configure_mesh();
+    m.x_desc(panel.x_label.as_str())
+        .y_desc(panel.y_label.as_str())
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 18));
+    if let Some(f) = format {
+        m.x_label_formatter(f).y_label_formatter(f);
+    }
+    m.light_line_style(RGBColor(235, 235, 235))
+        .draw()
+        .map_err(|x| x.to_string())
 }
 
 /// The series of `panel` and their legend, on any axes.

@@ -166,6 +166,23 @@ pub fn figure(option: &str, all: &[Measurement]) -> Figure {
     }
 }
 
+/// The number cells of a row (time, errors, speed-up, error ratio, Newton iterations, time per
+/// iteration, dofs) and its Pareto mark, as the Markdown and HTML tables show them.
+fn cells(r: &Measurement) -> Vec<String> {
+    vec![
+        cell(Some(r.time_s), 2),
+        cell(Some(r.error.max_abs), 1),
+        cell(Some(r.error.max_rel), 1),
+        cell(r.gamma_error, 1),
+        ratio(r.speedup),
+        cell(Some(r.error_ratio), 1),
+        r.iterations.map_or("–".into(), |n| n.to_string()),
+        cell(r.per_iteration_s, 2),
+        r.dofs.map_or("–".into(), |n| n.to_string()),
+        if r.pareto { "yes" } else { "" }.to_string(),
+    ]
+}
+
 /// The table as Markdown (what the README and BENCHMARKS.md show).
 pub fn markdown(rows: &[Measurement]) -> String {
     let mut s = String::from(
@@ -174,20 +191,11 @@ pub fn markdown(rows: &[Measurement]) -> String {
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {}{} | {} |",
             r.option,
             r.variant,
             if r.reference { " (ref.)" } else { "" },
-            cell(Some(r.time_s), 2),
-            cell(Some(r.error.max_abs), 1),
-            cell(Some(r.error.max_rel), 1),
-            cell(r.gamma_error, 1),
-            ratio(r.speedup),
-            cell(Some(r.error_ratio), 1),
-            r.iterations.map_or("–".into(), |n| n.to_string()),
-            cell(r.per_iteration_s, 2),
-            r.dofs.map_or("–".into(), |n| n.to_string()),
-            if r.pareto { "yes" } else { "" }
+            cells(r).join(" | ")
         );
     }
     s
@@ -247,22 +255,13 @@ pub fn html(
     }
     let _ = writeln!(h, "</tr>");
     for r in &results.rows {
+        let numbers: String = cells(r).iter().map(|c| format!("<td>{c}</td>")).collect();
         let _ = writeln!(
             h,
-            "<tr{}><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr{}><td>{}</td><td>{}</td>{numbers}<td>{}</td></tr>",
             if r.reference { " class=\"ref\"" } else { "" },
             e(&r.option),
             e(&r.variant),
-            cell(Some(r.time_s), 2),
-            cell(Some(r.error.max_abs), 1),
-            cell(Some(r.error.max_rel), 1),
-            cell(r.gamma_error, 1),
-            ratio(r.speedup),
-            cell(Some(r.error_ratio), 1),
-            r.iterations.map_or("–".into(), |n| n.to_string()),
-            cell(r.per_iteration_s, 2),
-            r.dofs.map_or("–".into(), |n| n.to_string()),
-            if r.pareto { "yes" } else { "" },
             e(&format!("{} {}", r.quantity, r.note)),
         );
     }

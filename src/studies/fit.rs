@@ -190,14 +190,27 @@ pub struct DataSource<'a> {
 }
 
 impl DataSource<'_> {
-    /// Reads a data file named relative to the scene file; errors name `data`.
-    fn read(&self, name: &str) -> Result<(Data, String), SpecError> {
+    /// The one case of a data file named relative to the scene file (then `stretch` must not
+    /// be given), with the source in words (`data file <path><what>`); errors name `data`.
+    fn file(
+        &self,
+        name: &str,
+        stretches: Option<&[f64]>,
+        reference: Option<Vec<f64>>,
+        what: &str,
+    ) -> Result<(Vec<FitCase>, String), SpecError> {
+        if stretches.is_some() {
+            return Err(SpecError::new(
+                "stretch",
+                "(given)",
+                "the data file gives the stretches: remove stretch",
+            ));
+        }
         let path: PathBuf = if Path::new(name).is_absolute() {
             PathBuf::from(name)
         } else {
             self.base.join(name)
         };
-        let shown = path.display().to_string();
         let data = Data::from_csv_path(&path).map_err(|e| {
             SpecError::new(
                 "data",
@@ -205,7 +218,10 @@ impl DataSource<'_> {
                 format!("unusable data file: {e}"),
             )
         })?;
-        Ok((data, shown))
+        Ok((
+            vec![case(name, data, reference)],
+            format!("data file {}{what}", path.display()),
+        ))
     }
 
     /// Samples `model` at `lambdas`, adding the noise; errors name `stretch`.
@@ -243,15 +259,13 @@ fn need<'a>(stretches: Option<&'a [f64]>, what: &str) -> Result<&'a [f64], SpecE
     })
 }
 
-fn no_stretch_with_file(stretches: Option<&[f64]>) -> Result<(), SpecError> {
-    match stretches {
-        Some(_) => Err(SpecError::new(
-            "stretch",
-            "(given)",
-            "the data file gives the stretches: remove stretch",
-        )),
-        None => Ok(()),
-    }
+/// A fit with two sources of data given both or neither.
+fn one_source(fit: &str, other: &str) -> SpecError {
+    SpecError::new(
+        "",
+        "",
+        format!("a {fit} fit needs exactly one of data = \"file.csv\" and {other}"),
+    )
 }
 
 fn case(label: &str, data: Data, reference: Option<Vec<f64>>) -> FitCase {
@@ -267,14 +281,6 @@ fn sample(lambdas: &[f64], f: impl Fn(f64) -> crate::Result<f64>) -> Vec<(f64, f
     lambdas
         .iter()
         .filter_map(|&l| f(l).ok().filter(|y| y.is_finite()).map(|y| (l, y)))
-        .collect()
-}
-
-fn points(data: &Data) -> Vec<(f64, f64)> {
-    data.lambda()
-        .iter()
-        .copied()
-        .zip(data.stress().iter().copied())
         .collect()
 }
 
@@ -305,14 +311,7 @@ impl Problem for Passive {
         source: &mut DataSource,
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         match (&spec.data, &spec.reference) {
-            (Some(file), None) => {
-                no_stretch_with_file(stretches)?;
-                let (data, shown) = source.read(file)?;
-                Ok((
-                    vec![case(file, data, Some(self.values()))],
-                    format!("data file {shown}"),
-                ))
-            }
+            (Some(file), None) => source.file(file, stretches, Some(self.values()), ""),
             (None, Some(r)) => {
                 let reference = r.build().map_err(|e| e.within("reference"))?;
                 let lambdas = need(stretches, "a reference curve")?;
@@ -329,11 +328,7 @@ impl Problem for Passive {
                     ),
                 ))
             }
-            _ => Err(SpecError::new(
-                "",
-                "",
-                "a passive fit needs exactly one of data = \"file.csv\" and reference = { energy = ... }",
-            )),
+            _ => Err(one_source("passive", "reference = { energy = ... }")),
         }
     }
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
@@ -352,7 +347,7 @@ impl Problem for Passive {
     fn shown(&self, case: &FitCase) -> Shown {
         Shown {
             y_label: "P_pas [kPa]",
-            data: points(&case.data),
+            data: case.data.points(),
             data_label: case.label.clone(),
             reference_label: "scene's material",
         }
@@ -398,16 +393,11 @@ impl Problem for ActiveCurveFit {
         source: &mut DataSource,
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         if let Some(file) = &spec.data {
-            no_stretch_with_file(stretches)?;
-            let (data, shown) = source.read(file)?;
             let what = match self.stress {
-                StressKind::Active => "active",
-                StressKind::Total => "total",
+                StressKind::Active => " (active stress)",
+                StressKind::Total => " (total stress)",
             };
-            return Ok((
-                vec![case(file, data, None)],
-                format!("data file {shown} ({what} stress)"),
-            ));
+            return source.file(file, stretches, None, what);
         }
         let lambdas = need(stretches, "a synthetic active curve")?;
         let passive = Muscle::passive(self.energy.clone());
@@ -439,7 +429,7 @@ impl Problem for ActiveCurveFit {
     fn shown(&self, case: &FitCase) -> Shown {
         Shown {
             y_label: "P_act [kPa]",
-            data: self.active(case).as_ref().map(points).unwrap_or_default(),
+            data: self.active(case).map(|d| d.points()).unwrap_or_default(),
             data_label: match self.stress {
                 StressKind::Active => case.label.clone(),
                 StressKind::Total => format!("{} − P_pas", case.label),
@@ -586,12 +576,7 @@ impl Problem for DamageFit {
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         match (&spec.data, &spec.true_damage) {
             (Some(file), None) => {
-                no_stretch_with_file(stretches)?;
-                let (data, shown) = source.read(file)?;
-                Ok((
-                    vec![case(file, data, None)],
-                    format!("data file {shown} (total stress along the fibres)"),
-                ))
+                source.file(file, stretches, None, " (total stress along the fibres)")
             }
             (None, Some(ds)) => {
                 let ds = damages("true_damage", ds)?;
@@ -617,11 +602,7 @@ impl Problem for DamageFit {
                     ),
                 ))
             }
-            _ => Err(SpecError::new(
-                "",
-                "",
-                "a damage fit needs exactly one of data = \"file.csv\" and true_damage = [...]",
-            )),
+            _ => Err(one_source("damage", "true_damage = [...]")),
         }
     }
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
@@ -637,7 +618,7 @@ impl Problem for DamageFit {
     fn shown(&self, case: &FitCase) -> Shown {
         Shown {
             y_label: "P_total [kPa]",
-            data: points(&case.data),
+            data: case.data.points(),
             data_label: case.label.clone(),
             reference_label: "healthy muscle (d = 0)",
         }

@@ -14,7 +14,7 @@
 //! - [`groups`]: the options and their variants.
 //!
 //! A scene holds at most one trade-off study: its outputs are `tradeoff.csv`, `tradeoff.md`,
-//! `tradeoff.html` and one `tradeoff_*.png`/`.svg` per option ([`crate::output::tradeoff`]).
+//! `tradeoff.html` and one `tradeoff_*.png`/`.svg` per option (written by the output layer).
 //!
 //! | key | meaning | default |
 //! |---|---|---|
