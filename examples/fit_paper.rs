@@ -133,7 +133,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     FitPlot {
         title: "Chapter's energy fitted to the EBI passive curve".into(),
         y_label: "P_pas [kPa]".into(),
-        data_label: "EBI (eq. D:Webi)".into(),
+        data_label: "EBI (eq. (4))".into(),
         data: data.points(),
         curves: vec![
             (
@@ -147,7 +147,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 }),
             ),
             (
-                "GM, Table D:parpass".into(),
+                "GM, Table 1".into(),
                 curve_of(&lam, |l| {
                     along_fibres(&chapter, l).map_or(f64::NAN, |p| p.stress)
                 }),
@@ -182,7 +182,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         data: active.points(),
         curves: vec![
             ("fitted P_act".into(), curve_of(&fine, |l| c.value(l))),
-            ("Table D:paratt".into(), curve_of(&fine, |l| curve.value(l))),
+            ("Table 2".into(), curve_of(&fine, |l| curve.value(l))),
         ],
     }
     .write(&out.join("active_curve"))?;
@@ -241,9 +241,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         }),
     ));
     FitPlot {
-        title: "Explicit law (eq. D:gamma) against the implicit law".into(),
+        title: "Explicit law (eq. (14)) against the implicit law".into(),
         y_label: "activation γ [-]".into(),
-        data_label: "implicit γ (eq. D:eqgammaesplicita)".into(),
+        data_label: "implicit γ (eq. (13))".into(),
         data: gammas,
         curves,
     }

@@ -19,10 +19,10 @@ use std::fmt;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LawKind {
-    /// The chapter's exact fit, eq. D:eqgammaesplicita solved numerically ([`ImplicitLaw`]).
+    /// The chapter's exact fit, eq. (13) solved numerically ([`ImplicitLaw`]).
     #[default]
     Implicit,
-    /// The chapter's closed form, eq. D:gamma ([`ExplicitLaw`]).
+    /// The chapter's closed form, eq. (14) ([`ExplicitLaw`]).
     Explicit,
     /// The energy-consistent fit ([`EnergyLaw`]).
     Energy,
@@ -121,14 +121,14 @@ impl Models {
         }
     }
 
-    /// Whether `law` can be built on this material: the explicit law (eq. D:gamma) is derived
+    /// Whether `law` can be built on this material: the explicit law (eq. (14)) is derived
     /// for the chapter's energy only; the error is the rule, in words.
     pub fn supports(&self, law: LawKind) -> Result<(), String> {
         match (law, &self.energy) {
             (LawKind::Explicit, Energy::GiantesioMusesti(_)) | (LawKind::Implicit, _) => Ok(()),
             (LawKind::Energy, _) => Ok(()),
             (LawKind::Explicit, other) => Err(format!(
-                "eq. D:gamma is derived for the giantesio-musesti energy; material.energy is {}",
+                "the explicit law (eq. (14)) is derived for the giantesio-musesti energy; material.energy is {}",
                 other.name()
             )),
         }

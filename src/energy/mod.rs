@@ -326,9 +326,9 @@ macro_rules! shipped_energies {
 }
 
 shipped_energies! {
-    /// The chapter's passive energy, eq. D:Wpassiva.
+    /// The chapter's passive energy, eq. (1).
     GiantesioMusesti,
-    /// The Ehret–Böl–Itskov energy, eq. D:Webi.
+    /// The Ehret–Böl–Itskov energy, eq. (4).
     EhretBolItskov,
     /// Incompressible neo-Hookean reference.
     NeoHookean,

@@ -1,5 +1,5 @@
-//! Fit 3: (a, b) of the explicit activation law (eq. D:gamma) against the implicit law
-//! (eq. D:eqgammaesplicita) on a set of stretches λ_i, with residuals either in the activation,
+//! Fit 3: (a, b) of the explicit activation law (eq. (14)) against the implicit law
+//! (eq. (13)) on a set of stretches λ_i, with residuals either in the activation,
 //!
 //! r_i = γ_expl(λ_i; a, b) − γ_impl(λ_i)  [-],
 //!

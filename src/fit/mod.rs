@@ -1,12 +1,12 @@
 //! Least-squares fitting of the model's parameters to stress–stretch data, the way the chapter
-//! obtained them: (α, w0) of the passive energy with μ fixed (Table D:parpass), (λ_min, λ_opt, k)
-//! of the active curve with P_opt fixed (Table D:paratt), (a, b) of the explicit law (eq. D:gamma),
+//! obtained them: (α, w0) of the passive energy with μ fixed (Table 1), (λ_min, λ_opt, k)
+//! of the active curve with P_opt fixed (Table 2), (a, b) of the explicit law (eq. (14)),
 //! and — read backwards — the damage d of a weakened muscle (section "Loss of activation").
 //!
 //! | fit | model of the data | default free parameters |
 //! |---|---|---|
 //! | [`fit_passive`] | P(λ) = dW(λ)/dλ along (or across) the fibres, any [`Parametric`] energy | all but μ |
-//! | [`fit_active_curve`] | P_act(λ) of eq. D:pact (data: active stress, or total minus passive via [`active_from_total`]) | λ_min, λ_opt, k |
+//! | [`fit_active_curve`] | P_act(λ) of eq. (8) (data: active stress, or total minus passive via [`active_from_total`]) | λ_min, λ_opt, k |
 //! | [`fit_explicit_law`] | γ_expl(λ; a, b) against the implicit γ, or the stress P_tot(λ, γ_expl) against P_pas + P_act | a, b |
 //! | [`fit_damage`] | P_pas(λ) + (1 − d) P_act(λ) | d |
 //!

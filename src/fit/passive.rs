@@ -1,7 +1,7 @@
 //! Fit 1: passive parameters of any [`Parametric`] energy to uniaxial (λ, P) data.
 //!
 //! Along the fibres (F = diag(λ, λ^-½, λ^-½), m = e₁) the nominal stress is the derivative of the
-//! energy along the path (eq. D:Ppas),
+//! energy along the path (eq. (11)),
 //!
 //! P(λ; θ) = d/dλ W(j(λ); θ),  j(λ) = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1],
 //!

@@ -154,7 +154,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     let gamma = |p: &CurvePoint| Some(p.gamma);
     let target = |p: &CurvePoint| Some(p.passive? + p.active_target?);
 
-    // D:paragoneebi — passive energies along the fibres.
+    // Fig. 3 — passive energies along the fibres.
     let mut energies: Vec<&str> = u
         .curves(Direction::Along, passive)
         .map(|c| c.energy.as_str())
@@ -176,17 +176,17 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             .collect();
         out.extend(figure(
             "fig_passive_vs_ebi",
-            "Fig. D:paragoneebi — passive energies in uniaxial tension along the fibres",
-            "Nominal stress of the chapter's passive energy (eq. D:Wpassiva) and of the Ehret–Böl–Itskov energy (eq. D:Webi) it simplifies, uniaxial tension along the fibres.",
+            "The chapter\'s Fig. 3 — passive energies in uniaxial tension along the fibres",
+            "Nominal stress of the chapter's passive energy (eq. (1)) and of the Ehret–Böl–Itskov energy (eq. (4)) it simplifies, uniaxial tension along the fibres.",
             vec![panel("Passive stress along the fibres", STRESS, s, Some((-5.0, 160.0)))],
         ));
     }
 
-    // D:biaxial — transverse isotropy.
+    // Fig. 2 — transverse isotropy.
     let passive_dir = |d: Direction| xy(u.curves(d, |c| passive(c) && c.energy == material), p);
     out.extend(figure(
         "fig_transverse_isotropy",
-        "Fig. D:biaxial — transversely isotropic behaviour",
+        "The chapter\'s Fig. 2 — transversely isotropic behaviour",
         "Passive nominal stress of the chapter's energy in uniaxial tension along and across the fibres (both lateral faces traction free).",
         vec![panel(
             "Passive stress along and across the fibres",
@@ -199,7 +199,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         )],
     ));
 
-    // D:gamma-s-s — constant γ.
+    // Fig. 5 — constant γ.
     let constant = |g: f64| move |c: &Curve| c.model == CurveModel::Constant(g);
     let gammas = sorted_unique(
         u.curves(Direction::Along, |_| true)
@@ -211,7 +211,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     );
     out.extend(figure(
         "fig_constant_gamma",
-        "Fig. D:gamma-s-s — stress–stretch curves for constant γ",
+        "The chapter\'s Fig. 5 — stress–stretch curves for constant γ",
         "Uniaxial tension along the fibres with γ held constant: the stress grows with γ and its zero moves below λ = 1 (to about 1 − γ). The y range is narrow (μ = 0.16 kPa) so that the zero crossings show.",
         vec![panel(
             "Constant activation γ",
@@ -225,7 +225,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         )],
     ));
 
-    // D:fattiva — the active curve.
+    // Fig. 7 — the active curve.
     let lambdas = sorted_unique(
         u.curves(Direction::Along, |_| true)
             .flat_map(|c| c.points.iter().map(|p| p.lambda))
@@ -234,17 +234,17 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     let pact: Vec<(f64, f64)> = lambdas.iter().map(|&l| (l, curve.value(l))).collect();
     out.extend(figure(
         "fig_active_curve",
-        "Fig. D:fattiva — the active curve",
-        "P_act(λ) of eq. D:pact with the parameters of Table D:paratt (the chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program).",
-        vec![panel("Active curve P_act (eq. D:pact)", STRESS, vec![series("P_act", pact.clone(), Stroke::Solid, 1)], None)],
+        "The chapter\'s Fig. 7 — the active curve",
+        "P_act(λ) of eq. (8) with the parameters of Table 2 (the chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program).",
+        vec![panel("Active curve P_act (eq. (8))", STRESS, vec![series("P_act", pact.clone(), Stroke::Solid, 1)], None)],
     ));
 
-    // D:pactgamma — γ(λ) of the implicit law; P_tot, P_act, P_pas.
+    // Fig. 8 — γ(λ) of the implicit law; P_tot, P_act, P_pas.
     let implicit = active(Implicit, Frozen, 0.0);
     out.extend(figure(
         "fig_gamma_and_stresses",
-        "Fig. D:pactgamma — γ(λ) and the stresses P_tot, P_act, P_pas",
-        "Top: γ solving eq. D:eqgammaesplicita (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
+        "The chapter\'s Fig. 8 — γ(λ) and the stresses P_tot, P_act, P_pas",
+        "Top: γ solving eq. (13) (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
         vec![
             panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", u.along(&implicit, gamma), Stroke::Solid, 0)], None),
             panel(
@@ -260,7 +260,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         ],
     ));
 
-    // D:figdpact — (1 − d) P_act.
+    // Fig. 9 — (1 − d) P_act.
     let ds = sorted_unique(
         u.curves(Direction::Along, |_| true)
             .filter_map(active_model)
@@ -270,7 +270,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     );
     out.extend(figure(
         "fig_damage_active",
-        "Fig. D:figdpact — (1 − d) P_act for d = 0 … 0.5",
+        "The chapter\'s Fig. 9 — (1 − d) P_act for d = 0 … 0.5",
         "The active curve scaled by the loss of activation 1 − d.",
         vec![panel(
             "(1 − d) P_act",
@@ -290,28 +290,38 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         )],
     ));
 
-    // D:figapprgamma — explicit (solid) vs implicit (dotted) γ.
+    // Fig. 10 — explicit (solid) vs implicit (dotted) γ.
     let explicit = active(Explicit, Frozen, 0.0);
     out.extend(figure(
         "fig_explicit_vs_implicit_gamma",
-        "Fig. D:figapprgamma — explicit γ (eq. D:gamma) vs the implicit solution",
-        "γ from the closed form eq. D:gamma (solid) and from solving eq. D:eqgammaesplicita (dotted), d = 0.",
+        "The chapter\'s Fig. 10 — explicit γ (eq. (14)) vs the implicit solution",
+        "γ from the closed form eq. (14) (solid) and from solving eq. (13) (dotted), d = 0.",
         vec![panel(
             "Explicit and implicit γ",
             GAMMA,
             vec![
-                series("explicit, eq. D:gamma", u.along(&explicit, gamma), Stroke::Solid, 0),
-                series("implicit, eq. D:eqgammaesplicita", u.along(&implicit, gamma), Stroke::Dotted, 1),
+                series(
+                    "explicit, eq. (14)",
+                    u.along(&explicit, gamma),
+                    Stroke::Solid,
+                    0,
+                ),
+                series(
+                    "implicit, eq. (13)",
+                    u.along(&implicit, gamma),
+                    Stroke::Dotted,
+                    1,
+                ),
             ],
             None,
         )],
     ));
 
-    // D:figapprgammaptot — P_tot with explicit γ.
+    // Fig. 11 — P_tot with explicit γ.
     out.extend(figure(
         "fig_explicit_ptot",
-        "Fig. D:figapprgammaptot — P_tot with the explicit γ",
-        "Total stress of the frozen model with γ from eq. D:gamma, against the target P_pas + P_act it approximates (the chapter compares with the experimental data instead).",
+        "The chapter\'s Fig. 11 — P_tot with the explicit γ",
+        "Total stress of the frozen model with γ from eq. (14), against the target P_pas + P_act it approximates (the chapter compares with the experimental data instead).",
         vec![panel(
             "P_tot with explicit γ",
             STRESS,
@@ -323,7 +333,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         )],
     ));
 
-    // D:figfenics — the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
+    // Fig. 12 — the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
     let clamped: Vec<&CylinderResult> = results
         .cylinders()
         .map(|(_, c)| c)
@@ -351,7 +361,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     );
     out.extend(figure(
         "fig_cylinder",
-        "Fig. D:figfenics — the cylinder: γ and P_tot for d = 0 … 0.5",
+        "The chapter\'s Fig. 12 — the cylinder: γ and P_tot for d = 0 … 0.5",
         "Axisymmetric FE cylinder (R = 1, L = 4 unless the scene says otherwise), clamped bases, explicit law, frozen coupling. Top: γ at the centre of the cylinder; bottom: nominal axial stress (reaction / πR²).",
         vec![
             panel("γ at the centre of the cylinder", GAMMA, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), sweep_points(*d, |p| p.gamma_centre), Stroke::Solid, i)).collect(), None),

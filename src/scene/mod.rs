@@ -56,7 +56,7 @@ pub struct SceneSpec {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActivationSpec {
-    /// λ_min [-] (Table D:paratt).
+    /// λ_min [-] (Table 2).
     pub lambda_min: Option<f64>,
     /// λ_opt [-].
     pub lambda_opt: Option<f64>,
@@ -74,7 +74,7 @@ pub struct ActivationSpec {
     pub below_minimum: Option<BelowMinimum>,
     /// Default damage values d ∈ [0, 1].
     pub damage: Option<Vec<f64>>,
-    /// Coefficients of the explicit law (eq. D:gamma).
+    /// Coefficients of the explicit law (eq. (14)).
     pub explicit: Option<ExplicitSpec>,
 }
 

@@ -38,11 +38,11 @@ use std::sync::Arc;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FitKind {
-    /// Passive parameters of the material's energy to (λ, P) data (eq. D:Ppas).
+    /// Passive parameters of the material's energy to (λ, P) data (eq. (11)).
     Passive,
-    /// (λ_min, λ_opt, k, P_opt) of the active curve (eq. D:pact).
+    /// (λ_min, λ_opt, k, P_opt) of the active curve (eq. (8)).
     ActiveCurve,
-    /// (a, b) of the explicit law (eq. D:gamma) against the implicit law.
+    /// (a, b) of the explicit law (eq. (14)) against the implicit law.
     ExplicitLaw,
     /// The damage d of a weakened total curve.
     Damage,
@@ -284,7 +284,7 @@ fn sample(lambdas: &[f64], f: impl Fn(f64) -> crate::Result<f64>) -> Vec<(f64, f
         .collect()
 }
 
-/// Passive parameters of the material's energy (eq. D:Ppas).
+/// Passive parameters of the material's energy (eq. (11)).
 #[derive(Debug, Clone)]
 struct Passive {
     energy: Energy,
@@ -354,7 +354,7 @@ impl Problem for Passive {
     }
 }
 
-/// The active curve (eq. D:pact).
+/// The active curve (eq. (8)).
 #[derive(Debug, Clone)]
 struct ActiveCurveFit {
     energy: Energy,
@@ -439,7 +439,7 @@ impl Problem for ActiveCurveFit {
     }
 }
 
-/// (a, b) of the explicit law (eq. D:gamma) against the implicit law (eq. D:eqgammaesplicita).
+/// (a, b) of the explicit law (eq. (14)) against the implicit law (eq. (13)).
 #[derive(Debug, Clone)]
 struct ExplicitLawFit {
     energy: GiantesioMusesti,
@@ -500,7 +500,7 @@ impl Problem for ExplicitLawFit {
         };
         Ok((
             cases,
-            format!("the implicit law (eq. D:eqgammaesplicita), residual in {residual}"),
+            format!("the implicit law (eq. (13)), residual in {residual}"),
         ))
     }
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
@@ -536,7 +536,7 @@ impl Problem for ExplicitLawFit {
         Shown {
             y_label: "activation γ [-]",
             data: sample(case.data.lambda(), |l| Ok(implicit.evaluate(l, d)?.gamma)),
-            data_label: "implicit γ (eq. D:eqgammaesplicita)".into(),
+            data_label: "implicit γ (eq. (13))".into(),
             reference_label: "chapter's (a, b)",
         }
     }
@@ -714,7 +714,7 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
                 return Err(SpecError::new(
                     "fit",
                     "\"explicit-law\"",
-                    "eq. D:gamma is derived for the giantesio-musesti energy; material.energy is another",
+                    "the explicit law (eq. (14)) is derived for the giantesio-musesti energy; material.energy is another",
                 ))
             }
         },
