@@ -5,13 +5,6 @@
 //! and their derivatives with respect to F (see [`crate::invariants`]), so a model never writes a
 //! derivative by hand.
 
-mod ehret_bol_itskov;
-mod giantesio_musesti;
-mod neo_hookean;
-
-pub use ehret_bol_itskov::EhretBolItskov;
-pub use giantesio_musesti::GiantesioMusesti;
-pub use neo_hookean::NeoHookean;
 
 use crate::Scalar;
 use crate::{Error, Result};
@@ -261,11 +254,14 @@ impl ShippedEnergy {
     }
 }
 
-/// The shipped energies: `shipped_energies! { Type, ... }` generates [`Energy`] (one variant per
-/// type, named as the type), its [`StrainEnergy`] and [`Parametric`] implementations and
-/// [`SHIPPED`].
+/// The shipped energies: `shipped_energies! { file::Type, ... }` declares each energy's module
+/// (`src/energy/file.rs`) and re-exports its type, and generates [`Energy`] (one variant per type,
+/// named as the type), its [`StrainEnergy`] and [`Parametric`] implementations and [`SHIPPED`].
 macro_rules! shipped_energies {
-    ($($(#[$doc:meta])* $energy:ident),* $(,)?) => {
+    ($($(#[$doc:meta])* $file:ident::$energy:ident),* $(,)?) => {
+        $(mod $file;
+        pub use $file::$energy;)*
+
         /// Any of the shipped energies, chosen at run time (e.g. from a scene file).
         #[derive(Debug, Clone, PartialEq)]
         pub enum Energy {
@@ -325,11 +321,13 @@ macro_rules! shipped_energies {
     };
 }
 
+// A new shipped energy: its file in this directory (`impl StrainEnergy` and `impl Shipped`) and
+// one line here.
 shipped_energies! {
     /// The chapter's passive energy, eq. (1).
-    GiantesioMusesti,
+    giantesio_musesti::GiantesioMusesti,
     /// The Ehret–Böl–Itskov energy, eq. (4).
-    EhretBolItskov,
+    ehret_bol_itskov::EhretBolItskov,
     /// Incompressible neo-Hookean reference.
-    NeoHookean,
+    neo_hookean::NeoHookean,
 }
