@@ -5,7 +5,6 @@
 //! and their derivatives with respect to F (see [`crate::invariants`]), so a model never writes a
 //! derivative by hand.
 
-
 use crate::Scalar;
 use crate::{Error, Result};
 
