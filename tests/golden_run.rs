@@ -4,7 +4,8 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::Command;
+
+mod binary;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv: one entry here).
@@ -70,16 +71,7 @@ fn same(file: &str, out: &Path) {
 fn the_default_run_writes_the_golden_numbers() {
     let out = std::env::temp_dir().join(format!("activemuscle-golden-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&out);
-    let run = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
-        .args(["run", "--quiet", "--out"])
-        .arg(&out)
-        .output()
-        .expect("run binary");
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    binary::run_quiet(None, &out);
     for file in ["curves.csv", "fits.csv", "stability.csv"] {
         same(file, &out);
     }

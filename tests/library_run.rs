@@ -9,7 +9,8 @@ use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::uniaxial::CurveModel;
 use activemuscle::studies::{StudyKind, StudyResult};
 use activemuscle::uniaxial::{along_fibres, Direction};
-use std::process::Command;
+
+mod binary;
 
 const SCENE: &str = r#"
 title = "library run"
@@ -102,19 +103,7 @@ fn the_csv_the_binary_writes_is_the_projection_of_the_typed_results() {
     std::fs::create_dir_all(&dir).expect("temp dir");
     let path = dir.join("library.toml");
     std::fs::write(&path, SCENE).expect("scene");
-    let out = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
-        .arg("run")
-        .arg(&path)
-        .arg("--out")
-        .arg(dir.join("out"))
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    binary::run_quiet(Some(&path), &dir.join("out"));
     let written = std::fs::read(dir.join("out/curves.csv")).expect("curves.csv");
     let scene = Scene::load(&path).expect("valid scene");
     let results = scene.run(&RunOptions::default()).expect("runs");
