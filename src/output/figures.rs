@@ -2,10 +2,11 @@
 //! the scene did not compute is skipped.
 
 use super::plot::{Figure, Panel, Scale, Series, Stroke};
+use crate::active::ActiveCurve;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::scene::{Results, Scene};
-use crate::studies::cylinder::CylinderResult;
+use crate::studies::cylinder::{bases_name, Sweep, SweepPoint};
 use crate::studies::fit::{FitKind, FitOutcome};
 use crate::studies::slug;
 use crate::studies::stability::StabilityCurve;
@@ -139,54 +140,126 @@ fn active(law: LawKind, coupling: CouplingKind, d: f64) -> impl Fn(&Curve) -> bo
     }
 }
 
+/// What the figures are drawn from.
+struct Run<'a> {
+    u: Uniaxial<'a>,
+    results: &'a Results,
+    material: String,
+    curve: ActiveCurve,
+}
+
+/// Stress range in which the active model's features are visible (the passive exponential
+/// reaches hundreds of kPa at λ = 1.6).
+const ACTIVE_RANGE: Option<(f64, f64)> = Some((-5.0, 160.0));
+
+fn stress(p: &CurvePoint) -> Option<f64> {
+    Some(p.stress)
+}
+
+fn gamma(p: &CurvePoint) -> Option<f64> {
+    Some(p.gamma)
+}
+
+/// P_pas + (1 − d) P_act, the target of an active curve along the fibres.
+fn target(p: &CurvePoint) -> Option<f64> {
+    Some(p.passive? + p.active_target?)
+}
+
 /// Every figure the results support, in the chapter's order, then ours.
 pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
-    use CouplingKind::{Consistent, Frozen};
-    use LawKind::{Energy, Explicit, Implicit};
-    let u = Uniaxial::new(results);
-    let material = scene.models.energy.name().to_string();
-    let curve = scene.models.curve;
-    let mut out = Vec::new();
-    // Stress range in which the active model's features are visible (the passive exponential
-    // reaches hundreds of kPa at λ = 1.6).
-    let active_range = Some((-5.0, 160.0));
-    let p = |p: &CurvePoint| Some(p.stress);
-    let gamma = |p: &CurvePoint| Some(p.gamma);
-    let target = |p: &CurvePoint| Some(p.passive? + p.active_target?);
+    let run = Run {
+        u: Uniaxial::new(results),
+        results,
+        material: scene.models.energy.name().to_string(),
+        curve: scene.models.curve,
+    };
+    let pact = run.active_curve();
+    let mut out: Vec<Figure> = [
+        passive_energies(&run),
+        transverse_isotropy(&run),
+        constant_gamma(&run),
+        active_curve(&pact),
+        gamma_and_stresses(&run),
+        damage_active(&run, &pact),
+        explicit_vs_implicit_gamma(&run),
+        explicit_ptot(&run),
+        cylinder(&run),
+        frozen_vs_consistent(&run),
+        fe_vs_0d(results),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    for (name, fits) in results.fits() {
+        out.extend(fit_figure(name, fits));
+    }
+    for (name, curves) in results.stability() {
+        out.extend(stability_figure(name, curves));
+    }
+    out
+}
 
-    // Fig. 3 — passive energies along the fibres.
-    let mut energies: Vec<&str> = u
+impl Run<'_> {
+    /// P_act at every stretch of the curves along the fibres.
+    fn active_curve(&self) -> Vec<(f64, f64)> {
+        let lambdas = sorted_unique(
+            self.u
+                .curves(Direction::Along, |_| true)
+                .flat_map(|c| c.points.iter().map(|p| p.lambda))
+                .collect(),
+        );
+        lambdas.iter().map(|&l| (l, self.curve.value(l))).collect()
+    }
+}
+
+/// The chapter's Fig. 3: passive energies along the fibres.
+fn passive_energies(run: &Run) -> Option<Figure> {
+    let mut energies: Vec<&str> = run
+        .u
         .curves(Direction::Along, passive)
         .map(|c| c.energy.as_str())
         .collect();
     energies.sort();
     energies.dedup();
-    if energies.len() >= 2 {
-        let s = energies
-            .iter()
-            .enumerate()
-            .map(|(i, e)| {
-                let stroke = if i == 0 {
-                    Stroke::Solid
-                } else {
-                    Stroke::Dashed
-                };
-                series(*e, u.along(|c| passive(c) && c.energy == *e, p), stroke, i)
-            })
-            .collect();
-        out.extend(figure(
-            "fig_passive_vs_ebi",
-            "The chapter\'s Fig. 3 — passive energies in uniaxial tension along the fibres",
-            "Nominal stress of the chapter's passive energy (eq. (1)) and of the Ehret–Böl–Itskov energy (eq. (4)) it simplifies, uniaxial tension along the fibres.",
-            vec![panel("Passive stress along the fibres", STRESS, s, Some((-5.0, 160.0)))],
-        ));
+    if energies.len() < 2 {
+        return None;
     }
+    let s = energies
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let stroke = if i == 0 {
+                Stroke::Solid
+            } else {
+                Stroke::Dashed
+            };
+            series(
+                *e,
+                run.u.along(|c| passive(c) && c.energy == *e, stress),
+                stroke,
+                i,
+            )
+        })
+        .collect();
+    figure(
+        "fig_passive_vs_ebi",
+        "The chapter's Fig. 3 — passive energies in uniaxial tension along the fibres",
+        "Nominal stress of the chapter's passive energy (eq. (1)) and of the Ehret–Böl–Itskov energy (eq. (4)) it simplifies, uniaxial tension along the fibres.",
+        vec![panel("Passive stress along the fibres", STRESS, s, Some((-5.0, 160.0)))],
+    )
+}
 
-    // Fig. 2 — transverse isotropy.
-    let passive_dir = |d: Direction| xy(u.curves(d, |c| passive(c) && c.energy == material), p);
-    out.extend(figure(
+/// The chapter's Fig. 2: transverse isotropy.
+fn transverse_isotropy(run: &Run) -> Option<Figure> {
+    let passive_dir = |d: Direction| {
+        xy(
+            run.u.curves(d, |c| passive(c) && c.energy == run.material),
+            stress,
+        )
+    };
+    figure(
         "fig_transverse_isotropy",
-        "The chapter\'s Fig. 2 — transversely isotropic behaviour",
+        "The chapter's Fig. 2 — transversely isotropic behaviour",
         "Passive nominal stress of the chapter's energy in uniaxial tension along and across the fibres (both lateral faces traction free).",
         vec![panel(
             "Passive stress along and across the fibres",
@@ -197,21 +270,24 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             ],
             Some((-5.0, 160.0)),
         )],
-    ));
+    )
+}
 
-    // Fig. 5 — constant γ.
-    let constant = |g: f64| move |c: &Curve| c.model == CurveModel::Constant(g);
+/// The chapter's Fig. 5: constant γ.
+fn constant_gamma(run: &Run) -> Option<Figure> {
     let gammas = sorted_unique(
-        u.curves(Direction::Along, |_| true)
+        run.u
+            .curves(Direction::Along, |_| true)
             .filter_map(|c| match c.model {
                 CurveModel::Constant(g) => Some(g),
                 _ => None,
             })
             .collect(),
     );
-    out.extend(figure(
+    let constant = |g: f64| move |c: &Curve| c.model == CurveModel::Constant(g);
+    figure(
         "fig_constant_gamma",
-        "The chapter\'s Fig. 5 — stress–stretch curves for constant γ",
+        "The chapter's Fig. 5 — stress–stretch curves for constant γ",
         "Uniaxial tension along the fibres with γ held constant: the stress grows with γ and its zero moves below λ = 1 (to about 1 − γ). The y range is narrow (μ = 0.16 kPa) so that the zero crossings show.",
         vec![panel(
             "Constant activation γ",
@@ -219,58 +295,59 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             gammas
                 .iter()
                 .enumerate()
-                .map(|(i, g)| series(format!("γ = {g}"), u.along(constant(*g), p), Stroke::Solid, i))
+                .map(|(i, g)| series(format!("γ = {g}"), run.u.along(constant(*g), stress), Stroke::Solid, i))
                 .collect(),
             Some((-0.5, 3.0)),
         )],
-    ));
+    )
+}
 
-    // Fig. 7 — the active curve.
-    let lambdas = sorted_unique(
-        u.curves(Direction::Along, |_| true)
-            .flat_map(|c| c.points.iter().map(|p| p.lambda))
-            .collect(),
-    );
-    let pact: Vec<(f64, f64)> = lambdas.iter().map(|&l| (l, curve.value(l))).collect();
-    out.extend(figure(
+/// The chapter's Fig. 7: the active curve.
+fn active_curve(pact: &[(f64, f64)]) -> Option<Figure> {
+    figure(
         "fig_active_curve",
-        "The chapter\'s Fig. 7 — the active curve",
+        "The chapter's Fig. 7 — the active curve",
         "P_act(λ) of eq. (8) with the parameters of Table 2 (the chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program).",
-        vec![panel("Active curve P_act (eq. (8))", STRESS, vec![series("P_act", pact.clone(), Stroke::Solid, 1)], None)],
-    ));
+        vec![panel("Active curve P_act (eq. (8))", STRESS, vec![series("P_act", pact.to_vec(), Stroke::Solid, 1)], None)],
+    )
+}
 
-    // Fig. 8 — γ(λ) of the implicit law; P_tot, P_act, P_pas.
-    let implicit = active(Implicit, Frozen, 0.0);
-    out.extend(figure(
+/// The chapter's Fig. 8: γ(λ) of the implicit law; P_tot, P_act, P_pas.
+fn gamma_and_stresses(run: &Run) -> Option<Figure> {
+    let implicit = active(LawKind::Implicit, CouplingKind::Frozen, 0.0);
+    figure(
         "fig_gamma_and_stresses",
-        "The chapter\'s Fig. 8 — γ(λ) and the stresses P_tot, P_act, P_pas",
+        "The chapter's Fig. 8 — γ(λ) and the stresses P_tot, P_act, P_pas",
         "Top: γ solving eq. (13) (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
         vec![
-            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", u.along(&implicit, gamma), Stroke::Solid, 0)], None),
+            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", run.u.along(&implicit, gamma), Stroke::Solid, 0)], None),
             panel(
                 "Total, active and passive stress",
                 STRESS,
                 vec![
-                    series("P_tot", u.along(&implicit, p), Stroke::Solid, 0),
-                    series("P_act", u.along(&implicit, |p| p.active_target), Stroke::Dashed, 1),
-                    series("P_pas", u.along(&implicit, |p| p.passive), Stroke::Dotted, 2),
+                    series("P_tot", run.u.along(&implicit, stress), Stroke::Solid, 0),
+                    series("P_act", run.u.along(&implicit, |p| p.active_target), Stroke::Dashed, 1),
+                    series("P_pas", run.u.along(&implicit, |p| p.passive), Stroke::Dotted, 2),
                 ],
-                active_range,
+                ACTIVE_RANGE,
             ),
         ],
-    ));
+    )
+}
 
-    // Fig. 9 — (1 − d) P_act.
+/// The chapter's Fig. 9: (1 − d) P_act for the damages of the implicit law.
+fn damage_active(run: &Run, pact: &[(f64, f64)]) -> Option<Figure> {
     let ds = sorted_unique(
-        u.curves(Direction::Along, |_| true)
+        run.u
+            .curves(Direction::Along, |_| true)
             .filter_map(active_model)
-            .filter(|m| m.law == Implicit)
+            .filter(|m| m.law == LawKind::Implicit)
             .map(|m| m.damage)
             .collect(),
     );
-    out.extend(figure(
+    figure(
         "fig_damage_active",
-        "The chapter\'s Fig. 9 — (1 − d) P_act for d = 0 … 0.5",
+        "The chapter's Fig. 9 — (1 − d) P_act for d = 0 … 0.5",
         "The active curve scaled by the loss of activation 1 − d.",
         vec![panel(
             "(1 − d) P_act",
@@ -288,13 +365,16 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
                 .collect(),
             None,
         )],
-    ));
+    )
+}
 
-    // Fig. 10 — explicit (solid) vs implicit (dotted) γ.
-    let explicit = active(Explicit, Frozen, 0.0);
-    out.extend(figure(
+/// The chapter's Fig. 10: explicit (solid) vs implicit (dotted) γ.
+fn explicit_vs_implicit_gamma(run: &Run) -> Option<Figure> {
+    let implicit = active(LawKind::Implicit, CouplingKind::Frozen, 0.0);
+    let explicit = active(LawKind::Explicit, CouplingKind::Frozen, 0.0);
+    figure(
         "fig_explicit_vs_implicit_gamma",
-        "The chapter\'s Fig. 10 — explicit γ (eq. (14)) vs the implicit solution",
+        "The chapter's Fig. 10 — explicit γ (eq. (14)) vs the implicit solution",
         "γ from the closed form eq. (14) (solid) and from solving eq. (13) (dotted), d = 0.",
         vec![panel(
             "Explicit and implicit γ",
@@ -302,105 +382,117 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             vec![
                 series(
                     "explicit, eq. (14)",
-                    u.along(&explicit, gamma),
+                    run.u.along(&explicit, gamma),
                     Stroke::Solid,
                     0,
                 ),
                 series(
                     "implicit, eq. (13)",
-                    u.along(&implicit, gamma),
+                    run.u.along(&implicit, gamma),
                     Stroke::Dotted,
                     1,
                 ),
             ],
             None,
         )],
-    ));
+    )
+}
 
-    // Fig. 11 — P_tot with explicit γ.
-    out.extend(figure(
+/// The chapter's Fig. 11: P_tot with the explicit γ.
+fn explicit_ptot(run: &Run) -> Option<Figure> {
+    let explicit = active(LawKind::Explicit, CouplingKind::Frozen, 0.0);
+    figure(
         "fig_explicit_ptot",
-        "The chapter\'s Fig. 11 — P_tot with the explicit γ",
+        "The chapter's Fig. 11 — P_tot with the explicit γ",
         "Total stress of the frozen model with γ from eq. (14), against the target P_pas + P_act it approximates (the chapter compares with the experimental data instead).",
         vec![panel(
             "P_tot with explicit γ",
             STRESS,
             vec![
-                series("P_tot, explicit γ", u.along(&explicit, p), Stroke::Solid, 0),
-                series("P_pas + P_act (target)", u.along(&explicit, target), Stroke::Dashed, 1),
+                series("P_tot, explicit γ", run.u.along(&explicit, stress), Stroke::Solid, 0),
+                series("P_pas + P_act (target)", run.u.along(&explicit, target), Stroke::Dashed, 1),
             ],
-            active_range,
+            ACTIVE_RANGE,
         )],
-    ));
+    )
+}
 
-    // Fig. 12 — the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
-    let clamped: Vec<&CylinderResult> = results
+/// The chapter's Fig. 12: the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
+fn cylinder(run: &Run) -> Option<Figure> {
+    let sweeps: Vec<&Sweep> = run
+        .results
         .cylinders()
-        .map(|(_, c)| c)
-        .filter(|c| c.bases == Bases::Clamped)
+        .filter(|(_, c)| c.bases == Bases::Clamped)
+        .flat_map(|(_, c)| c.sweeps.iter())
+        .filter(|s| s.model.law == LawKind::Explicit && s.model.coupling == CouplingKind::Frozen)
         .collect();
-    let sweep_points = |d: f64, y: fn(&crate::studies::cylinder::SweepPoint) -> f64| {
-        let mut v: Vec<(f64, f64)> = clamped
+    let points = |d: f64, y: fn(&SweepPoint) -> f64| {
+        let mut v: Vec<(f64, f64)> = sweeps
             .iter()
-            .flat_map(|c| c.sweeps.iter())
-            .filter(|s| {
-                s.model.law == Explicit && s.model.coupling == Frozen && s.model.damage == d
-            })
+            .filter(|s| s.model.damage == d)
             .flat_map(|s| s.points.iter().map(|p| (p.lambda, y(p))))
             .collect();
         v.sort_by(|a, b| a.0.total_cmp(&b.0));
         v
     };
-    let cds = sorted_unique(
-        clamped
-            .iter()
-            .flat_map(|c| c.sweeps.iter())
-            .filter(|s| s.model.law == Explicit && s.model.coupling == Frozen)
-            .map(|s| s.model.damage)
-            .collect(),
-    );
-    out.extend(figure(
+    let ds = sorted_unique(sweeps.iter().map(|s| s.model.damage).collect());
+    let by_damage = |y: fn(&SweepPoint) -> f64| -> Vec<Option<Series>> {
+        ds.iter()
+            .enumerate()
+            .map(|(i, d)| series(format!("d = {d}"), points(*d, y), Stroke::Solid, i))
+            .collect()
+    };
+    figure(
         "fig_cylinder",
-        "The chapter\'s Fig. 12 — the cylinder: γ and P_tot for d = 0 … 0.5",
+        "The chapter's Fig. 12 — the cylinder: γ and P_tot for d = 0 … 0.5",
         "Axisymmetric FE cylinder (R = 1, L = 4 unless the scene says otherwise), clamped bases, explicit law, frozen coupling. Top: γ at the centre of the cylinder; bottom: nominal axial stress (reaction / πR²).",
         vec![
-            panel("γ at the centre of the cylinder", GAMMA, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), sweep_points(*d, |p| p.gamma_centre), Stroke::Solid, i)).collect(), None),
-            panel("Nominal axial stress", STRESS, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), sweep_points(*d, |p| p.stress), Stroke::Solid, i)).collect(), active_range),
+            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre), None),
+            panel("Nominal axial stress", STRESS, by_damage(|p| p.stress), ACTIVE_RANGE),
         ],
-    ));
+    )
+}
 
-    // Ours: frozen vs consistent.
+/// Ours: frozen against consistent coupling of each law, d = 0.
+fn frozen_vs_consistent(run: &Run) -> Option<Figure> {
+    use CouplingKind::{Consistent, Frozen};
     let mut s = Vec::new();
-    for (i, law) in [Implicit, Explicit, Energy].into_iter().enumerate() {
+    for (i, law) in [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
+        .into_iter()
+        .enumerate()
+    {
         s.push(series(
             format!("{}, frozen", law.name()),
-            u.along(active(law, Frozen, 0.0), p),
+            run.u.along(active(law, Frozen, 0.0), stress),
             Stroke::Solid,
             i,
         ));
         s.push(series(
             format!("{}, consistent", law.name()),
-            u.along(active(law, Consistent, 0.0), p),
+            run.u.along(active(law, Consistent, 0.0), stress),
             Stroke::Dashed,
             i,
         ));
     }
     s.push(series(
         "P_pas + P_act (target)",
-        u.along(&implicit, target),
+        run.u.along(active(LawKind::Implicit, Frozen, 0.0), target),
         Stroke::Dotted,
         3,
     ));
-    if s.iter().filter(|x| x.is_some()).count() >= 3 {
-        out.extend(figure(
-            "fig_frozen_vs_consistent",
-            "Frozen vs consistent coupling (ours)",
-            "Uniaxial tension along the fibres, d = 0. Frozen: P = ∂Ŵ/∂F at γ = g(λ) held (the chapter's model). Consistent: the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The energy law is built so that its consistent model reproduces P_pas + P_act; the implicit law so that its frozen model does.",
-            vec![panel("Frozen vs consistent coupling, d = 0", STRESS, s, active_range)],
-        ));
+    if s.iter().filter(|x| x.is_some()).count() < 3 {
+        return None;
     }
+    figure(
+        "fig_frozen_vs_consistent",
+        "Frozen vs consistent coupling (ours)",
+        "Uniaxial tension along the fibres, d = 0. Frozen: P = ∂Ŵ/∂F at γ = g(λ) held (the chapter's model). Consistent: the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The energy law is built so that its consistent model reproduces P_pas + P_act; the implicit law so that its frozen model does.",
+        vec![panel("Frozen vs consistent coupling, d = 0", STRESS, s, ACTIVE_RANGE)],
+    )
+}
 
-    // Ours: FE vs 0D, at the smallest and the largest damage of each cylinder study.
+/// Ours: FE against 0D, at the smallest and the largest damage of each cylinder study.
+fn fe_vs_0d(results: &Results) -> Option<Figure> {
     let mut s = Vec::new();
     let mut colour = 0;
     for (_, c) in results.cylinders() {
@@ -416,10 +508,7 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
                 .filter_map(|p| p.stress_0d.map(|z| (p.lambda, p.stress, z)))
                 .collect();
             s.push(series(
-                format!(
-                    "FE {} bases: {short}",
-                    crate::studies::cylinder::bases_name(c.bases)
-                ),
+                format!("FE {} bases: {short}", bases_name(c.bases)),
                 compared.iter().map(|p| (p.0, p.1)).collect(),
                 Stroke::Markers,
                 colour,
@@ -433,21 +522,15 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
             colour += 1;
         }
     }
-    if !s.is_empty() {
-        out.extend(figure(
-            "fig_fe_vs_0d",
-            "FE cylinder vs homogeneous (0D) tension (ours)",
-            "Markers: FE nominal stress (axial reaction / πR²); lines: the homogeneous uniaxial curve of the same model. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect.",
-            vec![panel("FE vs 0D", STRESS, s, active_range)],
-        ));
+    if s.is_empty() {
+        return None;
     }
-    for (name, fits) in results.fits() {
-        out.extend(fit_figure(name, fits));
-    }
-    for (name, curves) in results.stability() {
-        out.extend(stability_figure(name, curves));
-    }
-    out
+    figure(
+        "fig_fe_vs_0d",
+        "FE cylinder vs homogeneous (0D) tension (ours)",
+        "Markers: FE nominal stress (axial reaction / πR²); lines: the homogeneous uniaxial curve of the same model. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect.",
+        vec![panel("FE vs 0D", STRESS, s, ACTIVE_RANGE)],
+    )
 }
 
 /// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or

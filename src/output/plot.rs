@@ -275,20 +275,8 @@ where
     for s in &panel.series {
         let c = colour(s.colour);
         let style = c.stroke_width(2);
-        let markers = matches!(s.stroke, Stroke::Markers | Stroke::Filled);
-        let runs = if markers {
-            // Markers outside the frame are dropped, not moved onto its edge.
-            vec![s
-                .points
-                .iter()
-                .copied()
-                .filter(|&(x, y)| x.is_finite() && y >= y0 && y <= y1)
-                .collect()]
-        } else {
-            clip(&s.points, y0, y1)
-        };
         let stroke = s.stroke;
-        for (i, pts) in runs.into_iter().enumerate() {
+        for (i, pts) in runs(s, y0, y1).into_iter().enumerate() {
             if let Some(text) = &s.annotation {
                 chart
                     .draw_series(pts.iter().map(|&p| {
@@ -332,10 +320,23 @@ where
                 });
         }
     }
+    legend_box(chart, panel.scale)
+}
+
+/// The legend: upper left on linear axes; lower left on log–log axes, where error against time
+/// falls from upper left to lower right.
+fn legend_box<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    scale: Scale,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
     chart
         .configure_series_labels()
-        // Error against time falls from upper left to lower right: the lower left is free.
-        .position(match panel.scale {
+        .position(match scale {
             Scale::Linear => SeriesLabelPosition::UpperLeft,
             Scale::LogLog => SeriesLabelPosition::LowerLeft,
         })
@@ -343,8 +344,22 @@ where
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(180, 180, 180))
         .draw()
-        .map_err(e)?;
-    Ok(())
+        .map_err(|e| e.to_string())
+}
+
+/// The point runs of a series inside y ∈ [y0, y1]: a line is clipped into runs; markers outside
+/// the frame are dropped, not moved onto its edge.
+fn runs(s: &Series, y0: f64, y1: f64) -> Vec<Vec<(f64, f64)>> {
+    if matches!(s.stroke, Stroke::Markers | Stroke::Filled) {
+        vec![s
+            .points
+            .iter()
+            .copied()
+            .filter(|&(x, y)| x.is_finite() && y >= y0 && y <= y1)
+            .collect()]
+    } else {
+        clip(&s.points, y0, y1)
+    }
 }
 
 /// Splits a polyline into the runs that lie within y ∈ [lo, hi], with the crossing points

@@ -66,6 +66,26 @@ pub fn html(
         e(&info.command)
     );
 
+    studies_table(&mut h, results);
+    failures(&mut h, results);
+    fe_table(&mut h, results)?;
+    fits_table(&mut h, results)?;
+    stability_table(&mut h, results)?;
+
+    figures_and_data(&mut h, figures, info);
+    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
+    h.push_str(&e(&scene
+        .resolved_toml()
+        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
+    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
+    h.push_str(&e(&scene.source));
+    h.push_str("</pre>\n</body></html>\n");
+    Ok(h)
+}
+
+/// The studies with their summaries.
+fn studies_table(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Studies</h2>\n<table><tr><th>study</th><th>kind</th><th>models</th><th>points</th><th>time [s]</th><th>details</th></tr>\n");
     for s in &results.studies {
         let _ = writeln!(
@@ -85,7 +105,11 @@ pub fn html(
         );
     }
     h.push_str("</table>\n");
+}
 
+/// What could not be computed, and why.
+fn failures(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Where a model stopped</h2>\n");
     if results.failures().next().is_none() {
         h.push_str("<p>Every requested point was computed.</p>\n");
@@ -99,7 +123,11 @@ pub fn html(
             e(&n.message)
         );
     }
+}
 
+/// Each FE sweep against the homogeneous (0D) curve of the same model.
+fn fe_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let e = escape;
     let sweeps: Vec<_> = results
         .cylinders()
         .flat_map(|(_, c)| c.sweeps.iter().map(move |s| (c.bases, s)))
@@ -127,10 +155,12 @@ pub fn html(
         }
         h.push_str("</table>\n");
     }
+    Ok(())
+}
 
-    fits_table(&mut h, results)?;
-    stability_table(&mut h, results)?;
-
+/// The figures (embedded) and the list of data files.
+fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
+    let e = escape;
     h.push_str("<h2>Figures</h2>\n");
     for (f, png) in figures {
         let _ = writeln!(
@@ -168,15 +198,6 @@ pub fn html(
             .join(", "),
     );
     h.push_str("</p>\n");
-
-    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
-    h.push_str(&e(&scene
-        .resolved_toml()
-        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
-    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
-    h.push_str(&e(&scene.source));
-    h.push_str("</pre>\n</body></html>\n");
-    Ok(h)
 }
 
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.

@@ -7,7 +7,7 @@ use super::{ActivationSpec, ExplicitSpec, Scene, SceneSpec};
 use crate::active::{ActiveCurve, ExplicitLaw};
 use crate::app_error::{SceneError, SpecError};
 use crate::energy::GiantesioMusesti;
-use crate::models::{MaterialSpec, Models};
+use crate::models::{EnergySpec, MaterialSpec, Models};
 use crate::studies::spec::{damages, Defaults};
 use crate::studies::{tradeoff, Study, StudyKind, StudySpec};
 use std::path::Path;
@@ -20,35 +20,8 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         value: e.value,
         rule: e.rule,
     };
-    let (energy, fibre) = spec
-        .material
-        .build()
-        .map_err(|e| error(e.within("material")))?;
-
+    let (models, damage) = models(&spec).map_err(error)?;
     let act = &spec.activation;
-    let p = ActiveCurve::paper();
-    let curve = ActiveCurve::new(
-        act.lambda_min.unwrap_or(p.lambda_min()),
-        act.lambda_opt.unwrap_or(p.lambda_opt()),
-        act.k.unwrap_or(p.k()),
-        act.p_opt.unwrap_or(p.p_opt()),
-    )
-    .map_err(|e| error(SpecError::model("activation", e)))?;
-    let (a, b) = ExplicitLaw::paper().coefficients();
-    let ex = act.explicit.clone().unwrap_or_default();
-    let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
-    ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
-        .map_err(|e| error(SpecError::model("activation.explicit", e)))?;
-    let damage =
-        damages("activation.damage", act.damage.as_deref().unwrap_or(&[0.0])).map_err(error)?;
-    let models = Models {
-        energy,
-        fibre,
-        curve,
-        explicit,
-        frozen_tangent: act.frozen_tangent.unwrap_or_default(),
-        below_minimum: act.below_minimum.unwrap_or_default(),
-    };
     let defaults = Defaults {
         models: &models,
         law: act.law.unwrap_or_default(),
@@ -56,63 +29,26 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         damage: &damage,
         base: Path::new(file).parent().unwrap_or(Path::new("")),
     };
-
-    if spec.studies.is_empty() {
-        return Err(error(SpecError::new(
-            "study",
-            "(none)",
-            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\" or \"tradeoff\")",
-        )));
-    }
-    let mut studies: Vec<Study> = Vec::with_capacity(spec.studies.len());
-    let mut resolved: Vec<StudySpec> = Vec::with_capacity(spec.studies.len());
-    for (i, s) in spec.studies.iter().enumerate() {
-        let key = format!("study[{i}]");
-        if s.kind() == StudyKind::Tradeoff {
-            if let Some(first) = studies.iter().position(|s| matches!(s, Study::Tradeoff(_))) {
-                return Err(error(SpecError::new(
-                    format!("{key}.kind"),
-                    "\"tradeoff\"",
-                    format!(
-                        "a scene holds at most one tradeoff study (study[{first}] is one): \
-                         its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures"
-                    ),
-                )));
-            }
-        }
-        let (study, r) = s.resolve(&defaults).map_err(|e| error(e.within(&key)))?;
-        studies.push(study);
-        resolved.push(r);
-    }
-    // Trade-off studies take what they leave out from the first cylinder study, wherever it is.
-    let fallback = crate::studies::fallback(&studies);
-    for ((study, given), r) in studies.iter_mut().zip(&spec.studies).zip(&mut resolved) {
-        if let (Study::Tradeoff(t), StudySpec::Tradeoff(given), StudySpec::Tradeoff(r)) =
-            (study, given, r)
-        {
-            tradeoff::complete(t, given, r, &fallback);
-        }
-    }
-
+    let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
     let resolved = SceneSpec {
         title: spec.title.clone(),
         material: MaterialSpec {
-            energy: crate::models::EnergySpec::written(&models.energy),
+            energy: EnergySpec::written(&models.energy),
             fibre: Some(models.fibre),
         },
         activation: ActivationSpec {
-            lambda_min: Some(curve.lambda_min()),
-            lambda_opt: Some(curve.lambda_opt()),
-            k: Some(curve.k()),
-            p_opt: Some(curve.p_opt()),
+            lambda_min: Some(models.curve.lambda_min()),
+            lambda_opt: Some(models.curve.lambda_opt()),
+            k: Some(models.curve.k()),
+            p_opt: Some(models.curve.p_opt()),
             law: Some(defaults.law),
             coupling: Some(defaults.coupling),
             frozen_tangent: Some(models.frozen_tangent),
             below_minimum: Some(models.below_minimum),
             damage: Some(damage.clone()),
             explicit: Some(ExplicitSpec {
-                a: Some(explicit.0),
-                b: Some(explicit.1),
+                a: Some(models.explicit.0),
+                b: Some(models.explicit.1),
             }),
         },
         studies: resolved,
@@ -125,4 +61,77 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         studies,
         resolved,
     })
+}
+
+/// The material and activation of the scene, and its default damage values.
+fn models(spec: &SceneSpec) -> Result<(Models, Vec<f64>), SpecError> {
+    let (energy, fibre) = spec.material.build().map_err(|e| e.within("material"))?;
+    let act = &spec.activation;
+    let p = ActiveCurve::paper();
+    let curve = ActiveCurve::new(
+        act.lambda_min.unwrap_or(p.lambda_min()),
+        act.lambda_opt.unwrap_or(p.lambda_opt()),
+        act.k.unwrap_or(p.k()),
+        act.p_opt.unwrap_or(p.p_opt()),
+    )
+    .map_err(|e| SpecError::model("activation", e))?;
+    let (a, b) = ExplicitLaw::paper().coefficients();
+    let ex = act.explicit.clone().unwrap_or_default();
+    let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
+    ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
+        .map_err(|e| SpecError::model("activation.explicit", e))?;
+    let damage = damages("activation.damage", act.damage.as_deref().unwrap_or(&[0.0]))?;
+    let models = Models {
+        energy,
+        fibre,
+        curve,
+        explicit,
+        frozen_tangent: act.frozen_tangent.unwrap_or_default(),
+        below_minimum: act.below_minimum.unwrap_or_default(),
+    };
+    Ok((models, damage))
+}
+
+/// The studies, validated in file order, and their resolved specs; trade-off studies take what
+/// they leave out from the first cylinder study, wherever it is.
+fn studies(
+    specs: &[StudySpec],
+    defaults: &Defaults,
+) -> Result<(Vec<Study>, Vec<StudySpec>), SpecError> {
+    if specs.is_empty() {
+        return Err(SpecError::new(
+            "study",
+            "(none)",
+            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\" or \"tradeoff\")",
+        ));
+    }
+    let mut studies: Vec<Study> = Vec::with_capacity(specs.len());
+    let mut resolved: Vec<StudySpec> = Vec::with_capacity(specs.len());
+    for (i, s) in specs.iter().enumerate() {
+        let key = format!("study[{i}]");
+        if s.kind() == StudyKind::Tradeoff {
+            if let Some(first) = studies.iter().position(|s| matches!(s, Study::Tradeoff(_))) {
+                return Err(SpecError::new(
+                    format!("{key}.kind"),
+                    "\"tradeoff\"",
+                    format!(
+                        "a scene holds at most one tradeoff study (study[{first}] is one): \
+                         its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures"
+                    ),
+                ));
+            }
+        }
+        let (study, r) = s.resolve(defaults).map_err(|e| e.within(&key))?;
+        studies.push(study);
+        resolved.push(r);
+    }
+    let fallback = crate::studies::fallback(&studies);
+    for ((study, given), r) in studies.iter_mut().zip(specs).zip(&mut resolved) {
+        if let (Study::Tradeoff(t), StudySpec::Tradeoff(given), StudySpec::Tradeoff(r)) =
+            (study, given, r)
+        {
+            tradeoff::complete(t, given, r, &fallback);
+        }
+    }
+    Ok((studies, resolved))
 }

@@ -138,29 +138,29 @@ pub struct FitCase {
     pub reference: Option<Vec<f64>>,
 }
 
-/// How the figure of a case shows it.
+/// What a kind of fit is: its model's parameters and how its figure and table show it.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Shown {
-    /// y-axis label with unit.
+pub struct Model {
+    /// What is fitted.
+    pub kind: FitKind,
+    /// Names of all the model's parameters, in order.
+    pub names: Vec<&'static str>,
+    /// The model's own values of all parameters (the default starts).
+    pub values: Vec<f64>,
+    /// The parameters freed when the scene does not say.
+    pub default_free: Vec<&'static str>,
+    /// y-axis label of the figure, with unit.
     pub y_label: &'static str,
-    /// The data as plotted.
-    pub data: Vec<(f64, f64)>,
-    /// Label of the data.
-    pub data_label: String,
-    /// Label of the model at the reference (or starting) values.
+    /// Label of the model at the reference values in the figure.
     pub reference_label: &'static str,
+    /// Unit of the residuals (`kPa`, or `-` for γ).
+    pub unit: &'static str,
 }
 
 /// One kind of fit as a study runs it.
 pub trait Problem: fmt::Debug + Send + Sync {
-    /// What is fitted.
-    fn kind(&self) -> FitKind;
-    /// Names of all the model's parameters, in order.
-    fn names(&self) -> Vec<&'static str>;
-    /// The model's own values of all parameters (the default starts).
-    fn values(&self) -> Vec<f64>;
-    /// The parameters freed when the scene does not say.
-    fn default_free(&self) -> Vec<&'static str>;
+    /// The model's parameters and labels.
+    fn model(&self) -> Model;
     /// The data sets, one fit each, and their source in words; errors name keys of the study.
     fn cases(
         &self,
@@ -173,11 +173,9 @@ pub trait Problem: fmt::Debug + Send + Sync {
     /// The model over `grid` with all parameters at `values` (points that cannot be computed
     /// left out; none if the values are not a valid model).
     fn curve(&self, values: &[f64], case: &FitCase, grid: &[f64]) -> Vec<(f64, f64)>;
-    /// How the figure shows the case.
-    fn shown(&self, case: &FitCase) -> Shown;
-    /// Unit of the residuals (`kPa`, or `-` for γ).
-    fn unit(&self) -> &'static str {
-        "kPa"
+    /// The data as the figure shows them, and their label.
+    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
+        (case.data.points(), case.label.clone())
     }
 }
 
@@ -292,17 +290,17 @@ struct Passive {
 }
 
 impl Problem for Passive {
-    fn kind(&self) -> FitKind {
-        FitKind::Passive
-    }
-    fn names(&self) -> Vec<&'static str> {
-        self.energy.parameter_names()
-    }
-    fn values(&self) -> Vec<f64> {
-        self.energy.parameter_values()
-    }
-    fn default_free(&self) -> Vec<&'static str> {
-        default_passive_free(&self.names())
+    fn model(&self) -> Model {
+        let names = self.energy.parameter_names();
+        Model {
+            kind: FitKind::Passive,
+            default_free: default_passive_free(&names),
+            names,
+            values: self.energy.parameter_values(),
+            y_label: "P_pas [kPa]",
+            reference_label: "scene's material",
+            unit: "kPa",
+        }
     }
     fn cases(
         &self,
@@ -311,7 +309,9 @@ impl Problem for Passive {
         source: &mut DataSource,
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         match (&spec.data, &spec.reference) {
-            (Some(file), None) => source.file(file, stretches, Some(self.values()), ""),
+            (Some(file), None) => {
+                source.file(file, stretches, Some(self.energy.parameter_values()), "")
+            }
             (None, Some(r)) => {
                 let reference = r.build().map_err(|e| e.within("reference"))?;
                 let lambdas = need(stretches, "a reference curve")?;
@@ -320,7 +320,11 @@ impl Problem for Passive {
                     source.synthetic(lambdas, |l| Ok(self.direction.point(&muscle, l)?.stress))?;
                 let name = reference.name();
                 Ok((
-                    vec![case(&format!("{name} curve"), data, Some(self.values()))],
+                    vec![case(
+                        &format!("{name} curve"),
+                        data,
+                        Some(self.energy.parameter_values()),
+                    )],
                     format!(
                         "{name} passive curve {} the fibres{}",
                         self.direction.name(),
@@ -344,14 +348,6 @@ impl Problem for Passive {
             Err(_) => vec![],
         }
     }
-    fn shown(&self, case: &FitCase) -> Shown {
-        Shown {
-            y_label: "P_pas [kPa]",
-            data: case.data.points(),
-            data_label: case.label.clone(),
-            reference_label: "scene's material",
-        }
-    }
 }
 
 /// The active curve (eq. (8)).
@@ -373,18 +369,17 @@ impl ActiveCurveFit {
 }
 
 impl Problem for ActiveCurveFit {
-    fn kind(&self) -> FitKind {
-        FitKind::ActiveCurve
-    }
-    fn names(&self) -> Vec<&'static str> {
-        CURVE_PARAMETERS.to_vec()
-    }
-    fn values(&self) -> Vec<f64> {
+    fn model(&self) -> Model {
         let c = &self.curve;
-        vec![c.lambda_min(), c.lambda_opt(), c.k(), c.p_opt()]
-    }
-    fn default_free(&self) -> Vec<&'static str> {
-        CURVE_PARAMETERS[..3].to_vec()
+        Model {
+            kind: FitKind::ActiveCurve,
+            names: CURVE_PARAMETERS.to_vec(),
+            values: vec![c.lambda_min(), c.lambda_opt(), c.k(), c.p_opt()],
+            default_free: CURVE_PARAMETERS[..3].to_vec(),
+            y_label: "P_act [kPa]",
+            reference_label: "scene's active curve",
+            unit: "kPa",
+        }
     }
     fn cases(
         &self,
@@ -409,7 +404,11 @@ impl Problem for ActiveCurveFit {
             })
         })?;
         Ok((
-            vec![case("synthetic active curve", data, Some(self.values()))],
+            vec![case(
+                "synthetic active curve",
+                data,
+                Some(self.model().values),
+            )],
             format!(
                 "the scene's active curve ([activation]){}",
                 source.noise_text
@@ -426,16 +425,14 @@ impl Problem for ActiveCurveFit {
             Err(_) => vec![],
         }
     }
-    fn shown(&self, case: &FitCase) -> Shown {
-        Shown {
-            y_label: "P_act [kPa]",
-            data: self.active(case).map(|d| d.points()).unwrap_or_default(),
-            data_label: match self.stress {
+    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
+        (
+            self.active(case).map(|d| d.points()).unwrap_or_default(),
+            match self.stress {
                 StressKind::Active => case.label.clone(),
                 StressKind::Total => format!("{} − P_pas", case.label),
             },
-            reference_label: "scene's active curve",
-        }
+        )
     }
 }
 
@@ -448,18 +445,20 @@ struct ExplicitLawFit {
 }
 
 impl Problem for ExplicitLawFit {
-    fn kind(&self) -> FitKind {
-        FitKind::ExplicitLaw
-    }
-    fn names(&self) -> Vec<&'static str> {
-        vec!["a", "b"]
-    }
-    fn values(&self) -> Vec<f64> {
+    fn model(&self) -> Model {
         let (a, b) = ExplicitLaw::paper().coefficients();
-        vec![a, b]
-    }
-    fn default_free(&self) -> Vec<&'static str> {
-        self.names()
+        Model {
+            kind: FitKind::ExplicitLaw,
+            names: vec!["a", "b"],
+            values: vec![a, b],
+            default_free: vec!["a", "b"],
+            y_label: "activation γ [-]",
+            reference_label: "chapter's (a, b)",
+            unit: match self.residual {
+                ExplicitTarget::Stress => "kPa",
+                ExplicitTarget::Activation => "-",
+            },
+        }
     }
     fn cases(
         &self,
@@ -491,7 +490,7 @@ impl Problem for ExplicitLawFit {
                 data: Data::new(lambdas.to_vec(), vec![0.0; lambdas.len()])
                     .map_err(|e| SpecError::new("stretch", "", e.to_string()))?,
                 damage: Some(d),
-                reference: Some(self.values()),
+                reference: Some(self.model().values),
             });
         }
         let residual = match self.residual {
@@ -530,21 +529,13 @@ impl Problem for ExplicitLawFit {
             Err(_) => vec![],
         }
     }
-    fn shown(&self, case: &FitCase) -> Shown {
+    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
         let implicit = ImplicitLaw::new(self.energy, self.curve);
         let d = case.damage.unwrap_or(0.0);
-        Shown {
-            y_label: "activation γ [-]",
-            data: sample(case.data.lambda(), |l| Ok(implicit.evaluate(l, d)?.gamma)),
-            data_label: "implicit γ (eq. (13))".into(),
-            reference_label: "chapter's (a, b)",
-        }
-    }
-    fn unit(&self) -> &'static str {
-        match self.residual {
-            ExplicitTarget::Stress => "kPa",
-            ExplicitTarget::Activation => "-",
-        }
+        (
+            sample(case.data.lambda(), |l| Ok(implicit.evaluate(l, d)?.gamma)),
+            "implicit γ (eq. (13))".into(),
+        )
     }
 }
 
@@ -556,17 +547,16 @@ struct DamageFit {
 }
 
 impl Problem for DamageFit {
-    fn kind(&self) -> FitKind {
-        FitKind::Damage
-    }
-    fn names(&self) -> Vec<&'static str> {
-        vec!["d"]
-    }
-    fn values(&self) -> Vec<f64> {
-        vec![0.0]
-    }
-    fn default_free(&self) -> Vec<&'static str> {
-        self.names()
+    fn model(&self) -> Model {
+        Model {
+            kind: FitKind::Damage,
+            names: vec!["d"],
+            values: vec![0.0],
+            default_free: vec!["d"],
+            y_label: "P_total [kPa]",
+            reference_label: "healthy muscle (d = 0)",
+            unit: "kPa",
+        }
     }
     fn cases(
         &self,
@@ -615,14 +605,6 @@ impl Problem for DamageFit {
             Ok(along_fibres(&passive, l)?.stress + (1.0 - d) * self.curve.value(l))
         })
     }
-    fn shown(&self, case: &FitCase) -> Shown {
-        Shown {
-            y_label: "P_total [kPa]",
-            data: case.data.points(),
-            data_label: case.label.clone(),
-            reference_label: "healthy muscle (d = 0)",
-        }
-    }
 }
 
 /// A validated fit study.
@@ -638,18 +620,29 @@ pub struct FitStudy {
     pub setup: FitSetup,
     /// Names of the free parameters (resolved).
     pub free: Vec<String>,
-    /// The model that is fitted.
+    /// What is fitted: parameters and labels.
+    pub model: Model,
+    /// How it is fitted.
     pub problem: Arc<dyn Problem>,
 }
 
 impl PartialEq for FitStudy {
     fn eq(&self, other: &Self) -> bool {
-        self.name == other.name
-            && self.source == other.source
-            && self.cases == other.cases
-            && self.setup == other.setup
-            && self.free == other.free
-            && self.problem.kind() == other.problem.kind()
+        (
+            &self.name,
+            &self.source,
+            &self.cases,
+            &self.setup,
+            &self.free,
+            &self.model,
+        ) == (
+            &other.name,
+            &other.source,
+            &other.cases,
+            &other.setup,
+            &other.free,
+            &other.model,
+        )
     }
 }
 
@@ -665,8 +658,49 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
         ));
     };
     check_keys(spec, kind)?;
+    let (options, mut source) = solver(spec, d.base)?;
+    let problem = problem(spec, kind, d)?;
+    let model = problem.model();
+    let free = free_parameters(spec, &model.names, &model.default_free)?;
+    let setup = setup(spec, &free, options)?;
+    let (cases, source) = problem.cases(spec, stretches.as_deref(), &mut source)?;
+    enough_points(spec, kind, &cases, free.len())?;
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| format!("fit {}", kind.name()));
+    let resolved = FitSpec {
+        name: Some(name.clone()),
+        free: Some(free.clone()),
+        method: Some(options.method),
+        max_iterations: Some(options.max_iterations as i64),
+        reference: spec
+            .reference
+            .as_ref()
+            .map(|r| r.build().map(|e| EnergySpec::written(&e)))
+            .transpose()
+            .map_err(|e| e.within("reference"))?,
+        direction: (kind == FitKind::Passive).then(|| spec.direction.unwrap_or_default()),
+        stress: (kind == FitKind::ActiveCurve).then(|| spec.stress.unwrap_or_default()),
+        residual: (kind == FitKind::ExplicitLaw).then(|| spec.residual.unwrap_or_default()),
+        damage: (kind == FitKind::ExplicitLaw)
+            .then(|| cases.iter().filter_map(|c| c.damage).collect()),
+        ..spec.clone()
+    };
+    let study = FitStudy {
+        name,
+        source,
+        cases,
+        setup,
+        free,
+        model,
+        problem,
+    };
+    Ok((study, resolved))
+}
 
-    // Solver settings.
+/// The solver settings and the noise of synthetic data, checked.
+fn solver<'a>(spec: &FitSpec, base: &'a Path) -> Result<(FitOptions, DataSource<'a>), SpecError> {
     let noise = spec.noise.unwrap_or(0.0);
     if !(noise.is_finite() && noise >= 0.0) {
         return Err(SpecError::new(
@@ -687,27 +721,40 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
             "must be an integer in [1, 100000]",
         ));
     }
-    let method = spec.method.unwrap_or_default();
     let options = FitOptions {
-        method,
+        method: spec.method.unwrap_or_default(),
         max_iterations: max_iterations as u64,
         ..FitOptions::default()
     };
+    let source = DataSource {
+        base,
+        noise: (noise > 0.0).then(|| (noise, Sampler::new(seed as u64))),
+        noise_text: if noise > 0.0 {
+            format!(", Gaussian noise σ = {noise} kPa (seed {seed})")
+        } else {
+            String::new()
+        },
+    };
+    Ok((options, source))
+}
 
-    let problem: Arc<dyn Problem> = match kind {
+/// The problem of a fit of `kind` on the scene's material and curve.
+fn problem(spec: &FitSpec, kind: FitKind, d: &Defaults) -> Result<Arc<dyn Problem>, SpecError> {
+    let (energy, curve) = (d.models.energy.clone(), d.models.curve);
+    Ok(match kind {
         FitKind::Passive => Arc::new(Passive {
-            energy: d.models.energy.clone(),
+            energy,
             direction: spec.direction.unwrap_or_default(),
         }),
         FitKind::ActiveCurve => Arc::new(ActiveCurveFit {
-            energy: d.models.energy.clone(),
-            curve: d.models.curve,
+            energy,
+            curve,
             stress: spec.stress.unwrap_or_default(),
         }),
-        FitKind::ExplicitLaw => match &d.models.energy {
+        FitKind::ExplicitLaw => match energy {
             Energy::GiantesioMusesti(gm) => Arc::new(ExplicitLawFit {
-                energy: *gm,
-                curve: d.models.curve,
+                energy: gm,
+                curve,
                 residual: spec.residual.unwrap_or_default(),
             }),
             _ => {
@@ -718,80 +765,32 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
                 ))
             }
         },
-        FitKind::Damage => Arc::new(DamageFit {
-            energy: d.models.energy.clone(),
-            curve: d.models.curve,
-        }),
+        FitKind::Damage => Arc::new(DamageFit { energy, curve }),
+    })
+}
+
+/// Every data set has more points than free parameters.
+fn enough_points(
+    spec: &FitSpec,
+    kind: FitKind,
+    cases: &[FitCase],
+    free: usize,
+) -> Result<(), SpecError> {
+    let Some(c) = cases.iter().find(|c| c.data.len() <= free) else {
+        return Ok(());
     };
-
-    let free = free_parameters(spec, &problem.names(), &problem.default_free())?;
-    let setup = setup(spec, &free, options)?;
-
-    let mut source = DataSource {
-        base: d.base,
-        noise: (noise > 0.0).then(|| (noise, Sampler::new(seed as u64))),
-        noise_text: if noise > 0.0 {
-            format!(", Gaussian noise σ = {noise} kPa (seed {seed})")
-        } else {
-            String::new()
-        },
+    let (key, what) = match &spec.data {
+        Some(file) if kind != FitKind::ExplicitLaw => ("data", format!("data file {file:?}")),
+        _ => ("stretch", "stretch".to_string()),
     };
-    let (cases, source) = problem.cases(spec, stretches.as_deref(), &mut source)?;
-    for c in &cases {
-        if c.data.len() <= free.len() {
-            let (key, what) = match &spec.data {
-                Some(file) if kind != FitKind::ExplicitLaw => {
-                    ("data", format!("data file {file:?}"))
-                }
-                _ => ("stretch", "stretch".to_string()),
-            };
-            return Err(SpecError::new(
-                key,
-                format!("{} points", c.data.len()),
-                format!(
-                    "{what}: {} points for {} free parameters: need at least {}",
-                    c.data.len(),
-                    free.len(),
-                    free.len() + 1
-                ),
-            ));
-        }
-    }
-
-    let name = spec
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("fit {}", kind.name()));
-    let mut resolved = spec.clone();
-    resolved.name = Some(name.clone());
-    resolved.free = Some(free.clone());
-    resolved.method = Some(method);
-    resolved.max_iterations = Some(max_iterations);
-    resolved.reference = spec
-        .reference
-        .as_ref()
-        .map(|r| r.build().map(|e| EnergySpec::written(&e)))
-        .transpose()
-        .map_err(|e| e.within("reference"))?;
-    match kind {
-        FitKind::Passive => resolved.direction = Some(spec.direction.unwrap_or_default()),
-        FitKind::ActiveCurve => resolved.stress = Some(spec.stress.unwrap_or_default()),
-        FitKind::ExplicitLaw => {
-            resolved.residual = Some(spec.residual.unwrap_or_default());
-            resolved.damage = Some(cases.iter().filter_map(|c| c.damage).collect());
-        }
-        FitKind::Damage => {}
-    }
-    Ok((
-        FitStudy {
-            name,
-            source,
-            cases,
-            setup,
-            free,
-            problem,
-        },
-        resolved,
+    Err(SpecError::new(
+        key,
+        format!("{} points", c.data.len()),
+        format!(
+            "{what}: {} points for {free} free parameters: need at least {}",
+            c.data.len(),
+            free + 1
+        ),
     ))
 }
 
@@ -985,10 +984,9 @@ impl FitStudy {
 
     /// All parameters of the model with the free ones at `free_values`.
     fn assemble(&self, free_values: &[f64]) -> Vec<f64> {
-        let names = self.problem.names();
-        let mut all = self.problem.values();
+        let mut all = self.model.values.clone();
         for (name, x) in self.free.iter().zip(free_values) {
-            if let Some(i) = names.iter().position(|n| n == name) {
+            if let Some(i) = self.model.names.iter().position(|n| n == name) {
                 all[i] = *x;
             }
         }
@@ -1005,8 +1003,6 @@ impl FitStudy {
             self.cases.len(),
             self.source
         ));
-        let problem = &*self.problem;
-        let names = problem.names();
         let mut outcomes = Vec::new();
         let mut failures = Vec::new();
         let mut fail = |message: String| {
@@ -1016,72 +1012,22 @@ impl FitStudy {
             })
         };
         for case in &self.cases {
-            let (report, extra, converged) = match problem.fit(case, &self.setup) {
-                Ok((report, extra)) => (report, extra, true),
+            match self.problem.fit(case, &self.setup) {
+                Ok((report, extra)) => outcomes.push(self.outcome(case, report, extra, true)),
                 Err(FitError::NotConverged { reason, best }) => {
                     fail(format!(
                         "{}: did not converge ({reason}); best point found {:?} = {:?} (reported, NOT a solution)",
                         case.label, best.names, best.values
                     ));
-                    (*best, vec![], false)
+                    outcomes.push(self.outcome(case, *best, vec![], false));
                 }
-                Err(e) => {
-                    fail(format!("{}: fit failed: {e}", case.label));
-                    continue;
-                }
-            };
-            let grid = dense(&case.data);
-            let model =
-                |free_values: &[f64]| problem.curve(&self.assemble(free_values), case, &grid);
-            // The reference values of the free parameters.
-            let reference: Vec<Option<f64>> = match &case.reference {
-                Some(all) => self
-                    .free
-                    .iter()
-                    .map(|f| names.iter().position(|n| n == f).map(|i| all[i]))
-                    .collect(),
-                None => vec![None; self.free.len()],
-            };
-            // The dashed curve: the model at the reference values (the damage fit's: d = 0).
-            let start: Option<Vec<f64>> = match problem.kind() {
-                FitKind::Damage => Some(problem.values()),
-                _ => reference.iter().copied().collect(),
-            };
-            let shown = problem.shown(case);
-            outcomes.push(FitOutcome {
-                kind: problem.kind(),
-                case: case.label.clone(),
-                source: self.source.clone(),
-                points: case.data.len(),
-                names: report.names.clone(),
-                values: report.values.clone(),
-                standard_errors: report.standard_errors.iter().map(|&x| finite(x)).collect(),
-                reference,
-                correlation: report
-                    .correlation
-                    .iter()
-                    .map(|row| row.iter().map(|&x| finite(x)).collect())
-                    .collect(),
-                rms: report.rms,
-                unit: problem.unit(),
-                residual_norm: report.residual_norm,
-                iterations: report.iterations,
-                converged,
-                termination: report.termination.clone(),
-                extra,
-                plot: FitCurves {
-                    y_label: shown.y_label.into(),
-                    data: shown.data,
-                    data_label: shown.data_label,
-                    fitted: model(&report.values),
-                    start: start.map(|s| (shown.reference_label.to_string(), model(&s))),
-                },
-            });
+                Err(e) => fail(format!("{}: fit failed: {e}", case.label)),
+            }
         }
         let converged = outcomes.iter().filter(|f| f.converged).count();
         let mut details = vec![format!("data: {}", self.source)];
-        for f in &outcomes {
-            details.push(format!(
+        details.extend(outcomes.iter().map(|f| {
+            format!(
                 "{}: {} points, {} iterations, RMS {:.3e} {}, {}",
                 f.case,
                 f.points,
@@ -1093,8 +1039,8 @@ impl FitStudy {
                 } else {
                     "NOT converged"
                 }
-            ));
-        }
+            )
+        }));
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Fit,
@@ -1106,5 +1052,62 @@ impl FitStudy {
             failures,
             result: StudyResult::Fit(outcomes),
         })
+    }
+
+    /// The outcome of `case` from the fit's `report` (converged or the best point found).
+    fn outcome(
+        &self,
+        case: &FitCase,
+        report: FitReport,
+        extra: Vec<String>,
+        converged: bool,
+    ) -> FitOutcome {
+        let grid = dense(&case.data);
+        let curve =
+            |free_values: &[f64]| self.problem.curve(&self.assemble(free_values), case, &grid);
+        // The reference values of the free parameters.
+        let reference: Vec<Option<f64>> = match &case.reference {
+            Some(all) => self
+                .free
+                .iter()
+                .map(|f| self.model.names.iter().position(|n| n == f).map(|i| all[i]))
+                .collect(),
+            None => vec![None; self.free.len()],
+        };
+        // The dashed curve: the model at the reference values (the damage fit's: d = 0).
+        let start: Option<Vec<f64>> = match self.model.kind {
+            FitKind::Damage => Some(self.model.values.clone()),
+            _ => reference.iter().copied().collect(),
+        };
+        let (data, data_label) = self.problem.shown(case);
+        FitOutcome {
+            kind: self.model.kind,
+            case: case.label.clone(),
+            source: self.source.clone(),
+            points: case.data.len(),
+            standard_errors: report.standard_errors.iter().map(|&x| finite(x)).collect(),
+            reference,
+            correlation: report
+                .correlation
+                .iter()
+                .map(|row| row.iter().map(|&x| finite(x)).collect())
+                .collect(),
+            rms: report.rms,
+            unit: self.model.unit,
+            residual_norm: report.residual_norm,
+            iterations: report.iterations,
+            converged,
+            extra,
+            plot: FitCurves {
+                y_label: self.model.y_label.into(),
+                data,
+                data_label,
+                fitted: curve(&report.values),
+                start: start.map(|s| (self.model.reference_label.to_string(), curve(&s))),
+            },
+            names: report.names,
+            values: report.values,
+            termination: report.termination,
+        }
     }
 }

@@ -175,6 +175,46 @@ pub struct UniaxialResult {
 }
 
 impl UniaxialStudy {
+    /// The points of `muscle` at the study's stretches, with the (P_pas, (1 − d) P_act) of
+    /// `target` where it has them; stretches that cannot be computed are counted in a message.
+    fn points(
+        &self,
+        muscle: &Muscle<Energy>,
+        target: impl Fn(f64) -> crate::Result<Option<(f64, f64)>>,
+        ctx: &RunContext,
+    ) -> (Vec<CurvePoint>, Option<String>) {
+        let mut points = Vec::with_capacity(self.stretches.len());
+        let mut failed = 0usize;
+        let mut first: Option<(f64, String)> = None;
+        for &lambda in &self.stretches {
+            ctx.progress.advance(1);
+            let point = self.direction.point(muscle, lambda).and_then(|p| {
+                let extra = target(lambda)?;
+                Ok(CurvePoint {
+                    lambda,
+                    gamma: p.gamma,
+                    stress: p.stress,
+                    passive: extra.map(|e| e.0),
+                    active_target: extra.map(|e| e.1),
+                })
+            });
+            match point {
+                Ok(p) => points.push(p),
+                Err(e) => {
+                    failed += 1;
+                    first.get_or_insert((lambda, e.to_string()));
+                }
+            }
+        }
+        let message = first.map(|(lambda, why)| {
+            format!(
+                "{failed} of {} stretches failed; first at lambda = {lambda}: {why}",
+                self.stretches.len()
+            )
+        });
+        (points, message)
+    }
+
     /// One line for `check`.
     pub fn describe(&self) -> String {
         format!(
@@ -190,7 +230,6 @@ impl UniaxialStudy {
     /// Computes every curve (in parallel). A stretch that cannot be computed is counted in a
     /// failure, not dropped silently; a model that cannot be built is an error.
     pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
-        let material = models.energy.name().to_string();
         let mut curves: Vec<(CurveModel, &Energy)> = Vec::new();
         if self.passive {
             curves.push((CurveModel::Passive, &models.energy));
@@ -206,76 +245,15 @@ impl UniaxialStudy {
                 .iter()
                 .map(|&m| (CurveModel::Active(m), &models.energy)),
         );
-        let label = |model: &CurveModel, e: &Energy| match model {
-            CurveModel::Passive => format!("{}, passive", e.name()),
-            CurveModel::Constant(g) => format!("{material}, constant gamma = {g}"),
-            CurveModel::Active(m) => models.label(m),
-        };
         for (model, e) in &curves {
             ctx.progress
-                .log(&format!("{}: {}", self.name, label(model, e)));
+                .log(&format!("{}: {}", self.name, label(models, model, e)));
         }
-        let passive = models.passive();
         ctx.progress
             .start(&self.name, curves.len() * self.stretches.len());
         let computed: Vec<Result<(Curve, Option<Failure>), AppError>> = curves
             .par_iter()
-            .map(|&(model, energy)| {
-                let muscle = match model {
-                    CurveModel::Passive => Muscle::passive(energy.clone()),
-                    CurveModel::Constant(g) => models
-                        .constant(g)
-                        .map_err(|e| AppError::from(e).within(&self.name))?,
-                    CurveModel::Active(m) => models.muscle(m).map_err(|e| {
-                        AppError::from(e).within(format!("{}: {}", self.name, models.label(&m)))
-                    })?,
-                };
-                let mut points = Vec::with_capacity(self.stretches.len());
-                let mut failed = 0usize;
-                let mut first: Option<(f64, String)> = None;
-                for &lambda in &self.stretches {
-                    ctx.progress.advance(1);
-                    let point = self.direction.point(&muscle, lambda).and_then(|p| {
-                        let extra = match (model, self.direction) {
-                            (CurveModel::Active(m), Direction::Along) => Some((
-                                self.direction.point(&passive, lambda)?.stress,
-                                (1.0 - m.damage) * models.curve.value(lambda),
-                            )),
-                            _ => None,
-                        };
-                        Ok(CurvePoint {
-                            lambda,
-                            gamma: p.gamma,
-                            stress: p.stress,
-                            passive: extra.map(|e| e.0),
-                            active_target: extra.map(|e| e.1),
-                        })
-                    });
-                    match point {
-                        Ok(p) => points.push(p),
-                        Err(e) => {
-                            failed += 1;
-                            first.get_or_insert((lambda, e.to_string()));
-                        }
-                    }
-                }
-                let failure = first.map(|(lambda, why)| Failure {
-                    model: match model {
-                        CurveModel::Constant(g) => format!("constant gamma = {g}"),
-                        _ => label(&model, energy),
-                    },
-                    message: format!(
-                        "{failed} of {} stretches failed; first at lambda = {lambda}: {why}",
-                        self.stretches.len()
-                    ),
-                });
-                let curve = Curve {
-                    model,
-                    energy: energy.name().to_string(),
-                    points,
-                };
-                Ok((curve, failure))
-            })
+            .map(|&(model, energy)| self.curve(models, model, energy, ctx))
             .collect();
         ctx.progress.finish();
         let mut result = UniaxialResult {
@@ -307,5 +285,58 @@ impl UniaxialStudy {
             failures,
             result: StudyResult::Uniaxial(result),
         })
+    }
+
+    /// The curve of `model` on `energy`, and the failure of the stretches it could not compute.
+    fn curve(
+        &self,
+        models: &Models,
+        model: CurveModel,
+        energy: &Energy,
+        ctx: &RunContext,
+    ) -> Result<(Curve, Option<Failure>), AppError> {
+        let muscle = match model {
+            CurveModel::Passive => Muscle::passive(energy.clone()),
+            CurveModel::Constant(g) => models
+                .constant(g)
+                .map_err(|e| AppError::from(e).within(&self.name))?,
+            CurveModel::Active(m) => models.muscle(m).map_err(|e| {
+                AppError::from(e).within(format!("{}: {}", self.name, models.label(&m)))
+            })?,
+        };
+        let passive = models.passive();
+        // Along the fibres an active curve is shown with its target P_pas + (1 − d) P_act.
+        let target = |lambda: f64| -> crate::Result<Option<(f64, f64)>> {
+            Ok(match (model, self.direction) {
+                (CurveModel::Active(m), Direction::Along) => Some((
+                    self.direction.point(&passive, lambda)?.stress,
+                    (1.0 - m.damage) * models.curve.value(lambda),
+                )),
+                _ => None,
+            })
+        };
+        let (points, failure) = self.points(&muscle, target, ctx);
+        let failure = failure.map(|message| Failure {
+            model: match model {
+                CurveModel::Constant(g) => format!("constant gamma = {g}"),
+                _ => label(models, &model, energy),
+            },
+            message,
+        });
+        let curve = Curve {
+            model,
+            energy: energy.name().to_string(),
+            points,
+        };
+        Ok((curve, failure))
+    }
+}
+
+/// A curve in words: `giantesio-musesti, passive`, `…, constant gamma = 0.2`, or the model.
+fn label(models: &Models, model: &CurveModel, energy: &Energy) -> String {
+    match model {
+        CurveModel::Passive => format!("{}, passive", energy.name()),
+        CurveModel::Constant(g) => format!("{}, constant gamma = {g}", models.energy.name()),
+        CurveModel::Active(m) => models.label(m),
     }
 }

@@ -191,6 +191,28 @@ impl Resolved {
 /// P(λ) \[kPa\] and γ(λ) [-] along a 0D sweep.
 type Curves = (Vec<f64>, Vec<f64>);
 
+/// Where the stress error of curves `(p, g)` against `(p_ref, g_ref)` is largest, and how big
+/// γ's error is there, in words.
+fn largest_error(stretches: &[f64], (p, g): Curves2, (p_ref, g_ref): Curves2) -> String {
+    let (i, _) = p
+        .iter()
+        .zip(p_ref)
+        .map(|(a, b)| (a - b).abs())
+        .enumerate()
+        .fold((0, 0.0), |acc, (i, d)| if d > acc.1 { (i, d) } else { acc });
+    let dg = (g[i] - g_ref[i]).abs();
+    format!(
+        "largest P error at λ = {:.2}: |Δγ| = {:.2e} there gives |ΔP| = {:.2} kPa ({:.1} kPa per 0.01 of γ)",
+        stretches[i],
+        dg,
+        (p[i] - p_ref[i]).abs(),
+        (p[i] - p_ref[i]).abs() / dg.max(1e-300) * 0.01
+    )
+}
+
+/// P(λ) and γ(λ) of a 0D sweep, borrowed.
+type Curves2<'a> = (&'a [f64], &'a [f64]);
+
 /// Activation law, 0D along the fibres.
 pub(super) fn activation_law(
     models: &Models,
@@ -249,21 +271,7 @@ pub(super) fn activation_law(
         let ge = curve_error(&g_ref, &g).max_abs;
         r.gamma_error = Some(ge);
         if law == LawKind::Explicit {
-            // Where is the stress error largest, and how big is γ's error there?
-            let (i, _) = p
-                .iter()
-                .zip(&p_ref)
-                .map(|(a, b)| (a - b).abs())
-                .enumerate()
-                .fold((0, 0.0), |acc, (i, d)| if d > acc.1 { (i, d) } else { acc });
-            let dg = (g[i] - g_ref[i]).abs();
-            r.note = format!(
-                "largest P error at λ = {:.2}: |Δγ| = {:.2e} there gives |ΔP| = {:.2} kPa ({:.1} kPa per 0.01 of γ)",
-                stretches[i],
-                dg,
-                (p[i] - p_ref[i]).abs(),
-                (p[i] - p_ref[i]).abs() / dg.max(1e-300) * 0.01
-            );
+            r.note = largest_error(stretches, (&p, &g), (&p_ref, &g_ref));
             findings.push(format!(
                 "Explicit law (0D, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
                 stretches.len(),
