@@ -4,9 +4,9 @@
 //!
 //! `cargo run --release --manifest-path python/Cargo.toml --example per_point -- N LAW`
 
+use _native::model::{muscle, ModelSpec};
 use activemuscle::invariants::{Kinematics, FULL};
 use activemuscle::response::Order;
-use _native::model::{muscle, ModelSpec};
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -19,7 +19,11 @@ fn deformation(p: usize, n: usize) -> Matrix3<f64> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let n: usize = args.get(1).map(|s| s.parse()).transpose()?.unwrap_or(100_000);
+    let n: usize = args
+        .get(1)
+        .map(|s| s.parse())
+        .transpose()?
+        .unwrap_or(100_000);
     let law = args.get(2).cloned().unwrap_or_else(|| "explicit".into());
     let material = muscle(&ModelSpec {
         energy: "giantesio-musesti".into(),
@@ -34,7 +38,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let f: Vec<Matrix3<f64>> = (0..n).map(|p| deformation(p, n)).collect();
     let run = |out: &mut [f64], p: usize| -> Result<(), activemuscle::Error> {
         let r = material.respond(&Kinematics::new(&f[p], &m)?, Order::Tangent, &FULL)?;
-        let (s, t, d) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default(), r.dstress_dgamma.unwrap_or_default());
+        let (s, t, d) = (
+            r.stress.unwrap_or_default(),
+            r.tangent.unwrap_or_default(),
+            r.dstress_dgamma.unwrap_or_default(),
+        );
         out[..9].copy_from_slice(s.as_slice());
         out[9..90].copy_from_slice(t.as_slice());
         out[90..99].copy_from_slice(d.as_slice());
@@ -47,13 +55,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (p, o) in out.chunks_mut(100).enumerate() {
             run(o, p)?;
         }
-        println!("rust_serial_ns {:.1}", start.elapsed().as_secs_f64() * 1e9 / n as f64);
+        println!(
+            "rust_serial_ns {:.1}",
+            start.elapsed().as_secs_f64() * 1e9 / n as f64
+        );
         let mut out = vec![0.0; 100 * n];
         let start = Instant::now();
         out.par_chunks_mut(100)
             .enumerate()
             .try_for_each(|(p, o)| run(o, p))?;
-        println!("rust_parallel_ns {:.1}", start.elapsed().as_secs_f64() * 1e9 / n as f64);
+        println!(
+            "rust_parallel_ns {:.1}",
+            start.elapsed().as_secs_f64() * 1e9 / n as f64
+        );
     }
     Ok(())
 }

@@ -72,8 +72,8 @@ impl<const C: usize> Strided<C> {
     #[inline(always)]
     fn offset(&self, p: usize, c: [usize; C]) -> isize {
         let mut o = p as isize * self.point;
-        for k in 0..C {
-            o += c[k] as isize * self.comp[k];
+        for (ck, sk) in c.iter().zip(&self.comp) {
+            o += *ck as isize * sk;
         }
         o
     }
@@ -117,14 +117,15 @@ fn point_stride(shape: &[usize], strides: &[isize], order: PointOrder) -> Option
         .then_some(fastest)
 }
 
-/// `view`'s `C` component axes and its point axes, split.
-fn split<'a, const C: usize>(
-    view: &'a ArrayViewD<f64>,
+/// The `C` component axes of an array of `shape` and `strides` (elements), and the shape and
+/// strides of its point axes.
+fn split<const C: usize>(
+    shape: &[usize],
+    strides: &[isize],
     convention: Convention,
 ) -> (std::ops::Range<usize>, Vec<usize>, Vec<isize>) {
-    let comps = convention.component_axes(view.ndim(), C);
-    let (shape, strides) = (view.shape(), view.strides());
-    let points = (0..view.ndim()).filter(|a| !comps.contains(a));
+    let comps = convention.component_axes(shape.len(), C);
+    let points = (0..shape.len()).filter(|a| !comps.contains(a));
     let point_shape = points.clone().map(|a| shape[a]).collect();
     let point_strides = points.map(|a| strides[a]).collect();
     (comps, point_shape, point_strides)
@@ -146,7 +147,7 @@ pub fn input<const C: usize>(
     convention: Convention,
     order: Option<PointOrder>,
 ) -> (Input<C>, PointOrder) {
-    let (comps, point_shape, point_strides) = split::<C>(view, convention);
+    let (comps, point_shape, point_strides) = split::<C>(view.shape(), view.strides(), convention);
     let comp: [isize; C] = std::array::from_fn(|k| view.strides()[comps.start + k]);
     let orders: &[PointOrder] = match order {
         Some(o) => &[o][..],
@@ -202,10 +203,7 @@ pub fn output<const C: usize>(
     order: PointOrder,
 ) -> Strided<C> {
     let strides: Vec<isize> = strides_bytes.iter().map(|s| s / 8).collect();
-    let comps = convention.component_axes(shape.len(), C);
-    let points: Vec<usize> = (0..shape.len()).filter(|a| !comps.contains(a)).collect();
-    let point_shape: Vec<usize> = points.iter().map(|&a| shape[a]).collect();
-    let point_strides: Vec<isize> = points.iter().map(|&a| strides[a]).collect();
+    let (comps, point_shape, point_strides) = split::<C>(shape, &strides, convention);
     Strided {
         ptr,
         comp: std::array::from_fn(|k| strides[comps.start + k]),
@@ -243,8 +241,10 @@ mod tests {
             point_stride(&[4, 5], &[9, 36], PointOrder::Fortran),
             Some(9)
         );
-        // Every other point of each axis: no single stride.
-        assert_eq!(point_stride(&[4, 5], &[10, 2], PointOrder::C), None);
+        // Every other column of a (4, 10) array still flattens (stride 2); every other row and
+        // column of an (8, 10) array does not.
+        assert_eq!(point_stride(&[4, 5], &[10, 2], PointOrder::C), Some(2));
+        assert_eq!(point_stride(&[4, 5], &[20, 2], PointOrder::C), None);
         assert_eq!(point_stride(&[], &[], PointOrder::C), Some(0));
         assert_eq!(point_stride(&[1, 7], &[99, 3], PointOrder::C), Some(3));
     }

@@ -467,11 +467,7 @@ impl Material {
 
     /// Homogeneous uniaxial tension along the fibres at each stretch λ (incompressible, lateral
     /// faces traction-free): a dict of arrays "stretch", "stress" (nominal P [kPa]), "gamma".
-    fn uniaxial<'py>(
-        &self,
-        py: Python<'py>,
-        stretches: Vec<f64>,
-    ) -> PyResult<Bound<'py, PyDict>> {
+    fn uniaxial<'py>(&self, py: Python<'py>, stretches: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
         let mut stress = Vec::with_capacity(stretches.len());
         let mut gamma = Vec::with_capacity(stretches.len());
         for &l in &stretches {

@@ -185,9 +185,7 @@ pub fn muscle(spec: &ModelSpec) -> Result<Muscle<Energy>, ModelError> {
             Law::Constant(ConstantLaw::new(gamma)?)
         }
         "implicit" => Law::Implicit(ImplicitLaw::new(energy.clone(), curve)),
-        "energy" => {
-            Law::Energy(EnergyLaw::new(energy.clone(), curve).below_minimum(below_minimum))
-        }
+        "energy" => Law::Energy(EnergyLaw::new(energy.clone(), curve).below_minimum(below_minimum)),
         "explicit" => {
             let Energy::GiantesioMusesti(gm) = energy else {
                 return Err(choice(
