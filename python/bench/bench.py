@@ -81,7 +81,7 @@ def main():
             keep("python_leading_parallel", best(lambda: material.evaluate(Fl, layout="leading")) / n * 1e9)
             keep("python_leading_serial", best(lambda: material.evaluate(Fl, layout="leading", parallel=False)) / n * 1e9)
             if neo is not None:
-                x = [F, np.zeros((0, n))]
+                x = [F[..., None], np.zeros((0, n, 1))]  # felupe wants (3, 3, q, c)
                 keep("felupe_neohooke_P_and_A", best(lambda: (neo.gradient(x), neo.hessian(x))) / n * 1e9)
         for key in sorted(res):
             ref = res["rust_parallel_ns"] if "parallel" in key else res["rust_serial_ns"]

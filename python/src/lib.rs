@@ -11,6 +11,7 @@
 mod layout;
 pub mod model;
 
+use activemuscle::active::Law;
 use activemuscle::energy::Energy;
 use activemuscle::fit::Parametric;
 use activemuscle::invariants::{Kinematics, FULL};
@@ -263,10 +264,12 @@ impl Material {
         )
     }
 
-    /// Whether the tangent is major-symmetric (every coupling but the exact frozen one).
+    /// Whether the tangent is major-symmetric: every coupling but the exact frozen one, and any
+    /// coupling of a law with g′ = 0 (passive, constant).
     #[getter]
     fn symmetric_tangent(&self) -> bool {
-        self.muscle.coupling().symmetric_tangent() || self.spec.law == "passive"
+        self.muscle.coupling().symmetric_tangent()
+            || matches!(self.muscle.law(), Law::Passive | Law::Constant(_))
     }
 
     /// Evaluates the material at every point of a batch.
