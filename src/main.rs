@@ -1,14 +1,11 @@
 //! `activemuscle`: runs scene files (TOML) of active skeletal-muscle studies and writes the
 //! curves, the figures and a report. Without arguments it runs the chapter's whole study.
 
-use activemuscle::output::csv::{tables, to_csv};
-use activemuscle::output::figures::figures;
-use activemuscle::output::plot::{render, Figure};
-use activemuscle::output::report::{html, RunInfo};
-use activemuscle::output::Staging;
-use activemuscle::scene::run::{run, Results, RunOptions};
-use activemuscle::scene::{Scene, Study};
-use activemuscle::tradeoff::{report, TradeoffOptions};
+use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
+use activemuscle::scene::{Printing, Results, RunOptions, Scene};
+use activemuscle::studies::tradeoff::run as run_tradeoff;
+use activemuscle::studies::{Silent, StudyResult};
+use activemuscle::AppError;
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -69,76 +66,23 @@ enum Command {
     },
 }
 
-fn load(scene: Option<&Path>) -> Result<Scene, String> {
-    match scene {
-        Some(p) => Scene::load(p),
-        None => Scene::paper(),
-    }
-    .map_err(|e| format!("invalid scene: {e}"))
+fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
+    Ok(match scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::paper()?,
+    })
 }
 
-fn describe(scene: &Scene) -> Vec<String> {
-    let mut v = Vec::new();
-    for s in &scene.studies {
-        match s {
-            Study::Uniaxial(u) => v.push(format!(
-                "{}: {} stretches, {} passive curve(s), {} constant-γ curve(s), {} active model(s)",
-                u.name,
-                u.stretches.len(),
-                usize::from(u.passive) + u.compare.len(),
-                u.constant_gamma.len(),
-                u.models.len()
-            )),
-            Study::Cylinder(c) => v.push(format!(
-                "{}: {} × {} cells, {} stretches, {} FE sweep(s)",
-                c.name,
-                c.nr,
-                c.nz,
-                c.stretches.len(),
-                c.damages.len()
-            )),
-            Study::Fit(f) => v.push(format!(
-                "{}: {} fit(s) of {} parameter(s) {:?} to {}",
-                f.name,
-                f.cases.len(),
-                f.free.len(),
-                f.free,
-                f.source
-            )),
-            Study::Stability(st) => v.push(format!(
-                "{}: {} model(s) × {} stretches, {} normals",
-                st.name,
-                st.models.len() + usize::from(st.passive),
-                st.stretches.len(),
-                st.normals
-            )),
-            Study::Tradeoff(t) => v.push(format!(
-                "{}: option groups {}",
-                t.name,
-                t.options
-                    .groups
-                    .iter()
-                    .map(|g| g.key())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )),
-        }
-    }
-    v
-}
-
-fn check(path: &Path) -> Result<(), String> {
+fn check(path: &Path) -> Result<(), AppError> {
     let scene = load(Some(path))?;
-    let text = toml::to_string_pretty(&scene.resolved)
-        .map_err(|e| format!("cannot print the resolved scene: {e}"))?;
     println!(
         "# {}: valid. Resolved scene (every default written out):\n",
         scene.file
     );
-    println!("{text}");
+    println!("{}", scene.resolved_toml()?);
     println!("# What `activemuscle run` would compute:");
-    for line in describe(&scene) {
-        println!("#   {line}");
+    for study in &scene.studies {
+        println!("#   {}", study.describe());
     }
     Ok(())
 }
@@ -153,7 +97,7 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
-fn summary(results: &Results, out: &Path, wall: f64) {
+fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     println!();
     println!(
         "{:<48} {:>9} {:>7} {:>14} {:>9}",
@@ -164,51 +108,61 @@ fn summary(results: &Results, out: &Path, wall: f64) {
         println!(
             "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
             s.name,
-            s.kind,
+            s.kind.name(),
             s.models,
             format!("{}/{}", s.points, s.requested),
             s.elapsed.as_secs_f64()
         );
     }
-    for c in &results.fe_vs_0d {
-        if c.bases == "sliding" {
-            let worst = c
-                .points
-                .iter()
-                .map(|p| (p.1 - p.2).abs())
-                .fold(0.0f64, f64::max);
+    for (_, c) in results.cylinders() {
+        if c.bases != activemuscle::fem::Bases::Sliding {
+            continue;
+        }
+        for s in &c.sweeps {
             println!(
-                "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
-                c.label
+                "verification (sliding bases, {}): max |P_FE − P_0D| = {:.2e} kPa",
+                s.label,
+                s.worst_against_0d().0
             );
         }
     }
-    for n in &results.notes {
-        println!("note: {} — {}: {}", n.study, n.model, n.message);
+    for (study, f) in results.failures() {
+        println!("note: {study} — {}: {}", f.model, f.message);
     }
-    let failed = results.fits.iter().filter(|f| !f.converged).count();
+    let fits: Vec<_> = results
+        .studies
+        .iter()
+        .filter_map(|s| match &s.result {
+            StudyResult::Fit(f) => Some(f),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let failed = fits.iter().filter(|f| !f.converged).count();
     if failed > 0 {
         println!(
             "{failed} of {} fit(s) did NOT converge (best points reported in fits.csv and report.html); the run continued",
-            results.fits.len()
+            fits.len()
         );
     }
     println!(
-        "{} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
-        results.rows.len(),
+        "{rows} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
         out.display()
     );
 }
 
-fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
-    let start = Instant::now();
+fn command_line() -> String {
+    std::env::args().collect::<Vec<_>>().join(" ")
+}
+
+fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+    let started = Instant::now();
     let scene = load(scene)?;
-    let mut staging = Staging::new(out).map_err(|e| e.to_string())?;
-    let vtk_dir = staging.dir().join("vtk");
+    let mut staging = Staging::new(out)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
-        vtk_dir: Some(vtk_dir),
+        vtk_dir: Some(staging.dir().join("vtk")),
     };
     if !quiet {
         println!(
@@ -218,101 +172,30 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
             scene.file
         );
     }
-    let results = run(&scene, &options).map_err(|e| e.to_string())?;
-
-    let mut files = Vec::new();
-    staging
-        .write(
-            "curves.csv",
-            &to_csv(&results.rows).map_err(|e| e.to_string())?,
-        )
-        .map_err(|e| e.to_string())?;
-    files.push("curves.csv".to_string());
-    for (name, bytes) in tables(&results).map_err(|e| e.to_string())? {
-        staging.write(name, &bytes).map_err(|e| e.to_string())?;
-        files.push(name.to_string());
-    }
-    staging
-        .write("scene.toml", scene.source.as_bytes())
-        .map_err(|e| e.to_string())?;
-    files.push("scene.toml".to_string());
-    let mut rendered = Vec::new();
-    for f in figures(&scene, &results) {
-        let png = staging
-            .path(Path::new(&format!("{}.png", f.stem)))
-            .map_err(|e| e.to_string())?;
-        let svg = staging
-            .path(Path::new(&format!("{}.svg", f.stem)))
-            .map_err(|e| e.to_string())?;
-        render(&f, &png, &svg).map_err(|e| e.to_string())?;
-        let bytes =
-            std::fs::read(&png).map_err(|e| format!("cannot read back {}: {e}", png.display()))?;
-        files.push(format!("{}.png", f.stem));
-        files.push(format!("{}.svg", f.stem));
-        rendered.push((f, bytes));
-    }
-    for v in &results.vtk_files {
-        let rel = Path::new("vtk").join(v);
-        staging.adopt(&rel).map_err(|e| e.to_string())?;
-        files.push(rel.display().to_string());
-    }
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    if let Some(t) = &results.tradeoff {
-        let (staged, pngs) = report::stage(
-            t,
-            &mut staging,
-            &scene.title,
-            &command,
-            start.elapsed().as_secs_f64(),
-        )
-        .map_err(|e| e.to_string())?;
-        files.extend(staged);
-        for f in pngs {
-            let figure = Figure {
-                heading: format!("Speed versus accuracy: {}", f.option),
-                caption: report::caption(&f.option, &t.rows),
-                stem: f.stem,
-                panels: Vec::new(),
-            };
-            rendered.push((figure, f.png));
-        }
-    }
-    let info = RunInfo {
-        command,
-        wall: start.elapsed(),
-        version: env!("CARGO_PKG_VERSION").to_string(),
+    let results = scene.run(&options)?;
+    let meta = RunMeta {
+        command: command_line(),
+        started,
         rustc: rustc_version(),
-        files,
     };
-    let page = html(&scene, &results, &rendered, &info).map_err(|e| e.to_string())?;
-    staging
-        .write("report.html", page.as_bytes())
-        .map_err(|e| e.to_string())?;
-    staging.commit().map_err(|e| e.to_string())?;
-    summary(&results, out, start.elapsed().as_secs_f64());
+    let rows = write_run(&mut staging, &scene, &results, &meta)?;
+    staging.commit()?;
+    summary(&results, rows, out, started.elapsed().as_secs_f64());
     Ok(())
 }
 
-fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
-    use activemuscle::tradeoff::run as run_tradeoff;
-    let start = Instant::now();
+fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+    let started = Instant::now();
     let scene = load(scene)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
-    let chosen = scene.studies.iter().find_map(|s| match s {
-        Study::Tradeoff(t) => Some(t.options.clone()),
-        _ => None,
-    });
-    let options = TradeoffOptions {
-        verbose: !quiet,
-        ..chosen.unwrap_or_default()
-    };
-    let results = run_tradeoff(&scene, &options).map_err(|e| e.to_string())?;
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let wall = start.elapsed().as_secs_f64();
-    let files = report::write_all(&results, out, &scene.title, &command, wall)
-        .map_err(|e| e.to_string())?;
+    let options = scene.tradeoff_options().cloned().unwrap_or_default();
+    let printing = Printing::new(true, false);
+    let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
+    let results = run_tradeoff(&scene.models, &options, &scene.fallback(), progress)?;
+    let wall = started.elapsed().as_secs_f64();
+    let files = tradeoff::write_all(&results, out, &scene.title, &command_line(), wall)?;
     if !quiet {
-        println!("\n{}", report::markdown(&results.rows));
+        println!("\n{}", tradeoff::markdown(&results.rows));
     }
     for f in &results.findings {
         println!("{f}");
@@ -321,7 +204,7 @@ fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(),
         "{} files in {} (tradeoff.html, tradeoff.csv); wall time {:.1} s",
         files.len(),
         out.display(),
-        start.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64()
     );
     Ok(())
 }

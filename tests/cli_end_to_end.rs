@@ -6,7 +6,8 @@ use activemuscle::energy::{Energy, GiantesioMusesti};
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 use std::collections::HashMap;
-use std::process::Command;
+
+mod binary;
 
 const SCENE: &str = r#"
 title = "end-to-end test"
@@ -40,19 +41,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let scene = dir.join("small.toml");
     std::fs::write(&scene, SCENE).expect("write scene");
     let out_dir = dir.join("out");
-    let out = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
-        .arg("run")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out_dir)
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    binary::run_quiet(Some(&scene), &out_dir);
 
     let csv = std::fs::read_to_string(out_dir.join("curves.csv")).expect("curves.csv");
     let mut lines = csv.lines();

@@ -7,15 +7,14 @@ use activemuscle::active::{
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxiF, AxisymmetricMaterial, Bases, NeoHookean, SolverOptions};
-use activemuscle::scene::Scene;
-use activemuscle::tradeoff::measure::finalise;
-use activemuscle::tradeoff::study::{
-    activation_law_fe_rows, fe_row, fe_run, run, FeRun, Geometry, OptionGroup, TradeoffOptions,
+use activemuscle::models::Models;
+use activemuscle::studies::tradeoff::measure::finalise;
+use activemuscle::studies::tradeoff::{
+    activation_law_fe_rows, curve_error, fe_row, fe_run, pareto_front, run, time_median,
+    CurveError, Fallback, FeRun, FiniteDifferenceTangent, Geometry, Measurement, OptionGroup,
+    OracleRoute, TradeoffOptions,
 };
-use activemuscle::tradeoff::{
-    curve_error, pareto_front, time_median, CurveError, FiniteDifferenceTangent, Measurement,
-    OracleRoute,
-};
+use activemuscle::studies::Silent;
 use activemuscle::Muscle;
 use nalgebra::SMatrix;
 
@@ -302,9 +301,8 @@ fn curve_0d(m: &Muscle<GiantesioMusesti>) -> (Vec<f64>, Vec<f64>) {
 fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
     // Sliding bases: the FE solution is homogeneous uniaxial tension, so the stress error of a
     // law against the implicit law in the FE is the 0D error between the two laws.
-    let scene = Scene::paper().unwrap();
     let rows = activation_law_fe_rows(
-        &scene,
+        &Models::paper(),
         "activation law (FE, sliding)",
         geometry(),
         (2, 8),
@@ -359,7 +357,6 @@ fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
 
 #[test]
 fn the_study_runs_only_the_option_groups_asked_for() {
-    let scene = Scene::paper().unwrap();
     let options = TradeoffOptions {
         groups: vec![OptionGroup::ActivationLawFe],
         geometry: Some(geometry()),
@@ -367,7 +364,7 @@ fn the_study_runs_only_the_option_groups_asked_for() {
         fe_stretches: vec![1.1, 1.17],
         ..TradeoffOptions::default()
     };
-    let results = run(&scene, &options).unwrap();
+    let results = run(&Models::paper(), &options, &Fallback::default(), &Silent).unwrap();
     let variants: Vec<&str> = results.rows.iter().map(|r| r.variant.as_str()).collect();
     assert_eq!(
         variants,

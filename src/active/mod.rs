@@ -11,4 +11,4 @@ pub use curve::ActiveCurve;
 pub use law::{
     ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue,
 };
-pub use strain::{active_energy, check_activation, fibre_path_energy};
+pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};

@@ -1,12 +1,12 @@
 //! `report.html`: one self-contained page (figures embedded as base64 PNG) with the run's
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
-use super::atomic::OutputError;
 use super::base64;
-use super::csv::{checked, COLUMNS};
-use super::plot::Figure;
-use crate::scene::run::Results;
-use crate::scene::Scene;
+use super::csv::COLUMNS;
+use super::plot::Rendered;
+use crate::app_error::{finite, AppError};
+use crate::scene::{Results, Scene};
+use crate::studies::cylinder::bases_name;
 use std::fmt::Write;
 use std::time::Duration;
 
@@ -23,6 +23,8 @@ pub struct RunInfo {
     pub rustc: Option<String>,
     /// Other files written (relative names).
     pub files: Vec<String>,
+    /// Rows of `curves.csv`.
+    pub rows: usize,
 }
 
 /// Escapes text for HTML.
@@ -38,9 +40,9 @@ pub fn escape(s: &str) -> String {
 pub fn html(
     scene: &Scene,
     results: &Results,
-    figures: &[(Figure, Vec<u8>)],
+    figures: &[Rendered],
     info: &RunInfo,
-) -> Result<String, OutputError> {
+) -> Result<String, AppError> {
     let mut h = String::new();
     let e = escape;
     let _ = write!(
@@ -64,13 +66,33 @@ pub fn html(
         e(&info.command)
     );
 
+    studies_table(&mut h, results);
+    failures(&mut h, results);
+    fe_table(&mut h, results)?;
+    fits_table(&mut h, results)?;
+    stability_table(&mut h, results)?;
+
+    figures_and_data(&mut h, figures, info);
+    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
+    h.push_str(&e(&scene
+        .resolved_toml()
+        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
+    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
+    h.push_str(&e(&scene.source));
+    h.push_str("</pre>\n</body></html>\n");
+    Ok(h)
+}
+
+/// The studies with their summaries.
+fn studies_table(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Studies</h2>\n<table><tr><th>study</th><th>kind</th><th>models</th><th>points</th><th>time [s]</th><th>details</th></tr>\n");
     for s in &results.studies {
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}/{}</td><td>{:.2}</td><td>{}</td></tr>",
             e(&s.name),
-            s.kind,
+            s.kind.name(),
             s.models,
             s.points,
             s.requested,
@@ -83,52 +105,62 @@ pub fn html(
         );
     }
     h.push_str("</table>\n");
+}
 
+/// What could not be computed, and why.
+fn failures(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Where a model stopped</h2>\n");
-    if results.notes.is_empty() {
+    if results.failures().next().is_none() {
         h.push_str("<p>Every requested point was computed.</p>\n");
     }
-    for n in &results.notes {
+    for (study, n) in results.failures() {
         let _ = writeln!(
             h,
             "<div class=\"note\"><b>{}</b> — {}:<br>{}</div>",
-            e(&n.study),
+            e(study),
             e(&n.model),
             e(&n.message)
         );
     }
+}
 
-    if !results.fe_vs_0d.is_empty() {
+/// Each FE sweep against the homogeneous (0D) curve of the same model.
+fn fe_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let e = escape;
+    let sweeps: Vec<_> = results
+        .cylinders()
+        .flat_map(|(_, c)| c.sweeps.iter().map(move |s| (c.bases, s)))
+        .collect();
+    if !sweeps.is_empty() {
         h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>max |P_FE − P_0D| [kPa]</th><th>at λ</th></tr>\n");
-        for c in &results.fe_vs_0d {
-            let worst = c
-                .points
-                .iter()
-                .map(|p| ((p.1 - p.2).abs(), p.0))
-                .fold((0.0f64, f64::NAN), |a, b| if b.0 > a.0 { b } else { a });
+        for (bases, s) in sweeps {
+            let worst = s.worst_against_0d();
             let _ = writeln!(
                 h,
                 "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.3e}</td><td>{}</td></tr>",
-                c.bases,
-                e(&c.label),
-                c.points.len(),
-                checked(worst.0, "max |P_FE − P_0D|", || format!(
+                bases_name(bases),
+                e(&s.label),
+                s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
+                finite(worst.0, "max |P_FE − P_0D|", || format!(
                     "report: {}",
-                    c.label
+                    s.label
                 ))?,
-                checked(
+                finite(
                     worst.1,
                     "lambda of the largest FE − 0D difference",
-                    || format!("report: {}", c.label)
+                    || format!("report: {}", s.label)
                 )?
             );
         }
         h.push_str("</table>\n");
     }
+    Ok(())
+}
 
-    fits_table(&mut h, results)?;
-    stability_table(&mut h, results)?;
-
+/// The figures (embedded) and the list of data files.
+fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
+    let e = escape;
     h.push_str("<h2>Figures</h2>\n");
     for (f, png) in figures {
         let _ = writeln!(
@@ -154,7 +186,7 @@ pub fn html(
     let _ = writeln!(
         h,
         ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {} rows.</p>",
-        results.rows.len()
+        info.rows
     );
     h.push_str("<p>Other files: ");
     h.push_str(
@@ -166,34 +198,30 @@ pub fn html(
             .join(", "),
     );
     h.push_str("</p>\n");
-
-    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
-    h.push_str(&e(&toml::to_string_pretty(&scene.resolved)
-        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
-    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
-    h.push_str(&e(&scene.source));
-    h.push_str("</pre>\n</body></html>\n");
-    Ok(h)
 }
 
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
-fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
-    if results.fits.is_empty() {
+fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let studies = results.fits();
+    if studies.iter().all(|(_, f)| f.is_empty()) {
         return Ok(());
     }
     let e = escape;
     h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
-    for f in &results.fits {
-        let origin = || format!("report: fit {:?}, {}", f.study_name, f.case);
+    for (study, f) in studies
+        .iter()
+        .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
+    {
+        let origin = || format!("report: fit {study:?}, {}", f.case);
         let n = f.names.len();
         for j in 0..n {
-            let value = checked(f.values[j], "fitted value", origin)?;
+            let value = finite(f.values[j], "fitted value", origin)?;
             let se = match f.standard_errors.get(j).copied().flatten() {
-                Some(s) => format!(" ± {:.3e}", checked(s, "standard error", origin)?),
+                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
                 None => " ± (n/a)".into(),
             };
             let reference = match f.reference.get(j).copied().flatten() {
-                Some(r) => checked(r, "reference value", origin)?.to_string(),
+                Some(r) => finite(r, "reference value", origin)?.to_string(),
                 None => String::new(),
             };
             let corr = f
@@ -218,7 +246,7 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
                 let _ = write!(
                     h,
                     "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
-                    e(&f.study_name),
+                    e(study),
                     e(&f.case),
                     f.points
                 );
@@ -226,7 +254,7 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
                     h,
                     "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
                     e(&f.names[j]),
-                    checked(f.rms, "RMS error", origin)?,
+                    finite(f.rms, "RMS error", origin)?,
                     f.unit,
                     f.iterations,
                 );
@@ -244,8 +272,9 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
 }
 
 /// Intervals of softening and of lost strong ellipticity, per model.
-fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
-    if results.stability.is_empty() {
+fn stability_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let studies = results.stability();
+    if studies.iter().all(|(_, c)| c.is_empty()) {
         return Ok(());
     }
     let e = escape;
@@ -260,11 +289,10 @@ fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError>
         }
     };
     h.push_str("<h2>Material stability along the fibres</h2>\n<p>Uniaxial path along the fibres: intervals of the stretch grid where dP/dλ &lt; 0 and where strong ellipticity (incompressible, a ⊥ F⁻ᵀN) is lost; per-point values in <code>stability.csv</code>.</p>\n<table><tr><th>study</th><th>model</th><th>d</th><th>stretches</th><th>dP/dλ &lt; 0 on</th><th>not strongly elliptic on</th><th>least relative a·Q(N)a</th></tr>\n");
-    for c in &results.stability {
-        let name = results
-            .studies
-            .get(c.study)
-            .map_or(String::new(), |s| s.name.clone());
+    for (name, c) in studies
+        .iter()
+        .flat_map(|&(s, cs)| cs.iter().map(move |c| (s, c)))
+    {
         let least = c
             .points
             .iter()
@@ -273,17 +301,17 @@ fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError>
         let least = if c.points.is_empty() {
             "n/a".to_string()
         } else {
-            let least = checked(least, "relative ellipticity", || {
-                format!("report: {name}, {}, d = {:?}", c.label(), c.d)
+            let least = finite(least, "relative ellipticity", || {
+                format!("report: {name}, {}, d = {:?}", c.label(), c.damage())
             })?;
             format!("{least:.3e}")
         };
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{least}</td></tr>",
-            e(&name),
+            e(name),
             e(&c.label()),
-            c.d.map_or(String::new(), |d| d.to_string()),
+            c.damage().map_or(String::new(), |d| d.to_string()),
             c.points.len(),
             fmt(c.intervals(|p| p.slope < 0.0)),
             fmt(c.intervals(|p| !p.elliptic)),

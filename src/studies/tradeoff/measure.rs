@@ -1,6 +1,6 @@
 //! The measuring machinery: wall time, curve errors, speed-up, error ratio and the Pareto front.
 //!
-//! Nothing here knows what is being measured; [`super::study`] feeds it.
+//! Nothing here knows what is being measured; [`super::groups`] feeds it.
 
 use std::time::Instant;
 
@@ -215,5 +215,49 @@ pub fn finalise(rows: &mut [Measurement]) {
             };
             r.pareto = front[k];
         }
+    }
+}
+
+/// A ratio: fixed-point in [0.1, 1000), scientific outside.
+pub fn ratio(x: f64) -> String {
+    if (0.1..1000.0).contains(&x.abs()) {
+        format!("{x:.2}")
+    } else {
+        cell(Some(x), 1)
+    }
+}
+
+/// A number in scientific notation with `digits` digits; `failed` for an infinite error, `–`
+/// for none.
+pub fn cell(x: Option<f64>, digits: usize) -> String {
+    match x {
+        Some(v) if v.is_finite() => format!("{v:.digits$e}"),
+        Some(v) if v.is_infinite() => "failed".into(),
+        _ => "–".into(),
+    }
+}
+
+impl Measurement {
+    /// The row in words, both axes with their numbers:
+    /// `activation law (FE) · explicit (frozen): 5.4e-1 s, speed-up 1.06, max abs error 2.7e0, max rel error 1.4e-1`.
+    pub fn line(&self) -> String {
+        use std::fmt::Write;
+        let mut s = format!(
+            "{} · {}{}: {} s, speed-up {}, max abs error {}, max rel error {}",
+            self.option,
+            self.variant,
+            if self.reference { " (reference)" } else { "" },
+            cell(Some(self.time_s), 2),
+            ratio(self.speedup),
+            cell(Some(self.error.max_abs), 1),
+            cell(Some(self.error.max_rel), 1),
+        );
+        if let Some(g) = self.gamma_error {
+            let _ = write!(s, ", γ error {}", cell(Some(g), 1));
+        }
+        if self.pareto {
+            s.push_str(", Pareto");
+        }
+        s
     }
 }

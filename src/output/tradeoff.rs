@@ -1,14 +1,14 @@
 //! Outputs of the trade-off run: `tradeoff.csv`, one log–log error-versus-time figure per option
 //! (PNG + SVG, the Pareto front marked) and a self-contained `tradeoff.html`.
 
-use super::measure::Measurement;
-use super::study::TradeoffResults;
-use crate::output::base64;
-use crate::output::plot::register_font;
-use crate::output::report::escape;
-use crate::output::OutputError;
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use super::base64;
+use super::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
+use super::report::escape;
+use super::Staging;
+use crate::app_error::AppError;
+use crate::studies::slug;
+use crate::studies::tradeoff::measure::{cell, ratio};
+use crate::studies::tradeoff::{Measurement, TradeoffResults};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -47,9 +47,12 @@ fn num(x: f64) -> String {
 /// The CSV text of the measured rows (one per variant; times in s, errors in the quantity's
 /// unit and relative; speed-up = reference time / time; error ratio = relative error / the
 /// option's smallest positive non-reference relative error).
-pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, OutputError> {
+pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    let fail = |e: csv::Error| OutputError(format!("CSV: {e}"));
+    let fail = |e: csv::Error| AppError::Output {
+        file: "tradeoff.csv".into(),
+        message: e.to_string(),
+    };
     w.write_record(COLUMNS).map_err(fail)?;
     for r in rows {
         let record = [
@@ -71,8 +74,10 @@ pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, OutputError> {
         ];
         w.write_record(&record).map_err(fail)?;
     }
-    w.into_inner()
-        .map_err(|e| OutputError(format!("CSV: {}", e.error())))
+    w.into_inner().map_err(|e| AppError::Output {
+        file: "tradeoff.csv".into(),
+        message: e.error().to_string(),
+    })
 }
 
 /// Options in the order they were run.
@@ -88,61 +93,14 @@ pub fn options(rows: &[Measurement]) -> Vec<String> {
 
 /// File stem of an option's figure: `tradeoff_` + the option name in lower-case ASCII words.
 pub fn stem(option: &str) -> String {
-    let mut s = String::from("tradeoff");
-    let mut sep = true;
-    for c in option.chars() {
-        if c.is_ascii_alphanumeric() {
-            if sep {
-                s.push('_');
-            }
-            s.push(c.to_ascii_lowercase());
-            sep = false;
-        } else {
-            sep = true;
-        }
-    }
-    s
+    format!("tradeoff_{}", slug(option))
 }
 
-const BLUE: RGBColor = RGBColor(31, 119, 180);
-const RED: RGBColor = RGBColor(214, 39, 40);
-const GREY: RGBColor = RGBColor(120, 120, 120);
-
-/// Writes the log–log error-versus-time figure of `option` (relative error on y, wall time on x;
-/// filled markers: the Pareto front, joined by a dashed line; the reference in red).
-pub fn figure(
-    option: &str,
-    rows: &[Measurement],
-    png: &Path,
-    svg: &Path,
-) -> Result<(), OutputError> {
-    register_font();
-    let rows: Vec<&Measurement> = rows.iter().filter(|r| r.option == option).collect();
-    let err = |what: &str, e: String| OutputError(format!("{what} {option}: {e}"));
-    let size = (900, 560);
-    {
-        let root = BitMapBackend::new(png, size).into_drawing_area();
-        draw(&root, option, &rows).map_err(|e| err("drawing PNG", e))?;
-        root.present()
-            .map_err(|e| err("writing PNG", e.to_string()))?;
-    }
-    let mut text = String::new();
-    {
-        let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
-        draw(&root, option, &rows).map_err(|e| err("drawing SVG", e))?;
-        root.present()
-            .map_err(|e| err("writing SVG", e.to_string()))?;
-    }
-    std::fs::write(svg, text).map_err(|e| err("writing SVG", e.to_string()))
-}
-
-fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    option: &str,
-    rows: &[&Measurement],
-) -> Result<(), String> {
-    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
-    root.fill(&WHITE).map_err(e)?;
+/// The log–log error-versus-time figure of `option` (relative error on y, wall time on x;
+/// filled markers: the Pareto front, joined by a dashed line; the reference in red; zero errors
+/// drawn at [`ERROR_FLOOR`]).
+pub fn figure(option: &str, all: &[Measurement]) -> Figure {
+    let rows: Vec<&Measurement> = all.iter().filter(|r| r.option == option).collect();
     let pts: Vec<(f64, f64)> = rows
         .iter()
         .map(|r| (r.time_s, r.error.max_rel.max(ERROR_FLOOR)))
@@ -163,25 +121,6 @@ fn draw<DB: DrawingBackend>(
     // labels at 2e-1 … 9e-1 that run into each other).
     let widen = (100.0 / (x1 / x0)).max(1.0).sqrt();
     (x0, x1) = (x0 / widen, x1 * widen);
-    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
-    let mut chart = ChartBuilder::on(root)
-        .caption(option, ("sans-serif", 22))
-        .margin(14)
-        .x_label_area_size(48)
-        .y_label_area_size(80)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-        .map_err(e)?;
-    chart
-        .configure_mesh()
-        .x_desc("wall time [s]")
-        .y_desc("max relative error [-]")
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 15))
-        .x_label_formatter(&|v| format!("{v:.0e}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .light_line_style(RGBColor(235, 235, 235))
-        .draw()
-        .map_err(e)?;
     let mut front: Vec<(f64, f64)> = rows
         .iter()
         .zip(&pts)
@@ -189,62 +128,59 @@ fn draw<DB: DrawingBackend>(
         .map(|(_, p)| *p)
         .collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    chart
-        .draw_series(DashedLineSeries::new(front, 8, 5, GREY.stroke_width(2)))
-        .map_err(e)?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], GREY.stroke_width(2)));
-    for (r, &(x, y)) in rows.iter().zip(&pts) {
-        if !(x.is_finite() && y.is_finite()) {
+    let mut series = vec![Series::new("Pareto front", front, Stroke::Dashed, GREY)];
+    for (r, &p) in rows.iter().zip(&pts) {
+        if !(p.0.is_finite() && p.1.is_finite()) {
             continue;
         }
-        let c = if r.reference { RED } else { BLUE };
-        let style = if r.pareto {
-            c.filled()
-        } else {
-            c.stroke_width(2)
-        };
-        chart
-            .draw_series(std::iter::once(Circle::new((x, y), 6, style)))
-            .map_err(e)?;
-        let label = if r.reference {
+        let mut point = Series::new(
+            "",
+            vec![p],
+            if r.pareto {
+                Stroke::Filled
+            } else {
+                Stroke::Markers
+            },
+            usize::from(r.reference),
+        );
+        point.annotation = Some(if r.reference {
             format!("{} (reference)", r.variant)
         } else {
             r.variant.clone()
-        };
-        chart
-            .draw_series(std::iter::once(Text::new(
-                label,
-                (x * 1.15, y * 1.3),
-                ("sans-serif", 14),
-            )))
-            .map_err(e)?;
+        });
+        series.push(point);
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .draw()
-        .map_err(e)?;
-    Ok(())
-}
-
-/// A ratio: fixed-point in [0.1, 1000), scientific outside.
-fn ratio(x: f64) -> String {
-    if (0.1..1000.0).contains(&x.abs()) {
-        format!("{x:.2}")
-    } else {
-        cell(Some(x), 1)
+    Figure {
+        stem: stem(option),
+        heading: format!("Speed versus accuracy: {option}"),
+        caption: caption(option, all),
+        panels: vec![Panel {
+            title: option.to_string(),
+            x_label: "wall time [s]".into(),
+            y_label: "max relative error [-]".into(),
+            series,
+            x_range: Some((x0, x1)),
+            y_range: Some((y0 / 10.0, y1 * 10.0)),
+            scale: Scale::LogLog,
+        }],
     }
 }
 
-fn cell(x: Option<f64>, digits: usize) -> String {
-    match x {
-        Some(v) if v.is_finite() => format!("{v:.digits$e}"),
-        Some(v) if v.is_infinite() => "failed".into(),
-        _ => "–".into(),
-    }
+/// The number cells of a row (time, errors, speed-up, error ratio, Newton iterations, time per
+/// iteration, dofs) and its Pareto mark, as the Markdown and HTML tables show them.
+fn cells(r: &Measurement) -> Vec<String> {
+    vec![
+        cell(Some(r.time_s), 2),
+        cell(Some(r.error.max_abs), 1),
+        cell(Some(r.error.max_rel), 1),
+        cell(r.gamma_error, 1),
+        ratio(r.speedup),
+        cell(Some(r.error_ratio), 1),
+        r.iterations.map_or("–".into(), |n| n.to_string()),
+        cell(r.per_iteration_s, 2),
+        r.dofs.map_or("–".into(), |n| n.to_string()),
+        if r.pareto { "yes" } else { "" }.to_string(),
+    ]
 }
 
 /// The table as Markdown (what the README and BENCHMARKS.md show).
@@ -255,20 +191,11 @@ pub fn markdown(rows: &[Measurement]) -> String {
     for r in rows {
         let _ = writeln!(
             s,
-            "| {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {}{} | {} |",
             r.option,
             r.variant,
             if r.reference { " (ref.)" } else { "" },
-            cell(Some(r.time_s), 2),
-            cell(Some(r.error.max_abs), 1),
-            cell(Some(r.error.max_rel), 1),
-            cell(r.gamma_error, 1),
-            ratio(r.speedup),
-            cell(Some(r.error_ratio), 1),
-            r.iterations.map_or("–".into(), |n| n.to_string()),
-            cell(r.per_iteration_s, 2),
-            r.dofs.map_or("–".into(), |n| n.to_string()),
-            if r.pareto { "yes" } else { "" }
+            cells(r).join(" | ")
         );
     }
     s
@@ -328,22 +255,13 @@ pub fn html(
     }
     let _ = writeln!(h, "</tr>");
     for r in &results.rows {
+        let numbers: String = cells(r).iter().map(|c| format!("<td>{c}</td>")).collect();
         let _ = writeln!(
             h,
-            "<tr{}><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr{}><td>{}</td><td>{}</td>{numbers}<td>{}</td></tr>",
             if r.reference { " class=\"ref\"" } else { "" },
             e(&r.option),
             e(&r.variant),
-            cell(Some(r.time_s), 2),
-            cell(Some(r.error.max_abs), 1),
-            cell(Some(r.error.max_rel), 1),
-            cell(r.gamma_error, 1),
-            ratio(r.speedup),
-            cell(Some(r.error_ratio), 1),
-            r.iterations.map_or("–".into(), |n| n.to_string()),
-            cell(r.per_iteration_s, 2),
-            r.dofs.map_or("–".into(), |n| n.to_string()),
-            if r.pareto { "yes" } else { "" },
             e(&format!("{} {}", r.quantity, r.note)),
         );
     }
@@ -361,49 +279,16 @@ pub fn html(
     h
 }
 
-/// One row in words, both axes with their numbers (the report's study table):
-/// `activation law (FE) · explicit (frozen): 5.4e-1 s, speed-up 1.06, max abs error 2.7e0, max rel error 1.4e-1`.
-pub fn line(r: &Measurement) -> String {
-    let mut s = format!(
-        "{} · {}{}: {} s, speed-up {}, max abs error {}, max rel error {}",
-        r.option,
-        r.variant,
-        if r.reference { " (reference)" } else { "" },
-        cell(Some(r.time_s), 2),
-        ratio(r.speedup),
-        cell(Some(r.error.max_abs), 1),
-        cell(Some(r.error.max_rel), 1),
-    );
-    if let Some(g) = r.gamma_error {
-        let _ = write!(s, ", γ error {}", cell(Some(g), 1));
-    }
-    if r.pareto {
-        s.push_str(", Pareto");
-    }
-    s
-}
-
-/// One option's figure, staged.
-#[derive(Debug, Clone)]
-pub struct StagedFigure {
-    /// The option it shows.
-    pub option: String,
-    /// File stem (`tradeoff_mesh_clamped` → `.png`, `.svg`).
-    pub stem: String,
-    /// The PNG bytes (for embedding in a report).
-    pub png: Vec<u8>,
-}
-
 /// Stages `tradeoff.csv`, `tradeoff.md` (the table), one figure per option and `tradeoff.html`
 /// in `staging` (committed by the caller); returns the files staged (relative names) and the
-/// figures.
+/// figures with their PNG bytes (for embedding in a report).
 pub fn stage(
     results: &TradeoffResults,
-    staging: &mut crate::output::Staging,
+    staging: &mut Staging,
     title: &str,
     command: &str,
     wall_s: f64,
-) -> Result<(Vec<String>, Vec<StagedFigure>), OutputError> {
+) -> Result<(Vec<String>, Vec<Rendered>), AppError> {
     let mut files = Vec::new();
     staging.write("tradeoff.csv", &to_csv(&results.rows)?)?;
     files.push("tradeoff.csv".to_string());
@@ -411,23 +296,18 @@ pub fn stage(
     files.push("tradeoff.md".to_string());
     let mut figures = Vec::new();
     for option in options(&results.rows) {
-        let s = stem(&option);
-        let png = staging.path(Path::new(&format!("{s}.png")))?;
-        let svg = staging.path(Path::new(&format!("{s}.svg")))?;
-        figure(&option, &results.rows, &png, &svg)?;
-        let bytes = std::fs::read(&png)
-            .map_err(|e| OutputError(format!("cannot read back {}: {e}", png.display())))?;
-        files.push(format!("{s}.png"));
-        files.push(format!("{s}.svg"));
-        figures.push(StagedFigure {
-            option,
-            stem: s,
-            png: bytes,
-        });
+        let f = figure(&option, &results.rows);
+        let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
+        let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
+        render(&f, &png, &svg)?;
+        let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
+        files.push(format!("{}.png", f.stem));
+        files.push(format!("{}.svg", f.stem));
+        figures.push((f, bytes));
     }
     let pngs: Vec<(String, Vec<u8>)> = figures
         .iter()
-        .map(|f| (f.option.clone(), f.png.clone()))
+        .map(|(f, png)| (f.panels[0].title.clone(), png.clone()))
         .collect();
     staging.write(
         "tradeoff.html",
@@ -445,14 +325,14 @@ pub fn write_all(
     title: &str,
     command: &str,
     wall_s: f64,
-) -> Result<Vec<String>, OutputError> {
-    let mut staging = crate::output::Staging::new(out)?;
+) -> Result<Vec<String>, AppError> {
+    let mut staging = Staging::new(out)?;
     let (files, _) = stage(results, &mut staging, title, command, wall_s)?;
     staging.commit()?;
     Ok(files)
 }
 
-/// The caption of an option's figure in a run's report.
+/// The caption of an option's figure.
 pub fn caption(option: &str, rows: &[Measurement]) -> String {
     format!(
         "{option}: relative error of {} against wall time, log–log; filled markers and the dashed \
