@@ -18,7 +18,7 @@ use std::time::Instant;
 /// Without a subcommand, runs the chapter's whole study (the embedded scenes/paper.toml) and
 /// writes curves.csv, the figures (PNG + SVG), report.html and VTK fields into out/.
 #[derive(Parser, Debug)]
-#[command(name = "activemuscle", version, about, long_about)]
+#[command(name = "activemuscle", version, about, long_about, after_help = EXIT_STATUS)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -31,6 +31,7 @@ enum Command {
     /// Writes into DIR: curves.csv (one row per point), fig_*.png and fig_*.svg, report.html
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
     /// written atomically: a failed run leaves no half-written file.
+    #[command(after_help = EXIT_STATUS)]
     Run {
         /// Scene file (TOML). Omit to run the chapter's study (scenes/paper.toml, embedded).
         scene: Option<PathBuf>,
@@ -73,7 +74,7 @@ fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
     })
 }
 
-fn check(path: &Path) -> Result<(), AppError> {
+fn check(path: &Path) -> Result<Ended, AppError> {
     let scene = load(Some(path))?;
     println!(
         "# {}: valid. Resolved scene (every default written out):\n",
@@ -84,7 +85,7 @@ fn check(path: &Path) -> Result<(), AppError> {
     for study in &scene.studies {
         println!("#   {}", study.describe());
     }
-    Ok(())
+    Ok(Ended::Complete)
 }
 
 fn rustc_version() -> Option<String> {
@@ -97,6 +98,8 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// Prints the table of studies, every failure and where the outputs are; says whether the run
+/// is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     println!();
     println!(
@@ -105,12 +108,16 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     );
     println!("{}", "-".repeat(91));
     for s in &results.studies {
+        let points = match s.result {
+            StudyResult::Nothing => "FAILED".to_string(),
+            _ => format!("{}/{}", s.points, s.requested),
+        };
         println!(
             "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
             s.name,
             s.kind.name(),
             s.models,
-            format!("{}/{}", s.points, s.requested),
+            points,
             s.elapsed.as_secs_f64()
         );
     }
@@ -119,43 +126,63 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             continue;
         }
         for s in &c.sweeps {
-            println!(
-                "verification (sliding bases, {}): max |P_FE − P_0D| = {:.2e} kPa",
-                s.label,
-                s.worst_against_0d().0
-            );
+            if let Some((worst, _)) = s.worst_against_0d() {
+                println!(
+                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
+                    s.label
+                );
+            }
         }
     }
     for (study, f) in results.failures() {
-        println!("note: {study} — {}: {}", f.model, f.message);
+        println!("FAILED: {study} — {}: {}", f.model, f.message);
     }
-    let fits: Vec<_> = results
-        .studies
-        .iter()
-        .filter_map(|s| match &s.result {
-            StudyResult::Fit(f) => Some(f),
-            _ => None,
-        })
-        .flatten()
-        .collect();
-    let failed = fits.iter().filter(|f| !f.converged).count();
-    if failed > 0 {
-        println!(
-            "{failed} of {} fit(s) did NOT converge (best points reported in fits.csv and report.html); the run continued",
-            fits.len()
-        );
+    for s in &results.studies {
+        if s.failures.is_empty() && s.points < s.requested {
+            println!(
+                "FAILED: {} — {} of {} requested points computed",
+                s.name, s.points, s.requested
+            );
+        }
     }
     println!(
         "{rows} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
         out.display()
     );
+    if !results.complete() {
+        let failed = results.studies.iter().filter(|s| !s.complete()).count();
+        println!(
+            "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
+             everything computed was written; exit status {EXIT_INCOMPLETE}",
+            results.studies.len()
+        );
+    }
 }
 
 fn command_line() -> String {
     std::env::args().collect::<Vec<_>>().join(" ")
 }
 
-fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+/// The exit statuses, for `--help`.
+const EXIT_STATUS: &str = "Exit status:
+  0    every requested point, sweep and fit was computed and written
+  1    invalid input or usage (nothing computed), or the outputs could not be written
+  3    something requested failed (named on the FAILED lines of the summary and in
+       report.html); everything that was computed was written";
+
+/// Exit status of a run that wrote everything it computed but not everything requested.
+const EXIT_INCOMPLETE: u8 = 3;
+
+/// How a command ended, when it did not end in an error (exit status 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Ended {
+    /// Everything requested was computed and written (exit status 0).
+    Complete,
+    /// Something requested failed; everything computed was written (exit status 3).
+    Incomplete,
+}
+
+fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
     let mut staging = Staging::new(out)?;
@@ -172,7 +199,7 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppE
             scene.file
         );
     }
-    let results = scene.run(&options)?;
+    let results = scene.run(&options);
     let meta = RunMeta {
         command: command_line(),
         started,
@@ -181,10 +208,14 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppE
     let rows = write_run(&mut staging, &scene, &results, &meta)?;
     staging.commit()?;
     summary(&results, rows, out, started.elapsed().as_secs_f64());
-    Ok(())
+    Ok(if results.complete() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
-fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
@@ -206,11 +237,22 @@ fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(),
         out.display(),
         started.elapsed().as_secs_f64()
     );
-    Ok(())
+    Ok(Ended::Complete)
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print and succeed; a usage error is an invalid input (1).
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::FAILURE
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
     let outcome = match &cli.command {
         None => run_command(None, Path::new("out"), false),
         Some(Command::Run { scene, out, quiet }) => run_command(scene.as_deref(), out, *quiet),
@@ -220,7 +262,8 @@ fn main() -> ExitCode {
         }
     };
     match outcome {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Ended::Complete) => ExitCode::SUCCESS,
+        Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -2,7 +2,6 @@
 //! curves and FE sweeps in parallel), progress reported through [`crate::studies::Progress`].
 
 use super::Scene;
-use crate::app_error::AppError;
 use crate::studies::cylinder::CylinderResult;
 use crate::studies::fit::FitOutcome;
 use crate::studies::stability::StabilityCurve;
@@ -33,6 +32,11 @@ pub struct Results {
 }
 
 impl Results {
+    /// Whether every study computed everything it was asked for ([`Outcome::complete`]).
+    pub fn complete(&self) -> bool {
+        self.studies.iter().all(Outcome::complete)
+    }
+
     /// Every failure, with the name of its study.
     pub fn failures(&self) -> impl Iterator<Item = (&str, &Failure)> {
         self.studies
@@ -164,8 +168,9 @@ impl Progress for Printing {
     }
 }
 
-/// Runs every study of `scene`, in order; the first study that cannot run stops the run.
-pub(super) fn run(scene: &Scene, options: &RunOptions) -> Result<Results, AppError> {
+/// Runs every study of `scene`, in order. A study that stops with an error is recorded as its
+/// outcome's failure ([`Outcome::failed`]) and the run goes on with the next one.
+pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
     let printing = Printing::new(options.verbose, options.progress);
     let progress: &dyn Progress = if options.verbose { &printing } else { &Silent };
     let ctx = RunContext {
@@ -176,7 +181,12 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Result<Results, AppErr
     let mut results = Results::default();
     for study in &scene.studies {
         let t0 = Instant::now();
-        let mut outcome = study.run(&scene.models, &fallback, &ctx)?;
+        let mut outcome = study
+            .run(&scene.models, &fallback, &ctx)
+            .unwrap_or_else(|e| {
+                progress.finish();
+                Outcome::failed(study, &e)
+            });
         outcome.elapsed = t0.elapsed();
         progress.log(&format!(
             "{}: {} points in {:.2} s",
@@ -186,5 +196,5 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Result<Results, AppErr
         ));
         results.studies.push(outcome);
     }
-    Ok(results)
+    results
 }

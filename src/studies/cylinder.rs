@@ -6,6 +6,7 @@ use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
+use crate::fem::solver::MIN_TOLERANCE;
 use crate::fem::{AxisymmetricSolver, Bases, Element, FemError, Mesh, SolverOptions, VtkOutput};
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
@@ -140,6 +141,15 @@ pub fn resolve(
     let nz = cell_count("nz", spec.nz.unwrap_or(24))?;
     let grading = grading("grading", spec.grading.unwrap_or(1.0))?;
     let tolerance = positive("tolerance", spec.tolerance.unwrap_or(1e-10))?;
+    if tolerance < MIN_TOLERANCE {
+        return Err(SpecError::new(
+            "tolerance",
+            format!("{tolerance:e}"),
+            format!(
+                "must be at least 4 ε = {MIN_TOLERANCE:.1e}: a scaled residual of f64 numbers does not go below its round-off"
+            ),
+        ));
+    }
     let law = spec.law.unwrap_or(d.law);
     d.models
         .supports(law)
@@ -242,12 +252,13 @@ impl Sweep {
             .fold(0.0f64, f64::max)
     }
 
-    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs (NaN without a 0D value).
-    pub fn worst_against_0d(&self) -> (f64, f64) {
+    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs; `None` when no stretch has
+    /// a 0D value (e.g. a sweep that reached no stretch).
+    pub fn worst_against_0d(&self) -> Option<(f64, f64)> {
         self.points
             .iter()
             .filter_map(|p| p.stress_0d.map(|zero| ((p.stress - zero).abs(), p.lambda)))
-            .fold((0.0f64, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+            .max_by(|a, b| a.0.total_cmp(&b.0))
     }
 }
 
@@ -326,10 +337,7 @@ impl CylinderStudy {
             .start(&self.name, choices.len() * self.stretches.len());
         let sweeps: Vec<Result<(Sweep, Vec<Failure>), AppError>> = choices
             .par_iter()
-            .map(|m| {
-                self.sweep(models, m, ctx)
-                    .map_err(|e| e.within(format!("{}: {}", self.name, models.label(m))))
-            })
+            .map(|m| self.sweep(models, m, ctx))
             .collect();
         ctx.progress.finish();
         let mut result = CylinderResult {
@@ -349,8 +357,19 @@ impl CylinderStudy {
             self.grading,
             self.stretches.len()
         )];
-        for s in sweeps {
-            let (sweep, stops) = s?;
+        for (s, m) in sweeps.into_iter().zip(&choices) {
+            // A sweep that cannot start (model, mesh, memory) costs only its own model.
+            let (sweep, stops) = match s {
+                Ok(s) => s,
+                Err(e) => {
+                    details.push(format!("d = {}: not run (see notes)", m.damage));
+                    failures.push(Failure {
+                        model: models.label(m),
+                        message: e.to_string(),
+                    });
+                    continue;
+                }
+            };
             details.push(format!(
                 "d = {}: {}/{} stretches, {} dofs, max |P_FE − P_0D| / max(|P_0D|, 1 kPa) = {:.2e}{}",
                 sweep.model.damage,

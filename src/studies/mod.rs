@@ -169,6 +169,17 @@ impl Study {
         }
     }
 
+    /// Its kind.
+    pub fn kind(&self) -> StudyKind {
+        match self {
+            Study::Uniaxial(_) => StudyKind::Uniaxial,
+            Study::Cylinder(_) => StudyKind::Cylinder,
+            Study::Fit(_) => StudyKind::Fit,
+            Study::Stability(_) => StudyKind::Stability,
+            Study::Tradeoff(_) => StudyKind::Tradeoff,
+        }
+    }
+
     /// What it will compute, in one line.
     pub fn describe(&self) -> String {
         match self {
@@ -272,6 +283,9 @@ pub enum StudyResult {
     Stability(Vec<stability::StabilityCurve>),
     /// Trade-off measurements.
     Tradeoff(tradeoff::TradeoffResults),
+    /// Nothing: the study stopped with an error before computing a result (the error is its
+    /// failure, [`Outcome::failed`]).
+    Nothing,
 }
 
 /// One study's outcome: its result, its failures and its summary.
@@ -295,6 +309,33 @@ pub struct Outcome {
     pub failures: Vec<Failure>,
     /// The result.
     pub result: StudyResult,
+}
+
+impl Outcome {
+    /// The outcome of `study`, which stopped with `error` before computing a result: no
+    /// points, the error as its one failure.
+    pub fn failed(study: &Study, error: &AppError) -> Self {
+        Outcome {
+            name: study.name().to_string(),
+            kind: study.kind(),
+            models: 0,
+            points: 0,
+            requested: 0,
+            elapsed: Duration::ZERO,
+            details: vec!["stopped before computing a result: see notes".into()],
+            failures: vec![Failure {
+                model: "the whole study".into(),
+                message: error.to_string(),
+            }],
+            result: StudyResult::Nothing,
+        }
+    }
+
+    /// Whether everything the study was asked for was computed: no failure, every requested
+    /// point.
+    pub fn complete(&self) -> bool {
+        self.failures.is_empty() && self.points >= self.requested
+    }
 }
 
 /// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).

@@ -1,0 +1,148 @@
+//! Unattended runs that never lie (issue 11): a study that fails costs no other study its
+//! results, the run writes everything it computed, names every failure in its summary and
+//! report, and exits 3; invalid input exits 1; complete success alone exits 0.
+
+mod binary;
+
+use binary::run_args;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+/// A fresh directory for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "activemuscle-cli-runs-{}-{name}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+const HEAD: &str = r#"title = "one study fails"
+[material]
+energy = "giantesio-musesti"
+[activation]
+law = "explicit"
+"#;
+
+const UNIAXIAL: &str = r#"
+[[study]]
+kind = "uniaxial"
+name = "along"
+direction = "along"
+laws = ["implicit"]
+stretch = [0.9, 1.0, 1.1, 1.2]
+"#;
+
+/// Writes `text` as `dir/name.toml` and runs it into `dir/name`.
+fn run_scene(dir: &Path, name: &str, text: &str) -> (Output, PathBuf) {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).expect("write scene");
+    let out = dir.join(name);
+    let output = run_args(&[
+        "run".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ]);
+    (output, out)
+}
+
+fn read(p: &Path) -> String {
+    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// The rows of `curves.csv` of study rows whose `model` column is `model`.
+fn rows_of(csv: &str, model: &str) -> Vec<String> {
+    csv.lines()
+        .filter(|l| l.split(',').any(|c| c == model))
+        .map(str::to_string)
+        .collect()
+}
+
+/// Each of the issue's reproducers, beside a uniaxial study: the uniaxial rows are exactly those
+/// of the uniaxial study run alone, the failure is named in the summary and the report, exit 3.
+#[test]
+fn a_failing_cylinder_study_costs_the_others_nothing_and_exits_3() {
+    let dir = temp_dir("reproducers");
+    let (alone, alone_out) = run_scene(&dir, "alone", &format!("{HEAD}{UNIAXIAL}"));
+    assert_eq!(alone.status.code(), Some(0), "{alone:?}");
+    let reference = rows_of(&read(&alone_out.join("curves.csv")), "uniaxial");
+    assert_eq!(reference.len(), 4 * 2, "passive + implicit at 4 stretches");
+    let cylinders = [
+        // Reaches no stretch: the material refuses a trial state on the way to 9.
+        ("far", "nr = 2\nnz = 8\nstretch = [9.0]"),
+        // Reaches no stretch: the reference state is not found.
+        (
+            "needle",
+            "nr = 2\nnz = 2\nradius = 1e-6\nlength = 1e6\nstretch = [1.1]",
+        ),
+    ];
+    for (name, keys) in cylinders {
+        let text = format!(
+            "{HEAD}{UNIAXIAL}\n[[study]]\nkind = \"cylinder\"\nname = \"cyl {name}\"\n{keys}\n"
+        );
+        let (output, out) = run_scene(&dir, name, &text);
+        let stdout = String::from_utf8_lossy(&output.stdout);
+        assert_eq!(output.status.code(), Some(3), "{name}: {output:?}");
+        assert_eq!(
+            rows_of(&read(&out.join("curves.csv")), "uniaxial"),
+            reference,
+            "{name}"
+        );
+        assert!(
+            stdout.contains(&format!("FAILED: cyl {name}")) && stdout.contains("INCOMPLETE"),
+            "{name}: {stdout}"
+        );
+        let report = read(&out.join("report.html"));
+        assert!(report.contains(&format!("cyl {name}")), "{name}");
+        assert!(!report.contains("NaN"), "{name}");
+    }
+}
+
+/// The explicit law's γ leaves its domain (b = 1e6): the cylinder study on that law fails, the
+/// uniaxial study on the implicit law is untouched.
+#[test]
+fn a_law_outside_its_domain_fails_only_its_study() {
+    let dir = temp_dir("law");
+    let head = HEAD.replace(
+        "law = \"explicit\"\n",
+        "law = \"explicit\"\nexplicit = { a = 1.0133, b = 1e6 }\n",
+    );
+    let text = format!(
+        "{head}{UNIAXIAL}\n[[study]]\nkind = \"cylinder\"\nname = \"cyl b\"\nnr = 2\nnz = 2\nstretch = [1.1]\n"
+    );
+    let (output, out) = run_scene(&dir, "b", &text);
+    assert_eq!(output.status.code(), Some(3), "{output:?}");
+    assert_eq!(rows_of(&read(&out.join("curves.csv")), "uniaxial").len(), 8);
+    assert!(String::from_utf8_lossy(&output.stdout).contains("FAILED: cyl b"));
+}
+
+/// Invalid input exits 1 and names the file and line: a tolerance below round-off, a usage
+/// error.
+#[test]
+fn invalid_input_exits_1() {
+    let dir = temp_dir("invalid");
+    let text = format!(
+        "{HEAD}\n[[study]]\nkind = \"cylinder\"\nnr = 2\nnz = 2\nstretch = [1.1]\ntolerance = 1e-300\n"
+    );
+    let (output, out) = run_scene(&dir, "tol", &text);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("tol.toml:12") && stderr.contains("tolerance"),
+        "{stderr}"
+    );
+    assert!(!out.join("curves.csv").exists());
+    let usage = run_args(&["run", "--no-such-flag"]);
+    assert_eq!(usage.status.code(), Some(1));
+    let help = run_args(&["run", "--help"]);
+    assert_eq!(help.status.code(), Some(0));
+    let help = String::from_utf8_lossy(&help.stdout);
+    assert!(
+        help.contains("Exit status:") && help.contains("\n  3 "),
+        "{help}"
+    );
+}
