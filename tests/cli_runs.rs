@@ -146,3 +146,92 @@ fn invalid_input_exits_1() {
         "{help}"
     );
 }
+
+/// `check` on `text` (as `dir/name.toml`): exit 1, and stderr names `name.toml:line` and every
+/// needle.
+fn refused(dir: &Path, name: &str, text: &str, line: usize, needles: &[&str]) {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).expect("write scene");
+    let output = run_args(&["check".as_ref(), scene.as_os_str()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{name}: {stderr}");
+    assert!(
+        stderr.contains(&format!("{name}.toml:{line}:")),
+        "{name}: not at line {line}: {stderr}"
+    );
+    for n in needles {
+        assert!(stderr.contains(n), "{name}: lacks {n:?}: {stderr}");
+    }
+}
+
+const CYLINDER: &str = "\n[[study]]\nkind = \"cylinder\"\nnr = 2\nnz = 2\nstretch = [1.1]\n";
+
+/// A fibre the axisymmetric cylinder cannot represent is refused where it is written, with the
+/// reason; homogeneous studies alone accept it (they are relative to the fibre).
+#[test]
+fn an_oblique_fibre_with_a_cylinder_is_refused_at_its_line() {
+    let dir = temp_dir("fibre");
+    let head = HEAD.replace(
+        "energy = \"giantesio-musesti\"\n",
+        "energy = \"giantesio-musesti\"\nfibre = [1, 1, 0]\n",
+    );
+    refused(
+        &dir,
+        "oblique",
+        &format!("{head}{UNIAXIAL}{CYLINDER}"),
+        4,
+        &["material.fibre", "study[1]", "axis"],
+    );
+    let alone = dir.join("alone.toml");
+    std::fs::write(&alone, format!("{head}{UNIAXIAL}")).expect("write");
+    assert_eq!(
+        run_args(&["check".as_ref(), alone.as_os_str()])
+            .status
+            .code(),
+        Some(0)
+    );
+}
+
+/// Names that give the same output name, and a damage given twice, are refused at their line.
+#[test]
+fn colliding_names_and_duplicate_damages_are_refused_at_their_line() {
+    let dir = temp_dir("names");
+    let two = |kind: &str, a: &str, b: &str| {
+        format!(
+            "{HEAD}\n[[study]]\nkind = \"{kind}\"\nname = \"{a}\"\nstretch = [1.1]\n\
+             \n[[study]]\nkind = \"{kind}\"\nname = \"{b}\"\nstretch = [1.1]\n"
+        )
+    };
+    // The second name is on line 14 of each.
+    refused(
+        &dir,
+        "cyl",
+        &two("cylinder", "cyl A", "cyl-a"),
+        14,
+        &["study[1].name", "cyl_a", "study[0]"],
+    );
+    refused(
+        &dir,
+        "stab",
+        &two("stability", "stab X", "stab-x"),
+        14,
+        &["study[1].name", "stab_x"],
+    );
+    refused(
+        &dir,
+        "damage",
+        &format!("{HEAD}{CYLINDER}damage = [0.5, 0.5]\n"),
+        12,
+        &["study[0].damage[1]", "damage[0] is the same damage"],
+    );
+    refused(
+        &dir,
+        "defaults",
+        &HEAD.replace(
+            "law = \"explicit\"\n",
+            "law = \"explicit\"\ndamage = [0.2, 0.2]\n",
+        ),
+        6,
+        &["activation.damage[1]"],
+    );
+}
