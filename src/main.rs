@@ -4,13 +4,14 @@
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
 use activemuscle::studies::tradeoff::run as run_tradeoff;
-use activemuscle::studies::{Silent, StudyResult};
+use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Active skeletal-muscle mechanics after Giantesio & Musesti: homogeneous tests and an
 /// axisymmetric FE cylinder, with loss of activation.
@@ -41,6 +42,10 @@ enum Command {
         /// No progress bars or log lines; print only the summary.
         #[arg(long, short)]
         quiet: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the sweeps keep
+        /// the stretches they solved, everything computed is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
     },
     /// Measure speed against accuracy for every option that trades one for the other.
     ///
@@ -153,7 +158,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         let failed = results.studies.iter().filter(|s| !s.complete()).count();
         println!(
             "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
-             everything computed was written; exit status {EXIT_INCOMPLETE}",
+             everything computed was written",
             results.studies.len()
         );
     }
@@ -167,8 +172,12 @@ fn command_line() -> String {
 const EXIT_STATUS: &str = "Exit status:
   0    every requested point, sweep and fit was computed and written
   1    invalid input or usage (nothing computed), or the outputs could not be written
-  3    something requested failed (named on the FAILED lines of the summary and in
-       report.html); everything that was computed was written";
+  3    something requested failed or the time limit (--max-seconds) was reached (named on
+       the FAILED lines of the summary and in report.html); everything computed was written
+  130  interrupted (Ctrl-C, SIGINT): the stretches solved so far were written; a second
+       interrupt aborts at once and writes nothing
+
+Progress: a bar per study on a terminal, else one line per solved stretch; --quiet: neither.";
 
 /// Exit status of a run that wrote everything it computed but not everything requested.
 const EXIT_INCOMPLETE: u8 = 3;
@@ -180,17 +189,74 @@ enum Ended {
     Complete,
     /// Something requested failed; everything computed was written (exit status 3).
     Incomplete,
+    /// Interrupted (SIGINT); everything computed was written (exit status 130).
+    Interrupted,
 }
 
-fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<Ended, AppError> {
+/// Exit status of an interrupted run (128 + SIGINT, the shell's convention).
+const EXIT_INTERRUPTED: u8 = 130;
+
+/// The reason an interrupted run gives.
+const INTERRUPTED: &str = "interrupted (SIGINT)";
+
+/// Stops `stop` on the first SIGINT; exits at once with status 130 on the second.
+fn on_interrupt(stop: &Stop) {
+    let stop = stop.clone();
+    let count = AtomicUsize::new(0);
+    let installed = ctrlc::set_handler(move || {
+        if count.fetch_add(1, Ordering::SeqCst) > 0 {
+            eprintln!("second interrupt: aborting without writing");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!(
+            "interrupt: stopping after the current Newton iteration and writing what was solved \
+             (interrupt again to abort)"
+        );
+        stop.stop(INTERRUPTED);
+    });
+    if let Err(e) = installed {
+        eprintln!("warning: no interrupt handler ({e}): Ctrl-C will end the run without writing");
+    }
+}
+
+/// Stops `stop` once `seconds` of wall time have passed (a detached timer thread).
+fn time_limit(stop: &Stop, seconds: f64) -> Result<(), AppError> {
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(AppError::Invalid(format!(
+            "--max-seconds {seconds}: must be a finite number of seconds > 0"
+        )));
+    }
+    let stop = stop.clone();
+    let limit = Duration::from_secs_f64(seconds);
+    std::thread::spawn(move || {
+        std::thread::sleep(limit);
+        stop.stop(&format!(
+            "time limit of {seconds} s (--max-seconds) reached"
+        ));
+    });
+    Ok(())
+}
+
+fn run_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    max_seconds: Option<f64>,
+) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
+    let stop = Stop::new();
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
     let mut staging = Staging::new(out)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
         vtk_dir: Some(staging.dir().join("vtk")),
+        stop: Some(stop.clone()),
     };
+    on_interrupt(&stop);
     if !quiet {
         println!(
             "activemuscle {}: {} ({})",
@@ -208,7 +274,13 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<Ended, A
     let rows = write_run(&mut staging, &scene, &results, &meta)?;
     staging.commit()?;
     summary(&results, rows, out, started.elapsed().as_secs_f64());
-    Ok(if results.complete() {
+    let reason = stop.reason();
+    if let Some(reason) = &reason {
+        println!("STOPPED: {reason}; what was solved before is written");
+    }
+    Ok(if reason.as_deref() == Some(INTERRUPTED) {
+        Ended::Interrupted
+    } else if results.complete() {
         Ended::Complete
     } else {
         Ended::Incomplete
@@ -254,8 +326,13 @@ fn main() -> ExitCode {
         }
     };
     let outcome = match &cli.command {
-        None => run_command(None, Path::new("out"), false),
-        Some(Command::Run { scene, out, quiet }) => run_command(scene.as_deref(), out, *quiet),
+        None => run_command(None, Path::new("out"), false, None),
+        Some(Command::Run {
+            scene,
+            out,
+            quiet,
+            max_seconds,
+        }) => run_command(scene.as_deref(), out, *quiet, *max_seconds),
         Some(Command::Check { scene }) => check(scene),
         Some(Command::Tradeoff { scene, out, quiet }) => {
             tradeoff_command(scene.as_deref(), out, *quiet)
@@ -264,6 +341,7 @@ fn main() -> ExitCode {
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,
         Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
+        Ok(Ended::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

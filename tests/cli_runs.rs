@@ -235,3 +235,124 @@ fn colliding_names_and_duplicate_damages_are_refused_at_their_line() {
         &["activation.damage[1]"],
     );
 }
+
+/// A sweep long by its many stretches on a small mesh, between two cheap studies.
+const LONG: &str = r#"title = "long"
+[[study]]
+kind = "uniaxial"
+name = "before"
+stretch = [0.9, 1.0, 1.1]
+[[study]]
+kind = "cylinder"
+name = "long sweep"
+nr = 1
+nz = 8
+bases = "sliding"
+stretch = { from = 1.0005, to = 1.8, step = 0.0005 }
+[[study]]
+kind = "uniaxial"
+name = "after"
+stretch = [0.9, 1.0, 1.1]
+"#;
+
+/// The stretches (column `lambda`) of the cylinder rows of `curves.csv`.
+fn cylinder_stretches(csv: &str) -> Vec<String> {
+    let head: Vec<&str> = csv.lines().next().expect("header").split(',').collect();
+    let at = head.iter().position(|c| *c == "lambda").expect("lambda");
+    rows_of(csv, "cylinder")
+        .iter()
+        .map(|r| r.split(',').nth(at).expect("lambda cell").to_string())
+        .collect()
+}
+
+/// The stretches that progress lines (`[  t s] study: model: lambda = X solved, ...`) report.
+fn reported_stretches(lines: &[String]) -> Vec<String> {
+    let mut v: Vec<String> = lines
+        .iter()
+        .filter_map(|l| {
+            let rest = l.split("lambda = ").nth(1)?;
+            Some(rest.split(' ').next()?.to_string())
+        })
+        .collect();
+    v.sort_by(|a, b| a.parse::<f64>().unwrap().total_cmp(&b.parse().unwrap()));
+    v
+}
+
+/// SIGINT during a long sweep, stdout a pipe: a progress line per solved stretch (plain,
+/// stamped), and after the interrupt the solved stretches are in curves.csv, exactly those the
+/// progress lines reported, the study after is recorded as not run, exit 130.
+#[test]
+fn sigint_keeps_the_solved_stretches_and_exits_130() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let dir = temp_dir("sigint");
+    let scene = dir.join("long.toml");
+    std::fs::write(&scene, LONG).expect("write scene");
+    let out = dir.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+    let mut seen = Vec::new();
+    for line in lines.by_ref() {
+        let line = line.expect("line");
+        let first = line.starts_with('[') && line.contains("solved");
+        seen.push(line);
+        if first {
+            break;
+        }
+    }
+    let kill = Command::new("kill")
+        .arg("-INT")
+        .arg(child.id().to_string())
+        .status()
+        .expect("kill");
+    assert!(kill.success());
+    seen.extend(lines.map(|l| l.expect("line")));
+    let status = child.wait().expect("wait");
+    let stdout = seen.join("\n");
+    assert_eq!(status.code(), Some(130), "{stdout}");
+    let solved = cylinder_stretches(&read(&out.join("curves.csv")));
+    assert!(
+        !solved.is_empty() && solved.len() < 1599,
+        "{}",
+        solved.len()
+    );
+    assert_eq!(solved, reported_stretches(&seen));
+    assert!(stdout.contains("FAILED: after — the whole study: not run: interrupted"));
+    assert!(stdout.contains("interrupted (SIGINT): sweep cancelled"));
+    assert!(read(&out.join("report.html")).contains("interrupted (SIGINT)"));
+}
+
+/// `--max-seconds` stops like an interruption, names the time limit and exits 3.
+#[test]
+fn a_time_limit_keeps_the_solved_stretches_and_exits_3() {
+    let dir = temp_dir("deadline");
+    let scene = dir.join("long.toml");
+    std::fs::write(&scene, LONG).expect("write scene");
+    let out = dir.join("out");
+    let output = run_args(&[
+        "run".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--max-seconds".as_ref(),
+        "0.2".as_ref(),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(3), "{stdout}");
+    assert!(stdout.contains("time limit of 0.2 s (--max-seconds) reached"));
+    let lines: Vec<String> = stdout.lines().map(str::to_string).collect();
+    assert_eq!(
+        cylinder_stretches(&read(&out.join("curves.csv"))),
+        reported_stretches(&lines)
+    );
+    let bad = run_args(&["run", "--max-seconds", "-1", "--quiet"]);
+    assert_eq!(bad.status.code(), Some(1));
+}

@@ -7,7 +7,10 @@ use super::spec::{cell_count, damages, grading, positive, required_stretches, De
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::fem::solver::MIN_TOLERANCE;
-use crate::fem::{AxisymmetricSolver, Bases, Element, FemError, Mesh, SolverOptions, VtkOutput};
+use crate::fem::{
+    AxisymmetricSolver, Bases, Element, FemError, Mesh, Progress as FemProgress, SolverOptions,
+    VtkOutput,
+};
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
 use crate::uniaxial::along_fibres;
@@ -417,13 +420,20 @@ impl CylinderStudy {
             tolerance: self.tolerance,
             element: self.element,
             vtk,
+            cancel: ctx.stop.map(|s| s.flag().clone()),
             ..SolverOptions::default()
         };
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
         let dofs = solver.n_free_dofs();
-        let sweep = solver.sweep(&self.stretches)?;
-        ctx.progress.advance(sweep.results.len());
         let label = models.label(m);
+        let sweep = solver.sweep_with(&self.stretches, &mut |p| {
+            if let FemProgress::Stretch(r) = p {
+                ctx.progress.point(&format!(
+                    "{}: {label}: lambda = {} solved, P = {:.4} kPa",
+                    self.name, r.stretch, r.nominal_stress
+                ));
+            }
+        })?;
         let mut points = Vec::with_capacity(sweep.results.len());
         let mut vtk_files = Vec::new();
         for r in &sweep.results {
@@ -444,6 +454,11 @@ impl CylinderStudy {
             .zip(&sweep.failed_trials)
             .map(|(f, trial)| {
                 let mut message = describe_failure(f);
+                if let (FemError::Cancelled { .. }, Some(reason)) =
+                    (f, ctx.stop.and_then(|s| s.reason()))
+                {
+                    message = format!("{reason}: {message}; the stretches solved before are kept");
+                }
                 if let Some(points) = trial {
                     let f: Vec<_> = points.iter().map(|q| q.f).collect();
                     let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);
