@@ -31,7 +31,10 @@ enum Command {
     ///
     /// Writes into DIR: curves.csv (one row per point), fig_*.png and fig_*.svg, report.html
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
-    /// written atomically: a failed run leaves no half-written file.
+    /// committed all or nothing: a run that fails leaves the previous outputs as they were. DIR
+    /// belongs to one run at a time (.activemuscle.lock); a re-run replaces its own files and
+    /// removes those it no longer writes (.activemuscle-manifest); a non-empty directory that no
+    /// run wrote is refused without --force; /, your home, . and its ancestors always.
     #[command(after_help = EXIT_STATUS)]
     Run {
         /// Scene file (TOML). Omit to run the chapter's study (scenes/paper.toml, embedded).
@@ -42,6 +45,10 @@ enum Command {
         /// No progress bars or log lines; print only the summary.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote (they are left
+        /// alone unless an output has the same name).
+        #[arg(long)]
+        force: bool,
         /// Stop after this many seconds of wall time as an interruption does (the sweeps keep
         /// the stretches they solved, everything computed is written), and exit 3.
         #[arg(long, value_name = "SECONDS")]
@@ -64,6 +71,9 @@ enum Command {
         /// Print only the findings and where the outputs are.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote.
+        #[arg(long)]
+        force: bool,
     },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
@@ -241,6 +251,7 @@ fn run_command(
     scene: Option<&Path>,
     out: &Path,
     quiet: bool,
+    force: bool,
     max_seconds: Option<f64>,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
@@ -249,7 +260,7 @@ fn run_command(
     if let Some(seconds) = max_seconds {
         time_limit(&stop, seconds)?;
     }
-    let mut staging = Staging::new(out)?;
+    let mut staging = Staging::open(out, force)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
@@ -287,16 +298,24 @@ fn run_command(
     })
 }
 
-fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<Ended, AppError> {
+fn tradeoff_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
+    // The output directory is taken before computing: a refusal costs nothing.
+    let mut staging = Staging::open(out, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
     let options = scene.tradeoff_options().cloned().unwrap_or_default();
     let printing = Printing::new(true, false);
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
     let results = run_tradeoff(&scene.models, &options, &scene.fallback(), progress)?;
     let wall = started.elapsed().as_secs_f64();
-    let files = tradeoff::write_all(&results, out, &scene.title, &command_line(), wall)?;
+    let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
+    staging.commit()?;
     if !quiet {
         println!("\n{}", tradeoff::markdown(&results.rows));
     }
@@ -326,17 +345,21 @@ fn main() -> ExitCode {
         }
     };
     let outcome = match &cli.command {
-        None => run_command(None, Path::new("out"), false, None),
+        None => run_command(None, Path::new("out"), false, false, None),
         Some(Command::Run {
             scene,
             out,
             quiet,
+            force,
             max_seconds,
-        }) => run_command(scene.as_deref(), out, *quiet, *max_seconds),
+        }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
         Some(Command::Check { scene }) => check(scene),
-        Some(Command::Tradeoff { scene, out, quiet }) => {
-            tradeoff_command(scene.as_deref(), out, *quiet)
-        }
+        Some(Command::Tradeoff {
+            scene,
+            out,
+            quiet,
+            force,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
     };
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,

@@ -356,3 +356,151 @@ fn a_time_limit_keeps_the_solved_stretches_and_exits_3() {
     let bad = run_args(&["run", "--max-seconds", "-1", "--quiet"]);
     assert_eq!(bad.status.code(), Some(1));
 }
+
+const SMALL: &str = "title = \"small\"\n[[study]]\nkind = \"uniaxial\"\nname = \"along\"\nstretch = [0.9, 1.0, 1.1]\n";
+const ACROSS: &str = "title = \"small\"\n[[study]]\nkind = \"uniaxial\"\nname = \"across\"\ndirection = \"across\"\nstretch = [0.9, 1.0, 1.1]\n";
+
+/// `run SCENE --out OUT --quiet EXTRA…` with `text` written as `dir/name.toml`.
+fn run_into(dir: &Path, name: &str, text: &str, out: &Path, extra: &[&str]) -> Output {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).expect("write scene");
+    let mut args: Vec<&std::ffi::OsStr> = vec![
+        "run".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ];
+    args.extend(extra.iter().map(|a| std::ffi::OsStr::new(a)));
+    run_args(&args)
+}
+
+/// The names in `dir`, sorted, hidden bookkeeping files included.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .expect("list")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// A re-run into its own directory leaves exactly the files a run into a fresh directory
+/// writes: the first run's figures that the second does not draw are gone.
+#[test]
+fn a_rerun_leaves_no_stale_file() {
+    let dir = temp_dir("rerun");
+    let (out, fresh) = (dir.join("out"), dir.join("fresh"));
+    assert_eq!(
+        run_into(&dir, "along", SMALL, &out, &[]).status.code(),
+        Some(0)
+    );
+    let first = listing(&out);
+    assert_eq!(
+        run_into(&dir, "across", ACROSS, &out, &[]).status.code(),
+        Some(0)
+    );
+    assert_eq!(
+        run_into(&dir, "across", ACROSS, &fresh, &[]).status.code(),
+        Some(0)
+    );
+    assert_eq!(listing(&out), listing(&fresh));
+    assert!(first.len() > listing(&out).len(), "{first:?}");
+}
+
+/// A directory another live run holds is refused; a dead run's lock and staging directory are
+/// taken over and removed.
+#[test]
+fn a_second_run_refuses_a_directory_a_live_run_holds() {
+    let dir = temp_dir("lock");
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).expect("mkdir");
+    // This test's own process stands for a live run.
+    std::fs::write(
+        out.join(".activemuscle.lock"),
+        std::process::id().to_string(),
+    )
+    .expect("lock");
+    let refused = run_into(&dir, "a", SMALL, &out, &[]);
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(refused.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains(&format!("another run (pid {})", std::process::id())));
+    assert!(!out.join("curves.csv").exists());
+    // A pid above Linux's maximum (2^22) is no live process.
+    std::fs::write(out.join(".activemuscle.lock"), "4294967").expect("lock");
+    std::fs::create_dir_all(out.join(".activemuscle-partial-4294967/vtk")).expect("mkdir");
+    assert_eq!(run_into(&dir, "a", SMALL, &out, &[]).status.code(), Some(0));
+    let left = listing(&out);
+    assert!(
+        !left
+            .iter()
+            .any(|n| n.starts_with(".activemuscle-partial") || n == ".activemuscle.lock"),
+        "{left:?}"
+    );
+}
+
+/// A non-empty directory no run of ours wrote is refused (`tradeoff` too, before computing)
+/// unless `--force`, which leaves the user's file alone; `/`, `.` and `..` are always refused.
+#[test]
+fn foreign_and_user_directories_are_refused() {
+    let dir = temp_dir("foreign");
+    let out = dir.join("mine");
+    std::fs::create_dir_all(&out).expect("mkdir");
+    std::fs::write(out.join("notes.txt"), "mine").expect("write");
+    let refused = run_into(&dir, "a", SMALL, &out, &[]);
+    assert_eq!(refused.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--force"));
+    assert_eq!(listing(&out), ["notes.txt"]);
+    let tradeoff = run_args(&[
+        "tradeoff".as_ref(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ]);
+    assert_eq!(tradeoff.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&tradeoff.stderr).contains("--force"));
+    assert!(tradeoff.stdout.is_empty(), "computed before refusing");
+    assert_eq!(
+        run_into(&dir, "a", SMALL, &out, &["--force"]).status.code(),
+        Some(0)
+    );
+    assert_eq!(read(&out.join("notes.txt")), "mine");
+    assert!(out.join("curves.csv").exists());
+    let scene = dir.join("a.toml");
+    for target in ["/", ".", ".."] {
+        let output = std::process::Command::new(env!("CARGO_BIN_EXE_activemuscle"))
+            .current_dir(&out)
+            .args([
+                "run".as_ref(),
+                scene.as_os_str(),
+                "--out".as_ref(),
+                target.as_ref(),
+                "--force".as_ref(),
+            ])
+            .output()
+            .expect("run");
+        assert_eq!(output.status.code(), Some(1), "{target}");
+    }
+    assert_eq!(listing(&dir), ["a.toml", "mine"]);
+}
+
+/// A commit that cannot complete (report.html blocked by a directory) changes nothing: the
+/// previous run's files stay as they were, no new file appears beside them.
+#[test]
+fn a_blocked_commit_leaves_the_previous_outputs_unchanged() {
+    let dir = temp_dir("blocked");
+    let out = dir.join("out");
+    assert_eq!(
+        run_into(&dir, "across", ACROSS, &out, &[]).status.code(),
+        Some(0)
+    );
+    std::fs::remove_file(out.join("report.html")).expect("rm");
+    std::fs::create_dir_all(out.join("report.html").join("x")).expect("block");
+    let before = listing(&out);
+    let csv = read(&out.join("curves.csv"));
+    let output = run_into(&dir, "along", SMALL, &out, &[]);
+    assert_eq!(output.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("nothing of this run was committed"));
+    assert_eq!(listing(&out), before);
+    assert_eq!(read(&out.join("curves.csv")), csv);
+}
