@@ -371,7 +371,7 @@ fn run_into(dir: &Path, name: &str, text: &str, out: &Path, extra: &[&str]) -> O
         out.as_os_str(),
         "--quiet".as_ref(),
     ];
-    args.extend(extra.iter().map(|a| std::ffi::OsStr::new(a)));
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
     run_args(&args)
 }
 
