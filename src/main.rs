@@ -328,7 +328,21 @@ fn tradeoff_command(
         out.display(),
         started.elapsed().as_secs_f64()
     );
-    Ok(Ended::Complete)
+    // A variant that could not be measured (no finite error) is a failure of what was asked.
+    let failed: Vec<String> = results
+        .rows
+        .iter()
+        .filter(|r| !r.error.max_rel.is_finite())
+        .map(|r| format!("{}: {}", r.option, r.variant))
+        .collect();
+    for f in &failed {
+        println!("FAILED: {f} (not measured: see tradeoff.md)");
+    }
+    Ok(if failed.is_empty() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
 fn main() -> ExitCode {
