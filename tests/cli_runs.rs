@@ -537,3 +537,24 @@ fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     assert_eq!(tradeoff.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("before computing") && stderr.contains("of memory"));
 }
+
+/// The literal energy law (γ = 0 below λ_min) on the clamped cylinder stops near λ = 0.73, where
+/// its smallest fibre stretch reaches λ_min (README, findings): the stretches before are
+/// written, the stop is named, exit 3 (it was 0).
+#[test]
+fn a_clamped_sweep_that_stops_early_exits_3() {
+    let dir = temp_dir("clamped");
+    let text = "title = \"clamped\"\n[activation]\nlaw = \"energy\"\nbelow_minimum = \"inactive\"\n\
+                [[study]]\nkind = \"cylinder\"\nname = \"clamped\"\nnr = 2\nnz = 8\nstretch = [0.9, 0.8, 0.7]\n";
+    let (output, out) = run_scene(&dir, "clamped", text);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(output.status.code(), Some(3), "{stdout}");
+    assert_eq!(
+        cylinder_stretches(&read(&out.join("curves.csv"))),
+        ["0.8", "0.9"]
+    );
+    assert!(
+        stdout.contains("FAILED: clamped") && stdout.contains("converged up to lambda = 0.73"),
+        "{stdout}"
+    );
+}
