@@ -536,6 +536,10 @@ fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     let stderr = String::from_utf8_lossy(&tradeoff.stderr);
     assert_eq!(tradeoff.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("before computing") && stderr.contains("of memory"));
+    assert!(
+        !dir.join("tr").exists(),
+        "an output directory created for nothing"
+    );
 }
 
 /// The literal energy law (γ = 0 below λ_min) on the clamped cylinder stops near λ = 0.73, where

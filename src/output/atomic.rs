@@ -33,6 +33,9 @@ pub struct Staging {
     files: Vec<PathBuf>,
     lock: Option<PathBuf>,
     committed: bool,
+    /// Whether this run created the output directory (removed again, if still empty, when the
+    /// run ends without a commit).
+    created: bool,
 }
 
 fn refuse(root: &Path, message: impl Into<String>) -> AppError {
@@ -148,6 +151,7 @@ impl Staging {
                 format!("refusing to write outputs into {what}: give a directory of their own, e.g. --out out"),
             ));
         }
+        let created = !root.exists();
         std::fs::create_dir_all(root)
             .map_err(|e| AppError::io("create the output directory", root, e))?;
         let lock = lock(root)?;
@@ -157,6 +161,7 @@ impl Staging {
             files: Vec::new(),
             lock: Some(lock),
             committed: false,
+            created,
         };
         let entries: Vec<String> = std::fs::read_dir(root)
             .map_err(|e| AppError::io("list", root, e))?
@@ -307,6 +312,10 @@ impl Drop for Staging {
         }
         if let Some(lock) = self.lock.take() {
             let _ = std::fs::remove_file(lock);
+        }
+        if self.created && !self.committed {
+            // Fails, harmlessly, unless the directory is empty.
+            let _ = std::fs::remove_dir(&self.root);
         }
     }
 }
