@@ -277,6 +277,10 @@ fn run_command(
         );
     }
     let results = scene.run(&options);
+    // A time limit reached after the last study is no stop.
+    let reason = stop
+        .reason()
+        .filter(|r| r == INTERRUPTED || !results.complete());
     let meta = RunMeta {
         command: command_line(),
         started,
@@ -285,7 +289,6 @@ fn run_command(
     let rows = write_run(&mut staging, &scene, &results, &meta)?;
     staging.commit()?;
     summary(&results, rows, out, started.elapsed().as_secs_f64());
-    let reason = stop.reason();
     if let Some(reason) = &reason {
         println!("STOPPED: {reason}; what was solved before is written");
     }
