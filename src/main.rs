@@ -4,13 +4,14 @@
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
 use activemuscle::studies::tradeoff::run as run_tradeoff;
-use activemuscle::studies::{Silent, StudyResult};
+use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Active skeletal-muscle mechanics after Giantesio & Musesti: homogeneous tests and an
 /// axisymmetric FE cylinder, with loss of activation.
@@ -18,7 +19,7 @@ use std::time::Instant;
 /// Without a subcommand, runs the chapter's whole study (the embedded scenes/paper.toml) and
 /// writes curves.csv, the figures (PNG + SVG), report.html and VTK fields into out/.
 #[derive(Parser, Debug)]
-#[command(name = "activemuscle", version, about, long_about)]
+#[command(name = "activemuscle", version, about, long_about, after_help = EXIT_STATUS)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -30,7 +31,11 @@ enum Command {
     ///
     /// Writes into DIR: curves.csv (one row per point), fig_*.png and fig_*.svg, report.html
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
-    /// written atomically: a failed run leaves no half-written file.
+    /// committed all or nothing: a run that fails leaves the previous outputs as they were. DIR
+    /// belongs to one run at a time (.activemuscle.lock); a re-run replaces its own files and
+    /// removes those it no longer writes (.activemuscle-manifest); a non-empty directory that no
+    /// run wrote is refused without --force; /, your home, . and its ancestors always.
+    #[command(after_help = EXIT_STATUS)]
     Run {
         /// Scene file (TOML). Omit to run the chapter's study (scenes/paper.toml, embedded).
         scene: Option<PathBuf>,
@@ -40,6 +45,14 @@ enum Command {
         /// No progress bars or log lines; print only the summary.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote (they are left
+        /// alone unless an output has the same name).
+        #[arg(long)]
+        force: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the sweeps keep
+        /// the stretches they solved, everything computed is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
     },
     /// Measure speed against accuracy for every option that trades one for the other.
     ///
@@ -58,6 +71,9 @@ enum Command {
         /// Print only the findings and where the outputs are.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote.
+        #[arg(long)]
+        force: bool,
     },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
@@ -73,7 +89,7 @@ fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
     })
 }
 
-fn check(path: &Path) -> Result<(), AppError> {
+fn check(path: &Path) -> Result<Ended, AppError> {
     let scene = load(Some(path))?;
     println!(
         "# {}: valid. Resolved scene (every default written out):\n",
@@ -84,7 +100,7 @@ fn check(path: &Path) -> Result<(), AppError> {
     for study in &scene.studies {
         println!("#   {}", study.describe());
     }
-    Ok(())
+    Ok(Ended::Complete)
 }
 
 fn rustc_version() -> Option<String> {
@@ -97,6 +113,8 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// Prints the table of studies, every failure and where the outputs are; says whether the run
+/// is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     println!();
     println!(
@@ -105,12 +123,16 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     );
     println!("{}", "-".repeat(91));
     for s in &results.studies {
+        let points = match s.result {
+            StudyResult::Nothing => "FAILED".to_string(),
+            _ => format!("{}/{}", s.points, s.requested),
+        };
         println!(
             "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
             s.name,
             s.kind.name(),
             s.models,
-            format!("{}/{}", s.points, s.requested),
+            points,
             s.elapsed.as_secs_f64()
         );
     }
@@ -119,51 +141,133 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             continue;
         }
         for s in &c.sweeps {
-            println!(
-                "verification (sliding bases, {}): max |P_FE − P_0D| = {:.2e} kPa",
-                s.label,
-                s.worst_against_0d().0
-            );
+            if let Some((worst, _)) = s.worst_against_0d() {
+                println!(
+                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
+                    s.label
+                );
+            }
         }
     }
     for (study, f) in results.failures() {
-        println!("note: {study} — {}: {}", f.model, f.message);
+        println!("FAILED: {study} — {}: {}", f.model, f.message);
     }
-    let fits: Vec<_> = results
-        .studies
-        .iter()
-        .filter_map(|s| match &s.result {
-            StudyResult::Fit(f) => Some(f),
-            _ => None,
-        })
-        .flatten()
-        .collect();
-    let failed = fits.iter().filter(|f| !f.converged).count();
-    if failed > 0 {
-        println!(
-            "{failed} of {} fit(s) did NOT converge (best points reported in fits.csv and report.html); the run continued",
-            fits.len()
-        );
+    for s in &results.studies {
+        if s.failures.is_empty() && s.points < s.requested {
+            println!(
+                "FAILED: {} — {} of {} requested points computed",
+                s.name, s.points, s.requested
+            );
+        }
     }
     println!(
         "{rows} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
         out.display()
     );
+    if !results.complete() {
+        let failed = results.studies.iter().filter(|s| !s.complete()).count();
+        println!(
+            "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
+             everything computed was written",
+            results.studies.len()
+        );
+    }
 }
 
 fn command_line() -> String {
     std::env::args().collect::<Vec<_>>().join(" ")
 }
 
-fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+/// The exit statuses, for `--help`.
+const EXIT_STATUS: &str = "Exit status:
+  0    every requested point, sweep and fit was computed and written
+  1    invalid input or usage (nothing computed), or the outputs could not be written
+  3    something requested failed or the time limit (--max-seconds) was reached (named on
+       the FAILED lines of the summary and in report.html); everything computed was written
+  130  interrupted (Ctrl-C, SIGINT): the stretches solved so far were written; a second
+       interrupt aborts at once and writes nothing
+
+Progress: a bar per study on a terminal, else one line per solved stretch; --quiet: neither.";
+
+/// Exit status of a run that wrote everything it computed but not everything requested.
+const EXIT_INCOMPLETE: u8 = 3;
+
+/// How a command ended, when it did not end in an error (exit status 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Ended {
+    /// Everything requested was computed and written (exit status 0).
+    Complete,
+    /// Something requested failed; everything computed was written (exit status 3).
+    Incomplete,
+    /// Interrupted (SIGINT); everything computed was written (exit status 130).
+    Interrupted,
+}
+
+/// Exit status of an interrupted run (128 + SIGINT, the shell's convention).
+const EXIT_INTERRUPTED: u8 = 130;
+
+/// The reason an interrupted run gives.
+const INTERRUPTED: &str = "interrupted (SIGINT)";
+
+/// Stops `stop` on the first SIGINT; exits at once with status 130 on the second.
+fn on_interrupt(stop: &Stop) {
+    let stop = stop.clone();
+    let count = AtomicUsize::new(0);
+    let installed = ctrlc::set_handler(move || {
+        if count.fetch_add(1, Ordering::SeqCst) > 0 {
+            eprintln!("second interrupt: aborting without writing");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!(
+            "interrupt: stopping after the current Newton iteration and writing what was solved \
+             (interrupt again to abort)"
+        );
+        stop.stop(INTERRUPTED);
+    });
+    if let Err(e) = installed {
+        eprintln!("warning: no interrupt handler ({e}): Ctrl-C will end the run without writing");
+    }
+}
+
+/// Stops `stop` once `seconds` of wall time have passed (a detached timer thread).
+fn time_limit(stop: &Stop, seconds: f64) -> Result<(), AppError> {
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(AppError::Invalid(format!(
+            "--max-seconds {seconds}: must be a finite number of seconds > 0"
+        )));
+    }
+    let stop = stop.clone();
+    let limit = Duration::from_secs_f64(seconds);
+    std::thread::spawn(move || {
+        std::thread::sleep(limit);
+        stop.stop(&format!(
+            "time limit of {seconds} s (--max-seconds) reached"
+        ));
+    });
+    Ok(())
+}
+
+fn run_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+    max_seconds: Option<f64>,
+) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
-    let mut staging = Staging::new(out)?;
+    let stop = Stop::new();
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
+    let mut staging = Staging::open(out, force)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
         vtk_dir: Some(staging.dir().join("vtk")),
+        stop: Some(stop.clone()),
     };
+    on_interrupt(&stop);
     if !quiet {
         println!(
             "activemuscle {}: {} ({})",
@@ -172,7 +276,11 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppE
             scene.file
         );
     }
-    let results = scene.run(&options)?;
+    let results = scene.run(&options);
+    // A time limit reached after the last study is no stop.
+    let reason = stop
+        .reason()
+        .filter(|r| r == INTERRUPTED || !results.complete());
     let meta = RunMeta {
         command: command_line(),
         started,
@@ -181,19 +289,36 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppE
     let rows = write_run(&mut staging, &scene, &results, &meta)?;
     staging.commit()?;
     summary(&results, rows, out, started.elapsed().as_secs_f64());
-    Ok(())
+    if let Some(reason) = &reason {
+        println!("STOPPED: {reason}; what was solved before is written");
+    }
+    Ok(if reason.as_deref() == Some(INTERRUPTED) {
+        Ended::Interrupted
+    } else if results.complete() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
-fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), AppError> {
+fn tradeoff_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
+    // The output directory is taken before computing: a refusal costs nothing.
+    let mut staging = Staging::open(out, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
     let options = scene.tradeoff_options().cloned().unwrap_or_default();
     let printing = Printing::new(true, false);
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
     let results = run_tradeoff(&scene.models, &options, &scene.fallback(), progress)?;
     let wall = started.elapsed().as_secs_f64();
-    let files = tradeoff::write_all(&results, out, &scene.title, &command_line(), wall)?;
+    let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
+    staging.commit()?;
     if !quiet {
         println!("\n{}", tradeoff::markdown(&results.rows));
     }
@@ -206,21 +331,57 @@ fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(),
         out.display(),
         started.elapsed().as_secs_f64()
     );
-    Ok(())
+    // A variant that could not be measured (no finite error) is a failure of what was asked.
+    let failed: Vec<String> = results
+        .rows
+        .iter()
+        .filter(|r| !r.error.max_rel.is_finite())
+        .map(|r| format!("{}: {}", r.option, r.variant))
+        .collect();
+    for f in &failed {
+        println!("FAILED: {f} (not measured: see tradeoff.md)");
+    }
+    Ok(if failed.is_empty() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let outcome = match &cli.command {
-        None => run_command(None, Path::new("out"), false),
-        Some(Command::Run { scene, out, quiet }) => run_command(scene.as_deref(), out, *quiet),
-        Some(Command::Check { scene }) => check(scene),
-        Some(Command::Tradeoff { scene, out, quiet }) => {
-            tradeoff_command(scene.as_deref(), out, *quiet)
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print and succeed; a usage error is an invalid input (1).
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::FAILURE
+            } else {
+                ExitCode::SUCCESS
+            };
         }
     };
+    let outcome = match &cli.command {
+        None => run_command(None, Path::new("out"), false, false, None),
+        Some(Command::Run {
+            scene,
+            out,
+            quiet,
+            force,
+            max_seconds,
+        }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
+        Some(Command::Check { scene }) => check(scene),
+        Some(Command::Tradeoff {
+            scene,
+            out,
+            quiet,
+            force,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
+    };
     match outcome {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Ended::Complete) => ExitCode::SUCCESS,
+        Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
+        Ok(Ended::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -38,7 +38,7 @@ normals = 20
 #[test]
 fn a_scene_from_a_string_runs_without_a_terminal_into_typed_results() {
     let scene = Scene::parse(SCENE, "library.toml").expect("valid scene");
-    let results = scene.run(&RunOptions::default()).expect("runs");
+    let results = scene.run(&RunOptions::default());
     let kinds: Vec<StudyKind> = results.studies.iter().map(|s| s.kind).collect();
     assert_eq!(
         kinds,
@@ -106,7 +106,7 @@ fn the_csv_the_binary_writes_is_the_projection_of_the_typed_results() {
     binary::run_quiet(Some(&path), &dir.join("out"));
     let written = std::fs::read(dir.join("out/curves.csv")).expect("curves.csv");
     let scene = Scene::load(&path).expect("valid scene");
-    let results = scene.run(&RunOptions::default()).expect("runs");
+    let results = scene.run(&RunOptions::default());
     assert_eq!(to_csv(&rows(&results)).expect("csv"), written);
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -152,8 +152,10 @@ impl Scene {
         })
     }
 
-    /// Runs every study, in order.
-    pub fn run(&self, options: &RunOptions) -> Result<Results, AppError> {
+    /// Runs every study, in order. A study that stops with an error does not stop the run: the
+    /// error is that study's failure ([`crate::studies::Outcome::nothing`]); see
+    /// [`Results::complete`].
+    pub fn run(&self, options: &RunOptions) -> Results {
         run::run(self, options)
     }
 }

@@ -9,7 +9,7 @@ use crate::app_error::{SceneError, SpecError};
 use crate::energy::GiantesioMusesti;
 use crate::models::{EnergySpec, MaterialSpec, Models};
 use crate::studies::spec::{damages, Defaults};
-use crate::studies::{tradeoff, Study, StudyKind, StudySpec};
+use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec};
 use std::path::Path;
 
 pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -30,6 +30,7 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         base: Path::new(file).parent().unwrap_or(Path::new("")),
     };
     let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
+    axial_fibres(models.fibre, &studies).map_err(error)?;
     let resolved = SceneSpec {
         title: spec.title.clone(),
         material: MaterialSpec {
@@ -122,6 +123,7 @@ fn studies(
             }
         }
         let (study, r) = s.resolve(defaults).map_err(|e| e.within(&key))?;
+        unique_name(&study, &studies).map_err(|e| e.within(&key))?;
         studies.push(study);
         resolved.push(r);
     }
@@ -134,4 +136,58 @@ fn studies(
         }
     }
     Ok((studies, resolved))
+}
+
+/// Output files and directories are named by [`slug`] of a study's name: it must have a letter
+/// or a digit and differ from every earlier study's (`"cyl A"` and `"cyl-a"` are both `cyl_a`).
+fn unique_name(study: &Study, before: &[Study]) -> Result<(), SpecError> {
+    let name = study.name();
+    let file = slug(name);
+    if file.is_empty() {
+        return Err(SpecError::new(
+            "name",
+            format!("{name:?}"),
+            "a study's name names its output files: it needs at least one letter or digit",
+        ));
+    }
+    match before.iter().position(|s| slug(s.name()) == file) {
+        None => Ok(()),
+        Some(j) => Err(SpecError::new(
+            "name",
+            format!("{name:?}"),
+            format!(
+                "study[{j}] is named {:?}: both give the output name {file:?} (names are compared by \
+                 their letters and digits, case ignored); give each study a name of its own",
+                before[j].name()
+            ),
+        )),
+    }
+}
+
+/// The axisymmetric FE cylinder (cylinder and trade-off studies) has its fibres along its axis,
+/// e₁ of the material frame: a unit fibre `f` with |f · e₁| < 1 − 1e-12 cannot be represented
+/// there and is refused, naming the first study that would have replaced it by the axis.
+fn axial_fibres(fibre: [f64; 3], studies: &[Study]) -> Result<(), SpecError> {
+    if fibre[0].abs() >= 1.0 - 1e-12 {
+        return Ok(());
+    }
+    match studies
+        .iter()
+        .position(|s| matches!(s, Study::Cylinder(_) | Study::Tradeoff(_)))
+    {
+        None => Ok(()),
+        Some(i) => {
+            let shown: Vec<String> = fibre.iter().map(|x| format!("{x:.4}")).collect();
+            Err(SpecError::new(
+                "material.fibre",
+                format!("[{}] (normalised)", shown.join(", ")),
+                format!(
+                    "study[{i}] ({}) solves the axisymmetric FE cylinder, whose fibres run along its \
+                     axis e₁ = [1, 0, 0]; a fibre across or oblique to the axis breaks the axial symmetry: \
+                     use fibre = [1, 0, 0] (homogeneous studies are the same for any fibre direction)",
+                    studies[i].name()
+                ),
+            ))
+        }
+    }
 }

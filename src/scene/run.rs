@@ -2,14 +2,14 @@
 //! curves and FE sweeps in parallel), progress reported through [`crate::studies::Progress`].
 
 use super::Scene;
-use crate::app_error::AppError;
 use crate::studies::cylinder::CylinderResult;
 use crate::studies::fit::FitOutcome;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::tradeoff::TradeoffResults;
 use crate::studies::uniaxial::UniaxialResult;
-use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, StudyResult};
+use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, StudyResult};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -23,6 +23,9 @@ pub struct RunOptions {
     pub progress: bool,
     /// Where the solver writes VTK files (e.g. a staging directory; `None`: no VTK).
     pub vtk_dir: Option<PathBuf>,
+    /// Stops the run (e.g. on SIGINT or at a time limit): the FE sweep running returns the
+    /// stretches it solved, the studies not started are recorded as not run.
+    pub stop: Option<Stop>,
 }
 
 /// Everything a run computed: one outcome per study, in the scene's order.
@@ -33,6 +36,11 @@ pub struct Results {
 }
 
 impl Results {
+    /// Whether every study computed everything it was asked for ([`Outcome::complete`]).
+    pub fn complete(&self) -> bool {
+        self.studies.iter().all(Outcome::complete)
+    }
+
     /// Every failure, with the name of its study.
     pub fn failures(&self) -> impl Iterator<Item = (&str, &Failure)> {
         self.studies
@@ -95,12 +103,14 @@ impl Results {
     }
 }
 
-/// Progress on a terminal: log lines, and a bar per study if asked.
+/// Progress: log lines, and a bar per study if asked (on a terminal); without bars, one plain
+/// line per point that says it ([`Progress::point`]), stamped with the time since the start.
 pub struct Printing {
     bars: MultiProgress,
     bar: Mutex<Option<ProgressBar>>,
     verbose: bool,
     progress: bool,
+    started: Instant,
 }
 
 impl Printing {
@@ -115,6 +125,7 @@ impl Printing {
             bar: Mutex::new(None),
             verbose,
             progress,
+            started: Instant::now(),
         }
     }
 
@@ -130,7 +141,7 @@ impl Progress for Printing {
         }
         // Prints above the bars without tearing them.
         if !self.progress || self.bars.println(line).is_err() {
-            println!("{line}");
+            let _ = writeln!(std::io::stdout(), "{line}");
         }
     }
 
@@ -157,6 +168,22 @@ impl Progress for Printing {
         }
     }
 
+    fn point(&self, line: &str) {
+        if !self.verbose {
+            return;
+        }
+        if self.progress {
+            self.advance(1);
+        } else {
+            // A closed pipe (`| head`) does not stop the run.
+            let _ = writeln!(
+                std::io::stdout(),
+                "[{:8.1} s] {line}",
+                self.started.elapsed().as_secs_f64()
+            );
+        }
+    }
+
     fn finish(&self) {
         if let Some(pb) = self.bar.lock().ok().and_then(|mut b| b.take()) {
             pb.finish_and_clear();
@@ -164,19 +191,33 @@ impl Progress for Printing {
     }
 }
 
-/// Runs every study of `scene`, in order; the first study that cannot run stops the run.
-pub(super) fn run(scene: &Scene, options: &RunOptions) -> Result<Results, AppError> {
+/// Runs every study of `scene`, in order. A study that stops with an error is recorded as its
+/// outcome's failure ([`Outcome::nothing`]) and the run goes on with the next one; once the run
+/// is stopped ([`RunOptions::stop`]) the studies not started are recorded as not run.
+pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
     let printing = Printing::new(options.verbose, options.progress);
     let progress: &dyn Progress = if options.verbose { &printing } else { &Silent };
     let ctx = RunContext {
         progress,
         vtk_dir: options.vtk_dir.as_deref(),
+        stop: options.stop.as_ref(),
     };
     let fallback = scene.fallback();
     let mut results = Results::default();
     for study in &scene.studies {
+        if let Some(reason) = options.stop.as_ref().and_then(Stop::reason) {
+            results
+                .studies
+                .push(Outcome::nothing(study, format!("not run: {reason}")));
+            continue;
+        }
         let t0 = Instant::now();
-        let mut outcome = study.run(&scene.models, &fallback, &ctx)?;
+        let mut outcome = study
+            .run(&scene.models, &fallback, &ctx)
+            .unwrap_or_else(|e| {
+                progress.finish();
+                Outcome::nothing(study, e.to_string())
+            });
         outcome.elapsed = t0.elapsed();
         progress.log(&format!(
             "{}: {} points in {:.2} s",
@@ -186,5 +227,5 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Result<Results, AppErr
         ));
         results.studies.push(outcome);
     }
-    Ok(results)
+    results
 }

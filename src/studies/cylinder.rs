@@ -6,7 +6,11 @@ use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
-use crate::fem::{AxisymmetricSolver, Bases, Element, FemError, Mesh, SolverOptions, VtkOutput};
+use crate::fem::solver::MIN_TOLERANCE;
+use crate::fem::{
+    AxisymmetricSolver, Bases, Element, FemError, Mesh, Progress as FemProgress, SolverOptions,
+    VtkOutput,
+};
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
 use crate::uniaxial::along_fibres;
@@ -140,6 +144,15 @@ pub fn resolve(
     let nz = cell_count("nz", spec.nz.unwrap_or(24))?;
     let grading = grading("grading", spec.grading.unwrap_or(1.0))?;
     let tolerance = positive("tolerance", spec.tolerance.unwrap_or(1e-10))?;
+    if tolerance < MIN_TOLERANCE {
+        return Err(SpecError::new(
+            "tolerance",
+            format!("{tolerance:e}"),
+            format!(
+                "must be at least 4 ε = {MIN_TOLERANCE:.1e}: a scaled residual of f64 numbers does not go below its round-off"
+            ),
+        ));
+    }
     let law = spec.law.unwrap_or(d.law);
     d.models
         .supports(law)
@@ -242,12 +255,13 @@ impl Sweep {
             .fold(0.0f64, f64::max)
     }
 
-    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs (NaN without a 0D value).
-    pub fn worst_against_0d(&self) -> (f64, f64) {
+    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs; `None` when no stretch has
+    /// a 0D value (e.g. a sweep that reached no stretch).
+    pub fn worst_against_0d(&self) -> Option<(f64, f64)> {
         self.points
             .iter()
             .filter_map(|p| p.stress_0d.map(|zero| ((p.stress - zero).abs(), p.lambda)))
-            .fold((0.0f64, f64::NAN), |a, b| if b.0 > a.0 { b } else { a })
+            .max_by(|a, b| a.0.total_cmp(&b.0))
     }
 }
 
@@ -326,10 +340,7 @@ impl CylinderStudy {
             .start(&self.name, choices.len() * self.stretches.len());
         let sweeps: Vec<Result<(Sweep, Vec<Failure>), AppError>> = choices
             .par_iter()
-            .map(|m| {
-                self.sweep(models, m, ctx)
-                    .map_err(|e| e.within(format!("{}: {}", self.name, models.label(m))))
-            })
+            .map(|m| self.sweep(models, m, ctx))
             .collect();
         ctx.progress.finish();
         let mut result = CylinderResult {
@@ -349,8 +360,19 @@ impl CylinderStudy {
             self.grading,
             self.stretches.len()
         )];
-        for s in sweeps {
-            let (sweep, stops) = s?;
+        for (s, m) in sweeps.into_iter().zip(&choices) {
+            // A sweep that cannot start (model, mesh, memory) costs only its own model.
+            let (sweep, stops) = match s {
+                Ok(s) => s,
+                Err(e) => {
+                    details.push(format!("d = {}: not run (see notes)", m.damage));
+                    failures.push(Failure {
+                        model: models.label(m),
+                        message: e.to_string(),
+                    });
+                    continue;
+                }
+            };
             details.push(format!(
                 "d = {}: {}/{} stretches, {} dofs, max |P_FE − P_0D| / max(|P_0D|, 1 kPa) = {:.2e}{}",
                 sweep.model.damage,
@@ -398,13 +420,20 @@ impl CylinderStudy {
             tolerance: self.tolerance,
             element: self.element,
             vtk,
+            cancel: ctx.stop.map(|s| s.flag().clone()),
             ..SolverOptions::default()
         };
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
         let dofs = solver.n_free_dofs();
-        let sweep = solver.sweep(&self.stretches)?;
-        ctx.progress.advance(sweep.results.len());
         let label = models.label(m);
+        let sweep = solver.sweep_with(&self.stretches, &mut |p| {
+            if let FemProgress::Stretch(r) = p {
+                ctx.progress.point(&format!(
+                    "{}: {label}: lambda = {} solved, P = {:.4} kPa",
+                    self.name, r.stretch, r.nominal_stress
+                ));
+            }
+        })?;
         let mut points = Vec::with_capacity(sweep.results.len());
         let mut vtk_files = Vec::new();
         for r in &sweep.results {
@@ -415,8 +444,8 @@ impl CylinderStudy {
                 newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
                 stress_0d: along_fibres(&muscle, r.stretch).ok().map(|p| p.stress),
             });
-            if ctx.vtk_dir.is_some() && self.vtk.iter().any(|v| (v - r.stretch).abs() < 1e-12) {
-                vtk_files.push(sub.join(format!("lambda_{:.4}.vtu", r.stretch)));
+            if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
+                vtk_files.push(sub.join(file));
             }
         }
         let failures = sweep
@@ -425,6 +454,11 @@ impl CylinderStudy {
             .zip(&sweep.failed_trials)
             .map(|(f, trial)| {
                 let mut message = describe_failure(f);
+                if let (FemError::Cancelled { .. }, Some(reason)) =
+                    (f, ctx.stop.and_then(|s| s.reason()))
+                {
+                    message = format!("{reason}: {message}; the stretches solved before are kept");
+                }
                 if let Some(points) = trial {
                     let f: Vec<_> = points.iter().map(|q| q.f).collect();
                     let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);

@@ -22,11 +22,13 @@ pub mod tradeoff;
 pub mod uniaxial;
 
 use crate::app_error::{AppError, SpecError};
+use crate::fem::Cancel;
 use crate::models::Models;
 use crate::uniaxial::Direction;
 use serde::{Deserialize, Deserializer, Serialize};
 use spec::Defaults;
 use std::path::Path;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 /// Study kinds (`kind = "..."`).
@@ -169,6 +171,17 @@ impl Study {
         }
     }
 
+    /// Its kind.
+    pub fn kind(&self) -> StudyKind {
+        match self {
+            Study::Uniaxial(_) => StudyKind::Uniaxial,
+            Study::Cylinder(_) => StudyKind::Cylinder,
+            Study::Fit(_) => StudyKind::Fit,
+            Study::Stability(_) => StudyKind::Stability,
+            Study::Tradeoff(_) => StudyKind::Tradeoff,
+        }
+    }
+
     /// What it will compute, in one line.
     pub fn describe(&self) -> String {
         match self {
@@ -230,6 +243,10 @@ pub trait Progress: Sync {
     fn start(&self, _label: &str, _total: usize) {}
     /// `n` more points are done.
     fn advance(&self, _n: usize) {}
+    /// One more point is done, said in `line` (e.g. a solved stretch of an FE sweep).
+    fn point(&self, _line: &str) {
+        self.advance(1);
+    }
     /// The study is done.
     fn finish(&self) {}
 }
@@ -240,13 +257,57 @@ pub struct Silent;
 
 impl Progress for Silent {}
 
-/// How studies run: where they report and where the FE solver writes VTK files.
+/// How studies run: where they report, where the FE solver writes VTK files, what stops them.
 #[derive(Clone, Copy)]
 pub struct RunContext<'a> {
     /// Progress reports.
     pub progress: &'a dyn Progress,
     /// Directory for VTK files (`None`: none are written).
     pub vtk_dir: Option<&'a Path>,
+    /// Stops the FE sweeps, which return the stretches solved before (`None`: runs to the end).
+    pub stop: Option<&'a Stop>,
+}
+
+/// A request to stop a run (an interruption, a time limit) and its reason: FE sweeps holding its
+/// flag return what they solved, studies not started are not run. Clones share the request.
+#[derive(Debug, Clone, Default)]
+pub struct Stop {
+    flag: Cancel,
+    reason: Arc<Mutex<Option<String>>>,
+}
+
+impl Stop {
+    /// A request not yet made.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Stops the run because of `reason` (the first reason given is kept).
+    pub fn stop(&self, reason: &str) {
+        if let Ok(mut r) = self.reason.lock() {
+            r.get_or_insert_with(|| reason.to_string());
+        }
+        self.flag.cancel();
+    }
+
+    /// Why the run was stopped, once it was.
+    pub fn reason(&self) -> Option<String> {
+        if !self.flag.is_cancelled() {
+            return None;
+        }
+        Some(
+            self.reason
+                .lock()
+                .ok()
+                .and_then(|r| r.clone())
+                .unwrap_or_else(|| "stopped".into()),
+        )
+    }
+
+    /// The flag the FE solver polls ([`crate::fem::SolverOptions::cancel`]).
+    pub fn flag(&self) -> &Cancel {
+        &self.flag
+    }
 }
 
 /// Something a study could not compute, for a reason of the material or the solver: recorded and
@@ -272,6 +333,9 @@ pub enum StudyResult {
     Stability(Vec<stability::StabilityCurve>),
     /// Trade-off measurements.
     Tradeoff(tradeoff::TradeoffResults),
+    /// Nothing: the study stopped with an error before computing a result (the error is its
+    /// failure, [`Outcome::nothing`]).
+    Nothing,
 }
 
 /// One study's outcome: its result, its failures and its summary.
@@ -295,6 +359,33 @@ pub struct Outcome {
     pub failures: Vec<Failure>,
     /// The result.
     pub result: StudyResult,
+}
+
+impl Outcome {
+    /// The outcome of `study`, which computed nothing: it stopped with an error, or was not run
+    /// (the run was stopped). `message` says which, and is its one failure.
+    pub fn nothing(study: &Study, message: String) -> Self {
+        Outcome {
+            name: study.name().to_string(),
+            kind: study.kind(),
+            models: 0,
+            points: 0,
+            requested: 0,
+            elapsed: Duration::ZERO,
+            details: vec!["nothing computed: see notes".into()],
+            failures: vec![Failure {
+                model: "the whole study".into(),
+                message,
+            }],
+            result: StudyResult::Nothing,
+        }
+    }
+
+    /// Whether everything the study was asked for was computed: no failure, every requested
+    /// point.
+    pub fn complete(&self) -> bool {
+        self.failures.is_empty() && self.points >= self.requested
+    }
 }
 
 /// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).

@@ -185,6 +185,13 @@ pub fn damages(key: &str, v: &[f64]) -> Result<Vec<f64>, SpecError> {
                 "damage d must lie in [0, 1]",
             ));
         }
+        if let Some(j) = v[..i].iter().position(|e| e == d) {
+            return Err(SpecError::new(
+                format!("{key}[{i}]"),
+                d,
+                format!("{key}[{j}] is the same damage: each value is one model and one set of outputs, give it once"),
+            ));
+        }
     }
     Ok(v.to_vec())
 }

@@ -200,6 +200,7 @@ pub fn run(
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
     };
+    check_memory(plan, &o.groups)?;
     let mut runner = Runner {
         progress,
         rows: Vec::new(),
@@ -225,6 +226,31 @@ pub fn run(
     let mut rows = runner.rows;
     measure::finalise(&mut rows);
     Ok(TradeoffResults { rows, findings })
+}
+
+/// Checks every mesh the chosen groups solve against the memory limit
+/// ([`crate::fem::memory::default_limit`]) before anything is computed: the FE mesh, the mesh
+/// option's meshes, and the element option's Q2/Q1 reference on twice the FE mesh's cells and
+/// its finest Q1/P0 mesh on four times.
+fn check_memory(plan: &Resolved, groups: &[OptionGroup]) -> Result<(), AppError> {
+    use crate::fem::{Element, MemoryEstimate, SolverOptions};
+    let (nr, nz) = plan.fe_mesh;
+    let mut meshes = vec![(nr, nz, Element::Q2Q1)];
+    if groups.contains(&OptionGroup::Mesh) {
+        meshes.extend(plan.meshes.iter().map(|&(r, z)| (r, z, Element::Q2Q1)));
+    }
+    if groups.contains(&OptionGroup::Element) {
+        meshes.push((2 * nr, 2 * nz, Element::Q2Q1));
+        meshes.push((4 * nr, 4 * nz, Element::Q1P0));
+    }
+    let limit = crate::fem::memory::default_limit();
+    let linear = SolverOptions::default().linear_solver;
+    for (r, z, element) in meshes {
+        MemoryEstimate::structured(r, z, element, linear)
+            .check(limit)
+            .map_err(|e| AppError::from(e).within("before computing"))?;
+    }
+    Ok(())
 }
 
 /// `[[study]] kind = "tradeoff"` as written; `None` is a key left to its default.
