@@ -561,7 +561,10 @@ fn draw_panel<DB: DrawingBackend>(
         Scale::Linear => {
             let mut chart: ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>> =
                 builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
-            mesh(&mut chart, panel, None, Some(&|v: &f64| short(*v)))?;
+            // A tick at 0 computed as y0 + k·step may come out as −1.4e-17: written 0.
+            let span = (y1 - y0).abs();
+            let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
+            mesh(&mut chart, panel, None, Some(&tick))?;
             draw_series(&mut chart, panel, y0, y1)
         }
         Scale::LogLog => {
