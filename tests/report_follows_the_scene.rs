@@ -97,6 +97,19 @@ fn check_coverage(scene: &Scene) -> (Results, Vec<Figure>) {
     (results, figures)
 }
 
+/// The report of a run, without figures.
+fn report(scene: &Scene, results: &Results) -> String {
+    let info = RunInfo {
+        command: "test".into(),
+        wall: Duration::ZERO,
+        version: "0".into(),
+        rustc: None,
+        files: vec![],
+        rows: 0,
+    };
+    html(scene, results, &[], &info).expect("report")
+}
+
 /// Headings and captions of every figure, one string.
 fn text(figures: &[Figure]) -> String {
     figures
@@ -152,15 +165,7 @@ fn every_curve_of_an_across_and_clamped_scene_is_drawn() {
     // d = 1: no stretch where the activation shows; d = 0: the largest difference there is
     // the largest |P_FE − P_0D| over the stretches where (1 − d) P_act > max(P_pas, 0),
     // recomputed here from the curve and the passive material.
-    let info = RunInfo {
-        command: "test".into(),
-        wall: Duration::ZERO,
-        version: "0".into(),
-        rustc: None,
-        files: vec![],
-        rows: 0,
-    };
-    let page = html(&scene, &results, &[], &info).expect("report");
+    let page = report(&scene, &results);
     let (_, cylinder) = results.cylinders().next().expect("a cylinder");
     let passive = scene.models.passive();
     let curve = ActiveCurve::paper();
@@ -265,15 +270,7 @@ stretch = [0.7, 1.0]
     assert!((p.fibre_stretch_centre - 0.7).abs() < 1e-9);
     let expected = law.gamma(0.7, 0.0).expect("γ");
     assert!((p.gamma_centre - expected).abs() < 1e-9 && expected > 0.2);
-    let info = RunInfo {
-        command: "test".into(),
-        wall: Duration::ZERO,
-        version: "0".into(),
-        rustc: None,
-        files: vec![],
-        rows: 0,
-    };
-    let page = html(&scene, &results, &[], &info).expect("report");
+    let page = report(&scene, &results);
     assert!(page.contains("<h2>γ at the centre of the cylinder</h2>"));
     let clamped_p = &clamped.sweeps[0].points[0];
     assert!(page.contains(&format!(

@@ -360,7 +360,8 @@ fn axis_symbol(label: &str) -> &str {
         .unwrap_or("x")
 }
 
-/// A number in four significant digits without trailing zeros, scientific outside [1e-3, 1e5):
+/// A number in four significant digits (whole below 1e5) without trailing zeros, scientific
+/// outside [1e-3, 1e5):
 /// `0.1`, `-2.5`, `1.628e5`, `2e-12`, `0` (also for −0).
 pub fn short(x: f64) -> String {
     let a = x.abs();
@@ -760,4 +761,34 @@ fn clip(points: &[(f64, f64)], lo: f64, hi: f64) -> Vec<Vec<(f64, f64)>> {
         runs.push(cur);
     }
     runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn short_numbers_have_four_significant_digits_whole_below_1e5_and_no_trailing_zeros() {
+        for (x, text) in [
+            (0.1, "0.1"),
+            (-2.5, "-2.5"),
+            (73.52, "73.52"),
+            (0.62430001, "0.6243"),
+            (15134.2, "15134"),
+            (162754.79, "1.628e5"),
+            (2e-12, "2e-12"),
+            (-1.3878e-17, "-1.388e-17"),
+            (0.0, "0"),
+            (-0.0, "0"),
+        ] {
+            assert_eq!(short(x), text, "{x}");
+        }
+    }
+
+    #[test]
+    fn axis_labels_give_their_unit_and_symbol() {
+        assert_eq!(axis_unit("nominal stress P [kPa]"), " kPa");
+        assert_eq!(axis_unit("stretch λ [-]"), "");
+        assert_eq!(axis_symbol("stretch λ [-]"), "λ");
+    }
 }
