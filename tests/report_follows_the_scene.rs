@@ -139,6 +139,8 @@ fn every_curve_of_an_ebi_scene_with_one_damage_is_drawn_and_named_for_what_it_is
         "d = 0.3",
         "implicit law, frozen coupling; implicit law, consistent coupling; energy law, frozen coupling; energy law, consistent coupling",
         "sliding bases",
+        // The chapter's figure for the chapter's energy; here the same plot of another energy.
+        "as the chapter's Fig. 5, with the ehret-bol-itskov energy",
     ] {
         assert!(words.contains(present), "{present:?} not in\n{words}");
     }

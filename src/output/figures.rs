@@ -54,6 +54,15 @@ fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
     v
 }
 
+/// ` — the chapter's Fig. n` for a figure of the chapter's energy; with another energy, which.
+fn chapter(n: u32, energy: &str) -> String {
+    if energy == "giantesio-musesti" {
+        format!(" — the chapter's Fig. {n}")
+    } else {
+        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+    }
+}
+
 /// `implicit law, frozen coupling`.
 fn words(law: LawKind, coupling: CouplingKind) -> String {
     format!("{} law, {} coupling", law.name(), coupling.name())
@@ -275,7 +284,7 @@ fn passive(run: &Run, u: &Uniaxial, in_isotropy: bool) -> Option<Figure> {
         return None;
     }
     let energies: Vec<&str> = curves.iter().map(|c| c.energy.as_str()).collect();
-    let chapter = u.along()
+    let like_fig_3 = u.along()
         && energies.contains(&"giantesio-musesti")
         && energies.contains(&"ehret-bol-itskov");
     let series = curves
@@ -296,7 +305,7 @@ fn passive(run: &Run, u: &Uniaxial, in_isotropy: bool) -> Option<Figure> {
             "Passive stress {} the fibres: {}{} (study \"{}\")",
             u.dir(),
             energies.join(", "),
-            if chapter { " — the chapter's Fig. 3" } else { "" },
+            if like_fig_3 { " — the chapter's Fig. 3" } else { "" },
             u.study
         ),
         format!(
@@ -329,8 +338,9 @@ fn transverse_isotropy(run: &Run) -> Option<Figure> {
     figure(
         "fig_transverse_isotropy",
         format!(
-            "Transversely isotropic behaviour of {} — the chapter's Fig. 2",
-            run.material
+            "Transversely isotropic behaviour of {}{}",
+            run.material,
+            chapter(2, &run.material)
         ),
         format!(
             "Passive nominal stress of {} in uniaxial tension along and across the fibres (lateral faces traction free), on the scale of the softer curve across the fibres.",
@@ -401,10 +411,9 @@ fn constant_gamma(u: &Uniaxial) -> Option<Figure> {
         format!(
             "Stress–stretch curves for constant γ = {}{} (study \"{}\")",
             list(&gammas),
-            if u.along() {
-                " — the chapter's Fig. 5"
-            } else {
-                ""
+            match curves.first() {
+                Some((_, c)) if u.along() => chapter(5, &c.energy),
+                _ => String::new(),
             },
             u.study
         ),
@@ -460,7 +469,7 @@ fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
         "fig_gamma_and_stresses",
         format!(
             "γ(λ) of the implicit law and the stresses P_tot, P_act, P_pas at d = {d}{}",
-            if d == 0.0 { " — the chapter's Fig. 8" } else { "" }
+            if d == 0.0 { chapter(8, &c.energy) } else { String::new() }
         ),
         format!(
             "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas.",
@@ -531,11 +540,12 @@ fn common_damage(u: &Uniaxial, laws: &[LawKind]) -> Option<f64> {
 fn explicit_vs_implicit_gamma(u: &Uniaxial) -> Option<Figure> {
     let d = common_damage(u, &[LawKind::Explicit, LawKind::Implicit]).filter(|_| u.along())?;
     let of = |l| u.model(l, CouplingKind::Frozen, d);
+    let energy = &of(LawKind::Explicit)?.energy;
     figure(
         "fig_explicit_vs_implicit_gamma",
         format!(
             "Explicit against implicit γ at d = {d}{}",
-            if d == 0.0 { " — the chapter's Fig. 10" } else { "" }
+            if d == 0.0 { chapter(10, energy) } else { String::new() }
         ),
         format!("γ from the explicit law's closed form (solid) and from solving the implicit law (dotted), d = {d}."),
         vec![panel(
@@ -557,7 +567,7 @@ fn explicit_ptot(u: &Uniaxial) -> Option<Figure> {
         "fig_explicit_ptot",
         format!(
             "P_tot with the explicit γ at d = {d}{}",
-            if d == 0.0 { " — the chapter's Fig. 11" } else { "" }
+            if d == 0.0 { chapter(11, &c.energy) } else { String::new() }
         ),
         format!("Total stress of the frozen model with γ from the explicit law, d = {d}, against the target P_pas + (1 − d) P_act it approximates (the chapter compares with the experimental data instead)."),
         vec![panel(
@@ -735,7 +745,7 @@ fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
     p.push(key("dashed: homogeneous (0D)", Stroke::Dashed));
     let m = c.sweeps.first()?.model;
     let ds: Vec<f64> = c.sweeps.iter().map(|s| s.model.damage).collect();
-    let chapter = c.bases == Bases::Clamped
+    let like_fig_12 = c.bases == Bases::Clamped
         && m.law == LawKind::Explicit
         && m.coupling == CouplingKind::Frozen;
     let geometry = run
@@ -752,7 +762,7 @@ fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
             bases_name(c.bases),
             words(m.law, m.coupling),
             list(&ds),
-            if chapter { " — the chapter's Fig. 12" } else { "" }
+            if like_fig_12 { chapter(12, &c.energy) } else { String::new() }
         ),
         format!(
             "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: the homogeneous uniaxial (0D) curve of the same model.",
