@@ -436,3 +436,63 @@ fn the_study_runs_only_the_option_groups_asked_for() {
     assert_eq!(results.findings.len(), 1);
     assert!(results.findings[0].contains("clamped cylinder (1 × 4 cells, 2 stretches)"));
 }
+
+#[test]
+fn the_zero_error_reference_is_drawn_on_the_lower_edge_a_decade_below_the_smallest_error_and_labelled(
+) {
+    use activemuscle::output::tradeoff::{caption, figure};
+    let row = |v: &str, reference: bool, times: &mut [f64], e: f64| {
+        Measurement::new(
+            "opt",
+            v,
+            reference,
+            Timing::of(times),
+            "P",
+            CurveError {
+                max_abs: e,
+                max_rel: e,
+            },
+        )
+    };
+    let mut rows = vec![
+        row("tight", true, &mut [1.0, 1.1, 1.2], 0.0),
+        row("loose", false, &mut [0.5, 0.55, 0.6], 1e-6),
+        row("looser", false, &mut [0.2, 0.25, 0.3], 1e-3),
+    ];
+    finalise(&mut rows);
+    let f = figure("opt", &rows);
+    let panel = &f.panels[0];
+    let frame = panel.frame();
+    // Errors 1e-6 … 1e-3: the frame from a decade below to a decade above; the zero on its edge.
+    assert!(
+        (frame.y.0 - 1e-7).abs() < 1e-20 && (frame.y.1 - 1e-2).abs() < 1e-15,
+        "{frame:?}"
+    );
+    let marker = |text: &str| {
+        panel
+            .series
+            .iter()
+            .find(|s| s.annotation.as_deref() == Some(text))
+            .unwrap_or_else(|| panic!("{text} not annotated"))
+    };
+    assert_eq!(
+        marker("tight (reference): error 0").points,
+        vec![(1.1, frame.y.0)]
+    );
+    assert_eq!(marker("loose").points, vec![(0.55, 1e-6)]);
+    // Every variant's median inside the frame; its spread a bar from the fastest to the slowest run.
+    for r in &rows {
+        let y = if r.error.max_rel == 0.0 {
+            frame.y.0
+        } else {
+            r.error.max_rel
+        };
+        assert!(frame.contains((r.time.median, y)), "{}", r.variant);
+        assert!(panel
+            .series
+            .iter()
+            .any(|s| s.points == vec![(r.time.low, y), (r.time.high, y)]));
+    }
+    assert!(caption("opt", &rows)
+        .contains("An error of 0 (the reference's own) is drawn on the lower edge"));
+}
