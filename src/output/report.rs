@@ -146,9 +146,15 @@ const ENERGIES: &[(&str, &str, &str)] = &[
     ("neo-hookean", "neo-Hookean reference, W = μ/2 (tr C − 3)", "not in the chapter"),
 ];
 
-/// The models the run used, in the words of the figures and `curves.csv`, with their equations
-/// and where the chapter has them.
-fn models_table(h: &mut String, scene: &Scene, results: &Results) {
+/// What a run used: the energies (the material's first), the active models, whether constant γ.
+struct Used {
+    energies: Vec<String>,
+    chosen: Vec<ModelChoice>,
+    constant: bool,
+}
+
+/// What `results` used (the scene gives the material).
+fn used(scene: &Scene, results: &Results) -> Used {
     let m = &scene.models;
     let mut energies = vec![m.energy.name().to_string()];
     let mut chosen: Vec<ModelChoice> = Vec::new();
@@ -171,8 +177,40 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     for (_, curves) in results.stability() {
         chosen.extend(curves.iter().filter_map(|c| c.model));
     }
-    let mut rows: Vec<(String, String, String)> = Vec::new();
-    for name in &energies {
+    Used {
+        energies,
+        chosen,
+        constant,
+    }
+}
+
+/// The models the run used, in the words of the figures and `curves.csv`, with their equations
+/// and where the chapter has them.
+fn models_table(h: &mut String, scene: &Scene, results: &Results) {
+    let used = used(scene, results);
+    let mut rows = energy_rows(scene, &used.energies);
+    rows.extend(model_rows(scene, &used));
+    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
+    for (name, what, chapter) in rows {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&name),
+            escape(&what),
+            escape(&chapter)
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// A row of the models table: (name, what it is, where the chapter has it).
+type ModelRow = (String, String, String);
+
+/// A row per energy; the material's with its parameter values.
+fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let mut rows = Vec::new();
+    for name in energies {
         let (what, chapter) = ENERGIES
             .iter()
             .find(|(n, _, _)| n == name)
@@ -192,6 +230,14 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
         }
         rows.push((format!("{name} (energy)"), what, chapter.into()));
     }
+    rows
+}
+
+/// The rows of the activation, the active curve, damage, laws and couplings the run used.
+fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let (chosen, constant) = (&used.chosen, used.constant);
+    let mut rows: Vec<ModelRow> = Vec::new();
     let active = !chosen.is_empty() || constant;
     if active {
         rows.push((
@@ -274,17 +320,7 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
             "not in the chapter".into(),
         ));
     }
-    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
-    for (name, what, chapter) in rows {
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
-            escape(&name),
-            escape(&what),
-            escape(&chapter)
-        );
-    }
-    h.push_str("</table>\n");
+    rows
 }
 
 /// The largest |P_FE − P_0D| over the points `keep` accepts, as (difference, λ, P_0D).

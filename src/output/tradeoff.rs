@@ -103,16 +103,12 @@ pub fn stem(option: &str) -> String {
     format!("tradeoff_{}", slug(option))
 }
 
-/// The log–log error-versus-time figure of `option` (relative error on y, the median wall time
-/// on x with the spread of the runs as a horizontal bar; filled markers: the Pareto front, joined
-/// by a dashed line; the reference in red). A zero error (the reference's own) has no place on a
-/// log axis: it is drawn on the lower edge of the frame, a decade below the smallest error, and
-/// labelled `error 0`.
-pub fn figure(option: &str, all: &[Measurement]) -> Figure {
-    let rows: Vec<&Measurement> = all.iter().filter(|r| r.option == option).collect();
+/// The (time, error) ranges of the figure of `rows`: the runs' times, widened to at least two
+/// decades; the positive errors, a decade beyond each end.
+fn ranges(rows: &[&Measurement]) -> ((f64, f64), (f64, f64)) {
     let positive = |e: f64| e.is_finite() && e > 0.0;
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for r in &rows {
+    for r in rows {
         if r.time.median.is_finite() && r.time.median > 0.0 {
             x0 = x0.min(r.time.low);
             x1 = x1.max(r.time.high);
@@ -134,6 +130,18 @@ pub fn figure(option: &str, all: &[Measurement]) -> Figure {
     // labels at 2e-1 … 9e-1 that run into each other).
     let widen = (100.0 / (x1 / x0)).max(1.0).sqrt();
     (x0, x1) = (x0 / widen, x1 * widen);
+    ((x0, x1), (y0, y1))
+}
+
+/// The log–log error-versus-time figure of `option` (relative error on y, the median wall time
+/// on x with the spread of the runs as a horizontal bar; filled markers: the Pareto front, joined
+/// by a dashed line; the reference in red). A zero error (the reference's own) has no place on a
+/// log axis: it is drawn on the lower edge of the frame, a decade below the smallest error, and
+/// labelled `error 0`.
+pub fn figure(option: &str, all: &[Measurement]) -> Figure {
+    let rows: Vec<&Measurement> = all.iter().filter(|r| r.option == option).collect();
+    let positive = |e: f64| e.is_finite() && e > 0.0;
+    let ((x0, x1), (y0, y1)) = ranges(&rows);
     // Where each row is drawn: a zero error on the lower edge; a failed row nowhere.
     let at = |r: &Measurement| -> Option<(f64, f64)> {
         let e = r.error.max_rel;
