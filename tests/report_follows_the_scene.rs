@@ -340,3 +340,25 @@ fn a_fits_correlations_read_as_the_other_parameters_names_and_values() {
     let text = correlations(&row, &names, 1, |c| Ok(format!("{c:.5}"))).expect("text");
     assert_eq!(text, "alpha: 0.50000; w0: n/a");
 }
+
+#[test]
+fn figures_of_studies_whose_names_give_one_stem_get_different_files() {
+    // "cylinder x" and "x" both name a second cylinder figure fig_cylinder_x.
+    let study = |name: &str| {
+        format!(
+            "[[study]]\nkind = \"cylinder\"\nname = \"{name}\"\nnr = 1\nnz = 2\nbases = \"sliding\"\nstretch = [1.1]\n"
+        )
+    };
+    let text = [study("a"), study("cylinder x"), study("x")].concat();
+    let scene = Scene::parse(&text, "stems.toml").expect("valid");
+    let (_, figures) = check_coverage(&scene);
+    let stems: Vec<&str> = figures
+        .iter()
+        .map(|f| f.stem.as_str())
+        .filter(|s| s.starts_with("fig_cylinder"))
+        .collect();
+    assert_eq!(
+        stems,
+        ["fig_cylinder", "fig_cylinder_x", "fig_cylinder_x_2"]
+    );
+}

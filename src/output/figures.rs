@@ -252,7 +252,8 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     out
 }
 
-/// Appends the study's name to a stem that another figure already has.
+/// Appends the study's name to a stem that another figure already has (and a number if that
+/// is taken too).
 fn unique_stems(figures: &mut [Figure], run: &Run) {
     let studies: Vec<&str> = run
         .results
@@ -267,11 +268,23 @@ fn unique_stems(figures: &mut [Figure], run: &Run) {
                 .find(|s| figures[i].heading.contains(&format!("\"{s}\"")))
                 .map_or(i.to_string(), |s| slug(s));
             let kind = figures[i].stem.trim_start_matches("fig_").to_string();
-            figures[i].stem = if own.starts_with(&kind) {
+            let stem = if own.starts_with(&kind) {
                 format!("fig_{own}")
             } else {
                 format!("fig_{kind}_{own}")
             };
+            // Two study names may give one slug ("cyl A", "cyl-a"): then a number as well.
+            let taken = |t: &str| figures[..i].iter().any(|f| f.stem == t);
+            figures[i].stem = (1..)
+                .map(|n| {
+                    if n == 1 {
+                        stem.clone()
+                    } else {
+                        format!("{stem}_{n}")
+                    }
+                })
+                .find(|t| !taken(t))
+                .unwrap_or(stem);
         }
     }
 }
