@@ -202,7 +202,7 @@ impl Panel {
 
     /// The ranges the panel is drawn on. x: the data's (padded 2 %) unless fixed. y, unless fixed:
     /// on a log axis the positive data's; on a linear axis the data's (padded 5 %), cut where
-    /// curves blow up ([`limit`]), never so that y = 0 leaves the frame.
+    /// curves blow up (see `limit`), never so that y = 0 leaves the frame.
     pub fn frame(&self) -> Frame {
         let log = self.scale != Scale::Linear;
         let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
