@@ -1,8 +1,9 @@
 //! The figures of a run, built from what each study computed: every curve of `curves.csv` is
 //! drawn in some figure with a legend entry (the series carry its
-//! [`CurveId`](super::csv::CurveId)), headings and captions name the scene's energy, laws, couplings and damages, axes follow the data (clipped
-//! where a curve blows up, and the caption says so: [`Panel::frame`]). Where a figure shows what
-//! one of the chapter's figures shows, its heading says which.
+//! [`CurveId`](super::csv::CurveId)), headings and captions name the scene's energy, laws,
+//! couplings and damages, axes follow the data (clipped where a curve blows up, and the caption
+//! says so: [`Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
+//! heading says which.
 //!
 //! | figure | drawn when | shows |
 //! |---|---|---|
