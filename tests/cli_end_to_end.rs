@@ -47,7 +47,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations")
+        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations")
     );
     let gm = GiantesioMusesti::paper();
     let energy = Energy::GiantesioMusesti(gm);
@@ -56,8 +56,15 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let mut muscles: HashMap<(String, String), Muscle<Energy>> = HashMap::new();
     let (mut uniaxial, mut cylinder) = (0, 0);
     for line in lines {
-        let c: Vec<&str> = line.split(',').collect();
+        // The study's name first (the scene's defaults); the other columns as they were.
+        let study = line.split(',').next().unwrap_or_default();
+        let c: Vec<&str> = line.split(',').skip(1).collect();
         assert_eq!(c.len(), 13, "{line}");
+        let expected_study = match c[0] {
+            "uniaxial" => "uniaxial along fibres",
+            _ => "cylinder sliding explicit frozen",
+        };
+        assert_eq!(study, expected_study, "{line}");
         let lambda: f64 = c[7].parse().expect("lambda");
         let p: f64 = c[9].parse().expect("P");
         let (law, d) = (c[4].to_string(), c[6].to_string());

@@ -124,14 +124,16 @@ impl ActiveCurve {
         let mut p = 0.0;
         while p < panels {
             let mid = self.lambda_min + (p + 0.5) * h;
-            let panel: f64 = GAUSS_16
-                .iter()
-                .map(|&(x, w)| w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x)))
-                .sum();
-            if panel == 0.0 && mid > self.lambda_opt {
+            // Each term into `sum` in turn (summing a panel first would change the last bits).
+            let mut zero = true;
+            for &(x, w) in &GAUSS_16 {
+                let term = w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x));
+                zero &= term == 0.0;
+                sum += term;
+            }
+            if zero && mid > self.lambda_opt {
                 break;
             }
-            sum += panel;
             p += 1.0;
         }
         sum * 0.5 * h

@@ -2,19 +2,21 @@
 //!
 //! `curves.csv`: one row per computed point, long ("tidy") form, columns [`COLUMNS`]. A cell that
 //! does not apply is empty, never `NaN`; a non-finite number is an error naming the quantity and
-//! the row. `fits.csv`: one row per fitted parameter. `stability.csv`: one row per model and
-//! stretch.
+//! the row. `fits.csv`: one row per fitted parameter, its correlations with the other parameters
+//! in one readable cell (`w0: 0.99988`). `stability.csv`: one row per model and stretch.
 
 use crate::app_error::{finite, AppError};
 use crate::scene::Results;
-use crate::studies::cylinder::bases_name;
+use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
 use crate::studies::fit::FitOutcome;
 use crate::studies::stability::StabilityCurve;
-use crate::studies::uniaxial::CurveModel;
+use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
 use crate::studies::StudyResult;
+use crate::uniaxial::Direction;
 
 /// The header of `curves.csv`.
-pub const COLUMNS: [&str; 13] = [
+pub const COLUMNS: [&str; 14] = [
+    "study",
     "model",
     "direction",
     "bases",
@@ -33,6 +35,8 @@ pub const COLUMNS: [&str; 13] = [
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Row<'a> {
+    /// The study's name.
+    pub study: &'a str,
     /// `uniaxial` | `cylinder`.
     pub model: &'static str,
     /// `along` | `across` (uniaxial).
@@ -61,55 +65,132 @@ pub struct Row<'a> {
     pub newton_iterations: Option<usize>,
 }
 
+/// What tells one curve of `curves.csv` from the others: every column but the point's values,
+/// and γ for a constant-γ curve (`study | model | direction | bases | energy | law | coupling | d
+/// | γ`, empty cells empty). The figures mark the series that draw a curve with it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CurveId(pub String);
+
+impl Row<'_> {
+    /// The curve this point belongs to.
+    pub fn curve(&self) -> CurveId {
+        let number = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        CurveId(
+            [
+                self.study,
+                self.model,
+                self.direction.unwrap_or(""),
+                self.bases.unwrap_or(""),
+                self.energy,
+                self.law,
+                self.coupling.unwrap_or(""),
+                &number(self.d),
+                &number(self.gamma.filter(|_| self.law == "constant")),
+            ]
+            .join(" | "),
+        )
+    }
+}
+
+/// The (law, coupling, d) cells of a uniaxial curve.
+fn law_cells(model: CurveModel) -> (&'static str, Option<&'static str>, Option<f64>) {
+    match model {
+        CurveModel::Passive => ("passive", None, None),
+        CurveModel::Constant(_) => ("constant", None, None),
+        CurveModel::Active(m) => (m.law.name(), Some(m.coupling.name()), Some(m.damage)),
+    }
+}
+
+/// The row of point `p` of curve `c` of uniaxial study `study`.
+fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &CurvePoint) -> Row<'a> {
+    let (law, coupling, d) = law_cells(c.model);
+    Row {
+        study,
+        model: "uniaxial",
+        direction: Some(direction.name()),
+        bases: None,
+        energy: &c.energy,
+        law,
+        coupling,
+        d,
+        lambda: p.lambda,
+        gamma: Some(p.gamma),
+        p: p.stress,
+        p_pas: p.passive,
+        p_act: p.active_target,
+        newton_iterations: None,
+    }
+}
+
+/// The row of point `p` of sweep `sweep` of cylinder study `study`.
+fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &SweepPoint) -> Row<'a> {
+    let m = sweep.model;
+    Row {
+        study,
+        model: "cylinder",
+        direction: None,
+        bases: Some(bases_name(c.bases)),
+        energy: &c.energy,
+        law: m.law.name(),
+        coupling: Some(m.coupling.name()),
+        d: Some(m.damage),
+        lambda: p.lambda,
+        gamma: Some(p.gamma_centre),
+        p: p.stress,
+        p_pas: None,
+        p_act: None,
+        newton_iterations: Some(p.newton_iterations),
+    }
+}
+
+/// The curve of `curves.csv` that uniaxial curve `c` of study `study` writes.
+pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
+    let p = c.points.first().copied().unwrap_or(CurvePoint {
+        lambda: 1.0,
+        gamma: match c.model {
+            CurveModel::Constant(g) => g,
+            _ => 0.0,
+        },
+        stress: 0.0,
+        passive: None,
+        active_target: None,
+    });
+    uniaxial_row(study, direction, c, &p).curve()
+}
+
+/// The curve of `curves.csv` that FE sweep `sweep` of cylinder study `study` writes.
+pub fn sweep_curve(study: &str, c: &CylinderResult, sweep: &Sweep) -> CurveId {
+    let p = sweep.points.first().copied().unwrap_or(SweepPoint {
+        lambda: 1.0,
+        gamma_centre: 0.0,
+        fibre_stretch_centre: 1.0,
+        stress: 0.0,
+        newton_iterations: 0,
+        stress_0d: None,
+        passive_0d: None,
+        active_0d: 0.0,
+    });
+    sweep_row(study, c, sweep, &p).curve()
+}
+
 /// The rows of `curves.csv`, in study order.
 pub fn rows(results: &Results) -> Vec<Row<'_>> {
     let mut rows = Vec::new();
     for s in &results.studies {
+        let study = s.name.as_str();
         match &s.result {
             StudyResult::Uniaxial(u) => {
                 for c in &u.curves {
-                    let (law, coupling, d) = match c.model {
-                        CurveModel::Passive => ("passive", None, None),
-                        CurveModel::Constant(_) => ("constant", None, None),
-                        CurveModel::Active(m) => {
-                            (m.law.name(), Some(m.coupling.name()), Some(m.damage))
-                        }
-                    };
-                    rows.extend(c.points.iter().map(|p| Row {
-                        model: "uniaxial",
-                        direction: Some(u.direction.name()),
-                        bases: None,
-                        energy: &c.energy,
-                        law,
-                        coupling,
-                        d,
-                        lambda: p.lambda,
-                        gamma: Some(p.gamma),
-                        p: p.stress,
-                        p_pas: p.passive,
-                        p_act: p.active_target,
-                        newton_iterations: None,
-                    }));
+                    rows.extend(
+                        c.points
+                            .iter()
+                            .map(|p| uniaxial_row(study, u.direction, c, p)),
+                    );
                 }
             }
             StudyResult::Cylinder(c) => {
                 for sweep in &c.sweeps {
-                    let m = sweep.model;
-                    rows.extend(sweep.points.iter().map(|p| Row {
-                        model: "cylinder",
-                        direction: None,
-                        bases: Some(bases_name(c.bases)),
-                        energy: &c.energy,
-                        law: m.law.name(),
-                        coupling: Some(m.coupling.name()),
-                        d: Some(m.damage),
-                        lambda: p.lambda,
-                        gamma: Some(p.gamma_centre),
-                        p: p.stress,
-                        p_pas: None,
-                        p_act: None,
-                        newton_iterations: Some(p.newton_iterations),
-                    }));
+                    rows.extend(sweep.points.iter().map(|p| sweep_row(study, c, sweep, p)));
                 }
             }
             _ => {}
@@ -121,8 +202,8 @@ pub fn rows(results: &Results) -> Vec<Row<'_>> {
 fn number(x: f64, quantity: &str, row: &Row) -> Result<String, AppError> {
     finite(x, quantity, || {
         format!(
-            "{} {} {}, d = {:?}, lambda = {}",
-            row.model, row.energy, row.law, row.d, row.lambda
+            "study {:?}: {} {} {}, d = {:?}, lambda = {}",
+            row.study, row.model, row.energy, row.law, row.d, row.lambda
         )
     })
     .map(|x| x.to_string())
@@ -153,6 +234,7 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
     w.write_record(COLUMNS).map_err(&fail)?;
     for r in rows {
         let record = [
+            r.study.to_string(),
             r.model.to_string(),
             r.direction.unwrap_or("").to_string(),
             r.bases.unwrap_or("").to_string(),
@@ -212,6 +294,26 @@ fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, A
     finite(x, quantity, origin).map(|x| x.to_string())
 }
 
+/// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`
+/// (`n/a` where the fit could not estimate one), each number written by `number`.
+pub fn correlations(
+    row: &[Option<f64>],
+    names: &[String],
+    j: usize,
+    number: impl Fn(f64) -> Result<String, AppError>,
+) -> Result<String, AppError> {
+    let mut parts = Vec::new();
+    for (k, (c, other)) in row.iter().zip(names).enumerate() {
+        if k != j {
+            parts.push(format!(
+                "{other}: {}",
+                c.map_or(Ok("n/a".to_string()), &number)?
+            ));
+        }
+    }
+    Ok(parts.join("; "))
+}
+
 /// `fits.csv` of the fits of each study (name, fits), converged or not.
 pub fn fits_csv(studies: &[(&str, &[FitOutcome])]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
@@ -224,11 +326,9 @@ pub fn fits_csv(studies: &[(&str, &[FitOutcome])]) -> Result<Vec<u8>, AppError> 
                 let opt =
                     |x: Option<f64>, q: &str| x.map_or(Ok(String::new()), |v| text(v, q, origin));
                 let correlation = f.correlation.get(j).map_or(Ok(String::new()), |row| {
-                    row.iter()
-                        .zip(&f.names)
-                        .map(|(c, other)| Ok(format!("{other}:{}", opt(*c, "correlation")?)))
-                        .collect::<Result<Vec<_>, AppError>>()
-                        .map(|v| v.join(";"))
+                    correlations(row, &f.names, j, |c| {
+                        finite(c, "correlation", origin).map(|c| format!("{c:.5}"))
+                    })
                 })?;
                 w.write_record([
                     study.to_string(),

@@ -1,16 +1,38 @@
-//! The chapter's figures (and two of ours) from the typed results of a run. A figure whose data
-//! the scene did not compute is skipped.
+//! The figures of a run, built from what each study computed: every curve of `curves.csv` is
+//! drawn in some figure with a legend entry (the series carry its
+//! [`CurveId`](super::csv::CurveId)), headings and captions name the scene's energy, laws,
+//! couplings and damages, axes follow the data (clipped where a curve blows up, and the caption
+//! says so: [`Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
+//! heading says which.
+//!
+//! | figure | drawn when | shows |
+//! |---|---|---|
+//! | `fig_passive_<direction>` | a uniaxial study has passive curves (not only the material's, already in `fig_transverse_isotropy`) | each passive energy |
+//! | `fig_transverse_isotropy` | the material's passive curve is computed along and across the fibres | both |
+//! | `fig_constant_gamma` | constant γ | each γ; a zoom on the zero crossings |
+//! | `fig_active_curve`, `fig_damage_active` | active models along the fibres (two damages or more for the second) | P_act, (1 − d) P_act |
+//! | `fig_gamma_and_stresses` | the implicit law, frozen, along the fibres | γ; P_tot, P_pas, (1 − d) P_act at the smallest damage |
+//! | `fig_explicit_vs_implicit_gamma`, `fig_explicit_ptot` | the explicit (and implicit) law, frozen, along the fibres | γ of both; P_tot against its target |
+//! | `fig_laws` | active models | γ and P of every law × coupling at the smallest damage, with the target |
+//! | `fig_loss_of_activation` | two damages or more | P per law × coupling, a curve per damage |
+//! | `fig_cylinder` | a cylinder study | γ and λ_f at the centre, P (FE and 0D) per damage |
+//! | `fig_fe_vs_0d` | cylinder studies | P_FE − P_0D per damage, a panel per study |
+//! | `fig_fit_*`, `fig_stability_*` | fit and stability studies | data and fits; stability along the fibres |
+//!
+//! A stem that two studies would share gets the study's name appended.
 
-use super::plot::{Figure, Panel, Scale, Series, Stroke};
+use super::csv::{sweep_curve, uniaxial_curve};
+use super::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
 use crate::active::ActiveCurve;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::scene::{Results, Scene};
-use crate::studies::cylinder::{bases_name, Sweep, SweepPoint};
+use crate::studies::cylinder::{bases_name, CylinderResult, SweepPoint};
 use crate::studies::fit::{FitKind, FitOutcome};
 use crate::studies::slug;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
+use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
 use crate::StrainEnergy;
 
@@ -18,65 +40,13 @@ const LAMBDA: &str = "stretch λ [-]";
 const STRESS: &str = "nominal stress P [kPa]";
 const GAMMA: &str = "activation γ [-]";
 
-/// (λ, y) of every point of `curves` where `y` has a value, sorted by λ (stably: curves in run
-/// order).
-fn xy<'a>(
-    curves: impl Iterator<Item = &'a Curve>,
-    y: impl Fn(&CurvePoint) -> Option<f64>,
-) -> Vec<(f64, f64)> {
-    let mut v: Vec<(f64, f64)> = curves
-        .flat_map(|c| c.points.iter())
-        .filter_map(|p| y(p).map(|y| (p.lambda, y)))
-        .collect();
-    v.sort_by(|a, b| a.0.total_cmp(&b.0));
-    v
-}
-
-fn series(
-    label: impl Into<String>,
-    points: Vec<(f64, f64)>,
-    stroke: Stroke,
-    colour: usize,
-) -> Option<Series> {
-    if points.is_empty() {
-        None
-    } else {
-        Some(Series::new(label, points, stroke, colour))
-    }
-}
-
-fn panel(
-    title: &str,
-    y_label: &str,
-    series: Vec<Option<Series>>,
-    y_range: Option<(f64, f64)>,
-) -> Option<Panel> {
-    let series: Vec<Series> = series.into_iter().flatten().collect();
-    if series.is_empty() {
-        None
-    } else {
-        Some(Panel {
-            title: title.into(),
-            x_label: LAMBDA.into(),
-            y_label: y_label.into(),
-            series,
-            x_range: None,
-            y_range,
-            scale: Scale::Linear,
-        })
-    }
-}
-
-fn figure(stem: &str, heading: &str, caption: &str, panels: Vec<Option<Panel>>) -> Option<Figure> {
-    if panels.is_empty() || panels.iter().any(Option::is_none) {
-        return None;
-    }
-    Some(Figure {
-        stem: stem.into(),
-        heading: heading.into(),
-        caption: caption.into(),
-        panels: panels.into_iter().flatten().collect(),
-    })
+/// `0, 0.1, 0.5`.
+fn list(values: &[f64]) -> String {
+    values
+        .iter()
+        .map(f64::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
@@ -85,72 +55,98 @@ fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
     v
 }
 
-/// The uniaxial curves of a run, by direction.
+/// ` — the chapter's Fig. n` for a figure of the chapter's energy; with another energy, which.
+fn chapter(n: u32, energy: &str) -> String {
+    if energy == "giantesio-musesti" {
+        format!(" — the chapter's Fig. {n}")
+    } else {
+        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+    }
+}
+
+/// `implicit law, frozen coupling`.
+fn words(law: LawKind, coupling: CouplingKind) -> String {
+    format!("{} law, {} coupling", law.name(), coupling.name())
+}
+
+/// The uniaxial curves of one study.
+#[derive(Clone, Copy)]
 struct Uniaxial<'a> {
-    curves: Vec<(Direction, &'a Curve)>,
+    study: &'a str,
+    direction: Direction,
+    curves: &'a [Curve],
 }
 
 impl<'a> Uniaxial<'a> {
-    fn new(results: &'a Results) -> Self {
-        Self {
-            curves: results
-                .uniaxial()
-                .flat_map(|(_, u)| u.curves.iter().map(move |c| (u.direction, c)))
-                .collect(),
+    fn along(&self) -> bool {
+        self.direction == Direction::Along
+    }
+
+    fn dir(&self) -> &'static str {
+        match self.direction {
+            Direction::Along => "along",
+            Direction::Across => "across",
         }
     }
 
-    /// The curves in direction `d` that `keep` accepts.
-    fn curves<'b>(
-        &'b self,
-        d: Direction,
-        keep: impl Fn(&Curve) -> bool + 'b,
-    ) -> impl Iterator<Item = &'a Curve> + 'b {
+    fn passive(&self) -> impl Iterator<Item = &'a Curve> {
         self.curves
             .iter()
-            .filter(move |(dir, c)| *dir == d && keep(c))
-            .map(|(_, c)| *c)
+            .filter(|c| c.model == CurveModel::Passive)
     }
 
-    /// (λ, y) of the curves along the fibres that `keep` accepts.
-    fn along(
+    fn active(&self) -> impl Iterator<Item = (ModelChoice, &'a Curve)> {
+        self.curves.iter().filter_map(|c| match c.model {
+            CurveModel::Active(m) => Some((m, c)),
+            _ => None,
+        })
+    }
+
+    /// The curve of `law`, `coupling` at damage `d`.
+    fn model(&self, law: LawKind, coupling: CouplingKind, d: f64) -> Option<&'a Curve> {
+        self.active()
+            .find(|(m, _)| m.law == law && m.coupling == coupling && m.damage == d)
+            .map(|(_, c)| c)
+    }
+
+    fn damages(&self) -> Vec<f64> {
+        sorted_unique(self.active().map(|(m, _)| m.damage).collect())
+    }
+
+    /// (law, coupling) pairs in run order.
+    fn pairs(&self) -> Vec<(LawKind, CouplingKind)> {
+        let mut v = Vec::new();
+        for (m, _) in self.active() {
+            if !v.contains(&(m.law, m.coupling)) {
+                v.push((m.law, m.coupling));
+            }
+        }
+        v
+    }
+
+    /// A series of `y` along curve `c`, marked as drawing it; `None` without points.
+    fn series(
         &self,
-        keep: impl Fn(&Curve) -> bool,
+        c: &Curve,
+        label: impl Into<String>,
         y: impl Fn(&CurvePoint) -> Option<f64>,
-    ) -> Vec<(f64, f64)> {
-        xy(self.curves(Direction::Along, keep), y)
+        stroke: Stroke,
+        colour: usize,
+    ) -> Option<Series> {
+        let points: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .filter_map(|p| y(p).map(|v| (p.lambda, v)))
+            .collect();
+        (!points.is_empty()).then(|| {
+            Series::new(label, points, stroke, colour).drawing(uniaxial_curve(
+                self.study,
+                self.direction,
+                c,
+            ))
+        })
     }
 }
-
-fn passive(c: &Curve) -> bool {
-    c.model == CurveModel::Passive
-}
-
-fn active_model(c: &Curve) -> Option<ModelChoice> {
-    match c.model {
-        CurveModel::Active(m) => Some(m),
-        _ => None,
-    }
-}
-
-/// The curve of `law`, `coupling` at damage `d`.
-fn active(law: LawKind, coupling: CouplingKind, d: f64) -> impl Fn(&Curve) -> bool {
-    move |c| {
-        active_model(c).is_some_and(|m| m.law == law && m.coupling == coupling && m.damage == d)
-    }
-}
-
-/// What the figures are drawn from.
-struct Run<'a> {
-    u: Uniaxial<'a>,
-    results: &'a Results,
-    material: String,
-    curve: ActiveCurve,
-}
-
-/// Stress range in which the active model's features are visible (the passive exponential
-/// reaches hundreds of kPa at λ = 1.6).
-const ACTIVE_RANGE: Option<(f64, f64)> = Some((-5.0, 160.0));
 
 fn stress(p: &CurvePoint) -> Option<f64> {
     Some(p.stress)
@@ -165,372 +161,676 @@ fn target(p: &CurvePoint) -> Option<f64> {
     Some(p.passive? + p.active_target?)
 }
 
-/// Every figure the results support, in the chapter's order, then ours.
+/// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.
+fn derived(
+    label: impl Into<String>,
+    points: Vec<(f64, f64)>,
+    stroke: Stroke,
+    colour: usize,
+) -> Option<Series> {
+    (!points.is_empty()).then(|| Series::new(label, points, stroke, colour))
+}
+
+/// A legend entry without points, in grey: what a stroke means.
+fn key(label: &str, stroke: Stroke) -> Option<Series> {
+    Some(Series::new(label, Vec::new(), stroke, GREY))
+}
+
+/// A panel over λ, or `None` if none of its series has points.
+fn panel(title: impl Into<String>, y_label: &str, series: Vec<Option<Series>>) -> Option<Panel> {
+    let series: Vec<Series> = series.into_iter().flatten().collect();
+    series
+        .iter()
+        .any(|s| !s.points.is_empty())
+        .then(|| Panel::new(title, LAMBDA, y_label, series))
+}
+
+/// A figure of the panels that have data, or `None` if none has.
+fn figure(
+    stem: &str,
+    heading: String,
+    caption: String,
+    panels: Vec<Option<Panel>>,
+) -> Option<Figure> {
+    let panels: Vec<Panel> = panels.into_iter().flatten().collect();
+    (!panels.is_empty()).then(|| Figure::new(stem, heading, caption, panels))
+}
+
+/// What the figures are drawn from.
+struct Run<'a> {
+    results: &'a Results,
+    /// The material's energy.
+    material: String,
+    curve: ActiveCurve,
+    uniaxial: Vec<Uniaxial<'a>>,
+}
+
+/// Every figure the results support: the uniaxial studies' (in study order), the transverse
+/// isotropy, the cylinders', the FE-vs-0D differences, the fits' and the stability studies'.
 pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     let run = Run {
-        u: Uniaxial::new(results),
         results,
         material: scene.models.energy.name().to_string(),
         curve: scene.models.curve,
+        uniaxial: results
+            .uniaxial()
+            .map(|(study, u)| Uniaxial {
+                study,
+                direction: u.direction,
+                curves: &u.curves,
+            })
+            .collect(),
     };
-    let pact = run.active_curve();
-    let mut out: Vec<Figure> = [
-        passive_energies(&run),
-        transverse_isotropy(&run),
-        constant_gamma(&run),
-        active_curve(&pact),
-        gamma_and_stresses(&run),
-        damage_active(&run, &pact),
-        explicit_vs_implicit_gamma(&run),
-        explicit_ptot(&run),
-        cylinder(&run),
-        frozen_vs_consistent(&run),
-        fe_vs_0d(results),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
+    let isotropy = transverse_isotropy(&run);
+    let mut out: Vec<Figure> = Vec::new();
+    let mut active_curve_drawn = false;
+    for u in &run.uniaxial {
+        out.extend(passive(&run, u, isotropy.is_some()));
+        out.extend(constant_gamma(u));
+        if u.along() && u.active().next().is_some() && !active_curve_drawn {
+            active_curve_drawn = true;
+            out.extend(active_curve(&run, u));
+        }
+        out.extend(gamma_and_stresses(&run, u));
+        out.extend(damage_active(&run, u));
+        out.extend(explicit_vs_implicit_gamma(u));
+        out.extend(explicit_ptot(u));
+        out.extend(laws(&run, u));
+        out.extend(loss_of_activation(u));
+    }
+    out.extend(isotropy);
+    for (study, c) in results.cylinders() {
+        out.extend(cylinder(&run, study, c));
+    }
+    out.extend(fe_vs_0d(results));
     for (name, fits) in results.fits() {
         out.extend(fit_figure(name, fits));
     }
     for (name, curves) in results.stability() {
         out.extend(stability_figure(name, curves));
     }
+    unique_stems(&mut out, &run);
     out
 }
 
-impl Run<'_> {
-    /// P_act at every stretch of the curves along the fibres.
-    fn active_curve(&self) -> Vec<(f64, f64)> {
-        let lambdas = sorted_unique(
-            self.u
-                .curves(Direction::Along, |_| true)
-                .flat_map(|c| c.points.iter().map(|p| p.lambda))
-                .collect(),
-        );
-        lambdas.iter().map(|&l| (l, self.curve.value(l))).collect()
+/// Appends the study's name to a stem that another figure already has (and a number if that
+/// is taken too).
+fn unique_stems(figures: &mut [Figure], run: &Run) {
+    let studies: Vec<&str> = run
+        .results
+        .studies
+        .iter()
+        .map(|s| s.name.as_str())
+        .collect();
+    for i in 1..figures.len() {
+        if figures[..i].iter().any(|f| f.stem == figures[i].stem) {
+            let own = studies
+                .iter()
+                .find(|s| figures[i].heading.contains(&format!("\"{s}\"")))
+                .map_or(i.to_string(), |s| slug(s));
+            let kind = figures[i].stem.trim_start_matches("fig_").to_string();
+            let stem = if own.starts_with(&kind) {
+                format!("fig_{own}")
+            } else {
+                format!("fig_{kind}_{own}")
+            };
+            // Two study names may give one slug ("cyl A", "cyl-a"): then a number as well.
+            let taken = |t: &str| figures[..i].iter().any(|f| f.stem == t);
+            figures[i].stem = (1..)
+                .map(|n| {
+                    if n == 1 {
+                        stem.clone()
+                    } else {
+                        format!("{stem}_{n}")
+                    }
+                })
+                .find(|t| !taken(t))
+                .unwrap_or(stem);
+        }
     }
 }
 
-/// The chapter's Fig. 3: passive energies along the fibres.
-fn passive_energies(run: &Run) -> Option<Figure> {
-    let mut energies: Vec<&str> = run
-        .u
-        .curves(Direction::Along, passive)
-        .map(|c| c.energy.as_str())
-        .collect();
-    energies.sort();
-    energies.dedup();
-    if energies.len() < 2 {
+/// Passive stress of each passive energy of study `u`; left out when its only curve is the
+/// material's and the transverse-isotropy figure draws it.
+fn passive(run: &Run, u: &Uniaxial, in_isotropy: bool) -> Option<Figure> {
+    let curves: Vec<&Curve> = u.passive().collect();
+    if curves.is_empty() || (in_isotropy && curves.len() == 1 && curves[0].energy == run.material) {
         return None;
     }
-    let s = energies
+    let energies: Vec<&str> = curves.iter().map(|c| c.energy.as_str()).collect();
+    let like_fig_3 = u.along()
+        && energies.contains(&"giantesio-musesti")
+        && energies.contains(&"ehret-bol-itskov");
+    let series = curves
         .iter()
         .enumerate()
-        .map(|(i, e)| {
+        .map(|(i, c)| {
             let stroke = if i == 0 {
                 Stroke::Solid
             } else {
                 Stroke::Dashed
             };
-            series(
-                *e,
-                run.u.along(|c| passive(c) && c.energy == *e, stress),
-                stroke,
-                i,
-            )
+            u.series(c, c.energy.clone(), stress, stroke, i)
         })
         .collect();
     figure(
-        "fig_passive_vs_ebi",
-        "The chapter's Fig. 3 — passive energies in uniaxial tension along the fibres",
-        "Nominal stress of the chapter's passive energy (eq. (1)) and of the Ehret–Böl–Itskov energy (eq. (4)) it simplifies, uniaxial tension along the fibres.",
-        vec![panel("Passive stress along the fibres", STRESS, s, Some((-5.0, 160.0)))],
+        &format!("fig_passive_{}", u.dir()),
+        format!(
+            "Passive stress {} the fibres: {}{} (study \"{}\")",
+            u.dir(),
+            energies.join(", "),
+            if like_fig_3 { " — the chapter's Fig. 3" } else { "" },
+            u.study
+        ),
+        format!(
+            "Nominal stress of the passive energ{} {} in uniaxial tension {} the fibres (lateral faces traction free).",
+            if energies.len() == 1 { "y" } else { "ies" },
+            energies.join(" and "),
+            u.dir()
+        ),
+        vec![panel(
+            format!("Passive stress {} the fibres", u.dir()),
+            STRESS,
+            series,
+        )],
     )
 }
 
-/// The chapter's Fig. 2: transverse isotropy.
+/// The chapter's Fig. 2: the material's passive stress along and across the fibres.
 fn transverse_isotropy(run: &Run) -> Option<Figure> {
-    let passive_dir = |d: Direction| {
-        xy(
-            run.u.curves(d, |c| passive(c) && c.energy == run.material),
-            stress,
-        )
+    let find = |d: Direction| {
+        run.uniaxial
+            .iter()
+            .filter(|u| u.direction == d)
+            .find_map(|u| {
+                u.passive()
+                    .find(|c| c.energy == run.material)
+                    .map(|c| (*u, c))
+            })
     };
+    let ((ua, along), (ux, across)) = (find(Direction::Along)?, find(Direction::Across)?);
     figure(
         "fig_transverse_isotropy",
-        "The chapter's Fig. 2 — transversely isotropic behaviour",
-        "Passive nominal stress of the chapter's energy in uniaxial tension along and across the fibres (both lateral faces traction free).",
+        format!(
+            "Transversely isotropic behaviour of {}{}",
+            run.material,
+            chapter(2, &run.material)
+        ),
+        format!(
+            "Passive nominal stress of {} in uniaxial tension along and across the fibres (lateral faces traction free), on the scale of the softer curve across the fibres.",
+            run.material
+        ),
         vec![panel(
             "Passive stress along and across the fibres",
             STRESS,
-            vec![
-                series("along the fibres", passive_dir(Direction::Along), Stroke::Solid, 0),
-                series("across the fibres", passive_dir(Direction::Across), Stroke::Dashed, 1),
-            ],
-            Some((-5.0, 160.0)),
+            vec![ua.series(along, "along the fibres", stress, Stroke::Solid, 0), ux.series(across, "across the fibres", stress, Stroke::Dashed, 1)],
         )],
     )
 }
 
-/// The chapter's Fig. 5: constant γ.
-fn constant_gamma(run: &Run) -> Option<Figure> {
-    let gammas = sorted_unique(
-        run.u
-            .curves(Direction::Along, |_| true)
-            .filter_map(|c| match c.model {
-                CurveModel::Constant(g) => Some(g),
-                _ => None,
-            })
-            .collect(),
-    );
-    let constant = |g: f64| move |c: &Curve| c.model == CurveModel::Constant(g);
+/// The chapter's Fig. 5 (along the fibres): constant γ; a second panel zooms on P = 0 when a
+/// curve crosses it, to show the zero crossings move below λ = 1.
+fn constant_gamma(u: &Uniaxial) -> Option<Figure> {
+    let curves: Vec<(f64, &Curve)> = u
+        .curves
+        .iter()
+        .filter_map(|c| match c.model {
+            CurveModel::Constant(g) => Some((g, c)),
+            _ => None,
+        })
+        .collect();
+    let gammas: Vec<f64> = curves.iter().map(|c| c.0).collect();
+    let all = || -> Vec<Option<Series>> {
+        curves
+            .iter()
+            .enumerate()
+            .map(|(i, (g, c))| u.series(c, format!("γ = {g}"), stress, Stroke::Solid, i))
+            .collect()
+    };
+    let stresses = || {
+        curves
+            .iter()
+            .flat_map(|(_, c)| c.points.iter().map(|p| p.stress))
+    };
+    let lowest = stresses().fold(f64::INFINITY, f64::min);
+    let positive = stresses().filter(|&p| p > 0.0);
+    let (small, large) = positive.fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p), b.max(p)));
+    // Over three decades or more (γ shifts the exponential stiffening): a log axis, and a
+    // linear one near P = 0 for the zero crossings.
+    let log = large > 1e3 * small;
+    let top = if log {
+        panel(
+            format!("Constant activation, {} the fibres (log axis)", u.dir()),
+            STRESS,
+            all(),
+        )
+        .map(|p| Panel {
+            scale: Scale::LogY,
+            ..p
+        })
+    } else {
+        panel(
+            format!("Constant activation, {} the fibres", u.dir()),
+            STRESS,
+            all(),
+        )
+    };
+    let zoom = (log && lowest < 0.0).then(|| {
+        let mut p = panel("Near P = 0: the zero crossings", STRESS, all())?;
+        p.y_range = Some((1.2 * lowest, -6.0 * lowest));
+        Some(p)
+    });
     figure(
         "fig_constant_gamma",
-        "The chapter's Fig. 5 — stress–stretch curves for constant γ",
-        "Uniaxial tension along the fibres with γ held constant: the stress grows with γ and its zero moves below λ = 1 (to about 1 − γ). The y range is narrow (μ = 0.16 kPa) so that the zero crossings show.",
-        vec![panel(
-            "Constant activation γ",
-            STRESS,
-            gammas
-                .iter()
-                .enumerate()
-                .map(|(i, g)| series(format!("γ = {g}"), run.u.along(constant(*g), stress), Stroke::Solid, i))
-                .collect(),
-            Some((-0.5, 3.0)),
-        )],
+        format!(
+            "Stress–stretch curves for constant γ = {}{} (study \"{}\")",
+            list(&gammas),
+            match curves.first() {
+                Some((_, c)) if u.along() => chapter(5, &c.energy),
+                _ => String::new(),
+            },
+            u.study
+        ),
+        format!(
+            "Uniaxial tension {} the fibres with γ held constant: the stress grows with γ{}.{}",
+            u.dir(),
+            if u.along() {
+                " and its zero moves below λ = 1 (to about 1 − γ)"
+            } else {
+                ""
+            },
+            if log {
+                " Top: P > 0 on a log axis (γ shifts the exponential stiffening to smaller λ); bottom: a linear axis near P = 0."
+            } else {
+                ""
+            }
+        ),
+        vec![top, zoom.flatten()],
     )
 }
 
-/// The chapter's Fig. 7: the active curve.
-fn active_curve(pact: &[(f64, f64)]) -> Option<Figure> {
+/// The chapter's Fig. 7: P_act at the stretches of study `u`.
+fn active_curve(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let lambdas = sorted_unique(
+        u.curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.lambda))
+            .collect(),
+    );
+    let points = lambdas.iter().map(|&l| (l, run.curve.value(l))).collect();
     figure(
         "fig_active_curve",
-        "The chapter's Fig. 7 — the active curve",
-        "P_act(λ) of eq. (8) with the parameters of Table 2 (the chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program).",
-        vec![panel("Active curve P_act (eq. (8))", STRESS, vec![series("P_act", pact.to_vec(), Stroke::Solid, 1)], None)],
+        "The active curve P_act — the chapter's Fig. 7".into(),
+        format!(
+            "P_act(λ) of the scene's active curve (λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa; the chapter's values are in its Table 2). The chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program.",
+            run.curve.lambda_min(),
+            run.curve.lambda_opt(),
+            run.curve.k(),
+            run.curve.p_opt()
+        ),
+        vec![panel("Active curve P_act", STRESS, vec![derived("P_act", points, Stroke::Solid, 1)])],
     )
 }
 
-/// The chapter's Fig. 8: γ(λ) of the implicit law; P_tot, P_act, P_pas.
-fn gamma_and_stresses(run: &Run) -> Option<Figure> {
-    let implicit = active(LawKind::Implicit, CouplingKind::Frozen, 0.0);
+/// The chapter's Fig. 8: γ of the implicit law (frozen) and its stresses, at the smallest damage.
+fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let d = *u.damages().first()?;
+    let c = u
+        .model(LawKind::Implicit, CouplingKind::Frozen, d)
+        .filter(|_| u.along())?;
+    let act = |p: &CurvePoint| p.active_target;
     figure(
         "fig_gamma_and_stresses",
-        "The chapter's Fig. 8 — γ(λ) and the stresses P_tot, P_act, P_pas",
-        "Top: γ solving eq. (13) (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
+        format!(
+            "γ(λ) of the implicit law and the stresses P_tot, P_act, P_pas at d = {d}{}",
+            if d == 0.0 { chapter(8, &c.energy) } else { String::new() }
+        ),
+        format!(
+            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas.",
+            run.material
+        ),
         vec![
-            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", run.u.along(&implicit, gamma), Stroke::Solid, 0)], None),
+            panel(format!("Activation γ, implicit law, d = {d}"), GAMMA, vec![u.series(c, "γ, implicit law", gamma, Stroke::Solid, 0)]),
             panel(
                 "Total, active and passive stress",
                 STRESS,
                 vec![
-                    series("P_tot", run.u.along(&implicit, stress), Stroke::Solid, 0),
-                    series("P_act", run.u.along(&implicit, |p| p.active_target), Stroke::Dashed, 1),
-                    series("P_pas", run.u.along(&implicit, |p| p.passive), Stroke::Dotted, 2),
+                    u.series(c, "P_tot", stress, Stroke::Solid, 0),
+                    derived("(1 − d) P_act", xy(c, act), Stroke::Dashed, 1),
+                    derived("P_pas", xy(c, |p| p.passive), Stroke::Dotted, 2),
                 ],
-                ACTIVE_RANGE,
             ),
         ],
     )
 }
 
-/// The chapter's Fig. 9: (1 − d) P_act for the damages of the implicit law.
-fn damage_active(run: &Run, pact: &[(f64, f64)]) -> Option<Figure> {
-    let ds = sorted_unique(
-        run.u
-            .curves(Direction::Along, |_| true)
-            .filter_map(active_model)
-            .filter(|m| m.law == LawKind::Implicit)
-            .map(|m| m.damage)
+/// (λ, y) of the points of `c` where `y` has a value.
+fn xy(c: &Curve, y: impl Fn(&CurvePoint) -> Option<f64>) -> Vec<(f64, f64)> {
+    c.points
+        .iter()
+        .filter_map(|p| y(p).map(|v| (p.lambda, v)))
+        .collect()
+}
+
+/// The chapter's Fig. 9: (1 − d) P_act for the damages of study `u` (two or more).
+fn damage_active(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let ds = u.damages();
+    if ds.len() < 2 || !u.along() {
+        return None;
+    }
+    let lambdas = sorted_unique(
+        u.active()
+            .flat_map(|(_, c)| c.points.iter().map(|p| p.lambda))
             .collect(),
     );
+    let series = ds
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            let points = lambdas
+                .iter()
+                .map(|&l| (l, (1.0 - d) * run.curve.value(l)))
+                .collect();
+            derived(format!("d = {d}"), points, Stroke::Solid, i)
+        })
+        .collect();
     figure(
         "fig_damage_active",
-        "The chapter's Fig. 9 — (1 − d) P_act for d = 0 … 0.5",
-        "The active curve scaled by the loss of activation 1 − d.",
-        vec![panel(
-            "(1 − d) P_act",
-            STRESS,
-            ds.iter()
-                .enumerate()
-                .map(|(i, d)| {
-                    series(
-                        format!("d = {d}"),
-                        pact.iter().map(|&(l, p)| (l, (1.0 - d) * p)).collect(),
-                        Stroke::Solid,
-                        i,
-                    )
-                })
-                .collect(),
-            None,
-        )],
+        format!("(1 − d) P_act for d = {} — the chapter's Fig. 9", list(&ds)),
+        "The active curve scaled by the loss of activation 1 − d.".into(),
+        vec![panel("(1 − d) P_act", STRESS, series)],
     )
 }
 
-/// The chapter's Fig. 10: explicit (solid) vs implicit (dotted) γ.
-fn explicit_vs_implicit_gamma(run: &Run) -> Option<Figure> {
-    let implicit = active(LawKind::Implicit, CouplingKind::Frozen, 0.0);
-    let explicit = active(LawKind::Explicit, CouplingKind::Frozen, 0.0);
+/// The damage of the chapter's figures: 0 if computed, else the smallest, for `laws` frozen.
+fn common_damage(u: &Uniaxial, laws: &[LawKind]) -> Option<f64> {
+    u.damages().into_iter().find(|&d| {
+        laws.iter()
+            .all(|&l| u.model(l, CouplingKind::Frozen, d).is_some())
+    })
+}
+
+/// The chapter's Fig. 10: explicit against implicit γ (frozen, along the fibres).
+fn explicit_vs_implicit_gamma(u: &Uniaxial) -> Option<Figure> {
+    let d = common_damage(u, &[LawKind::Explicit, LawKind::Implicit]).filter(|_| u.along())?;
+    let of = |l| u.model(l, CouplingKind::Frozen, d);
+    let energy = &of(LawKind::Explicit)?.energy;
     figure(
         "fig_explicit_vs_implicit_gamma",
-        "The chapter's Fig. 10 — explicit γ (eq. (14)) vs the implicit solution",
-        "γ from the closed form eq. (14) (solid) and from solving eq. (13) (dotted), d = 0.",
+        format!(
+            "Explicit against implicit γ at d = {d}{}",
+            if d == 0.0 { chapter(10, energy) } else { String::new() }
+        ),
+        format!("γ from the explicit law's closed form (solid) and from solving the implicit law (dotted), d = {d}."),
         vec![panel(
             "Explicit and implicit γ",
             GAMMA,
             vec![
-                series(
-                    "explicit, eq. (14)",
-                    run.u.along(&explicit, gamma),
-                    Stroke::Solid,
-                    0,
-                ),
-                series(
-                    "implicit, eq. (13)",
-                    run.u.along(&implicit, gamma),
-                    Stroke::Dotted,
-                    1,
-                ),
+                u.series(of(LawKind::Explicit)?, "explicit law", gamma, Stroke::Solid, 0),
+                u.series(of(LawKind::Implicit)?, "implicit law", gamma, Stroke::Dotted, 1),
             ],
-            None,
         )],
     )
 }
 
-/// The chapter's Fig. 11: P_tot with the explicit γ.
-fn explicit_ptot(run: &Run) -> Option<Figure> {
-    let explicit = active(LawKind::Explicit, CouplingKind::Frozen, 0.0);
+/// The chapter's Fig. 11: P_tot with the explicit γ against its target.
+fn explicit_ptot(u: &Uniaxial) -> Option<Figure> {
+    let d = common_damage(u, &[LawKind::Explicit]).filter(|_| u.along())?;
+    let c = u.model(LawKind::Explicit, CouplingKind::Frozen, d)?;
     figure(
         "fig_explicit_ptot",
-        "The chapter's Fig. 11 — P_tot with the explicit γ",
-        "Total stress of the frozen model with γ from eq. (14), against the target P_pas + P_act it approximates (the chapter compares with the experimental data instead).",
+        format!(
+            "P_tot with the explicit γ at d = {d}{}",
+            if d == 0.0 { chapter(11, &c.energy) } else { String::new() }
+        ),
+        format!("Total stress of the frozen model with γ from the explicit law, d = {d}, against the target P_pas + (1 − d) P_act it approximates (the chapter compares with the experimental data instead)."),
         vec![panel(
-            "P_tot with explicit γ",
+            "P_tot with the explicit γ",
             STRESS,
             vec![
-                series("P_tot, explicit γ", run.u.along(&explicit, stress), Stroke::Solid, 0),
-                series("P_pas + P_act (target)", run.u.along(&explicit, target), Stroke::Dashed, 1),
+                u.series(c, "P_tot, explicit law", stress, Stroke::Solid, 0),
+                derived("P_pas + (1 − d) P_act (target)", xy(c, target), Stroke::Dashed, 1),
             ],
-            ACTIVE_RANGE,
         )],
     )
 }
 
-/// The chapter's Fig. 12: the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
-fn cylinder(run: &Run) -> Option<Figure> {
-    let sweeps: Vec<&Sweep> = run
-        .results
-        .cylinders()
-        .filter(|(_, c)| c.bases == Bases::Clamped)
-        .flat_map(|(_, c)| c.sweeps.iter())
-        .filter(|s| s.model.law == LawKind::Explicit && s.model.coupling == CouplingKind::Frozen)
-        .collect();
-    let points = |d: f64, y: fn(&SweepPoint) -> f64| {
-        let mut v: Vec<(f64, f64)> = sweeps
+/// Colour of a law.
+fn law_colour(law: LawKind) -> usize {
+    match law {
+        LawKind::Implicit => 0,
+        LawKind::Explicit => 1,
+        LawKind::Energy => 2,
+    }
+}
+
+/// Solid for frozen, dashed for consistent.
+fn coupling_stroke(c: CouplingKind) -> Stroke {
+    match c {
+        CouplingKind::Frozen => Stroke::Solid,
+        CouplingKind::Consistent => Stroke::Dashed,
+    }
+}
+
+/// Every law × coupling of study `u` at its smallest damage: γ and P, with the target along
+/// the fibres.
+fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let d = *u.damages().first()?;
+    let pairs = u.pairs();
+    let of = |y: fn(&CurvePoint) -> Option<f64>| -> Vec<Option<Series>> {
+        pairs
             .iter()
-            .filter(|s| s.model.damage == d)
-            .flat_map(|s| s.points.iter().map(|p| (p.lambda, y(p))))
-            .collect();
-        v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        v
-    };
-    let ds = sorted_unique(sweeps.iter().map(|s| s.model.damage).collect());
-    let by_damage = |y: fn(&SweepPoint) -> f64| -> Vec<Option<Series>> {
-        ds.iter()
-            .enumerate()
-            .map(|(i, d)| series(format!("d = {d}"), points(*d, y), Stroke::Solid, i))
+            .filter_map(|&(l, c)| u.model(l, c, d).map(|curve| (l, c, curve)))
+            .map(|(l, c, curve)| u.series(curve, words(l, c), y, coupling_stroke(c), law_colour(l)))
             .collect()
     };
+    // γ = g(λ_f) does not depend on the coupling: one curve per law.
+    let mut laws: Vec<LawKind> = pairs.iter().map(|p| p.0).collect();
+    laws.dedup();
+    let gammas = laws
+        .iter()
+        .filter_map(|&l| u.active().find(|(m, _)| m.law == l && m.damage == d))
+        .map(|(m, c)| {
+            derived(
+                format!("{} law", m.law.name()),
+                xy(c, gamma),
+                Stroke::Solid,
+                law_colour(m.law),
+            )
+        })
+        .collect();
+    let mut p = of(stress);
+    if u.along() {
+        let c = u.active().find(|(m, _)| m.damage == d).map(|(_, c)| c)?;
+        p.push(derived(
+            "P_pas + (1 − d) P_act (target)",
+            xy(c, target),
+            Stroke::Dotted,
+            3,
+        ));
+    }
+    let names: Vec<String> = pairs.iter().map(|&(l, c)| words(l, c)).collect();
     figure(
-        "fig_cylinder",
-        "The chapter's Fig. 12 — the cylinder: γ and P_tot for d = 0 … 0.5",
-        "Axisymmetric FE cylinder (R = 1, L = 4 unless the scene says otherwise), clamped bases, explicit law, frozen coupling. Top: γ at the centre of the cylinder; bottom: nominal axial stress (reaction / πR²).",
+        "fig_laws",
+        format!(
+            "Activation laws and couplings {} the fibres at d = {d}: {} (study \"{}\")",
+            u.dir(),
+            names.join("; "),
+            u.study
+        ),
+        format!(
+            "Uniaxial tension {} the fibres, energy {}, d = {d}. Solid: frozen coupling, P = ∂Ŵ/∂F at γ = g(λ_f) held (the chapter's model); dashed: consistent coupling, the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres, the energy law so that its consistent model does.",
+            u.dir(),
+            run.material
+        ),
         vec![
-            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre), None),
-            panel("Nominal axial stress", STRESS, by_damage(|p| p.stress), ACTIVE_RANGE),
+            panel(format!("Activation γ, d = {d} (either coupling)"), GAMMA, gammas),
+            panel(format!("Nominal stress, d = {d}"), STRESS, p),
         ],
     )
 }
 
-/// Ours: frozen against consistent coupling of each law, d = 0.
-fn frozen_vs_consistent(run: &Run) -> Option<Figure> {
-    use CouplingKind::{Consistent, Frozen};
-    let mut s = Vec::new();
-    for (i, law) in [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
+/// One panel per law × coupling of study `u`, a curve per damage (two or more damages).
+fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
+    let ds = u.damages();
+    if ds.len() < 2 {
+        return None;
+    }
+    let panels = u
+        .pairs()
         .into_iter()
-        .enumerate()
-    {
-        s.push(series(
-            format!("{}, frozen", law.name()),
-            run.u.along(active(law, Frozen, 0.0), stress),
-            Stroke::Solid,
-            i,
-        ));
-        s.push(series(
-            format!("{}, consistent", law.name()),
-            run.u.along(active(law, Consistent, 0.0), stress),
+        .map(|(l, c)| {
+            let mut s = Vec::new();
+            for (i, &d) in ds.iter().enumerate() {
+                if let Some(curve) = u.model(l, c, d) {
+                    s.push(u.series(curve, format!("d = {d}"), stress, Stroke::Solid, i));
+                    s.push(derived("", xy(curve, target), Stroke::Dotted, i));
+                }
+            }
+            if u.along() {
+                s.push(key("dotted: P_pas + (1 − d) P_act", Stroke::Dotted));
+            }
+            panel(words(l, c), STRESS, s)
+        })
+        .collect();
+    figure(
+        "fig_loss_of_activation",
+        format!(
+            "Loss of activation {} the fibres, d = {} (study \"{}\")",
+            u.dir(),
+            list(&ds),
+            u.study
+        ),
+        format!(
+            "Nominal stress in uniaxial tension {} the fibres for each damage d, a panel per law and coupling{}.",
+            u.dir(),
+            if u.along() { "; dotted in the same colour: the target P_pas + (1 − d) P_act" } else { "" }
+        ),
+        panels,
+    )
+}
+
+/// A cylinder study: γ and λ_f at the centre, and the nominal stress (FE solid, the homogeneous
+/// 0D curve of the same model dashed), a curve per damage.
+fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
+    let by_damage = |y: fn(&SweepPoint) -> f64| -> Vec<Option<Series>> {
+        c.sweeps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let points: Vec<(f64, f64)> = s.points.iter().map(|p| (p.lambda, y(p))).collect();
+                (!points.is_empty()).then(|| {
+                    Series::new(format!("d = {}", s.model.damage), points, Stroke::Solid, i)
+                        .drawing(sweep_curve(study, c, s))
+                })
+            })
+            .collect()
+    };
+    let mut fibre = by_damage(|p| p.fibre_stretch_centre);
+    let lambdas: Vec<f64> = c
+        .sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.lambda))
+        .collect();
+    let (lo, hi) = lambdas
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &l| {
+            (a.0.min(l), a.1.max(l))
+        });
+    let lmin = run.curve.lambda_min();
+    fibre.push(derived(
+        format!("λ_min = {lmin}"),
+        vec![(lo, lmin), (hi, lmin)],
+        Stroke::Dashed,
+        GREY,
+    ));
+    let mut p = by_damage(|p| p.stress);
+    for (i, s) in c.sweeps.iter().enumerate() {
+        p.push(derived(
+            "",
+            s.points
+                .iter()
+                .filter_map(|q| q.stress_0d.map(|z| (q.lambda, z)))
+                .collect(),
             Stroke::Dashed,
             i,
         ));
     }
-    s.push(series(
-        "P_pas + P_act (target)",
-        run.u.along(active(LawKind::Implicit, Frozen, 0.0), target),
-        Stroke::Dotted,
-        3,
-    ));
-    if s.iter().filter(|x| x.is_some()).count() < 3 {
-        return None;
-    }
+    p.push(key("dashed: homogeneous (0D)", Stroke::Dashed));
+    let m = c.sweeps.first()?.model;
+    let ds: Vec<f64> = c.sweeps.iter().map(|s| s.model.damage).collect();
+    let like_fig_12 = c.bases == Bases::Clamped
+        && m.law == LawKind::Explicit
+        && m.coupling == CouplingKind::Frozen;
+    let geometry = run
+        .results
+        .studies
+        .iter()
+        .find(|s| s.name == study && matches!(s.result, StudyResult::Cylinder(_)))
+        .and_then(|s| s.details.first())
+        .map_or(String::new(), |d| format!(" ({d})"));
     figure(
-        "fig_frozen_vs_consistent",
-        "Frozen vs consistent coupling (ours)",
-        "Uniaxial tension along the fibres, d = 0. Frozen: P = ∂Ŵ/∂F at γ = g(λ) held (the chapter's model). Consistent: the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The energy law is built so that its consistent model reproduces P_pas + P_act; the implicit law so that its frozen model does.",
-        vec![panel("Frozen vs consistent coupling, d = 0", STRESS, s, ACTIVE_RANGE)],
+        "fig_cylinder",
+        format!(
+            "The cylinder \"{study}\": {} bases, {}, d = {}{}",
+            bases_name(c.bases),
+            words(m.law, m.coupling),
+            list(&ds),
+            if like_fig_12 { chapter(12, &c.energy) } else { String::new() }
+        ),
+        format!(
+            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: the homogeneous uniaxial (0D) curve of the same model.",
+            c.energy
+        ),
+        vec![
+            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre)),
+            panel("Fibre stretch λ_f at the centre", "fibre stretch λ_f [-]", fibre),
+            panel("Nominal axial stress", STRESS, p),
+        ],
     )
 }
 
-/// Ours: FE against 0D, at the smallest and the largest damage of each cylinder study.
+/// P_FE − P_0D of every sweep, a panel per cylinder study.
 fn fe_vs_0d(results: &Results) -> Option<Figure> {
-    let mut s = Vec::new();
-    let mut colour = 0;
-    for (_, c) in results.cylinders() {
-        let dmax = c.sweeps.iter().map(|w| w.model.damage).fold(0.0, f64::max);
-        for w in &c.sweeps {
-            if !(w.model.damage == 0.0 || w.model.damage == dmax) {
-                continue;
-            }
-            let short = w.label.split(", ").skip(1).collect::<Vec<_>>().join(", ");
-            let compared: Vec<(f64, f64, f64)> = w
-                .points
+    let panels = results
+        .cylinders()
+        .map(|(study, c)| {
+            let s = c
+                .sweeps
                 .iter()
-                .filter_map(|p| p.stress_0d.map(|z| (p.lambda, p.stress, z)))
+                .enumerate()
+                .map(|(i, w)| {
+                    let points = w
+                        .points
+                        .iter()
+                        .filter_map(|p| p.stress_0d.map(|z| (p.lambda, p.stress - z)))
+                        .collect();
+                    derived(format!("d = {}", w.model.damage), points, Stroke::Solid, i)
+                })
                 .collect();
-            s.push(series(
-                format!("FE {} bases: {short}", bases_name(c.bases)),
-                compared.iter().map(|p| (p.0, p.1)).collect(),
-                Stroke::Markers,
-                colour,
-            ));
-            s.push(series(
-                format!("0D: {short}"),
-                compared.iter().map(|p| (p.0, p.2)).collect(),
-                Stroke::Solid,
-                colour,
-            ));
-            colour += 1;
-        }
-    }
-    if s.is_empty() {
-        return None;
-    }
+            panel(
+                format!("{study} ({} bases): P_FE − P_0D", bases_name(c.bases)),
+                "P_FE − P_0D [kPa]",
+                s,
+            )
+        })
+        .collect();
     figure(
         "fig_fe_vs_0d",
-        "FE cylinder vs homogeneous (0D) tension (ours)",
-        "Markers: FE nominal stress (axial reaction / πR²); lines: the homogeneous uniaxial curve of the same model. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect.",
-        vec![panel("FE vs 0D", STRESS, s, ACTIVE_RANGE)],
+        "FE cylinder against homogeneous (0D) tension (ours)".into(),
+        "Nominal stress of the FE cylinder (axial reaction / πR²) minus the homogeneous uniaxial curve of the same model, per damage. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect. The table \"FE vs homogeneous (0D) tension\" gives the largest difference where the active stress dominates.".into(),
+        panels,
     )
+}
+
+/// `Fit: chapter's energy …` for a study called `fit: chapter's energy …` or `chapter's energy …`.
+fn fit_heading(study: &str) -> String {
+    let rest = study
+        .strip_prefix("fit:")
+        .or_else(|| study.strip_prefix("Fit:"))
+        .unwrap_or(study)
+        .trim();
+    format!("Fit: {rest}")
 }
 
 /// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or
@@ -551,52 +851,52 @@ fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
             if f.converged { "" } else { " (NOT converged)" }
         )
     };
+    let start = |f: &FitOutcome, colour| {
+        f.plot.start.as_ref().and_then(|(label, points)| {
+            derived(label.clone(), points.clone(), Stroke::Dashed, colour)
+        })
+    };
     if first.kind == FitKind::Damage {
         let mut s = Vec::new();
         for (i, f) in fits.iter().enumerate() {
-            s.push(series(
+            s.push(derived(
                 f.case.clone(),
                 f.plot.data.clone(),
                 Stroke::Markers,
                 i,
             ));
-            s.push(series(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+            s.push(derived(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
         }
-        if let Some((label, points)) = &first.plot.start {
-            s.push(series(label.clone(), points.clone(), Stroke::Dashed, 7));
-        }
-        panels.push(panel(study, &first.plot.y_label, s, None));
+        s.push(start(first, 7));
+        panels.push(panel(fit_heading(study), &first.plot.y_label, s));
     } else {
         for f in fits {
-            let mut s = vec![
-                series(
+            let s = vec![
+                derived(
                     f.plot.data_label.clone(),
                     f.plot.data.clone(),
                     Stroke::Markers,
                     1,
                 ),
-                series(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+                derived(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+                start(f, 2),
             ];
-            if let Some((label, points)) = &f.plot.start {
-                s.push(series(label.clone(), points.clone(), Stroke::Dashed, 2));
-            }
             panels.push(panel(
-                &format!("{study}: {}", f.case),
+                format!("{}: {}", fit_heading(study), f.case),
                 &f.plot.y_label,
                 s,
-                None,
             ));
         }
     }
     figure(
         &prefixed("fit", study),
-        &format!("Fit: {study}"),
-        &format!(
+        fit_heading(study),
+        format!(
             "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
             first.kind.name(),
             first.source
         ),
-        panels.into_iter().flatten().map(Some).collect(),
+        panels,
     )
 }
 
@@ -608,12 +908,7 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
     if ds.is_empty() {
         ds.push(0.0);
     }
-    let colour = |c: &StabilityCurve| match c.model.map(|m| m.law) {
-        Some(LawKind::Implicit) => 0,
-        Some(LawKind::Explicit) => 1,
-        Some(LawKind::Energy) => 2,
-        None => 5,
-    };
+    let colour = |c: &StabilityCurve| c.model.map_or(5, |m| law_colour(m.law));
     let mut panels = Vec::new();
     for d in &ds {
         let mut s = Vec::new();
@@ -622,13 +917,11 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
             .iter()
             .filter(|c| c.damage().is_none() || c.damage() == Some(*d))
         {
-            let stroke = match c.model {
-                Some(m) if m.coupling == CouplingKind::Consistent => Stroke::Dashed,
-                None => Stroke::Dotted,
-                Some(_) => Stroke::Solid,
-            };
+            let stroke = c
+                .model
+                .map_or(Stroke::Dotted, |m| coupling_stroke(m.coupling));
             let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
-            s.push(series(c.label(), all, stroke, colour(c)));
+            s.push(derived(c.label(), all, stroke, colour(c)));
             let soft: Vec<(f64, f64)> = c
                 .points
                 .iter()
@@ -641,7 +934,7 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
                 soft_labelled = true;
                 "dP/dλ < 0 (circles in the curve's colour)".to_string()
             };
-            s.push(series(label, soft, Stroke::Markers, colour(c)));
+            s.push(derived(label, soft, Stroke::Markers, colour(c)));
             let lost: Vec<(f64, f64)> = c
                 .points
                 .iter()
@@ -654,20 +947,19 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
                 lost_labelled = true;
                 "strong ellipticity lost".to_string()
             };
-            s.push(series(label, lost, Stroke::Markers, 6));
+            s.push(derived(label, lost, Stroke::Markers, 6));
         }
         panels.push(panel(
-            &format!("Stability along the fibres, d = {d}"),
+            format!("Stability along the fibres, d = {d}"),
             STRESS,
             s,
-            Some((-5.0, 160.0)),
         ));
     }
     figure(
         &prefixed("stability", study),
-        &format!("Material stability along the fibres: {study}"),
-        "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.",
-        panels.into_iter().flatten().map(Some).collect(),
+        format!("Material stability along the fibres (study \"{study}\")"),
+        "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.".into(),
+        panels,
     )
 }
 
@@ -678,5 +970,19 @@ fn prefixed(kind: &str, name: &str) -> String {
         format!("fig_{s}")
     } else {
         format!("fig_{kind}_{s}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_headings_say_fit_once() {
+        assert_eq!(
+            fit_heading("fit: damage of weakened muscles"),
+            "Fit: damage of weakened muscles"
+        );
+        assert_eq!(fit_heading("my damage"), "Fit: my damage");
     }
 }

@@ -2,11 +2,15 @@
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
 use super::base64;
-use super::csv::COLUMNS;
-use super::plot::Rendered;
+use super::csv::{correlations, COLUMNS};
+use super::plot::{short, Rendered};
 use crate::app_error::{finite, AppError};
+use crate::energy::Parametric;
+use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::scene::{Results, Scene};
-use crate::studies::cylinder::bases_name;
+use crate::studies::cylinder::{bases_name, SweepPoint};
+use crate::studies::uniaxial::CurveModel;
+use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
 
@@ -68,7 +72,9 @@ pub fn html(
 
     studies_table(&mut h, results);
     failures(&mut h, results);
-    fe_table(&mut h, results)?;
+    models_table(&mut h, scene, results);
+    fe_table(&mut h, results);
+    centre_note(&mut h, scene, results);
     fits_table(&mut h, results)?;
     stability_table(&mut h, results)?;
 
@@ -125,40 +131,301 @@ fn failures(h: &mut String, results: &Results) {
     }
 }
 
-/// Each FE sweep against the homogeneous (0D) curve of the same model.
-fn fe_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+/// What the chapter calls the shipped energies: (name, what, where in the chapter).
+const ENERGIES: &[(&str, &str, &str)] = &[
+    (
+        "giantesio-musesti",
+        "the chapter's passive energy, W = μ/4 {[e^{α(I_p−1)} − 1]/α + K_p − 1}, I_p = (w0/3) tr C + (1−w0) C:M, K_p = (w0/3) tr C⁻¹ + (1−w0) C⁻¹:M",
+        "eq. (1); parameters Table 1",
+    ),
+    (
+        "ehret-bol-itskov",
+        "the Ehret–Böl–Itskov energy: the K_p − 1 term becomes [e^{β(K_p−1)} − 1]/β",
+        "eq. (4)",
+    ),
+    ("neo-hookean", "neo-Hookean reference, W = μ/2 (tr C − 3)", "not in the chapter"),
+];
+
+/// What a run used: the energies (the material's first), the active models, whether constant γ.
+struct Used {
+    energies: Vec<String>,
+    chosen: Vec<ModelChoice>,
+    constant: bool,
+}
+
+/// What `results` used (the scene gives the material).
+fn used(scene: &Scene, results: &Results) -> Used {
+    let m = &scene.models;
+    let mut energies = vec![m.energy.name().to_string()];
+    let mut chosen: Vec<ModelChoice> = Vec::new();
+    let mut constant = false;
+    for (_, u) in results.uniaxial() {
+        for c in &u.curves {
+            if !energies.contains(&c.energy) {
+                energies.push(c.energy.clone());
+            }
+            match c.model {
+                CurveModel::Active(x) => chosen.push(x),
+                CurveModel::Constant(_) => constant = true,
+                CurveModel::Passive => {}
+            }
+        }
+    }
+    for (_, c) in results.cylinders() {
+        chosen.extend(c.sweeps.iter().map(|s| s.model));
+    }
+    for (_, curves) in results.stability() {
+        chosen.extend(curves.iter().filter_map(|c| c.model));
+    }
+    Used {
+        energies,
+        chosen,
+        constant,
+    }
+}
+
+/// The models the run used, in the words of the figures and `curves.csv`, with their equations
+/// and where the chapter has them.
+fn models_table(h: &mut String, scene: &Scene, results: &Results) {
+    let used = used(scene, results);
+    let mut rows = energy_rows(scene, &used.energies);
+    rows.extend(model_rows(scene, &used));
+    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
+    for (name, what, chapter) in rows {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&name),
+            escape(&what),
+            escape(&chapter)
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// A row of the models table: (name, what it is, where the chapter has it).
+type ModelRow = (String, String, String);
+
+/// A row per energy; the material's with its parameter values.
+fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let mut rows = Vec::new();
+    for name in energies {
+        let (what, chapter) = ENERGIES
+            .iter()
+            .find(|(n, _, _)| n == name)
+            .map_or(("a shipped energy", "not in the chapter"), |(_, w, c)| {
+                (*w, *c)
+            });
+        let mut what = what.to_string();
+        if *name == m.energy.name() {
+            let values: Vec<String> = m
+                .energy
+                .parameters()
+                .iter()
+                .zip(m.energy.parameter_values())
+                .map(|(p, v)| format!("{} = {v}", p.symbol))
+                .collect();
+            what.push_str(&format!("; the material, with {}", values.join(", ")));
+        }
+        rows.push((format!("{name} (energy)"), what, chapter.into()));
+    }
+    rows
+}
+
+/// The rows of the activation, the active curve, damage, laws and couplings the run used.
+fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let (chosen, constant) = (&used.chosen, used.constant);
+    let mut rows: Vec<ModelRow> = Vec::new();
+    let active = !chosen.is_empty() || constant;
+    if active {
+        rows.push((
+            "γ, activation".into(),
+            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
+            "eqs. (5)–(6)".into(),
+        ));
+        rows.push((
+            "λ_f, fibre stretch".into(),
+            "λ_f = √(C:M), the argument of the activation laws".into(),
+            "–".into(),
+        ));
+        rows.push((
+            "P_tot, P_pas".into(),
+            "nominal stress in uniaxial tension along the fibres, P_tot(λ, γ) = ∂Ŵ/∂λ; P_pas(λ) = P_tot(λ, 0)".into(),
+            "eqs. (10), (11)".into(),
+        ));
+    }
+    if !chosen.is_empty() {
+        let c = &m.curve;
+        rows.push((
+            "P_act, active curve".into(),
+            format!(
+                "P_act(λ) = P_opt exp(−k (λ² − λ_opt²)²/(λ − λ_min)) for λ > λ_min, else 0; here λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa",
+                c.lambda_min(),
+                c.lambda_opt(),
+                c.k(),
+                c.p_opt()
+            ),
+            "eq. (8); parameters Table 2".into(),
+        ));
+        rows.push((
+            "d, damage".into(),
+            "loss of activation: the active stress becomes (1 − d) P_act".into(),
+            "the chapter's loss of activation (Fig. 9)".into(),
+        ));
+    }
+    let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
+    if constant {
+        rows.push(("constant γ".into(), "γ held fixed".into(), "Fig. 5".into()));
+    }
+    if used(LawKind::Implicit) {
+        rows.push((
+            "implicit law".into(),
+            "γ(λ) solves P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (γ = 0 for λ ≤ λ_min)".into(),
+            "eqs. (12)–(13)".into(),
+        ));
+    }
+    if used(LawKind::Explicit) {
+        rows.push((
+            "explicit law".into(),
+            format!(
+                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min)",
+                m.explicit.0, m.explicit.1
+            ),
+            "eq. (14)".into(),
+        ));
+    }
+    if used(LawKind::Energy) {
+        rows.push((
+            "energy law".into(),
+            "γ(λ) solves Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫_{λ_min}^{λ} P_act: its consistent model reproduces P_pas + (1 − d) P_act".into(),
+            "not in the chapter (Giantesio & Musesti 2017, strain-dependent internal parameters)".into(),
+        ));
+    }
+    if chosen.iter().any(|x| x.coupling == CouplingKind::Frozen) {
+        rows.push((
+            "frozen coupling".into(),
+            "P = ∂Ŵ/∂F − p F⁻ᵀ at γ = g(λ_f) held: the chapter's model (not a gradient)".into(),
+            "eq. (7)".into(),
+        ));
+    }
+    if chosen
+        .iter()
+        .any(|x| x.coupling == CouplingKind::Consistent)
+    {
+        rows.push((
+            "consistent coupling".into(),
+            "the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))), differentiated through the law".into(),
+            "not in the chapter".into(),
+        ));
+    }
+    rows
+}
+
+/// The largest |P_FE − P_0D| over the points `keep` accepts, as (difference, λ, P_0D).
+fn largest(points: &[SweepPoint], keep: impl Fn(&SweepPoint) -> bool) -> Option<(f64, f64, f64)> {
+    points
+        .iter()
+        .filter(|p| keep(p))
+        .filter_map(|p| p.stress_0d.map(|z| ((p.stress - z).abs(), p.lambda, z)))
+        .filter(|d| d.0.is_finite())
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// Where the activation shows: the target active stress exceeds the passive one,
+/// (1 − d) P_act(λ) > max(P_pas(λ), 0).
+fn active(p: &SweepPoint) -> bool {
+    p.passive_0d.is_some_and(|pas| p.active_0d > pas.max(0.0))
+}
+
+/// `2.95 kPa at λ = 1.3 (3.6 % of P_0D)`.
+fn difference(d: Option<(f64, f64, f64)>) -> String {
+    d.map_or("–".into(), |(d, l, z)| {
+        format!(
+            "{} kPa at λ = {l} ({} % of P_0D)",
+            short(d),
+            short(100.0 * d / z.abs().max(1e-300))
+        )
+    })
+}
+
+/// Each FE sweep against the homogeneous (0D) curve of the same model: the largest difference
+/// where the activation shows (the active range) and over every stretch.
+fn fe_table(h: &mut String, results: &Results) {
     let e = escape;
     let sweeps: Vec<_> = results
         .cylinders()
         .flat_map(|(_, c)| c.sweeps.iter().map(move |s| (c.bases, s)))
         .collect();
-    if !sweeps.is_empty() {
-        h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>max |P_FE − P_0D| [kPa]</th><th>at λ</th></tr>\n");
-        for (bases, s) in sweeps {
-            // A sweep that reached no stretch is in the notes, not in this table.
-            let Some(worst) = s.worst_against_0d() else {
+    if sweeps.is_empty() {
+        return;
+    }
+    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive exponential takes over, and with it the end effect of clamped bases.</p>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
+    for (bases, s) in sweeps {
+        let range: Vec<f64> = s
+            .points
+            .iter()
+            .filter(|p| active(p))
+            .map(|p| p.lambda)
+            .collect();
+        let range = match (range.first(), range.last()) {
+            (Some(a), Some(b)) => format!("λ = {a} … {b} ({} stretches)", range.len()),
+            _ => "none".into(),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{range}</td><td>{}</td><td>{}</td></tr>",
+            bases_name(bases),
+            e(&s.label),
+            s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
+            difference(largest(&s.points, active)),
+            difference(largest(&s.points, |_| true)),
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// Why γ at the centre of a cylinder is 0 at some stretches: the fibre stretch there is at or
+/// below λ_min (the laws' γ = 0 region), shown with the numbers of every such stretch.
+fn centre_note(h: &mut String, scene: &Scene, results: &Results) {
+    let lmin = scene.models.curve.lambda_min();
+    let mut rows = String::new();
+    for (study, c) in results.cylinders() {
+        for s in &c.sweeps {
+            let below: Vec<&SweepPoint> = s
+                .points
+                .iter()
+                .filter(|p| p.fibre_stretch_centre <= lmin)
+                .collect();
+            if below.is_empty() {
                 continue;
-            };
+            }
             let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.3e}</td><td>{}</td></tr>",
-                bases_name(bases),
-                e(&s.label),
-                s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
-                finite(worst.0, "max |P_FE − P_0D|", || format!(
-                    "report: {}",
-                    s.label
-                ))?,
-                finite(
-                    worst.1,
-                    "lambda of the largest FE − 0D difference",
-                    || format!("report: {}", s.label)
-                )?
+                rows,
+                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(study),
+                escape(&s.label),
+                below
+                    .iter()
+                    .map(|p| format!(
+                        "λ = {}: λ_f = {}, γ = {}",
+                        p.lambda,
+                        short(p.fibre_stretch_centre),
+                        short(p.gamma_centre)
+                    ))
+                    .collect::<Vec<_>>()
+                    .join("<br>")
             );
         }
-        h.push_str("</table>\n");
     }
-    Ok(())
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        h,
+        "<h2>γ at the centre of the cylinder</h2>\n<p>At these applied stretches the fibre stretch λ_f at the centre of the cylinder is at or below λ_min = {lmin}, where the active curve vanishes (P_act = 0 for λ ≤ λ_min, eq. (8)): the implicit and explicit laws give γ = 0 there, for every d. In compression a cylinder with clamped bases cannot widen at its ends, so the ends shorten less and the middle more than the applied stretch; with sliding bases the deformation is homogeneous and λ_f = λ. The energy law continued below λ_min on its zero-work branch (<code>below_minimum = \"zero-work\"</code>) keeps γ &gt; 0 there. The middle panel of each cylinder figure shows λ_f at the centre against λ_min.</p>\n<table><tr><th>study</th><th>model</th><th>stretches with λ_f ≤ λ_min at the centre</th></tr>\n{rows}</table>"
+    );
 }
 
 /// The figures (embedded) and the list of data files.
@@ -210,7 +477,7 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
         return Ok(());
     }
     let e = escape;
-    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
     for (study, f) in studies
         .iter()
         .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
@@ -227,16 +494,12 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
                 Some(r) => finite(r, "reference value", origin)?.to_string(),
                 None => String::new(),
             };
-            let corr = f
-                .correlation
-                .get(j)
-                .map(|row| {
-                    row.iter()
-                        .map(|c| c.map_or("n/a".to_string(), |c| format!("{c:.4}")))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                })
-                .unwrap_or_default();
+            let corr = match f.correlation.get(j) {
+                Some(row) => correlations(row, &f.names, j, |c| {
+                    finite(c, "correlation", origin).map(|c| format!("{c:.4}"))
+                })?,
+                None => String::new(),
+            };
             if j == 0 {
                 let mut status = if f.converged {
                     "converged".to_string()
@@ -255,8 +518,9 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
                 );
                 let _ = writeln!(
                     h,
-                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
+                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
                     e(&f.names[j]),
+                    e(&corr),
                     finite(f.rms, "RMS error", origin)?,
                     f.unit,
                     f.iterations,
@@ -264,8 +528,9 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
             } else {
                 let _ = writeln!(
                     h,
-                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td></tr>",
+                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td></tr>",
                     e(&f.names[j]),
+                    e(&corr),
                 );
             }
         }

@@ -12,16 +12,17 @@ use crate::studies::tradeoff::{Measurement, TradeoffResults};
 use std::fmt::Write;
 use std::path::Path;
 
-/// Relative errors below this (the references' zero) are drawn at this value on the log axis.
-pub const ERROR_FLOOR: f64 = 1e-17;
-
 /// Columns of `tradeoff.csv`.
-pub const COLUMNS: [&str; 15] = [
+pub const COLUMNS: [&str; 19] = [
     "option",
     "variant",
     "reference",
     "quantity",
     "time_s",
+    "time_low_s",
+    "time_high_s",
+    "runs",
+    "time_differs",
     "error_abs",
     "error_rel",
     "gamma_error",
@@ -44,9 +45,11 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The CSV text of the measured rows (one per variant; times in s, errors in the quantity's
-/// unit and relative; speed-up = reference time / time; error ratio = relative error / the
-/// option's smallest positive non-reference relative error).
+/// The CSV text of the measured rows (one per variant; times in s: the median of the runs and
+/// their spread, 10th to 90th percentile; `time_differs`: measurably different from the
+/// reference's ([`crate::studies::tradeoff::Timing::speedup_over`]); errors in the quantity's unit and relative; speed-up = reference time / time, of
+/// the medians; error ratio = relative error / the option's smallest positive non-reference
+/// relative error).
 pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let fail = |e: csv::Error| AppError::Output {
@@ -60,7 +63,11 @@ pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, AppError> {
             r.variant.clone(),
             r.reference.to_string(),
             r.quantity.clone(),
-            num(r.time_s),
+            num(r.time.median),
+            num(r.time.low),
+            num(r.time.high),
+            r.time.runs.to_string(),
+            r.measurable.to_string(),
             num(r.error.max_abs),
             num(r.error.max_rel),
             r.gamma_error.map(num).unwrap_or_default(),
@@ -96,85 +103,137 @@ pub fn stem(option: &str) -> String {
     format!("tradeoff_{}", slug(option))
 }
 
-/// The log–log error-versus-time figure of `option` (relative error on y, wall time on x;
-/// filled markers: the Pareto front, joined by a dashed line; the reference in red; zero errors
-/// drawn at [`ERROR_FLOOR`]).
-pub fn figure(option: &str, all: &[Measurement]) -> Figure {
-    let rows: Vec<&Measurement> = all.iter().filter(|r| r.option == option).collect();
-    let pts: Vec<(f64, f64)> = rows
-        .iter()
-        .map(|r| (r.time_s, r.error.max_rel.max(ERROR_FLOOR)))
-        .collect();
-    let finite = pts.iter().filter(|p| p.0.is_finite() && p.1.is_finite());
+/// The (time, error) ranges of the figure of `rows`: the runs' times, widened to at least two
+/// decades; the positive errors, a decade beyond each end.
+fn ranges(rows: &[&Measurement]) -> ((f64, f64), (f64, f64)) {
+    let positive = |e: f64| e.is_finite() && e > 0.0;
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
-    for &(x, y) in finite {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
+    for r in rows {
+        if r.time.median.is_finite() && r.time.median > 0.0 {
+            x0 = x0.min(r.time.low);
+            x1 = x1.max(r.time.high);
+        }
+        if positive(r.error.max_rel) {
+            y0 = y0.min(r.error.max_rel);
+            y1 = y1.max(r.error.max_rel);
+        }
     }
-    if !x0.is_finite() || x0 <= 0.0 {
-        (x0, x1, y0, y1) = (1e-6, 1.0, ERROR_FLOOR, 1.0);
+    if !(x0.is_finite() && x0 > 0.0) {
+        (x0, x1) = (1e-6, 1.0);
     }
+    if !y0.is_finite() {
+        (y0, y1) = (1e-16, 1.0);
+    }
+    let (y0, y1) = (y0 / 10.0, y1 * 10.0);
     let (mut x0, mut x1) = (x0 / 3.0, x1 * 6.0);
     // At least two decades of time, so that only decades carry labels (a narrower log axis gets
     // labels at 2e-1 … 9e-1 that run into each other).
     let widen = (100.0 / (x1 / x0)).max(1.0).sqrt();
     (x0, x1) = (x0 / widen, x1 * widen);
+    ((x0, x1), (y0, y1))
+}
+
+/// The log–log error-versus-time figure of `option` (relative error on y, the median wall time
+/// on x with the spread of the runs as a horizontal bar; filled markers: the Pareto front, joined
+/// by a dashed line; the reference in red). A zero error (the reference's own) has no place on a
+/// log axis: it is drawn on the lower edge of the frame, a decade below the smallest error, and
+/// labelled `error 0`.
+pub fn figure(option: &str, all: &[Measurement]) -> Figure {
+    let rows: Vec<&Measurement> = all.iter().filter(|r| r.option == option).collect();
+    let positive = |e: f64| e.is_finite() && e > 0.0;
+    let ((x0, x1), (y0, y1)) = ranges(&rows);
+    // Where each row is drawn: a zero error on the lower edge; a failed row nowhere.
+    let at = |r: &Measurement| -> Option<(f64, f64)> {
+        let e = r.error.max_rel;
+        let y = if e == 0.0 { y0 } else { e };
+        (positive(y) && r.time.median.is_finite()).then_some((r.time.median, y))
+    };
     let mut front: Vec<(f64, f64)> = rows
         .iter()
-        .zip(&pts)
-        .filter(|(r, _)| r.pareto)
-        .map(|(_, p)| *p)
+        .filter(|r| r.pareto)
+        .filter_map(|r| at(r))
         .collect();
     front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let mut series = vec![Series::new("Pareto front", front, Stroke::Dashed, GREY)];
-    for (r, &p) in rows.iter().zip(&pts) {
-        if !(p.0.is_finite() && p.1.is_finite()) {
-            continue;
+    let mut series = vec![
+        Series::new("Pareto front", front, Stroke::Dashed, GREY),
+        Series::new("spread of the runs' times", Vec::new(), Stroke::Solid, GREY),
+    ];
+    // Variants drawn on (nearly) the same spot share one label: (spot, series, text).
+    let mut labelled: Vec<((f64, f64), usize, String)> = Vec::new();
+    for r in &rows {
+        let Some(p) = at(r) else { continue };
+        let colour = usize::from(r.reference);
+        if r.time.runs > 1 {
+            series.push(Series::new(
+                "",
+                vec![(r.time.low, p.1), (r.time.high, p.1)],
+                Stroke::Solid,
+                colour,
+            ));
         }
-        let mut point = Series::new(
-            "",
-            vec![p],
-            if r.pareto {
-                Stroke::Filled
-            } else {
-                Stroke::Markers
-            },
-            usize::from(r.reference),
-        );
-        point.annotation = Some(if r.reference {
-            format!("{} (reference)", r.variant)
+        let stroke = if r.pareto {
+            Stroke::Filled
         } else {
-            r.variant.clone()
-        });
-        series.push(point);
+            Stroke::Markers
+        };
+        series.push(Series::new("", vec![p], stroke, colour));
+        let mut text = r.variant.clone();
+        if r.reference {
+            text.push_str(" (reference)");
+        }
+        if r.error.max_rel == 0.0 {
+            text.push_str(": error 0");
+        }
+        let near = |q: (f64, f64)| (q.0 / p.0).ln().abs() < 0.1 && (q.1 / p.1).ln().abs() < 0.1;
+        match labelled.iter_mut().find(|(q, _, _)| near(*q)) {
+            Some((_, _, t)) => *t = format!("{t}, {text}"),
+            None => labelled.push((p, series.len() - 1, text)),
+        }
     }
-    Figure {
-        stem: stem(option),
-        heading: format!("Speed versus accuracy: {option}"),
-        caption: caption(option, all),
-        panels: vec![Panel {
-            title: option.to_string(),
-            x_label: "wall time [s]".into(),
-            y_label: "max relative error [-]".into(),
-            series,
+    for (_, i, text) in labelled {
+        series[i].annotation = Some(text);
+    }
+    Figure::new(
+        stem(option),
+        format!("Speed versus accuracy: {option}"),
+        caption(option, all),
+        vec![Panel {
             x_range: Some((x0, x1)),
-            y_range: Some((y0 / 10.0, y1 * 10.0)),
+            y_range: Some((y0, y1)),
             scale: Scale::LogLog,
+            ..Panel::new(option, "wall time [s]", "max relative error [-]", series)
         }],
+    )
+}
+
+/// `1.4e-1–1.6e-1 (3)`, or `– (1)` for one run.
+fn spread(r: &Measurement) -> String {
+    if r.time.runs > 1 {
+        format!(
+            "{}–{} ({})",
+            cell(Some(r.time.low), 1),
+            cell(Some(r.time.high), 1),
+            r.time.runs
+        )
+    } else {
+        format!("– ({})", r.time.runs)
     }
 }
 
-/// The number cells of a row (time, errors, speed-up, error ratio, Newton iterations, time per
-/// iteration, dofs) and its Pareto mark, as the Markdown and HTML tables show them.
+/// The number cells of a row (time, spread, errors, speed-up, error ratio, Newton iterations,
+/// time per iteration, dofs) and its Pareto mark, as the Markdown and HTML tables show them.
 fn cells(r: &Measurement) -> Vec<String> {
     vec![
-        cell(Some(r.time_s), 2),
+        cell(Some(r.time.median), 2),
+        spread(r),
         cell(Some(r.error.max_abs), 1),
         cell(Some(r.error.max_rel), 1),
         cell(r.gamma_error, 1),
-        ratio(r.speedup),
+        if r.reference || r.measurable {
+            ratio(r.speedup)
+        } else {
+            format!("≈ {}", ratio(r.speedup))
+        },
         cell(Some(r.error_ratio), 1),
         r.iterations.map_or("–".into(), |n| n.to_string()),
         cell(r.per_iteration_s, 2),
@@ -186,7 +245,7 @@ fn cells(r: &Measurement) -> Vec<String> {
 /// The table as Markdown (what the README and BENCHMARKS.md show).
 pub fn markdown(rows: &[Measurement]) -> String {
     let mut s = String::from(
-        "| option | variant | time [s] | max abs error | max rel error | γ error | speed-up | error ratio | Newton its | s/iteration | dofs | Pareto |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+        "| option | variant | time [s] | spread [s] (runs) | max abs error | max rel error | γ error | speed-up | error ratio | Newton its | s/iteration | dofs | Pareto |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in rows {
         let _ = writeln!(
@@ -224,11 +283,14 @@ pub fn html(
     let _ = writeln!(h, "<h1>Speed versus accuracy</h1>\n<p>{}</p>", e(title));
     let _ = writeln!(
         h,
-        "<p>Command: <code>{}</code> · wall time {wall_s:.1} s. Times are wall times (median of repeats \
-         for runs under 1 s) on a shared machine: read the ratios. Each error is against the option's \
-         reference (red row), on the quantity named; relative errors use |reference| floored at \
-         10⁻³ of its largest value. Speed-up = reference time / time; error ratio = relative error / \
-         the option's smallest non-reference relative error.</p>",
+        "<p>Command: <code>{}</code> · wall time {wall_s:.1} s. Times are wall times: the median of at \
+         least three runs (more for cheap variants; a failed variant runs once) and their spread, the \
+         10th to 90th percentile (the minimum to the maximum for fewer than ten runs). A speed-up \
+         marked ≈ is no measurable difference from the reference: the spreads overlap, or the \
+         medians differ by less than 10 % (load drifts between variants run one after the other). Each error is \
+         against the option's reference (red row), on the quantity named; relative errors use \
+         |reference| floored at 10⁻³ of its largest value. Speed-up = reference time / time (medians); \
+         error ratio = relative error / the option's smallest non-reference relative error.</p>",
         e(command)
     );
     let _ = writeln!(h, "<h2>Findings</h2><ul>");
@@ -240,6 +302,7 @@ pub fn html(
         "option",
         "variant",
         "time [s]",
+        "spread [s] (runs)",
         "abs error",
         "rel error",
         "γ error",
@@ -334,12 +397,21 @@ pub fn write_all(
 
 /// The caption of an option's figure.
 pub fn caption(option: &str, rows: &[Measurement]) -> String {
+    let mine = || rows.iter().filter(|r| r.option == option);
+    let failed: Vec<&str> = mine()
+        .filter(|r| !r.error.max_rel.is_finite())
+        .map(|r| r.variant.as_str())
+        .collect();
     format!(
-        "{option}: relative error of {} against wall time, log–log; filled markers and the dashed \
-         line are the Pareto front, the reference is red; zero errors (the reference) are drawn at \
-         {ERROR_FLOOR:.0e}. Numbers in tradeoff.csv and tradeoff.md.",
-        rows.iter()
-            .find(|r| r.option == option)
-            .map_or("", |r| r.quantity.as_str())
+        "{option}: relative error of {} against wall time, log–log: the median of the runs, the \
+         bar their spread (10th to 90th percentile); filled markers and the dashed line are the \
+         Pareto front, the reference is red. An error of 0 (the reference's own) is drawn on the \
+         lower edge of the frame and labelled so.{} Numbers in tradeoff.csv and tradeoff.md.",
+        mine().next().map_or("", |r| r.quantity.as_str()),
+        if failed.is_empty() {
+            String::new()
+        } else {
+            format!(" Not drawn (failed): {}.", failed.join(", "))
+        }
     )
 }

@@ -220,12 +220,19 @@ pub struct SweepPoint {
     pub lambda: f64,
     /// γ at the quadrature point nearest the centre of the cylinder [-].
     pub gamma_centre: f64,
+    /// Fibre stretch λ_f at the same point [-] (the law's argument there: γ = 0 where
+    /// λ_f ≤ λ_min for the implicit and explicit laws).
+    pub fibre_stretch_centre: f64,
     /// Nominal axial stress: axial reaction / (π R²) \[kPa\].
     pub stress: f64,
     /// Newton iterations to reach this stretch from the previous one.
     pub newton_iterations: usize,
     /// The homogeneous (0D) stress of the same model at λ \[kPa\], if it could be computed.
     pub stress_0d: Option<f64>,
+    /// The homogeneous passive stress P_pas(λ) \[kPa\], if it could be computed.
+    pub passive_0d: Option<f64>,
+    /// The target active stress (1 − d) P_act(λ) \[kPa\].
+    pub active_0d: f64,
 }
 
 /// The sweep of one model.
@@ -434,15 +441,19 @@ impl CylinderStudy {
                 ));
             }
         })?;
+        let passive = models.passive();
         let mut points = Vec::with_capacity(sweep.results.len());
         let mut vtk_files = Vec::new();
         for r in &sweep.results {
             points.push(SweepPoint {
                 lambda: r.stretch,
                 gamma_centre: r.gamma_centre,
+                fibre_stretch_centre: r.fibre_stretch_centre,
                 stress: r.nominal_stress,
                 newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
                 stress_0d: along_fibres(&muscle, r.stretch).ok().map(|p| p.stress),
+                passive_0d: along_fibres(&passive, r.stretch).ok().map(|p| p.stress),
+                active_0d: (1.0 - m.damage) * models.curve.value(r.stretch),
             });
             if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
                 vtk_files.push(sub.join(file));

@@ -14,7 +14,7 @@
 //! Times are wall times \[s\]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
 //! or one material-point call.
 
-use super::measure::{curve_error, time_median, CurveError, Measurement};
+use super::measure::{curve_error, time_median, time_runs, CurveError, Measurement, Timing};
 use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use super::Geometry;
 use crate::active::{Coupling, FrozenTangent};
@@ -43,8 +43,8 @@ pub(super) struct Resolved {
 /// One FE sweep, timed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeRun {
-    /// Wall time of mesh, set-up and sweep \[s\] (median of repeats if under 1 s).
-    pub time_s: f64,
+    /// Wall times of mesh, set-up and sweep \[s\] (a failed sweep runs once).
+    pub time: Timing,
     /// Nominal axial stress P \[kPa\] at each requested stretch (NaN where not reached).
     pub stress: Vec<f64>,
     /// γ at the quadrature point nearest the centre [-] at each stretch.
@@ -84,7 +84,7 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
             }
         }
         Ok(FeRun {
-            time_s: 0.0,
+            time: Timing::once(0.0),
             stress,
             gamma_centre,
             iterations,
@@ -93,8 +93,8 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
             failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
         })
     };
-    let (time_s, mut run) = time_median(once)?;
-    run.time_s = time_s;
+    let (time, mut run) = time_runs(once, |r| r.failures.is_empty())?;
+    run.time = time;
     Ok(run)
 }
 
@@ -110,7 +110,7 @@ pub fn fe_row(
         option,
         variant,
         reference,
-        run.time_s,
+        run.time,
         "P(λ) at the FE stretches [kPa]",
         curve_error(&reference_run.stress, &run.stress),
     );
@@ -133,11 +133,12 @@ pub(super) struct Runner<'a> {
 impl Runner<'_> {
     fn push(&mut self, m: Measurement) {
         self.progress.log(&format!(
-            "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s  error {:>9.2e} (rel {:>9.2e}){}",
+            "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s ({} runs)  error {:>9.2e} (rel {:>9.2e}){}",
             self.started.elapsed().as_secs_f64(),
             m.option,
             m.variant,
-            m.time_s,
+            m.time.median,
+            m.time.runs,
             m.error.max_abs,
             m.error.max_rel,
             m.iterations
@@ -222,7 +223,7 @@ pub(super) fn activation_law(
 ) -> Result<(), AppError> {
     const OPTION: &str = "activation law (0D)";
     let stretches = &o.curve_stretches;
-    let curve = |m: &Muscle<Energy>| -> Result<(f64, Curves), AppError> {
+    let curve = |m: &Muscle<Energy>| -> Result<(Timing, Curves), AppError> {
         time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
@@ -273,11 +274,9 @@ pub(super) fn activation_law(
         if law == LawKind::Explicit {
             r.note = largest_error(stretches, (&p, &g), (&p_ref, &g_ref));
             findings.push(format!(
-                "Explicit law (0D, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
+                "Explicit law (0D, {} stretches): {}; stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
                 stretches.len(),
-                t_ref / t,
-                t,
-                t_ref,
+                t.against(&t_ref, "the implicit law"),
                 e.max_abs,
                 100.0 * e.max_rel,
                 ge
@@ -362,13 +361,11 @@ pub(super) fn activation_law_fe(
     )?;
     if let [reference, explicit, ..] = rows.as_slice() {
         findings.push(format!(
-            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
+            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {}; nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
             o.fe_mesh.0,
             o.fe_mesh.1,
             o.fe_stretches.len(),
-            reference.time_s / explicit.time_s,
-            explicit.time_s,
-            reference.time_s,
+            explicit.time.against(&reference.time, "the implicit law"),
             explicit.error.max_abs,
             100.0 * explicit.error.max_rel,
             explicit.gamma_error.unwrap_or(f64::NAN)
@@ -402,7 +399,7 @@ pub(super) fn derivative_route(
     let f = representative_point();
     const BATCH: usize = 200;
     let per_point =
-        |m: &dyn AxisymmetricMaterial| -> Result<(f64, nalgebra::SMatrix<f64, 5, 5>), AppError> {
+        |m: &dyn AxisymmetricMaterial| -> Result<(Timing, nalgebra::SMatrix<f64, 5, 5>), AppError> {
             let (t, k) = time_median(|| -> Result<_, AppError> {
                 let mut last = None;
                 for _ in 0..BATCH {
@@ -410,7 +407,7 @@ pub(super) fn derivative_route(
                 }
                 Ok(last.map(|v| v.1).unwrap_or_default())
             })?;
-            Ok((t / BATCH as f64, k))
+            Ok((t.per(BATCH), k))
         };
     const POINT: &str = "derivative route (point)";
     let quantity = "∂P/∂F at one point [kPa] (explicit law, frozen exact)";
@@ -597,7 +594,7 @@ pub(super) fn element(
             &reference,
         );
         if element == Element::Q1P0 && row.error.max_rel.is_finite() {
-            best = Some((cells, row.error.max_rel, r.time_s));
+            best = Some((cells, row.error.max_rel, r.time));
         }
         run.push(row);
     }
@@ -610,8 +607,13 @@ pub(super) fn element(
     ));
     if let Some((cells, rel, time)) = best {
         findings.push(format!(
-            "Element: Q1/P0 on {} × {} cells misses Q2/Q1 on {} × {} by {:.1e} (relative) in {:.2} s against {:.2} s.",
-            cells.0, cells.1, 2 * nr, 2 * nz, rel, time, reference.time_s
+            "Element: Q1/P0 on {} × {} cells misses Q2/Q1 on {} × {} by {:.1e} (relative), {}.",
+            cells.0,
+            cells.1,
+            2 * nr,
+            2 * nz,
+            rel,
+            time.against(&reference.time, "the reference")
         ));
     }
     Ok(())
@@ -622,6 +624,7 @@ pub(super) fn tolerance(
     models: &Models,
     o: &Resolved,
     run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "Newton tolerance (FE)";
     let m = muscle(models, LawKind::Explicit, EXACT)?;
@@ -632,13 +635,28 @@ pub(super) fn tolerance(
     let Some((_, reference)) = runs.last().cloned() else {
         return Ok(());
     };
+    let mut words = Vec::new();
     for (k, (tol, r)) in runs.iter().enumerate() {
-        run.push(fe_row(
+        let row = fe_row(
             OPTION,
             &format!("tol {tol:.0e}"),
             k + 1 == runs.len(),
             r,
             &reference,
+        );
+        if !row.reference {
+            words.push(format!(
+                "{tol:.0e}: P within {:.1e} kPa, {}",
+                row.error.max_abs,
+                r.time.against(&reference.time, "the reference")
+            ));
+        }
+        run.push(row);
+    }
+    if let Some((tightest, _)) = runs.last() {
+        findings.push(format!(
+            "Newton tolerance against {tightest:.0e}: {}.",
+            words.join("; ")
         ));
     }
     Ok(())

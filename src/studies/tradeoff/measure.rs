@@ -4,35 +4,142 @@
 
 use std::time::Instant;
 
-/// Runs shorter than this are repeated and their median is reported \[s\].
-pub const SHORT_RUN: f64 = 1.0;
-/// Repeated runs continue until at least this much time has been spent \[s\] (and ≥ 3 runs).
+/// Every variant runs at least this many times.
+pub const MIN_RUNS: usize = 3;
+/// Runs continue until at least this much time has been spent \[s\] (and ≥ [`MIN_RUNS`] runs):
+/// cheap variants are repeated more, expensive ones [`MIN_RUNS`] times.
 pub const REPEAT_BUDGET: f64 = 0.3;
-/// At most this many repeats of a short run.
+/// At most this many runs of a cheap variant.
 pub const MAX_REPEATS: usize = 10_000;
+/// The smallest ratio of two median times reported as a difference (see
+/// [`Timing::speedup_over`]).
+pub const MEASURABLE: f64 = 1.1;
 
-/// Wall time of `f` \[s\] and its (last) value.
-///
-/// A first run of `f` taking ≥ [`SHORT_RUN`] is reported as it is. A shorter one is repeated
-/// until at least 3 runs and [`REPEAT_BUDGET`] seconds in total (at most [`MAX_REPEATS`] runs);
-/// the median of the per-run times is reported. `f` must do the same work on every call.
-pub fn time_median<T, E>(mut f: impl FnMut() -> Result<T, E>) -> Result<(f64, T), E> {
+/// The wall times of repeated runs of the same work \[s\]: their median and their spread, the
+/// 10th to 90th percentile (nearest rank: the minimum to the maximum for fewer than 10 runs), so
+/// that one run slowed by the machine neither moves the median nor widens the spread of many.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Timing {
+    /// Median \[s\].
+    pub median: f64,
+    /// Lower end of the spread \[s\].
+    pub low: f64,
+    /// Upper end of the spread \[s\].
+    pub high: f64,
+    /// Number of runs.
+    pub runs: usize,
+}
+
+impl Timing {
+    /// One run of `t` seconds (no spread).
+    pub fn once(t: f64) -> Self {
+        Self {
+            median: t,
+            low: t,
+            high: t,
+            runs: 1,
+        }
+    }
+
+    /// Of the times of `runs` (sorted in place); NaN entries for none.
+    pub fn of(runs: &mut [f64]) -> Self {
+        if runs.is_empty() {
+            return Self {
+                runs: 0,
+                ..Self::once(f64::NAN)
+            };
+        }
+        let median = median(runs);
+        let rank = |q: f64| runs[((runs.len() - 1) as f64 * q).round() as usize];
+        Self {
+            median,
+            low: rank(0.1),
+            high: rank(0.9),
+            runs: runs.len(),
+        }
+    }
+
+    /// This time divided by `per`: the time of one of `per` equal pieces of the work.
+    pub fn per(self, per: usize) -> Self {
+        let n = per as f64;
+        Self {
+            median: self.median / n,
+            low: self.low / n,
+            high: self.high / n,
+            ..self
+        }
+    }
+
+    /// How many times faster this is than `other` (> 1 faster, < 1 slower), measured: only if
+    /// both ran more than once, their spreads do not overlap and their medians differ by at
+    /// least [`MEASURABLE`]; `None`: no measurable difference.
+    ///
+    /// Both conditions matter. Three runs each of the same work have disjoint min–max ranges
+    /// with probability 2 · 3! 3! / 6! = 10 %, and the variants run one after the other, so a
+    /// machine whose load drifts between them shifts one whole spread.
+    pub fn speedup_over(&self, other: &Timing) -> Option<f64> {
+        let separate = self.high < other.low || other.high < self.low;
+        let ratio = other.median / self.median;
+        let large = ratio >= MEASURABLE || ratio <= 1.0 / MEASURABLE;
+        (self.runs > 1 && other.runs > 1 && separate && large).then_some(ratio)
+    }
+
+    /// `1.49e-1 s (1.45e-1–1.55e-1, 3 runs)`.
+    pub fn text(&self) -> String {
+        if self.runs == 1 {
+            format!("{} s (1 run)", cell(Some(self.median), 2))
+        } else {
+            format!(
+                "{} s ({}–{}, {} runs)",
+                cell(Some(self.median), 2),
+                cell(Some(self.low), 2),
+                cell(Some(self.high), 2),
+                self.runs
+            )
+        }
+    }
+
+    /// `3.9× faster than the implicit law (…; …)`, `1.3× slower than …`, or `no measurable
+    /// difference in time from …`, with both timings.
+    pub fn against(&self, other: &Timing, other_name: &str) -> String {
+        let verdict = match self.speedup_over(other) {
+            Some(x) if x >= 1.0 => format!("{}× faster than {other_name}", ratio(x)),
+            Some(x) => format!("{}× slower than {other_name}", ratio(1.0 / x)),
+            None => format!("no measurable difference in time from {other_name}"),
+        };
+        format!("{verdict} ({} against {})", self.text(), other.text())
+    }
+}
+
+/// Wall times of `f` and its (last) value: at least [`MIN_RUNS`] runs, more for cheap work
+/// (until [`REPEAT_BUDGET`] seconds in all, at most [`MAX_REPEATS`] runs). `f` must do the same
+/// work on every call.
+pub fn time_median<T, E>(f: impl FnMut() -> Result<T, E>) -> Result<(Timing, T), E> {
+    time_runs(f, |_| true)
+}
+
+/// As [`time_median`], but a first value that `again` rejects (a failed run, whose time
+/// compares with nothing) is not repeated.
+pub fn time_runs<T, E>(
+    mut f: impl FnMut() -> Result<T, E>,
+    again: impl Fn(&T) -> bool,
+) -> Result<(Timing, T), E> {
     let t0 = Instant::now();
     let mut value = f()?;
     let first = t0.elapsed().as_secs_f64();
-    if first >= SHORT_RUN {
-        return Ok((first, value));
+    if !again(&value) {
+        return Ok((Timing::once(first), value));
     }
     let mut times = vec![first];
     let mut total = first;
-    while times.len() < 3 || (total < REPEAT_BUDGET && times.len() < MAX_REPEATS) {
+    while times.len() < MIN_RUNS || (total < REPEAT_BUDGET && times.len() < MAX_REPEATS) {
         let t = Instant::now();
         value = f()?;
         let dt = t.elapsed().as_secs_f64();
         times.push(dt);
         total += dt;
     }
-    Ok((median(&mut times), value))
+    Ok((Timing::of(&mut times), value))
 }
 
 /// Median of `v` (sorted in place); NaN for an empty slice.
@@ -123,8 +230,8 @@ pub struct Measurement {
     pub variant: String,
     /// Whether this is the option's reference (the accurate end).
     pub reference: bool,
-    /// Wall time \[s\] (median of repeats for short runs).
-    pub time_s: f64,
+    /// Wall times of the runs \[s\].
+    pub time: Timing,
     /// Error against the reference (absolute in the quantity's unit, and relative).
     pub error: CurveError,
     /// What `error` measures (e.g. `P(λ) over the sweep \[kPa\]`, `∂P/∂F at a point \[kPa\]`).
@@ -139,8 +246,11 @@ pub struct Measurement {
     pub dofs: Option<usize>,
     /// Anything else the row must say (e.g. tangent error of a derivative route).
     pub note: String,
-    /// Reference time / this time (filled by [`finalise`]).
+    /// Reference time / this time, of the medians (filled by [`finalise`]).
     pub speedup: f64,
+    /// Whether the time differs measurably from the reference's ([`Timing::speedup_over`];
+    /// filled by [`finalise`]).
+    pub measurable: bool,
     /// This relative error / the smallest positive relative error among the option's
     /// non-reference variants (filled by [`finalise`]; NaN if there is none).
     pub error_ratio: f64,
@@ -154,7 +264,7 @@ impl Measurement {
         option: &str,
         variant: &str,
         reference: bool,
-        time_s: f64,
+        time: Timing,
         quantity: &str,
         error: CurveError,
     ) -> Self {
@@ -162,7 +272,7 @@ impl Measurement {
             option: option.to_string(),
             variant: variant.to_string(),
             reference,
-            time_s,
+            time,
             error,
             quantity: quantity.to_string(),
             gamma_error: None,
@@ -171,6 +281,7 @@ impl Measurement {
             dofs: None,
             note: String::new(),
             speedup: f64::NAN,
+            measurable: false,
             error_ratio: f64::NAN,
             pareto: false,
         }
@@ -190,10 +301,11 @@ pub fn finalise(rows: &mut [Measurement]) {
         let idx: Vec<usize> = (0..rows.len())
             .filter(|&i| rows[i].option == option)
             .collect();
-        let t_ref = idx
+        let reference = idx
             .iter()
             .find(|&&i| rows[i].reference)
-            .map_or(f64::NAN, |&i| rows[i].time_s);
+            .map(|&i| rows[i].time);
+        let t_ref = reference.map_or(f64::NAN, |t| t.median);
         let best = idx
             .iter()
             .filter(|&&i| !rows[i].reference)
@@ -202,12 +314,13 @@ pub fn finalise(rows: &mut [Measurement]) {
             .fold(f64::INFINITY, f64::min);
         let points: Vec<(f64, f64)> = idx
             .iter()
-            .map(|&i| (rows[i].time_s, rows[i].error.max_rel))
+            .map(|&i| (rows[i].time.median, rows[i].error.max_rel))
             .collect();
         let front = pareto_front(&points);
         for (k, &i) in idx.iter().enumerate() {
             let r = &mut rows[i];
-            r.speedup = t_ref / r.time_s;
+            r.speedup = t_ref / r.time.median;
+            r.measurable = reference.is_some_and(|t| r.time.speedup_over(&t).is_some());
             r.error_ratio = if best.is_finite() {
                 r.error.max_rel / best
             } else {
@@ -239,16 +352,22 @@ pub fn cell(x: Option<f64>, digits: usize) -> String {
 
 impl Measurement {
     /// The row in words, both axes with their numbers:
-    /// `activation law (FE) · explicit (frozen): 5.4e-1 s, speed-up 1.06, max abs error 2.7e0, max rel error 1.4e-1`.
+    /// `activation law (FE) · explicit (frozen): 5.4e-1 s (5.3e-1–5.6e-1, 3 runs), speed-up 1.06
+    /// (no measurable difference), max abs error 2.7e0, max rel error 1.4e-1`.
     pub fn line(&self) -> String {
         use std::fmt::Write;
         let mut s = format!(
-            "{} · {}{}: {} s, speed-up {}, max abs error {}, max rel error {}",
+            "{} · {}{}: {}, speed-up {}{}, max abs error {}, max rel error {}",
             self.option,
             self.variant,
             if self.reference { " (reference)" } else { "" },
-            cell(Some(self.time_s), 2),
+            self.time.text(),
             ratio(self.speedup),
+            if self.reference || self.measurable {
+                ""
+            } else {
+                " (no measurable difference)"
+            },
             cell(Some(self.error.max_abs), 1),
             cell(Some(self.error.max_rel), 1),
         );

@@ -2,7 +2,8 @@
 //!
 //! Every option a user can turn to trade accuracy for speed (activation law, derivative route,
 //! frozen tangent, mesh, element, Newton tolerance, 0D versus FE) is run at each of its variants,
-//! timed (wall time \[s\], median of repeats for anything short, see [`measure::time_median`])
+//! timed (wall time \[s\]: the median and the spread of at least three runs, see
+//! [`measure::time_median`])
 //! and compared with a reference computed at the accurate end of the same option, on what a user
 //! reads off a run: the nominal stress P(λ) over the sweep \[kPa\] (max abs and max rel error), the
 //! activation γ [-] (0D) or the centre γ (FE). The error machinery ([`measure`]) is independent
@@ -30,7 +31,9 @@ pub mod measure;
 pub mod routes;
 
 pub use groups::{activation_law_fe_rows, fe_row, fe_run, FeRun};
-pub use measure::{curve_error, pareto_front, time_median, CurveError, Measurement};
+pub use measure::{
+    curve_error, pareto_front, time_median, time_runs, CurveError, Measurement, Timing,
+};
 pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
 use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
@@ -219,7 +222,7 @@ pub fn run(
             OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run)?,
             OptionGroup::Mesh => groups::mesh(models, plan, run, findings)?,
             OptionGroup::Element => groups::element(models, plan, run, findings)?,
-            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run)?,
+            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings)?,
             OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run)?,
         }
     }
