@@ -12,13 +12,16 @@ mod layout;
 pub mod model;
 
 use activemuscle::active::Law;
+use activemuscle::app_error::SpecError;
 use activemuscle::energy::Energy;
 use activemuscle::fit::Parametric;
 use activemuscle::invariants::{Kinematics, FULL};
+use activemuscle::models::{ActivationSpec, ExplicitSpec, MaterialSpec};
 use activemuscle::response::Order;
+use activemuscle::StrainEnergy;
 use activemuscle::{Error, Muscle};
 use layout::{Convention, Input, PointOrder, Strided};
-use model::{ModelError, ModelSpec};
+use model::{named, LawChoice};
 use nalgebra::{Matrix3, Vector3};
 use numpy::{AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::exceptions::{PyArithmeticError, PyFloatingPointError, PyValueError};
@@ -38,13 +41,6 @@ fn py_error(e: &Error, context: &str) -> PyErr {
         Error::NonFinite { .. } => PyFloatingPointError::new_err(msg),
         Error::NoSolution { .. } => PyArithmeticError::new_err(msg),
         _ => PyValueError::new_err(msg),
-    }
-}
-
-fn model_error(e: ModelError) -> PyErr {
-    match e {
-        ModelError::Core(e) => py_error(&e, ""),
-        other => PyValueError::new_err(other.to_string()),
     }
 }
 
@@ -186,64 +182,84 @@ fn new_output<'py, const C: usize>(
 #[pyclass(frozen, module = "activemuscle._native")]
 struct Material {
     muscle: Muscle<Energy>,
-    spec: ModelSpec,
 }
 
 #[pymethods]
 impl Material {
     #[new]
     #[pyo3(signature = (
-        *, energy = "giantesio-musesti", mu = None, alpha = None, beta = None, w0 = None,
-        law = "implicit", gamma = None, coupling = "frozen", frozen_tangent = "exact",
-        damage = 0.0, explicit = None, below_minimum = "zero-work",
+        *, energy = None, mu = None, alpha = None, beta = None, w0 = None,
+        law = None, gamma = None, coupling = None, frozen_tangent = None,
+        damage = 0.0, explicit = None, below_minimum = None,
         lambda_min = None, lambda_opt = None, k = None, p_opt = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        energy: &str,
+        energy: Option<&str>,
         mu: Option<f64>,
         alpha: Option<f64>,
         beta: Option<f64>,
         w0: Option<f64>,
-        law: &str,
+        law: Option<&str>,
         gamma: Option<f64>,
-        coupling: &str,
-        frozen_tangent: &str,
+        coupling: Option<&str>,
+        frozen_tangent: Option<&str>,
         damage: f64,
         explicit: Option<HashMap<String, f64>>,
-        below_minimum: &str,
+        below_minimum: Option<&str>,
         lambda_min: Option<f64>,
         lambda_opt: Option<f64>,
         k: Option<f64>,
         p_opt: Option<f64>,
     ) -> PyResult<Self> {
-        let explicit = explicit.unwrap_or_default();
-        if let Some(key) = explicit.keys().find(|k| *k != "a" && *k != "b") {
-            return Err(PyValueError::new_err(format!(
-                "explicit.{key}: unknown key (eq. D:gamma has coefficients a and b)"
-            )));
+        let given = [("mu", mu), ("alpha", alpha), ("beta", beta), ("w0", w0)];
+        let mut material = MaterialSpec::default();
+        if let Some(e) = energy {
+            material.energy.energy = e.to_string();
         }
-        let spec = ModelSpec {
-            energy: energy.into(),
-            mu,
-            alpha,
-            beta,
-            w0,
-            law: law.into(),
-            gamma,
-            coupling: coupling.into(),
-            frozen_tangent: frozen_tangent.into(),
-            below_minimum: below_minimum.into(),
-            damage,
-            explicit_a: explicit.get("a").copied(),
-            explicit_b: explicit.get("b").copied(),
-            lambda_min,
-            lambda_opt,
-            k,
-            p_opt,
+        material.energy.parameters = given
+            .iter()
+            .filter_map(|(n, v)| v.map(|v| (n.to_string(), v)))
+            .collect();
+        let spec = || -> Result<Muscle<Energy>, SpecError> {
+            let explicit = explicit
+                .map(|m| match m.keys().find(|k| *k != "a" && *k != "b") {
+                    Some(key) => Err(SpecError::new(
+                        format!("explicit.{key}"),
+                        m[key],
+                        "unknown key: eq. (14) has coefficients a and b",
+                    )),
+                    None => Ok(ExplicitSpec {
+                        a: m.get("a").copied(),
+                        b: m.get("b").copied(),
+                    }),
+                })
+                .transpose()?;
+            let activation = ActivationSpec {
+                lambda_min,
+                lambda_opt,
+                k,
+                p_opt,
+                coupling: coupling.map(|c| named("coupling", c)).transpose()?,
+                frozen_tangent: frozen_tangent
+                    .map(|t| named("frozen_tangent", t))
+                    .transpose()?,
+                below_minimum: below_minimum
+                    .map(|b| named("below_minimum", b))
+                    .transpose()?,
+                explicit,
+                ..ActivationSpec::default()
+            };
+            model::muscle(
+                &material,
+                &activation,
+                LawChoice::parse(law)?,
+                gamma,
+                damage,
+            )
         };
-        let muscle = model::muscle(&spec).map_err(model_error)?;
-        Ok(Self { muscle, spec })
+        let muscle = spec().map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(Self { muscle })
     }
 
     fn __repr__(&self) -> String {
@@ -256,7 +272,7 @@ impl Material {
             .collect();
         format!(
             "Material(energy={:?}, {}, law={:?}, coupling={:?}, damage={})",
-            self.spec.energy,
+            e.name(),
             params.join(", "),
             self.muscle.law().name(),
             self.muscle.coupling().name(),

@@ -225,21 +225,22 @@ def test_the_first_failing_point_is_named_in_parallel_batches_too():
 
 
 BAD_CHOICES = [
-    (dict(energy="mooney"), 'energy = "mooney": must be'),
-    (dict(mu=-1.0), "parameter mu = -1 is invalid"),
-    (dict(w0=1.5), "parameter w0 = 1.5 is invalid"),
-    (dict(damage=2.0), "parameter damage = 2 is invalid: must lie in [0, 1]"),
+    (dict(energy="mooney"), 'energy = "mooney": unknown energy; the shipped ones are'),
+    (dict(mu=-1.0), "mu = -1: must be finite and > 0"),
+    (dict(w0=1.5), "w0 = 1.5: "),
+    (dict(damage=2.0), "damage = 2: must lie in [0, 1]"),
     (dict(law="constant"), "needs gamma"),
-    (dict(law="constant", gamma=1.0), "activation gamma = 1 is outside [0, 1)"),
+    (dict(law="constant", gamma=1.0), "gamma = 1: activation gamma must lie in [0, 1)"),
     (dict(law="implicit", gamma=0.2), "gamma = 0.2: applies to law = \"constant\" only"),
-    (dict(law="explicit", energy="ehret-bol-itskov"), "eq. D:gamma is derived for the giantesio-musesti energy"),
+    (dict(law="explicit", energy="ehret-bol-itskov"), "the explicit law (eq. (14)) is derived for the giantesio-musesti energy"),
     (dict(energy="neo-hookean"), "give mu [kPa]"),
-    (dict(beta=1.0), "the giantesio-musesti energy has no parameter beta"),
+    (dict(beta=1.0), "beta = 1: unknown field: the giantesio-musesti energy has no parameter beta"),
     (dict(coupling="loose"), 'coupling = "loose"'),
     (dict(frozen_tangent="bfgs"), 'frozen_tangent = "bfgs"'),
     (dict(below_minimum="never"), 'below_minimum = "never"'),
-    (dict(law="explicit", explicit={"c": 1.0}), "explicit.c: unknown key"),
-    (dict(lambda_min=1.5), "lambda_min"),
+    (dict(law="explicit", explicit={"c": 1.0}), "explicit.c = 1: unknown key"),
+    (dict(law="bogus"), 'law = "bogus": unknown variant'),
+    (dict(lambda_min=1.5), "lambda_opt = 1.1704: must be > lambda_min"),
 ]
 
 
@@ -256,3 +257,14 @@ def test_non_finite_stress_is_an_error_not_a_nan():
     F = np.diag([30.0, 30.0**-0.5, 30.0**-0.5])
     with pytest.raises(FloatingPointError, match="non-finite"):
         am.Material(law="passive").evaluate(F)
+
+
+def test_explicit_coefficients_are_read_the_chapters_by_default():
+    # The chapter's a = 1.0133, b = 0.2050 given by hand are the default; another a changes γ.
+    F = sheared_stretches(8)
+    m = np.array([1.0, 0.0, 0.0])
+    default = am.Material(law="explicit").evaluate(F, m)
+    given = am.Material(law="explicit", explicit={"a": 1.0133, "b": 0.2050}).evaluate(F, m)
+    other = am.Material(law="explicit", explicit={"a": 1.02}).evaluate(F, m)
+    assert np.array_equal(default["gamma"], given["gamma"])
+    assert not np.allclose(default["gamma"], other["gamma"])
