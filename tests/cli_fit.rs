@@ -249,3 +249,65 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
         "{e}"
     );
 }
+
+/// Issue 11's reproducer, which hung in argmin's backtracking line search: a passive fit on
+/// P = 0.08 λ² for λ in [1, 5]. The run finishes (killed and failed after 120 s otherwise),
+/// writes fits.csv with the fit's converged flag, and says in words why the fit did not converge
+/// — never that a solver "converged".
+#[test]
+fn the_fit_that_hung_finishes_and_reports_why_it_did_not_converge() {
+    let d = dir("hang");
+    let mut data = String::from("lambda,P\n");
+    for i in 0..=30 {
+        let l = 1.0 + 4.0 * i as f64 / 30.0;
+        data.push_str(&format!("{l},{}\n", 0.08 * l * l));
+    }
+    std::fs::write(d.join("p.csv"), data).expect("write data");
+    let scene = d.join("fit.toml");
+    std::fs::write(
+        &scene,
+        "title = \"fit hang\"\n[[study]]\nkind = \"fit\"\nname = \"passive\"\nfit = \"passive\"\ndata = \"p.csv\"\n",
+    )
+    .expect("write scene");
+    let out_dir = d.join("out");
+    let mut child = Command::new(BIN)
+        .args([
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out_dir.as_os_str(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run binary");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while child.try_wait().expect("wait").is_none() {
+        if std::time::Instant::now() > deadline {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("the run did not finish within 120 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().expect("output");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(out_dir.join("fits.csv")).expect("fits.csv written");
+    let rows: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    let converged = rows.iter().all(|r| r.contains(",true,"));
+    if !converged {
+        assert!(rows.iter().all(|r| r.contains(",false,")), "{csv}");
+        assert!(
+            text.contains("did not converge: the least-squares minimum lies beyond the bounds")
+                && text.contains("best point found"),
+            "{text}"
+        );
+    }
+    assert!(!text.to_lowercase().contains("solver converged"), "{text}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -110,20 +110,29 @@ impl ActiveCurve {
 
     /// ∫_{λ_min}^{λ} P_act(s) ds \[kPa\] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
     /// panels of width ≤ 0.05: the integrand is C^∞ (flat to all orders at λ_min), so this is
-    /// exact to rounding.
+    /// exact to rounding. Past λ_opt the exponent k (λ² − λ_opt²)²/(λ − λ_min) grows with λ, so
+    /// once a panel there adds exactly 0 (P_act underflowed) so do all later ones and the sum
+    /// stops: at most min(λ, λ₀)/0.05 panels whatever λ, λ₀ ≈ (700/k)^⅓ (≈ 12.6 for the chapter).
     pub fn integral(&self, lambda: f64) -> f64 {
         if lambda <= self.lambda_min {
             return 0.0;
         }
         let width = lambda - self.lambda_min;
-        let panels = (width / 0.05).ceil().max(1.0) as usize;
-        let h = width / panels as f64;
+        let panels = (width / 0.05).ceil().max(1.0);
+        let h = width / panels;
         let mut sum = 0.0;
-        for p in 0..panels {
-            let mid = self.lambda_min + (p as f64 + 0.5) * h;
-            for &(x, w) in &GAUSS_16 {
-                sum += w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x));
+        let mut p = 0.0;
+        while p < panels {
+            let mid = self.lambda_min + (p + 0.5) * h;
+            let panel: f64 = GAUSS_16
+                .iter()
+                .map(|&(x, w)| w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x)))
+                .sum();
+            if panel == 0.0 && mid > self.lambda_opt {
+                break;
             }
+            sum += panel;
+            p += 1.0;
         }
         sum * 0.5 * h
     }

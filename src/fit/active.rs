@@ -49,6 +49,8 @@ impl Residuals for CurveProblem<'_> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let p = self.selection.assemble(theta);
+        // Parameters the curve's constructor refuses (λ_opt ≤ λ_min, k = 0) are outside the model.
+        ActiveCurve::new(p[0].re(), p[1].re(), p[2].re(), p[3].re())?;
         Ok(self
             .data
             .lambda()

@@ -13,7 +13,7 @@
 use super::{Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
 use crate::active::law::check_damage;
 use crate::active::{fibre_path_energy, ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
-use crate::energy::GiantesioMusesti;
+use crate::energy::{positive, GiantesioMusesti};
 use crate::material::Muscle;
 use crate::uniaxial::along_fibres;
 use crate::Scalar;
@@ -68,6 +68,9 @@ impl Residuals for ExplicitProblem<'_> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let p = self.selection.assemble(theta);
+        // a = 0 or b = 0 (the bounds' ends) is not a law.
+        positive("a", p[0].re())?;
+        positive("b", p[1].re())?;
         self.lambda
             .iter()
             .zip(&self.reference)

@@ -23,6 +23,7 @@ mod damage;
 mod data;
 mod error;
 mod explicit;
+mod levenberg;
 mod parametric;
 mod passive;
 pub mod solver;
@@ -30,9 +31,10 @@ pub mod solver;
 pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit, CURVE_PARAMETERS};
 pub use damage::{fit_damage, DamageFit};
-pub use data::Data;
-pub use error::FitError;
+pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
+pub use error::{FitError, NotConverged};
 pub use explicit::{explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget};
+pub use levenberg::MAX_TRIES;
 pub use parametric::{parameter_bounds, Parametric};
 pub use passive::{
     across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
@@ -59,7 +61,7 @@ pub struct FitReport {
     pub residual_norm: f64,
     /// RMS error √(‖r‖²/m).
     pub rms: f64,
-    /// Solver iterations (Nelder–Mead plus Gauss–Newton).
+    /// Solver iterations (Nelder–Mead plus Levenberg–Marquardt).
     pub iterations: u64,
     /// True only if the final Gauss–Newton step is negligible (see [`solver`]).
     pub converged: bool,

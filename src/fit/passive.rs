@@ -90,6 +90,9 @@ impl<E: Parametric> Residuals for PassiveProblem<'_, E> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let params = self.selection.assemble(theta);
+        // Parameters the energy's constructor refuses (e.g. w0 = 1) are outside the model.
+        self.energy
+            .rebuilt(&params.iter().map(|p| p.re()).collect::<Vec<_>>())?;
         let mut out = Vec::with_capacity(self.count());
         for (direction, data) in self.sets {
             for (&l, &p) in data.lambda().iter().zip(data.stress()) {

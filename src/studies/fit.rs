@@ -117,7 +117,7 @@ pub struct FitSpec {
     pub bounds: Option<BTreeMap<String, [f64; 2]>>,
     /// `gauss-newton` (default) or `nelder-mead`.
     pub method: Option<Method>,
-    /// Maximum Gauss–Newton iterations (default 100).
+    /// Maximum Levenberg–Marquardt iterations (default 1000).
     pub max_iterations: Option<i64>,
 }
 
@@ -713,7 +713,7 @@ fn solver<'a>(spec: &FitSpec, base: &'a Path) -> Result<(FitOptions, DataSource<
     if seed < 0 {
         return Err(SpecError::new("seed", seed, "must be ≥ 0"));
     }
-    let max_iterations = spec.max_iterations.unwrap_or(100);
+    let max_iterations = spec.max_iterations.unwrap_or(1000);
     if !(1..=100_000).contains(&max_iterations) {
         return Err(SpecError::new(
             "max_iterations",
@@ -1014,12 +1014,11 @@ impl FitStudy {
         for case in &self.cases {
             match self.problem.fit(case, &self.setup) {
                 Ok((report, extra)) => outcomes.push(self.outcome(case, report, extra, true)),
-                Err(FitError::NotConverged { reason, best }) => {
-                    fail(format!(
-                        "{}: did not converge ({reason}); best point found {:?} = {:?} (reported, NOT a solution)",
-                        case.label, best.names, best.values
-                    ));
-                    outcomes.push(self.outcome(case, *best, vec![], false));
+                Err(e @ FitError::NotConverged { .. }) => {
+                    fail(format!("{}: {e} (reported, NOT a solution)", case.label));
+                    if let FitError::NotConverged { best, .. } = e {
+                        outcomes.push(self.outcome(case, *best, vec![], false));
+                    }
                 }
                 Err(e) => fail(format!("{}: fit failed: {e}", case.label)),
             }
