@@ -10,6 +10,7 @@
 
 mod layout;
 pub mod model;
+mod scene;
 
 use activemuscle::active::Law;
 use activemuscle::app_error::SpecError;
@@ -541,6 +542,8 @@ fn convention_of(shape: &[usize], layout: Option<&str>) -> PyResult<Convention> 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Material>()?;
+    m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::check_scene, m)?)?;
     m.add("__doc__", "activemuscle's material point on numpy arrays")?;
     Ok(())
 }
