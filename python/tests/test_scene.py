@@ -177,3 +177,43 @@ def test_out_writes_the_command_lines_files(tmp_path):
     assert len(vtk) == 1 and vtk[0].parent.parent == out / "vtk" and vtk[0].is_file()
     # Without out, no VTK file is named (none is written).
     assert am.run_scene(TEXT)["sliding cylinder"].vtk == []
+
+
+FIT_AND_STABILITY = """
+[[study]]
+kind = "fit"
+name = "damage"
+fit = "damage"
+true_damage = [0.1, 0.3]
+stretch = { from = 0.75, to = 1.40, step = 0.05 }
+noise = 0.0
+
+[[study]]
+kind = "stability"
+name = "stability"
+stretch = [0.8, 1.0, 1.2]
+passive = true
+laws = ["implicit"]
+couplings = ["frozen"]
+damage = [0.2]
+normals = 20
+"""
+
+
+def test_fit_and_stability_tables():
+    r = am.run_scene(FIT_AND_STABILITY)
+    fit = r["damage"].table
+    # Noise-free synthetic curves: the fit recovers the damage that made them.
+    np.testing.assert_allclose(fit["value"], [0.1, 0.3], atol=1e-8)
+    assert fit["converged"].all() and fit["parameter"].tolist() == ["d", "d"]
+    s = r["stability"].table
+    lam, d = s["lambda"], np.ma.getdata(s["d"])
+    active = s["law"] == "implicit"
+
+    def closed(lam, d, active):
+        return passive_closed_form(lam) + np.where(active, 1 - d, 0.0) * active_closed_form(lam)
+
+    np.testing.assert_allclose(s["P"], closed(lam, d, active), rtol=1e-10, atol=1e-14)
+    h = 1e-6
+    slope = (closed(lam + h, d, active) - closed(lam - h, d, active)) / (2 * h)
+    np.testing.assert_allclose(s["dP_dlambda"], slope, rtol=1e-6, atol=1e-6)
