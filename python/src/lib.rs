@@ -24,7 +24,10 @@ use activemuscle::{Error, Muscle};
 use layout::{Convention, Input, PointOrder, Strided};
 use model::{named, LawChoice};
 use nalgebra::{Matrix3, Vector3};
-use numpy::{AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadwriteArrayDyn,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyArithmeticError, PyFloatingPointError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -155,24 +158,78 @@ impl Batch<'_> {
     }
 }
 
-/// An uninitialised output array of `shape` in `order`, with strided access to its
-/// `C` component axes. Every entry is written before Python sees the array.
-fn new_output<'py, const C: usize>(
+/// An output array and strided access to its `C` component axes; `_borrow` holds the caller's
+/// array read-write for the evaluation.
+struct Output<'py, const C: usize> {
+    array: Bound<'py, PyArrayDyn<f64>>,
+    strided: Strided<C>,
+    _borrow: Option<PyReadwriteArrayDyn<'py, f64>>,
+}
+
+/// The output `key` of `shape` in `order`: the caller's `out[key]` if given — float64, writeable,
+/// of `shape`, its point axes flattening in F's point order; numpy's borrow checker refuses an
+/// array given twice or overlapping F or the fibres — else a fresh, uninitialised array. Every
+/// entry is written before Python sees a fresh array (a failing point leaves the caller's arrays
+/// partly written).
+fn output<'py, const C: usize>(
     py: Python<'py>,
+    out: Option<&Bound<'py, PyDict>>,
+    key: &str,
     shape: &[usize],
     convention: Convention,
     order: PointOrder,
-) -> (Bound<'py, PyArrayDyn<f64>>, Strided<C>) {
-    // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
-    let array = unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) };
+) -> PyResult<Output<'py, C>> {
+    let given = out.map(|o| o.get_item(key)).transpose()?.flatten();
+    let Some(given) = given else {
+        // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
+        let array = unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) };
+        let strided = layout::output::<C>(
+            array.data(),
+            array.shape(),
+            array.strides(),
+            convention,
+            order,
+        )
+        .ok_or_else(|| PyValueError::new_err(format!("{key}: a fresh array did not flatten")))?;
+        return Ok(Output {
+            array,
+            strided,
+            _borrow: None,
+        });
+    };
+    let bad = |rule: String| PyValueError::new_err(format!("out[{key:?}]: {rule}"));
+    let array = given
+        .cast::<PyArrayDyn<f64>>()
+        .map_err(|_| bad("must be a numpy array of float64".into()))?
+        .clone();
+    if array.shape() != shape {
+        return Err(bad(format!(
+            "has shape {:?}: must be {shape:?}",
+            array.shape()
+        )));
+    }
+    let borrow = array.try_readwrite().map_err(|e| {
+        bad(format!(
+            "cannot be written ({e}): it must be writeable and share no memory with F, the fibres or another output"
+        ))
+    })?;
     let strided = layout::output::<C>(
         array.data(),
         array.shape(),
         array.strides(),
         convention,
         order,
-    );
-    (array, strided)
+    )
+    .ok_or_else(|| {
+        bad(format!(
+            "its point axes must flatten to one stride in F's point order ({order:?}), like a contiguous array"
+        ))
+    })?;
+    Ok(Output {
+        array,
+        strided,
+        _borrow: Some(borrow),
+    })
 }
 
 /// Active skeletal muscle at material points (Giantesio & Musesti): an energy, an activation law,
@@ -299,7 +356,13 @@ impl Material {
     /// "stress" P [kPa] like F (order ≥ "stress"), "tangent" A [kPa] with
     /// A[i, j, k, l] = ∂P_ij/∂F_kl, shape (3, 3, 3, 3, ...) or (..., 3, 3, 3, 3), and
     /// "dstress_dgamma" dP/dγ [kPa] like F (order "tangent").
-    #[pyo3(signature = (f, fibre = None, *, order = "tangent", layout = None, parallel = true))]
+    ///
+    /// out: a dict of preallocated arrays to write into (any of the returned keys, each of the
+    /// returned shape, float64, writeable, its point axes contiguous in F's order); the result
+    /// then holds those same arrays. Saves allocating and first touching fresh output memory on
+    /// repeated calls.
+    #[pyo3(signature = (f, fibre = None, *, order = "tangent", layout = None, parallel = true, out = None))]
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
@@ -308,8 +371,32 @@ impl Material {
         order: &str,
         layout: Option<&str>,
         parallel: bool,
+        out: Option<Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let order = parse_order(order)?;
+        let keys: &[&str] = match order {
+            Order::Energy => &["gamma", "fibre_stretch", "energy"],
+            Order::Stress => &["gamma", "fibre_stretch", "energy", "stress"],
+            Order::Tangent => &[
+                "gamma",
+                "fibre_stretch",
+                "energy",
+                "stress",
+                "tangent",
+                "dstress_dgamma",
+            ],
+        };
+        if let Some(o) = &out {
+            for k in o.keys() {
+                let k: String = k.extract()?;
+                if !keys.contains(&k.as_str()) {
+                    return Err(PyValueError::new_err(format!(
+                        "out[{k:?}]: not an output of this evaluation, which returns {keys:?}"
+                    )));
+                }
+            }
+        }
+        let out = out.as_ref();
         let f_view = f.as_array();
         let convention = convention_of(f_view.shape(), layout)?;
         let point_shape: Vec<usize> = {
@@ -346,29 +433,35 @@ impl Material {
 
         let scalar_shape = &point_shape;
         let tensor_shape = convention.shape(&point_shape, 2, 3);
-        let (gamma, gamma_s) = new_output::<0>(py, scalar_shape, convention, point_order);
-        let (lambda, lambda_s) = new_output::<0>(py, scalar_shape, convention, point_order);
-        let (energy, energy_s) = new_output::<0>(py, scalar_shape, convention, point_order);
+        let scalar = |key| output::<0>(py, out, key, scalar_shape, convention, point_order);
+        let tensor = |key| output::<2>(py, out, key, &tensor_shape, convention, point_order);
+        let gamma = scalar("gamma")?;
+        let lambda = scalar("fibre_stretch")?;
+        let energy = scalar("energy")?;
         let stress = (order >= Order::Stress)
-            .then(|| new_output::<2>(py, &tensor_shape, convention, point_order));
+            .then(|| tensor("stress"))
+            .transpose()?;
         let rate = (order == Order::Tangent)
-            .then(|| new_output::<2>(py, &tensor_shape, convention, point_order));
-        let tangent = (order == Order::Tangent).then(|| {
-            let shape = convention.shape(&point_shape, 4, 3);
-            new_output::<4>(py, &shape, convention, point_order)
-        });
+            .then(|| tensor("dstress_dgamma"))
+            .transpose()?;
+        let tangent = (order == Order::Tangent)
+            .then(|| {
+                let shape = convention.shape(&point_shape, 4, 3);
+                output::<4>(py, out, "tangent", &shape, convention, point_order)
+            })
+            .transpose()?;
         let batch = Batch {
             muscle: &self.muscle,
             order,
             f: f_in.strided,
             fibre: fibre_in.strided,
             out: Outputs {
-                gamma: gamma_s,
-                fibre_stretch: lambda_s,
-                energy: energy_s,
-                stress: stress.as_ref().map(|s| s.1),
-                tangent: tangent.as_ref().map(|s| s.1),
-                dstress_dgamma: rate.as_ref().map(|s| s.1),
+                gamma: gamma.strided,
+                fibre_stretch: lambda.strided,
+                energy: energy.strided,
+                stress: stress.as_ref().map(|s| s.strided),
+                tangent: tangent.as_ref().map(|s| s.strided),
+                dstress_dgamma: rate.as_ref().map(|s| s.strided),
             },
         };
         py.detach(|| batch.run_all(n, parallel)).map_err(|(p, e)| {
@@ -378,17 +471,17 @@ impl Material {
         drop(f_in);
         drop(fibre_in);
         let d = PyDict::new(py);
-        d.set_item("gamma", gamma)?;
-        d.set_item("fibre_stretch", lambda)?;
-        d.set_item("energy", energy)?;
-        if let Some((a, _)) = stress {
-            d.set_item("stress", a)?;
+        d.set_item("gamma", gamma.array)?;
+        d.set_item("fibre_stretch", lambda.array)?;
+        d.set_item("energy", energy.array)?;
+        if let Some(a) = stress {
+            d.set_item("stress", a.array)?;
         }
-        if let Some((a, _)) = tangent {
-            d.set_item("tangent", a)?;
+        if let Some(a) = tangent {
+            d.set_item("tangent", a.array)?;
         }
-        if let Some((a, _)) = rate {
-            d.set_item("dstress_dgamma", a)?;
+        if let Some(a) = rate {
+            d.set_item("dstress_dgamma", a.array)?;
         }
         Ok(d)
     }

@@ -268,3 +268,48 @@ def test_explicit_coefficients_are_read_the_chapters_by_default():
     other = am.Material(law="explicit", explicit={"a": 1.02}).evaluate(F, m)
     assert np.array_equal(default["gamma"], given["gamma"])
     assert not np.allclose(default["gamma"], other["gamma"])
+
+
+def test_out_arrays_receive_the_same_values_as_fresh_ones():
+    material = am.Material(law="explicit", damage=0.1)
+    F = sheared_stretches(64).transpose(1, 2, 0)  # (3, 3, n), felupe's
+    fresh = material.evaluate(F, fibres(64).T)
+    out = {k: np.full_like(v, -1.0) for k, v in fresh.items()}
+    out["tangent"] = np.asfortranarray(out["tangent"])  # any strides whose points flatten
+    out["gamma"] = np.full(128, -1.0)[::2]
+    r = material.evaluate(F, fibres(64).T, out=out)
+    for k, v in fresh.items():
+        assert r[k] is out[k] and np.array_equal(r[k], v), k
+    # Only some outputs given: the others are fresh.
+    r = material.evaluate(F, fibres(64).T, out={"stress": out["stress"]})
+    assert r["stress"] is out["stress"] and np.array_equal(r["tangent"], fresh["tangent"])
+
+
+def test_bad_out_arrays_raise_value_error():
+    material = am.Material(law="explicit")
+    F = sheared_stretches(5).transpose(1, 2, 0)
+    read_only = np.empty((3, 3, 5))
+    read_only.flags.writeable = False
+    shared = np.empty(6)
+    cases = [
+        ({"stress": np.empty((3, 3, 4))}, r'out\["stress"\]: has shape \[3, 3, 4\]: must be \[3, 3, 5\]'),
+        ({"stress": np.empty((3, 3, 5), np.float32)}, "must be a numpy array of float64"),
+        ({"stress": F}, "share no memory with F"),
+        ({"stress": read_only}, "not writeable"),
+        ({"gamma": shared[:5], "energy": shared[1:]}, r'out\["energy"\]: cannot be written'),
+        ({"tangent": np.empty((3, 3, 3, 3, 5))}, None),
+        ({"stress": np.empty((3, 3, 5, 2))[..., 0].reshape(3, 3, 5)}, None),
+        ({"bogus": np.empty(5)}, r'out\["bogus"\]: not an output'),
+    ]
+    for out, message in cases:
+        if message is None:
+            material.evaluate(F, out=out)  # accepted
+            continue
+        with pytest.raises(ValueError, match=message):
+            material.evaluate(F, out=out)
+    with pytest.raises(ValueError, match=r'out\["tangent"\]: not an output'):
+        material.evaluate(F, order="stress", out={"tangent": np.empty((3, 3, 3, 3, 5))})
+    # Points that do not flatten to one stride in F's order.
+    G = np.zeros((3, 3, 4, 5)) + np.eye(3)[:, :, None, None]
+    with pytest.raises(ValueError, match="point axes must flatten"):
+        material.evaluate(G, out={"gamma": np.empty((5, 4)).T})
