@@ -179,40 +179,33 @@ fn output<'py, const C: usize>(
     convention: Convention,
     order: PointOrder,
 ) -> PyResult<Output<'py, C>> {
-    let given = out.map(|o| o.get_item(key)).transpose()?.flatten();
-    let Some(given) = given else {
-        // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
-        let array = unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) };
-        let strided = layout::output::<C>(
-            array.data(),
-            array.shape(),
-            array.strides(),
-            convention,
-            order,
-        )
-        .ok_or_else(|| PyValueError::new_err(format!("{key}: a fresh array did not flatten")))?;
-        return Ok(Output {
-            array,
-            strided,
-            _borrow: None,
-        });
-    };
     let bad = |rule: String| PyValueError::new_err(format!("out[{key:?}]: {rule}"));
-    let array = given
-        .cast::<PyArrayDyn<f64>>()
-        .map_err(|_| bad("must be a numpy array of float64".into()))?
-        .clone();
-    if array.shape() != shape {
-        return Err(bad(format!(
-            "has shape {:?}: must be {shape:?}",
-            array.shape()
-        )));
-    }
-    let borrow = array.try_readwrite().map_err(|e| {
-        bad(format!(
-            "cannot be written ({e}): it must be writeable and share no memory with F, the fibres or another output"
-        ))
-    })?;
+    let (array, borrow) = match out.map(|o| o.get_item(key)).transpose()?.flatten() {
+        // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
+        None => (
+            unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) },
+            None,
+        ),
+        Some(given) => {
+            let array = given
+                .cast::<PyArrayDyn<f64>>()
+                .map_err(|_| bad("must be a numpy array of float64".into()))?
+                .clone();
+            if array.shape() != shape {
+                return Err(bad(format!(
+                    "has shape {:?}: must be {shape:?}",
+                    array.shape()
+                )));
+            }
+            let borrow = array.try_readwrite().map_err(|e| {
+                bad(format!(
+                    "cannot be written ({e}): it must be writeable and share no memory with F, the fibres or another output"
+                ))
+            })?;
+            (array, Some(borrow))
+        }
+    };
+    // A fresh array allocated in `order` always flattens.
     let strided = layout::output::<C>(
         array.data(),
         array.shape(),
@@ -228,7 +221,7 @@ fn output<'py, const C: usize>(
     Ok(Output {
         array,
         strided,
-        _borrow: Some(borrow),
+        _borrow: borrow,
     })
 }
 
