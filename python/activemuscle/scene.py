@@ -149,7 +149,8 @@ def check_scene(scene: Source) -> str:
 
 
 def run_scene(scene: Source, out: Optional[Union[str, "os.PathLike[str]"]] = None) -> Results:
-    """Runs every study of `scene` (a path, TOML text or a dict) and returns its results; with
+    """Runs every study of `scene` (a path — a ``str`` without a newline or ``=``, or a
+    ``PathLike`` —, TOML text or a dict) and returns its results; with
     `out`, also writes the command line's outputs there. Raises ValueError for an invalid scene
     (the scene's message), FloatingPointError for a non-finite result, RuntimeError when a study
     cannot run at all; a point, curve or fit that fails is recorded in its study's ``failures``
