@@ -217,3 +217,19 @@ def test_fit_and_stability_tables():
     h = 1e-6
     slope = (closed(lam + h, d, active) - closed(lam - h, d, active)) / (2 * h)
     np.testing.assert_allclose(s["dP_dlambda"], slope, rtol=1e-6, atol=1e-6)
+
+
+def test_a_scene_and_a_material_with_the_same_keys_give_the_same_curve():
+    # The same [material] and [activation] keys through both routes (Models::from_spec in both).
+    keys = dict(mu=0.2, alpha=15.0, w0=0.7, lambda_opt=1.15, p_opt=60.0)
+    scene = {
+        "material": {k: keys[k] for k in ("mu", "alpha", "w0")},
+        "activation": {k: keys[k] for k in ("lambda_opt", "p_opt")},
+        "study": [dict(DICT["study"][0], damage=[0.3], couplings=["consistent"])],
+    }
+    t = am.run_scene(scene)["along"].table
+    active = t["law"] == "implicit"
+    material = am.Material(law="implicit", coupling="consistent", damage=0.3, **keys)
+    got = material.uniaxial(list(t["lambda"][active]))
+    np.testing.assert_array_equal(got["stress"], t["P"][active])
+    np.testing.assert_array_equal(got["gamma"], t["gamma"][active])
