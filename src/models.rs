@@ -411,3 +411,77 @@ impl MaterialSpec {
         Ok((energy, fibre.map(|x| x / norm)))
     }
 }
+
+/// `[activation]`: the active curve, the explicit law's coefficients and the options every model
+/// shares ([`Models::from_spec`]), and the studies' default law, coupling and damage values.
+/// `None` is the chapter's value.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ActivationSpec {
+    /// λ_min [-] (Table 2).
+    pub lambda_min: Option<f64>,
+    /// λ_opt [-].
+    pub lambda_opt: Option<f64>,
+    /// k [-].
+    pub k: Option<f64>,
+    /// P_opt \[kPa\].
+    pub p_opt: Option<f64>,
+    /// Default law of the studies.
+    pub law: Option<LawKind>,
+    /// Default coupling of the studies.
+    pub coupling: Option<CouplingKind>,
+    /// Tangent of the frozen model.
+    pub frozen_tangent: Option<FrozenTangent>,
+    /// What the energy law does below λ_min.
+    pub below_minimum: Option<BelowMinimum>,
+    /// Default damage values d ∈ [0, 1].
+    pub damage: Option<Vec<f64>>,
+    /// Coefficients of the explicit law (eq. (14)).
+    pub explicit: Option<ExplicitSpec>,
+}
+
+/// `explicit = { a = 1.0133, b = 0.2050 }`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExplicitSpec {
+    /// a [-].
+    pub a: Option<f64>,
+    /// b [-].
+    pub b: Option<f64>,
+}
+
+impl Models {
+    /// The models of a `[material]` and an `[activation]` as written: every value left out is the
+    /// chapter's, every number is validated by the core constructor that owns it, and errors name
+    /// the key as a scene writes it (`material.mu`, `activation.explicit.a`). The activation's
+    /// law, coupling and damage values are the studies' defaults, not read here. The scene
+    /// resolves its tables here, and so does the Python package's `Material`.
+    pub fn from_spec(
+        material: &MaterialSpec,
+        activation: &ActivationSpec,
+    ) -> Result<Self, SpecError> {
+        let (energy, fibre) = material.build().map_err(|e| e.within("material"))?;
+        let act = activation;
+        let p = ActiveCurve::paper();
+        let curve = ActiveCurve::new(
+            act.lambda_min.unwrap_or(p.lambda_min()),
+            act.lambda_opt.unwrap_or(p.lambda_opt()),
+            act.k.unwrap_or(p.k()),
+            act.p_opt.unwrap_or(p.p_opt()),
+        )
+        .map_err(|e| SpecError::model("activation", e))?;
+        let (a, b) = ExplicitLaw::paper().coefficients();
+        let ex = act.explicit.clone().unwrap_or_default();
+        let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
+        ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
+            .map_err(|e| SpecError::model("activation.explicit", e))?;
+        Ok(Self {
+            energy,
+            fibre,
+            curve,
+            explicit,
+            frozen_tangent: act.frozen_tangent.unwrap_or_default(),
+            below_minimum: act.below_minimum.unwrap_or_default(),
+        })
+    }
+}

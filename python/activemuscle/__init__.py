@@ -16,10 +16,15 @@ Keywords, names and defaults are a scene's (scenes/paper.toml): energy ("giantes
 ("frozen" with frozen_tangent "exact" | "symmetric", "consistent"); damage; the active curve's
 lambda_min, lambda_opt, k, p_opt. Bad values raise ValueError with the core's message.
 
+``run_scene`` runs a scene (a file, its TOML text or a dict) and returns each study's results as
+columns of numpy arrays (``pandas.DataFrame(r["name"].table)``); ``check_scene`` returns the
+resolved scene (``activemuscle.scene``).
+
 ``activemuscle.felupe`` adapts a Material to felupe (``MuscleMaterial``, and ``Incompressible``
 for the exact incompressibility of the chapter's mixed u–p formulation).
 """
 
 from ._native import Material
+from .scene import Results, Study, check_scene, run_scene
 
-__all__ = ["Material"]
+__all__ = ["Material", "Results", "Study", "check_scene", "run_scene"]

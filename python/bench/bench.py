@@ -1,5 +1,5 @@
 """ns per material point: activemuscle from Python (P, A and dP/dγ, felupe's (3, 3, n) layout and
-(n, 3, 3)), the same points in a plain Rust loop (python/examples/per_point.rs, same run), and
+(n, 3, 3); fresh outputs, and (3, 3, n) into reused `out=` arrays), the same points in a plain Rust loop (python/examples/per_point.rs, same run), and
 felupe's own NeoHooke (P and A by numpy) for scale. Not a test: timings only.
 
     maturin develop --release -m python/Cargo.toml   # the fat-LTO build the numbers need
@@ -78,6 +78,10 @@ def main():
                 keep(key, value)
             keep("python_trailing_parallel", best(lambda: material.evaluate(F, layout="trailing")) / n * 1e9)
             keep("python_trailing_serial", best(lambda: material.evaluate(F, layout="trailing", parallel=False)) / n * 1e9)
+            out = {k: np.empty_like(v) for k, v in material.evaluate(F[..., :1], layout="trailing").items()}
+            out = {k: np.empty(v.shape[:-1] + (n,)) for k, v in out.items()}  # reused, warm after the first call
+            keep("python_trailing_out_parallel", best(lambda: material.evaluate(F, layout="trailing", out=out)) / n * 1e9)
+            keep("python_trailing_out_serial", best(lambda: material.evaluate(F, layout="trailing", parallel=False, out=out)) / n * 1e9)
             keep("python_leading_parallel", best(lambda: material.evaluate(Fl, layout="leading")) / n * 1e9)
             keep("python_leading_serial", best(lambda: material.evaluate(Fl, layout="leading", parallel=False)) / n * 1e9)
             if neo is not None:

@@ -4,8 +4,9 @@
 //!
 //! `cargo run --release --manifest-path python/Cargo.toml --example per_point -- N LAW`
 
-use _native::model::{muscle, ModelSpec};
+use _native::model::named;
 use activemuscle::invariants::{Kinematics, FULL};
+use activemuscle::models::{CouplingKind, ModelChoice, Models};
 use activemuscle::response::Order;
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
@@ -24,16 +25,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|s| s.parse())
         .transpose()?
         .unwrap_or(100_000);
-    let law = args.get(2).cloned().unwrap_or_else(|| "explicit".into());
-    let material = muscle(&ModelSpec {
-        energy: "giantesio-musesti".into(),
+    let law = named("law", args.get(2).map_or("explicit", String::as_str))?;
+    let material = Models::paper().muscle(ModelChoice {
         law,
-        coupling: "frozen".into(),
-        frozen_tangent: "exact".into(),
-        below_minimum: "zero-work".into(),
-        ..ModelSpec::default()
-    })
-    .map_err(|e| e.to_string())?;
+        coupling: CouplingKind::Frozen,
+        damage: 0.0,
+    })?;
     let m = Vector3::new(1.0, 0.0, 0.0);
     let f: Vec<Matrix3<f64>> = (0..n).map(|p| deformation(p, n)).collect();
     let run = |out: &mut [f64], p: usize| -> Result<(), activemuscle::Error> {

@@ -193,23 +193,22 @@ pub fn input<const C: usize>(
     )
 }
 
-/// Access to an output array allocated in `order` (so its point axes flatten), its data at
-/// `ptr` with `strides` in bytes.
+/// Access to an output array, its data at `ptr` with `strides` in bytes; `None` unless its point
+/// axes flatten to one stride in `order` (a fresh array allocated in `order` always does).
 pub fn output<const C: usize>(
     ptr: *mut f64,
     shape: &[usize],
     strides_bytes: &[isize],
     convention: Convention,
     order: PointOrder,
-) -> Strided<C> {
+) -> Option<Strided<C>> {
     let strides: Vec<isize> = strides_bytes.iter().map(|s| s / 8).collect();
     let (comps, point_shape, point_strides) = split::<C>(shape, &strides, convention);
-    Strided {
+    Some(Strided {
         ptr,
         comp: std::array::from_fn(|k| strides[comps.start + k]),
-        // A fresh contiguous array in `order` always flattens; 0 is never reached for n > 1.
-        point: point_stride(&point_shape, &point_strides, order).unwrap_or(0),
-    }
+        point: point_stride(&point_shape, &point_strides, order)?,
+    })
 }
 
 /// The multi-index of point `p` among `shape` enumerated in `order` (for error messages).

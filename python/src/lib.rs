@@ -10,17 +10,24 @@
 
 mod layout;
 pub mod model;
+mod scene;
 
 use activemuscle::active::Law;
+use activemuscle::app_error::SpecError;
 use activemuscle::energy::Energy;
 use activemuscle::fit::Parametric;
 use activemuscle::invariants::{Kinematics, FULL};
+use activemuscle::models::{ActivationSpec, ExplicitSpec, MaterialSpec};
 use activemuscle::response::Order;
+use activemuscle::StrainEnergy;
 use activemuscle::{Error, Muscle};
 use layout::{Convention, Input, PointOrder, Strided};
-use model::{ModelError, ModelSpec};
+use model::{named, LawChoice};
 use nalgebra::{Matrix3, Vector3};
-use numpy::{AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadwriteArrayDyn,
+    PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyArithmeticError, PyFloatingPointError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -38,13 +45,6 @@ fn py_error(e: &Error, context: &str) -> PyErr {
         Error::NonFinite { .. } => PyFloatingPointError::new_err(msg),
         Error::NoSolution { .. } => PyArithmeticError::new_err(msg),
         _ => PyValueError::new_err(msg),
-    }
-}
-
-fn model_error(e: ModelError) -> PyErr {
-    match e {
-        ModelError::Core(e) => py_error(&e, ""),
-        other => PyValueError::new_err(other.to_string()),
     }
 }
 
@@ -158,24 +158,71 @@ impl Batch<'_> {
     }
 }
 
-/// An uninitialised output array of `shape` in `order`, with strided access to its
-/// `C` component axes. Every entry is written before Python sees the array.
-fn new_output<'py, const C: usize>(
+/// An output array and strided access to its `C` component axes; `_borrow` holds the caller's
+/// array read-write for the evaluation.
+struct Output<'py, const C: usize> {
+    array: Bound<'py, PyArrayDyn<f64>>,
+    strided: Strided<C>,
+    _borrow: Option<PyReadwriteArrayDyn<'py, f64>>,
+}
+
+/// The output `key` of `shape` in `order`: the caller's `out[key]` if given — float64, writeable,
+/// of `shape`, its point axes flattening in F's point order; numpy's borrow checker refuses an
+/// array given twice or overlapping F or the fibres — else a fresh, uninitialised array. Every
+/// entry is written before Python sees a fresh array (a failing point leaves the caller's arrays
+/// partly written).
+fn output<'py, const C: usize>(
     py: Python<'py>,
+    out: Option<&Bound<'py, PyDict>>,
+    key: &str,
     shape: &[usize],
     convention: Convention,
     order: PointOrder,
-) -> (Bound<'py, PyArrayDyn<f64>>, Strided<C>) {
-    // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
-    let array = unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) };
+) -> PyResult<Output<'py, C>> {
+    let bad = |rule: String| PyValueError::new_err(format!("out[{key:?}]: {rule}"));
+    let (array, borrow) = match out.map(|o| o.get_item(key)).transpose()?.flatten() {
+        // SAFETY: the evaluation writes every entry (or the array is dropped with the error).
+        None => (
+            unsafe { PyArrayDyn::<f64>::new(py, shape, order == PointOrder::Fortran) },
+            None,
+        ),
+        Some(given) => {
+            let array = given
+                .cast::<PyArrayDyn<f64>>()
+                .map_err(|_| bad("must be a numpy array of float64".into()))?
+                .clone();
+            if array.shape() != shape {
+                return Err(bad(format!(
+                    "has shape {:?}: must be {shape:?}",
+                    array.shape()
+                )));
+            }
+            let borrow = array.try_readwrite().map_err(|e| {
+                bad(format!(
+                    "cannot be written ({e}): it must be writeable and share no memory with F, the fibres or another output"
+                ))
+            })?;
+            (array, Some(borrow))
+        }
+    };
+    // A fresh array allocated in `order` always flattens.
     let strided = layout::output::<C>(
         array.data(),
         array.shape(),
         array.strides(),
         convention,
         order,
-    );
-    (array, strided)
+    )
+    .ok_or_else(|| {
+        bad(format!(
+            "its point axes must flatten to one stride in F's point order ({order:?}), like a contiguous array"
+        ))
+    })?;
+    Ok(Output {
+        array,
+        strided,
+        _borrow: borrow,
+    })
 }
 
 /// Active skeletal muscle at material points (Giantesio & Musesti): an energy, an activation law,
@@ -186,64 +233,84 @@ fn new_output<'py, const C: usize>(
 #[pyclass(frozen, module = "activemuscle._native")]
 struct Material {
     muscle: Muscle<Energy>,
-    spec: ModelSpec,
 }
 
 #[pymethods]
 impl Material {
     #[new]
     #[pyo3(signature = (
-        *, energy = "giantesio-musesti", mu = None, alpha = None, beta = None, w0 = None,
-        law = "implicit", gamma = None, coupling = "frozen", frozen_tangent = "exact",
-        damage = 0.0, explicit = None, below_minimum = "zero-work",
+        *, energy = None, mu = None, alpha = None, beta = None, w0 = None,
+        law = None, gamma = None, coupling = None, frozen_tangent = None,
+        damage = 0.0, explicit = None, below_minimum = None,
         lambda_min = None, lambda_opt = None, k = None, p_opt = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
-        energy: &str,
+        energy: Option<&str>,
         mu: Option<f64>,
         alpha: Option<f64>,
         beta: Option<f64>,
         w0: Option<f64>,
-        law: &str,
+        law: Option<&str>,
         gamma: Option<f64>,
-        coupling: &str,
-        frozen_tangent: &str,
+        coupling: Option<&str>,
+        frozen_tangent: Option<&str>,
         damage: f64,
         explicit: Option<HashMap<String, f64>>,
-        below_minimum: &str,
+        below_minimum: Option<&str>,
         lambda_min: Option<f64>,
         lambda_opt: Option<f64>,
         k: Option<f64>,
         p_opt: Option<f64>,
     ) -> PyResult<Self> {
-        let explicit = explicit.unwrap_or_default();
-        if let Some(key) = explicit.keys().find(|k| *k != "a" && *k != "b") {
-            return Err(PyValueError::new_err(format!(
-                "explicit.{key}: unknown key (eq. D:gamma has coefficients a and b)"
-            )));
+        let given = [("mu", mu), ("alpha", alpha), ("beta", beta), ("w0", w0)];
+        let mut material = MaterialSpec::default();
+        if let Some(e) = energy {
+            material.energy.energy = e.to_string();
         }
-        let spec = ModelSpec {
-            energy: energy.into(),
-            mu,
-            alpha,
-            beta,
-            w0,
-            law: law.into(),
-            gamma,
-            coupling: coupling.into(),
-            frozen_tangent: frozen_tangent.into(),
-            below_minimum: below_minimum.into(),
-            damage,
-            explicit_a: explicit.get("a").copied(),
-            explicit_b: explicit.get("b").copied(),
-            lambda_min,
-            lambda_opt,
-            k,
-            p_opt,
+        material.energy.parameters = given
+            .iter()
+            .filter_map(|(n, v)| v.map(|v| (n.to_string(), v)))
+            .collect();
+        let spec = || -> Result<Muscle<Energy>, SpecError> {
+            let explicit = explicit
+                .map(|m| match m.keys().find(|k| *k != "a" && *k != "b") {
+                    Some(key) => Err(SpecError::new(
+                        format!("explicit.{key}"),
+                        m[key],
+                        "unknown key: eq. (14) has coefficients a and b",
+                    )),
+                    None => Ok(ExplicitSpec {
+                        a: m.get("a").copied(),
+                        b: m.get("b").copied(),
+                    }),
+                })
+                .transpose()?;
+            let activation = ActivationSpec {
+                lambda_min,
+                lambda_opt,
+                k,
+                p_opt,
+                coupling: coupling.map(|c| named("coupling", c)).transpose()?,
+                frozen_tangent: frozen_tangent
+                    .map(|t| named("frozen_tangent", t))
+                    .transpose()?,
+                below_minimum: below_minimum
+                    .map(|b| named("below_minimum", b))
+                    .transpose()?,
+                explicit,
+                ..ActivationSpec::default()
+            };
+            model::muscle(
+                &material,
+                &activation,
+                LawChoice::parse(law)?,
+                gamma,
+                damage,
+            )
         };
-        let muscle = model::muscle(&spec).map_err(model_error)?;
-        Ok(Self { muscle, spec })
+        let muscle = spec().map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(Self { muscle })
     }
 
     fn __repr__(&self) -> String {
@@ -256,7 +323,7 @@ impl Material {
             .collect();
         format!(
             "Material(energy={:?}, {}, law={:?}, coupling={:?}, damage={})",
-            self.spec.energy,
+            e.name(),
             params.join(", "),
             self.muscle.law().name(),
             self.muscle.coupling().name(),
@@ -282,7 +349,13 @@ impl Material {
     /// "stress" P [kPa] like F (order ≥ "stress"), "tangent" A [kPa] with
     /// A[i, j, k, l] = ∂P_ij/∂F_kl, shape (3, 3, 3, 3, ...) or (..., 3, 3, 3, 3), and
     /// "dstress_dgamma" dP/dγ [kPa] like F (order "tangent").
-    #[pyo3(signature = (f, fibre = None, *, order = "tangent", layout = None, parallel = true))]
+    ///
+    /// out: a dict of preallocated arrays to write into (any of the returned keys, each of the
+    /// returned shape, float64, writeable, its point axes contiguous in F's order); the result
+    /// then holds those same arrays. Saves allocating and first touching fresh output memory on
+    /// repeated calls.
+    #[pyo3(signature = (f, fibre = None, *, order = "tangent", layout = None, parallel = true, out = None))]
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<'py>(
         &self,
         py: Python<'py>,
@@ -291,8 +364,32 @@ impl Material {
         order: &str,
         layout: Option<&str>,
         parallel: bool,
+        out: Option<Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let order = parse_order(order)?;
+        let keys: &[&str] = match order {
+            Order::Energy => &["gamma", "fibre_stretch", "energy"],
+            Order::Stress => &["gamma", "fibre_stretch", "energy", "stress"],
+            Order::Tangent => &[
+                "gamma",
+                "fibre_stretch",
+                "energy",
+                "stress",
+                "tangent",
+                "dstress_dgamma",
+            ],
+        };
+        if let Some(o) = &out {
+            for k in o.keys() {
+                let k: String = k.extract()?;
+                if !keys.contains(&k.as_str()) {
+                    return Err(PyValueError::new_err(format!(
+                        "out[{k:?}]: not an output of this evaluation, which returns {keys:?}"
+                    )));
+                }
+            }
+        }
+        let out = out.as_ref();
         let f_view = f.as_array();
         let convention = convention_of(f_view.shape(), layout)?;
         let point_shape: Vec<usize> = {
@@ -329,29 +426,35 @@ impl Material {
 
         let scalar_shape = &point_shape;
         let tensor_shape = convention.shape(&point_shape, 2, 3);
-        let (gamma, gamma_s) = new_output::<0>(py, scalar_shape, convention, point_order);
-        let (lambda, lambda_s) = new_output::<0>(py, scalar_shape, convention, point_order);
-        let (energy, energy_s) = new_output::<0>(py, scalar_shape, convention, point_order);
+        let scalar = |key| output::<0>(py, out, key, scalar_shape, convention, point_order);
+        let tensor = |key| output::<2>(py, out, key, &tensor_shape, convention, point_order);
+        let gamma = scalar("gamma")?;
+        let lambda = scalar("fibre_stretch")?;
+        let energy = scalar("energy")?;
         let stress = (order >= Order::Stress)
-            .then(|| new_output::<2>(py, &tensor_shape, convention, point_order));
+            .then(|| tensor("stress"))
+            .transpose()?;
         let rate = (order == Order::Tangent)
-            .then(|| new_output::<2>(py, &tensor_shape, convention, point_order));
-        let tangent = (order == Order::Tangent).then(|| {
-            let shape = convention.shape(&point_shape, 4, 3);
-            new_output::<4>(py, &shape, convention, point_order)
-        });
+            .then(|| tensor("dstress_dgamma"))
+            .transpose()?;
+        let tangent = (order == Order::Tangent)
+            .then(|| {
+                let shape = convention.shape(&point_shape, 4, 3);
+                output::<4>(py, out, "tangent", &shape, convention, point_order)
+            })
+            .transpose()?;
         let batch = Batch {
             muscle: &self.muscle,
             order,
             f: f_in.strided,
             fibre: fibre_in.strided,
             out: Outputs {
-                gamma: gamma_s,
-                fibre_stretch: lambda_s,
-                energy: energy_s,
-                stress: stress.as_ref().map(|s| s.1),
-                tangent: tangent.as_ref().map(|s| s.1),
-                dstress_dgamma: rate.as_ref().map(|s| s.1),
+                gamma: gamma.strided,
+                fibre_stretch: lambda.strided,
+                energy: energy.strided,
+                stress: stress.as_ref().map(|s| s.strided),
+                tangent: tangent.as_ref().map(|s| s.strided),
+                dstress_dgamma: rate.as_ref().map(|s| s.strided),
             },
         };
         py.detach(|| batch.run_all(n, parallel)).map_err(|(p, e)| {
@@ -361,17 +464,17 @@ impl Material {
         drop(f_in);
         drop(fibre_in);
         let d = PyDict::new(py);
-        d.set_item("gamma", gamma)?;
-        d.set_item("fibre_stretch", lambda)?;
-        d.set_item("energy", energy)?;
-        if let Some((a, _)) = stress {
-            d.set_item("stress", a)?;
+        d.set_item("gamma", gamma.array)?;
+        d.set_item("fibre_stretch", lambda.array)?;
+        d.set_item("energy", energy.array)?;
+        if let Some(a) = stress {
+            d.set_item("stress", a.array)?;
         }
-        if let Some((a, _)) = tangent {
-            d.set_item("tangent", a)?;
+        if let Some(a) = tangent {
+            d.set_item("tangent", a.array)?;
         }
-        if let Some((a, _)) = rate {
-            d.set_item("dstress_dgamma", a)?;
+        if let Some(a) = rate {
+            d.set_item("dstress_dgamma", a.array)?;
         }
         Ok(d)
     }
@@ -525,6 +628,8 @@ fn convention_of(shape: &[usize], layout: Option<&str>) -> PyResult<Convention> 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Material>()?;
+    m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::check_scene, m)?)?;
     m.add("__doc__", "activemuscle's material point on numpy arrays")?;
     Ok(())
 }

@@ -1,236 +1,116 @@
-//! Keyword choices → a core [`Muscle`]: the one place where the Python names meet the core's
-//! constructors. The names, defaults and rules are those of a scene's `[material]` and
-//! `[activation]` tables (scenes/paper.toml): the chapter's values wherever a parameter is left
-//! out, every number validated by the core constructor that owns it (whose message is kept).
+//! Keyword choices → a core [`Muscle`], through the scene's own models
+//! ([`activemuscle::models`]): the keywords are the keys of a scene's `[material]` and
+//! `[activation]` tables, gathered into a [`MaterialSpec`] and an [`ActivationSpec`] and resolved
+//! by [`Models::from_spec`], the function that resolves a scene's. Names, defaults (the
+//! chapter's values), rules and messages are therefore the scene's; an error names the keyword
+//! (`mu = -1: ...`) where a scene names `material.mu`. Beyond a scene's laws, `law` takes
+//! `"passive"` and `"constant"` (with `gamma`): a uniaxial study's passive and constant-γ curves.
 
-use activemuscle::active::{
-    ActiveCurve, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
-    ImplicitLaw, Law,
+use activemuscle::active::{ConstantLaw, Law};
+use activemuscle::app_error::SpecError;
+use activemuscle::energy::Energy;
+use activemuscle::models::{
+    ActivationSpec, CouplingKind, LawKind, MaterialSpec, ModelChoice, Models,
 };
-use activemuscle::energy::{EhretBolItskov, Energy, GiantesioMusesti, NeoHookean};
 use activemuscle::Muscle;
+use serde::de::value::{Error as ValueError, StrDeserializer};
+use serde::de::{DeserializeOwned, IntoDeserializer};
 
-/// A material as chosen by keywords; `None` means "the chapter's value" (a scene's default).
-#[derive(Debug, Clone, Default)]
-pub struct ModelSpec {
-    /// "giantesio-musesti" | "ehret-bol-itskov" | "neo-hookean".
-    pub energy: String,
-    /// μ \[kPa\] (required for neo-hookean).
-    pub mu: Option<f64>,
-    /// α [-] (giantesio-musesti, ehret-bol-itskov).
-    pub alpha: Option<f64>,
-    /// β [-] (ehret-bol-itskov).
-    pub beta: Option<f64>,
-    /// w0 [-] (giantesio-musesti, ehret-bol-itskov).
-    pub w0: Option<f64>,
-    /// "passive" | "constant" | "implicit" | "explicit" | "energy".
-    pub law: String,
-    /// γ of the constant law.
-    pub gamma: Option<f64>,
-    /// "frozen" | "consistent".
-    pub coupling: String,
-    /// "exact" | "symmetric" (frozen coupling only).
-    pub frozen_tangent: String,
-    /// "zero-work" | "inactive" (energy law only).
-    pub below_minimum: String,
-    /// Damage d ∈ [0, 1].
-    pub damage: f64,
-    /// Explicit-law coefficients a, b (eq. D:gamma).
-    pub explicit_a: Option<f64>,
-    /// See `explicit_a`.
-    pub explicit_b: Option<f64>,
-    /// Active curve λ_min, λ_opt, k, P_opt (eq. D:pact).
-    pub lambda_min: Option<f64>,
-    /// See `lambda_min`.
-    pub lambda_opt: Option<f64>,
-    /// See `lambda_min`.
-    pub k: Option<f64>,
-    /// See `lambda_min`.
-    pub p_opt: Option<f64>,
+/// What `law = "..."` names.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LawChoice {
+    /// γ ≡ 0.
+    Passive,
+    /// γ held at the given value.
+    Constant,
+    /// One of a scene's activation laws.
+    Active(LawKind),
 }
 
-/// Why a choice was refused.
-#[derive(Debug, Clone, PartialEq)]
-pub enum ModelError {
-    /// A keyword has a value outside its choices, or does not apply to the others.
-    Choice {
-        /// The keyword.
-        key: &'static str,
-        /// Its value, as given.
-        value: String,
-        /// The rule it breaks.
-        rule: String,
-    },
-    /// A core constructor refused a number (its own message).
-    Core(activemuscle::Error),
+/// The value `value` of the scene's enumeration `T` (its serde names: `"frozen"`,
+/// `"zero-work"`, ...), or the scene's message naming `key`.
+pub fn named<T: DeserializeOwned>(key: &str, value: &str) -> Result<T, SpecError> {
+    let de: StrDeserializer<'_, ValueError> = value.into_deserializer();
+    T::deserialize(de).map_err(|e| SpecError::new(key, format!("{value:?}"), e.to_string()))
 }
 
-impl std::fmt::Display for ModelError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            ModelError::Choice { key, value, rule } => write!(f, "{key} = {value}: {rule}"),
-            ModelError::Core(e) => write!(f, "{e}"),
-        }
+impl LawChoice {
+    /// `law`: `"passive"`, `"constant"` or a scene's law; `None` is the scene's default law.
+    pub fn parse(law: Option<&str>) -> Result<Self, SpecError> {
+        Ok(match law {
+            Some("passive") => LawChoice::Passive,
+            Some("constant") => LawChoice::Constant,
+            Some(name) => LawChoice::Active(named("law", name).map_err(|e| SpecError {
+                rule: format!("{} (or \"passive\", or \"constant\" with gamma)", e.rule),
+                ..e
+            })?),
+            None => LawChoice::Active(LawKind::default()),
+        })
     }
 }
 
-impl From<activemuscle::Error> for ModelError {
-    fn from(e: activemuscle::Error) -> Self {
-        ModelError::Core(e)
-    }
+/// Keys of the scene's tables as this module names them: without `material.` or `activation.`.
+fn as_keyword(e: SpecError) -> SpecError {
+    let key = ["material.", "activation."]
+        .iter()
+        .find_map(|p| e.key.strip_prefix(p))
+        .map_or(e.key.clone(), str::to_string);
+    SpecError { key, ..e }
 }
 
-fn choice(key: &'static str, value: &str, rule: impl Into<String>) -> ModelError {
-    ModelError::Choice {
-        key,
-        value: format!("{value:?}"),
-        rule: rule.into(),
+/// The muscle of `material` and `activation` (the activation's `coupling`, `None` the scene's
+/// default) with activation law `law` (`gamma` for the constant law only) and damage `damage`.
+pub fn muscle(
+    material: &MaterialSpec,
+    activation: &ActivationSpec,
+    law: LawChoice,
+    gamma: Option<f64>,
+    damage: f64,
+) -> Result<Muscle<Energy>, SpecError> {
+    let models = Models::from_spec(material, activation).map_err(as_keyword)?;
+    let coupling: CouplingKind = activation.coupling.unwrap_or_default();
+    if let (Some(g), false) = (gamma, law == LawChoice::Constant) {
+        return Err(SpecError::new(
+            "gamma",
+            g,
+            "applies to law = \"constant\" only",
+        ));
     }
-}
-
-fn refuse_given(key: &'static str, v: Option<f64>, rule: String) -> Result<(), ModelError> {
-    match v {
-        Some(x) => Err(ModelError::Choice {
-            key,
-            value: x.to_string(),
-            rule,
-        }),
-        None => Ok(()),
-    }
-}
-
-/// The muscle `spec` chooses, with the scene's defaults and rules.
-pub fn muscle(spec: &ModelSpec) -> Result<Muscle<Energy>, ModelError> {
-    let not_for = |key: &'static str, v: Option<f64>| {
-        refuse_given(
-            key,
-            v,
-            format!("the {} energy has no parameter {key}", spec.energy),
+    let model = |e: activemuscle::Error| SpecError::model("", e);
+    let fixed = |law: Law<Energy>| {
+        Muscle::new(
+            models.energy.clone(),
+            law,
+            damage,
+            models.coupling(coupling),
         )
+        .map_err(model)
     };
-    let energy = match spec.energy.as_str() {
-        "giantesio-musesti" => {
-            not_for("beta", spec.beta)?;
-            let p = GiantesioMusesti::paper();
-            Energy::GiantesioMusesti(GiantesioMusesti::new(
-                spec.mu.unwrap_or(p.mu()),
-                spec.alpha.unwrap_or(p.alpha()),
-                spec.w0.unwrap_or(p.w0()),
-            )?)
-        }
-        "ehret-bol-itskov" => {
-            let p = EhretBolItskov::paper();
-            Energy::EhretBolItskov(EhretBolItskov::new(
-                spec.mu.unwrap_or(p.mu()),
-                spec.alpha.unwrap_or(p.alpha()),
-                spec.beta.unwrap_or(p.beta()),
-                spec.w0.unwrap_or(p.w0()),
-            )?)
-        }
-        "neo-hookean" => {
-            not_for("alpha", spec.alpha)?;
-            not_for("beta", spec.beta)?;
-            not_for("w0", spec.w0)?;
-            let mu = spec.mu.ok_or_else(|| ModelError::Choice {
-                key: "mu",
-                value: "(missing)".into(),
-                rule: "the neo-hookean energy has no chapter value: give mu [kPa]".into(),
+    match law {
+        LawChoice::Passive => fixed(Law::Passive),
+        LawChoice::Constant => {
+            let gamma = gamma.ok_or_else(|| {
+                SpecError::new(
+                    "gamma",
+                    "(missing)",
+                    "law = \"constant\" needs gamma in [0, 1)",
+                )
             })?;
-            Energy::NeoHookean(NeoHookean::new(mu)?)
-        }
-        other => {
-            return Err(choice(
-                "energy",
-                other,
-                "must be \"giantesio-musesti\", \"ehret-bol-itskov\" or \"neo-hookean\"",
+            fixed(Law::Constant(
+                ConstantLaw::new(gamma).map_err(|e| SpecError::model("gamma", e))?,
             ))
         }
-    };
-    let p = ActiveCurve::paper();
-    let curve = ActiveCurve::new(
-        spec.lambda_min.unwrap_or(p.lambda_min()),
-        spec.lambda_opt.unwrap_or(p.lambda_opt()),
-        spec.k.unwrap_or(p.k()),
-        spec.p_opt.unwrap_or(p.p_opt()),
-    )?;
-    let below_minimum = match spec.below_minimum.as_str() {
-        "zero-work" => BelowMinimum::ZeroWork,
-        "inactive" => BelowMinimum::Inactive,
-        other => {
-            return Err(choice(
-                "below_minimum",
-                other,
-                "must be \"zero-work\" or \"inactive\"",
-            ))
+        LawChoice::Active(law) => {
+            models
+                .supports(law)
+                .map_err(|rule| SpecError::new("law", format!("{:?}", law.name()), rule))?;
+            models
+                .muscle(ModelChoice {
+                    law,
+                    coupling,
+                    damage,
+                })
+                .map_err(model)
         }
-    };
-    let only_for = |key: &'static str, v: Option<f64>, law: &str| {
-        refuse_given(key, v, format!("applies to law = \"{law}\" only"))
-    };
-    if spec.law != "constant" {
-        only_for("gamma", spec.gamma, "constant")?;
     }
-    if spec.law != "explicit" {
-        only_for("explicit.a", spec.explicit_a, "explicit")?;
-        only_for("explicit.b", spec.explicit_b, "explicit")?;
-    }
-    let law = match spec.law.as_str() {
-        "passive" => Law::Passive,
-        "constant" => {
-            let gamma = spec.gamma.ok_or_else(|| ModelError::Choice {
-                key: "gamma",
-                value: "(missing)".into(),
-                rule: "law = \"constant\" needs gamma in [0, 1)".into(),
-            })?;
-            Law::Constant(ConstantLaw::new(gamma)?)
-        }
-        "implicit" => Law::Implicit(ImplicitLaw::new(energy.clone(), curve)),
-        "energy" => Law::Energy(EnergyLaw::new(energy.clone(), curve).below_minimum(below_minimum)),
-        "explicit" => {
-            let Energy::GiantesioMusesti(gm) = energy else {
-                return Err(choice(
-                    "law",
-                    "explicit",
-                    format!(
-                        "eq. D:gamma is derived for the giantesio-musesti energy; energy is {:?}",
-                        spec.energy
-                    ),
-                ));
-            };
-            let (a, b) = ExplicitLaw::paper().coefficients();
-            Law::Explicit(ExplicitLaw::new(
-                spec.explicit_a.unwrap_or(a),
-                spec.explicit_b.unwrap_or(b),
-                gm,
-                curve,
-            )?)
-        }
-        other => {
-            return Err(choice(
-                "law",
-                other,
-                "must be \"passive\", \"constant\", \"implicit\", \"explicit\" or \"energy\"",
-            ))
-        }
-    };
-    let coupling = match (spec.coupling.as_str(), spec.frozen_tangent.as_str()) {
-        ("consistent", _) => Coupling::Consistent,
-        ("frozen", "exact") => Coupling::Frozen(FrozenTangent::Exact),
-        ("frozen", "symmetric") => Coupling::Frozen(FrozenTangent::Symmetric),
-        ("frozen", other) => {
-            return Err(choice(
-                "frozen_tangent",
-                other,
-                "must be \"exact\" or \"symmetric\"",
-            ))
-        }
-        (other, _) => {
-            return Err(choice(
-                "coupling",
-                other,
-                "must be \"frozen\" or \"consistent\"",
-            ))
-        }
-    };
-    Ok(Muscle::new(energy, law, spec.damage, coupling)?)
 }

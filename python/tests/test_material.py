@@ -225,21 +225,22 @@ def test_the_first_failing_point_is_named_in_parallel_batches_too():
 
 
 BAD_CHOICES = [
-    (dict(energy="mooney"), 'energy = "mooney": must be'),
-    (dict(mu=-1.0), "parameter mu = -1 is invalid"),
-    (dict(w0=1.5), "parameter w0 = 1.5 is invalid"),
-    (dict(damage=2.0), "parameter damage = 2 is invalid: must lie in [0, 1]"),
+    (dict(energy="mooney"), 'energy = "mooney": unknown energy; the shipped ones are'),
+    (dict(mu=-1.0), "mu = -1: must be finite and > 0"),
+    (dict(w0=1.5), "w0 = 1.5: "),
+    (dict(damage=2.0), "damage = 2: must lie in [0, 1]"),
     (dict(law="constant"), "needs gamma"),
-    (dict(law="constant", gamma=1.0), "activation gamma = 1 is outside [0, 1)"),
+    (dict(law="constant", gamma=1.0), "gamma = 1: activation gamma must lie in [0, 1)"),
     (dict(law="implicit", gamma=0.2), "gamma = 0.2: applies to law = \"constant\" only"),
-    (dict(law="explicit", energy="ehret-bol-itskov"), "eq. D:gamma is derived for the giantesio-musesti energy"),
+    (dict(law="explicit", energy="ehret-bol-itskov"), "the explicit law (eq. (14)) is derived for the giantesio-musesti energy"),
     (dict(energy="neo-hookean"), "give mu [kPa]"),
-    (dict(beta=1.0), "the giantesio-musesti energy has no parameter beta"),
+    (dict(beta=1.0), "beta = 1: unknown field: the giantesio-musesti energy has no parameter beta"),
     (dict(coupling="loose"), 'coupling = "loose"'),
     (dict(frozen_tangent="bfgs"), 'frozen_tangent = "bfgs"'),
     (dict(below_minimum="never"), 'below_minimum = "never"'),
-    (dict(law="explicit", explicit={"c": 1.0}), "explicit.c: unknown key"),
-    (dict(lambda_min=1.5), "lambda_min"),
+    (dict(law="explicit", explicit={"c": 1.0}), "explicit.c = 1: unknown key"),
+    (dict(law="bogus"), 'law = "bogus": unknown variant'),
+    (dict(lambda_min=1.5), "lambda_opt = 1.1704: must be > lambda_min"),
 ]
 
 
@@ -256,3 +257,59 @@ def test_non_finite_stress_is_an_error_not_a_nan():
     F = np.diag([30.0, 30.0**-0.5, 30.0**-0.5])
     with pytest.raises(FloatingPointError, match="non-finite"):
         am.Material(law="passive").evaluate(F)
+
+
+def test_explicit_coefficients_are_read_the_chapters_by_default():
+    # The chapter's a = 1.0133, b = 0.2050 given by hand are the default; another a changes γ.
+    F = sheared_stretches(8)
+    m = np.array([1.0, 0.0, 0.0])
+    default = am.Material(law="explicit").evaluate(F, m)
+    given = am.Material(law="explicit", explicit={"a": 1.0133, "b": 0.2050}).evaluate(F, m)
+    other = am.Material(law="explicit", explicit={"a": 1.02}).evaluate(F, m)
+    assert np.array_equal(default["gamma"], given["gamma"])
+    assert not np.allclose(default["gamma"], other["gamma"])
+
+
+def test_out_arrays_receive_the_same_values_as_fresh_ones():
+    material = am.Material(law="explicit", damage=0.1)
+    F = sheared_stretches(64).transpose(1, 2, 0)  # (3, 3, n), felupe's
+    fresh = material.evaluate(F, fibres(64).T)
+    out = {k: np.full_like(v, -1.0) for k, v in fresh.items()}
+    out["tangent"] = np.asfortranarray(out["tangent"])  # any strides whose points flatten
+    out["gamma"] = np.full(128, -1.0)[::2]
+    r = material.evaluate(F, fibres(64).T, out=out)
+    for k, v in fresh.items():
+        assert r[k] is out[k] and np.array_equal(r[k], v), k
+    # Only some outputs given: the others are fresh.
+    r = material.evaluate(F, fibres(64).T, out={"stress": out["stress"]})
+    assert r["stress"] is out["stress"] and np.array_equal(r["tangent"], fresh["tangent"])
+
+
+def test_bad_out_arrays_raise_value_error():
+    material = am.Material(law="explicit")
+    F = sheared_stretches(5).transpose(1, 2, 0)
+    read_only = np.empty((3, 3, 5))
+    read_only.flags.writeable = False
+    shared = np.empty(6)
+    cases = [
+        ({"stress": np.empty((3, 3, 4))}, r'out\["stress"\]: has shape \[3, 3, 4\]: must be \[3, 3, 5\]'),
+        ({"stress": np.empty((3, 3, 5), np.float32)}, "must be a numpy array of float64"),
+        ({"stress": F}, "share no memory with F"),
+        ({"stress": read_only}, "not writeable"),
+        ({"gamma": shared[:5], "energy": shared[1:]}, r'out\["energy"\]: cannot be written'),
+        ({"tangent": np.empty((3, 3, 3, 3, 5))}, None),
+        ({"stress": np.empty((3, 3, 5, 2))[..., 0].reshape(3, 3, 5)}, None),
+        ({"bogus": np.empty(5)}, r'out\["bogus"\]: not an output'),
+    ]
+    for out, message in cases:
+        if message is None:
+            material.evaluate(F, out=out)  # accepted
+            continue
+        with pytest.raises(ValueError, match=message):
+            material.evaluate(F, out=out)
+    with pytest.raises(ValueError, match=r'out\["tangent"\]: not an output'):
+        material.evaluate(F, order="stress", out={"tangent": np.empty((3, 3, 3, 3, 5))})
+    # Points that do not flatten to one stride in F's order.
+    G = np.zeros((3, 3, 4, 5)) + np.eye(3)[:, :, None, None]
+    with pytest.raises(ValueError, match="point axes must flatten"):
+        material.evaluate(G, out={"gamma": np.empty((5, 4)).T})

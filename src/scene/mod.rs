@@ -21,9 +21,9 @@ pub use crate::app_error::SceneError;
 pub use keypath::{key_path, line_of};
 pub use run::{Printing, Results, RunOptions};
 
-use crate::active::{BelowMinimum, FrozenTangent};
 use crate::app_error::AppError;
-use crate::models::{CouplingKind, LawKind, MaterialSpec, Models};
+pub use crate::models::{ActivationSpec, ExplicitSpec};
+use crate::models::{MaterialSpec, Models};
 use crate::studies::tradeoff::{Fallback, TradeoffOptions};
 use crate::studies::{Study, StudySpec};
 use serde::{Deserialize, Serialize};
@@ -50,42 +50,6 @@ pub struct SceneSpec {
     /// The studies, in order (`[[study]]`).
     #[serde(default, rename = "study")]
     pub studies: Vec<StudySpec>,
-}
-
-/// `[activation]`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ActivationSpec {
-    /// λ_min [-] (Table 2).
-    pub lambda_min: Option<f64>,
-    /// λ_opt [-].
-    pub lambda_opt: Option<f64>,
-    /// k [-].
-    pub k: Option<f64>,
-    /// P_opt \[kPa\].
-    pub p_opt: Option<f64>,
-    /// Default law of the studies.
-    pub law: Option<LawKind>,
-    /// Default coupling of the studies.
-    pub coupling: Option<CouplingKind>,
-    /// Tangent of the frozen model.
-    pub frozen_tangent: Option<FrozenTangent>,
-    /// What the energy law does below λ_min.
-    pub below_minimum: Option<BelowMinimum>,
-    /// Default damage values d ∈ [0, 1].
-    pub damage: Option<Vec<f64>>,
-    /// Coefficients of the explicit law (eq. (14)).
-    pub explicit: Option<ExplicitSpec>,
-}
-
-/// `explicit = { a = 1.0133, b = 0.2050 }`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ExplicitSpec {
-    /// a [-].
-    pub a: Option<f64>,
-    /// b [-].
-    pub b: Option<f64>,
 }
 
 /// A validated scene with every default resolved.

@@ -4,9 +4,7 @@
 
 use super::keypath::line_of;
 use super::{ActivationSpec, ExplicitSpec, Scene, SceneSpec};
-use crate::active::{ActiveCurve, ExplicitLaw};
 use crate::app_error::{SceneError, SpecError};
-use crate::energy::GiantesioMusesti;
 use crate::models::{EnergySpec, MaterialSpec, Models};
 use crate::studies::spec::{damages, Defaults};
 use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec};
@@ -66,31 +64,9 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
 
 /// The material and activation of the scene, and its default damage values.
 fn models(spec: &SceneSpec) -> Result<(Models, Vec<f64>), SpecError> {
-    let (energy, fibre) = spec.material.build().map_err(|e| e.within("material"))?;
-    let act = &spec.activation;
-    let p = ActiveCurve::paper();
-    let curve = ActiveCurve::new(
-        act.lambda_min.unwrap_or(p.lambda_min()),
-        act.lambda_opt.unwrap_or(p.lambda_opt()),
-        act.k.unwrap_or(p.k()),
-        act.p_opt.unwrap_or(p.p_opt()),
-    )
-    .map_err(|e| SpecError::model("activation", e))?;
-    let (a, b) = ExplicitLaw::paper().coefficients();
-    let ex = act.explicit.clone().unwrap_or_default();
-    let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
-    ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
-        .map_err(|e| SpecError::model("activation.explicit", e))?;
-    let damage = damages("activation.damage", act.damage.as_deref().unwrap_or(&[0.0]))?;
-    let models = Models {
-        energy,
-        fibre,
-        curve,
-        explicit,
-        frozen_tangent: act.frozen_tangent.unwrap_or_default(),
-        below_minimum: act.below_minimum.unwrap_or_default(),
-    };
-    Ok((models, damage))
+    let models = Models::from_spec(&spec.material, &spec.activation)?;
+    let damage = spec.activation.damage.as_deref().unwrap_or(&[0.0]);
+    Ok((models, damages("activation.damage", damage)?))
 }
 
 /// The studies, validated in file order, and their resolved specs; trade-off studies take what
