@@ -2,9 +2,31 @@
 //! (`fits.csv`: as the merge of the Levenberg–Marquardt fits did), to the last printed digit:
 //! `curves.csv`, `fits.csv` and `stability.csv` against the files in
 //! `tests/golden/` (provenance in `tests/golden/README.md`). Columns are compared by name.
+//!
+//! Rows of the finite-element cylinder (`model = cylinder`) are the one exception: a Newton
+//! solution is defined only to the solver's tolerance (the scene's 1e-10 on the relative
+//! residual), so a solver that reaches the same solution by another exact route (the static
+//! condensation of the Q2 centre node) changes the last digits. Their numbers must agree to
+//! [`FE_RELATIVE`], ten times that tolerance, relative to max(1, |golden|); their text cells and
+//! Newton iteration counts exactly.
 
 use std::collections::HashMap;
 use std::path::Path;
+
+/// Agreement required of the FE rows' numbers: ten times the Newton tolerance of the scene.
+const FE_RELATIVE: f64 = 1e-9;
+
+/// Whether golden cell `g` and current cell `n` agree: equal text, or for an FE row two
+/// numbers within [`FE_RELATIVE`].
+fn agree(g: &str, n: &str, fe_row: bool) -> bool {
+    if g == n {
+        return true;
+    }
+    match (fe_row, g.parse::<f64>(), n.parse::<f64>()) {
+        (true, Ok(a), Ok(b)) => (a - b).abs() <= FE_RELATIVE * a.abs().max(1.0),
+        _ => false,
+    }
+}
 
 mod binary;
 
@@ -56,9 +78,11 @@ fn same(file: &str, out: &Path) {
         let &j = at
             .get(name.as_str())
             .unwrap_or_else(|| panic!("{file}: column {name} missing"));
+        let model = g_head.iter().position(|h| h == "model");
         for (i, (g, n)) in g_rows.iter().zip(&n_rows).enumerate() {
-            assert_eq!(
-                g[column], n[j],
+            let fe_row = model.is_some_and(|m| g[m] == "cylinder");
+            assert!(
+                agree(&g[column], &n[j], fe_row),
                 "{file}: row {} column {name}: golden {:?}, now {:?}\n golden row {g:?}\n now    {n:?}",
                 i + 2,
                 g[column],
