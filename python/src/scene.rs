@@ -97,14 +97,14 @@ pub fn run_scene<'py>(
 /// The run, and its files if `out` is given (staged, then committed as the command line does).
 fn run_and_write(scene: &Scene, out: Option<&Path>, started: Instant) -> Result<Results, AppError> {
     let Some(out) = out else {
-        return scene.run(&RunOptions::default());
+        return Ok(scene.run(&RunOptions::default()));
     };
     let mut staging = Staging::new(out)?;
     let options = RunOptions {
         vtk_dir: Some(staging.dir().join("vtk")),
         ..RunOptions::default()
     };
-    let results = scene.run(&options)?;
+    let results = scene.run(&options);
     let meta = RunMeta {
         command: format!("activemuscle.run_scene({:?}, out={:?})", scene.file, out),
         started,
@@ -229,6 +229,8 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
             tradeoff(&table, t)?;
             findings.clone_from(&t.findings);
         }
+        // A study that stopped with an error: its failures say why, the table stays empty.
+        StudyResult::Nothing => {}
     }
     d.set_item("table", table.dict)?;
     d.set_item("vtk", vtk)?;
@@ -407,7 +409,9 @@ fn tradeoff(t: &Columns, r: &TradeoffResults) -> PyResult<()> {
     t.names("option", rows.iter().map(|m| Some(&m.option)).collect())?
         .names("variant", rows.iter().map(|m| Some(&m.variant)).collect())?
         .flags("reference", rows.iter().map(|m| m.reference).collect())?
-        .numbers("time_s", rows.iter().map(|m| m.time_s).collect())?
+        .numbers("time_s", rows.iter().map(|m| m.time.median).collect())?
+        .numbers("time_low_s", rows.iter().map(|m| m.time.low).collect())?
+        .numbers("time_high_s", rows.iter().map(|m| m.time.high).collect())?
         .numbers("speedup", rows.iter().map(|m| m.speedup).collect())?
         .numbers("error_ratio", rows.iter().map(|m| m.error_ratio).collect())?
         .flags("pareto", rows.iter().map(|m| m.pareto).collect())?
