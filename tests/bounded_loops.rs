@@ -4,29 +4,14 @@
 //! its own thread under a generous deadline, so a regression to an unbounded loop fails the test
 //! instead of hanging CI.
 
+mod deadline;
 use activemuscle::active::{ActivationLaw, ActiveCurve, EnergyLaw, ImplicitLaw};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::roots::{newton_bisection, MAX_ITERATIONS};
 use activemuscle::uniaxial::{across_fibres, along_fibres};
 use activemuscle::{Error, Muscle};
+use deadline::within;
 use std::cell::Cell;
-use std::sync::mpsc::RecvTimeoutError;
-use std::time::Duration;
-
-/// Runs `f` on its own thread; fails if it has not finished after `seconds`.
-fn within<T: Send + 'static>(seconds: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(f());
-    });
-    match rx.recv_timeout(Duration::from_secs(seconds)) {
-        Ok(value) => value,
-        Err(RecvTimeoutError::Timeout) => {
-            panic!("not finished within {seconds} s: an unbounded loop?")
-        }
-        Err(RecvTimeoutError::Disconnected) => panic!("the case panicked (message above)"),
-    }
-}
 
 #[test]
 fn the_root_finder_stops_at_its_cap_and_says_where_it_was() {

@@ -3,6 +3,7 @@
 //! deadline, so a regression to an unbounded loop fails the test instead of hanging CI; the
 //! iteration counts are also checked against the caps.
 
+mod deadline;
 use activemuscle::active::ActiveCurve;
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fit::{
@@ -12,23 +13,7 @@ use activemuscle::fit::{
 use activemuscle::material::Muscle;
 use activemuscle::random::Sampler;
 use activemuscle::uniaxial::along_fibres;
-use std::sync::mpsc::RecvTimeoutError;
-use std::time::Duration;
-
-/// Runs `f` on its own thread; fails if it has not finished after `seconds`.
-fn within<T: Send + 'static>(seconds: u64, f: impl FnOnce() -> T + Send + 'static) -> T {
-    let (tx, rx) = std::sync::mpsc::channel();
-    std::thread::spawn(move || {
-        let _ = tx.send(f());
-    });
-    match rx.recv_timeout(Duration::from_secs(seconds)) {
-        Ok(value) => value,
-        Err(RecvTimeoutError::Timeout) => {
-            panic!("not finished within {seconds} s: an unbounded loop?")
-        }
-        Err(RecvTimeoutError::Disconnected) => panic!("the case panicked (message above)"),
-    }
-}
+use deadline::within;
 
 /// The reproducer: P = 0.08 λ² at λ = 1 + 4i/30, i = 0..30.
 fn quadratic_data() -> Data {
