@@ -1,20 +1,24 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
 use crate::active::coupling::{couple, Coupling, FrozenTangent};
-use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
+use crate::active::law::{check_damage, effective_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
 use crate::response::{invariant_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
-/// Active skeletal muscle: Ŵ(F, γ) = (1 − γ) W(C_e) with γ = g(λ_f, d), coupled frozen or
-/// consistently (see [`crate::active::coupling`]).
+/// Active skeletal muscle: Ŵ(F, γ) = (1 − γ) W(C_e) with γ = g(λ_f, d_eff), coupled frozen or
+/// consistently (see [`crate::active::coupling`]). The law's target active stress is
+/// (1 − d)·a·P_act: damage d and activation level a (default 1) in one effective damage
+/// d_eff = 1 − (1 − d)·a ([`effective_damage`]).
 #[derive(Debug, Clone)]
 pub struct Muscle<E> {
     energy: E,
     law: Law<E>,
     damage: f64,
+    level: f64,
+    effective: f64,
     coupling: Coupling,
 }
 
@@ -39,12 +43,30 @@ pub struct MuscleResponse<const N: usize> {
 impl<E: StrainEnergy> Muscle<E> {
     /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling.
     pub fn new(energy: E, law: Law<E>, damage: f64, coupling: Coupling) -> Result<Self> {
+        let damage = check_damage(damage)?;
         Ok(Self {
             energy,
             law,
-            damage: check_damage(damage)?,
+            damage,
+            level: 1.0,
+            effective: damage,
             coupling,
         })
+    }
+
+    /// The same muscle at activation level a ∈ [0, 1] (the fraction of the optimal active stress
+    /// recruited, e.g. a(t) of [`crate::active::time::ActivationInTime`]); a = 1 is the
+    /// tetanised muscle of the chapter.
+    pub fn with_activation(mut self, level: f64) -> Result<Self> {
+        self.set_activation(level)?;
+        Ok(self)
+    }
+
+    /// Sets the activation level a ∈ [0, 1] (see [`with_activation`](Self::with_activation)).
+    pub fn set_activation(&mut self, level: f64) -> Result<()> {
+        self.effective = effective_damage(self.damage, level)?;
+        self.level = level;
+        Ok(())
     }
 
     /// The passive material (γ ≡ 0).
@@ -53,6 +75,8 @@ impl<E: StrainEnergy> Muscle<E> {
             energy,
             law: Law::Passive,
             damage: 0.0,
+            level: 1.0,
+            effective: 0.0,
             coupling: Coupling::Consistent,
         }
     }
@@ -69,6 +93,14 @@ impl<E: StrainEnergy> Muscle<E> {
     pub fn damage(&self) -> f64 {
         self.damage
     }
+    /// Activation level a [-] (1: tetanised).
+    pub fn activation_level(&self) -> f64 {
+        self.level
+    }
+    /// The damage the law sees, d_eff = 1 − (1 − d)·a [-].
+    pub fn effective_damage(&self) -> f64 {
+        self.effective
+    }
     /// The coupling.
     pub fn coupling(&self) -> Coupling {
         self.coupling
@@ -76,7 +108,7 @@ impl<E: StrainEnergy> Muscle<E> {
 
     /// γ with its λ-derivatives at fibre stretch `lambda`.
     pub fn activation(&self, lambda: f64) -> Result<LawValue> {
-        self.law.evaluate(lambda, self.damage)
+        self.law.evaluate(lambda, self.effective)
     }
 
     /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
@@ -98,7 +130,7 @@ impl<E: StrainEnergy> Muscle<E> {
             self.activation(fibre_stretch)?
         } else {
             LawValue {
-                gamma: self.law.activation(fibre_stretch, self.damage)?,
+                gamma: self.law.activation(fibre_stretch, self.effective)?,
                 ..LawValue::default()
             }
         };
@@ -146,6 +178,6 @@ impl<E: StrainEnergy> crate::fem::AxisymmetricMaterial for Muscle<E> {
     fn point_fields(&self, f: &crate::fem::AxiF) -> Result<(f64, f64)> {
         let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
         let lambda = kin.fibre_stretch();
-        Ok((self.law.activation(lambda, self.damage)?, lambda))
+        Ok((self.law.activation(lambda, self.effective)?, lambda))
     }
 }

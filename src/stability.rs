@@ -15,7 +15,7 @@ use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
-use crate::uniaxial::{fibre_kinematics, nominal_along};
+use crate::uniaxial::{fibre_kinematics, nominal_along, slope_along};
 use crate::{Error, Result};
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, Vector3};
 
@@ -129,24 +129,20 @@ pub struct UniaxialStability {
 }
 
 /// Slope and strong ellipticity of the homogeneous uniaxial state along the fibres at λ (fibres
-/// along e₁, F = diag(λ, λ^-½, λ^-½)). With t = λ^-½ and P = P₁₁ − P₂₂ t/λ:
-/// dP/dλ = dP₁₁/dλ − λ^{-3/2} dP₂₂/dλ + (3/2) λ^{-5/2} P₂₂, dF/dλ = diag(1, −t/(2λ), −t/(2λ)).
+/// along e₁, F = diag(λ, λ^-½, λ^-½)); the slope is [`crate::uniaxial`]'s exact dP/dλ.
 pub fn along_fibres_stability<E: StrainEnergy>(
     muscle: &Muscle<E>,
     lambda: f64,
     samples: usize,
 ) -> Result<UniaxialStability> {
     let kin = fibre_kinematics(lambda)?;
-    let (f, t) = (kin.f, lambda.sqrt().recip());
+    let f = kin.f;
     let r = muscle.respond(&kin, Order::Tangent, &FULL)?;
     let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
-    let df = [(0, 1.0), (4, -t / (2.0 * lambda)), (8, -t / (2.0 * lambda))];
-    let rate = |row: usize| df.iter().map(|&(b, v)| k[(row, b)] * v).sum::<f64>();
-    let slope = rate(0) - lambda.powf(-1.5) * rate(4) + 1.5 * lambda.powf(-2.5) * p[4];
     Ok(UniaxialStability {
         lambda,
         stress: nominal_along(&p, lambda),
-        slope,
+        slope: slope_along(&p, &k, lambda),
         ellipticity: strong_ellipticity(&k, &f, samples)?,
     })
 }

@@ -14,7 +14,7 @@ use crate::material::Muscle;
 use crate::response::Order;
 use crate::roots::newton_bisection;
 use crate::{Error, Result};
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 /// One point of a uniaxial test.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +79,94 @@ pub fn fibre_kinematics(lambda: f64) -> Result<Kinematics> {
 /// P₁₁ − p/λ with the lateral pressure p = F₂₂ ∂Ψ/∂F₂₂.
 pub(crate) fn nominal_along(p: &SVector<f64, 9>, lambda: f64) -> f64 {
     p[0] - p[4] * lambda.sqrt().recip() / lambda
+}
+
+/// dP/dλ along the homogeneous path along the fibres, exact from ∂Ψ/∂F (`p`) and its tangent
+/// (`k`, entries row by row) at F = diag(λ, λ^-½, λ^-½). With t = λ^-½ and P = P₁₁ − P₂₂ t/λ:
+/// dP/dλ = dP₁₁/dλ − λ^{-3/2} dP₂₂/dλ + (3/2) λ^{-5/2} P₂₂, dF/dλ = diag(1, −t/(2λ), −t/(2λ)).
+pub(crate) fn slope_along(p: &SVector<f64, 9>, k: &SMatrix<f64, 9, 9>, lambda: f64) -> f64 {
+    let t = lambda.sqrt().recip();
+    let df = [(0, 1.0), (4, -t / (2.0 * lambda)), (8, -t / (2.0 * lambda))];
+    let rate = |row: usize| df.iter().map(|&(b, v)| k[(row, b)] * v).sum::<f64>();
+    rate(0) - lambda.powf(-1.5) * rate(4) + 1.5 * lambda.powf(-2.5) * p[4]
+}
+
+/// Free contraction along the fibres: the stretch at which the nominal stress along the fibres
+/// vanishes (zero axial load, lateral faces traction free), P(λ) = 0. An active muscle shortens:
+/// P(1) = (1 − d)·a·P_act(1) > 0 for the exact laws, and the root taken is the largest one at or
+/// below λ = 1 (the first met when contracting from rest), bracketed by stretches 1 − 0.005·2^k
+/// and refined by safeguarded Newton with the exact slope ([`slope_along`]) to 1e-15. If P(1) < 0
+/// (e.g. a passive muscle whose P(1) is −1e-17) the root is bracketed above 1 the same way. For the
+/// chapter's implicit law the root solves P_pas(λ) + (1 − d)·a·P_act(λ) = 0, unique on
+/// (λ_min, 1) since both terms increase there. Errors if no sign change is found in [0.05, 10],
+/// or if the root is a jump of P (a law discontinuous in λ), not a zero.
+pub fn free_contraction<E: StrainEnergy>(muscle: &Muscle<E>) -> Result<UniaxialPoint> {
+    let stress = |l: f64| -> (f64, f64) {
+        let Ok(kin) = fibre_kinematics(l) else {
+            return (f64::NAN, f64::NAN);
+        };
+        match muscle.respond(&kin, Order::Tangent, &FULL) {
+            Ok(r) => {
+                let (p, k) = (r.stress.unwrap_or_default(), r.tangent.unwrap_or_default());
+                (nominal_along(&p, l), slope_along(&p, &k, l))
+            }
+            Err(_) => (f64::NAN, f64::NAN),
+        }
+    };
+    let at_rest = stress(1.0).0;
+    if at_rest == 0.0 {
+        return along_fibres(muscle, 1.0);
+    }
+    let equation = || "free contraction P(lambda) = 0 along the fibres".to_string();
+    let (mut lo, mut hi) = (1.0, 1.0);
+    let mut offset = 0.005;
+    loop {
+        let trial = if at_rest > 0.0 {
+            1.0 - offset
+        } else {
+            1.0 + offset
+        };
+        if !(0.05..=10.0).contains(&trial) {
+            return Err(Error::NoSolution {
+                equation: equation(),
+                reason: format!(
+                    "P(1) = {at_rest} kPa and no sign change of P for lambda in [0.05, 10]"
+                ),
+            });
+        }
+        let p = stress(trial).0;
+        if at_rest > 0.0 && p < 0.0 {
+            lo = trial;
+            break;
+        }
+        if at_rest < 0.0 && p > 0.0 {
+            hi = trial;
+            break;
+        }
+        if at_rest > 0.0 && p > 0.0 {
+            hi = trial;
+        } else if at_rest < 0.0 && p < 0.0 {
+            lo = trial;
+        }
+        offset *= 2.0;
+    }
+    let lambda = newton_bisection(stress, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
+        equation: equation(),
+        reason,
+    })?;
+    let point = along_fibres(muscle, lambda)?;
+    // A zero of P has |P| ≲ |slope| × 1e-15; a jump leaves |P| at the size of the jump.
+    let (_, slope) = stress(lambda);
+    if point.stress.abs() > 1e-9 * (1.0 + slope.abs()) {
+        return Err(Error::NoSolution {
+            equation: equation(),
+            reason: format!(
+                "P changes sign at lambda = {lambda} without vanishing (P = {} kPa there): the activation law jumps",
+                point.stress
+            ),
+        });
+    }
+    Ok(point)
 }
 
 /// Uniaxial tension along the fibres.

@@ -13,6 +13,7 @@ use activemuscle::output::{self, RunMeta, Staging};
 use activemuscle::scene::{Results, RunOptions, Scene};
 use activemuscle::studies::cylinder::{bases_name, CylinderResult};
 use activemuscle::studies::fit::FitOutcome;
+use activemuscle::studies::history::HistoryResult;
 use activemuscle::studies::stability::StabilityCurve;
 use activemuscle::studies::tradeoff::TradeoffResults;
 use activemuscle::studies::uniaxial::{CurveModel, UniaxialResult};
@@ -225,6 +226,7 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
         }
         StudyResult::Fit(f) => fits(&table, f)?,
         StudyResult::Stability(c) => stability(&table, c)?,
+        StudyResult::ActivationInTime(h) => history(&table, h)?,
         StudyResult::Tradeoff(t) => {
             tradeoff(&table, t)?;
             findings.clone_from(&t.findings);
@@ -399,6 +401,34 @@ fn stability(t: &Columns, curves: &[StabilityCurve]) -> PyResult<()> {
         rows.iter().map(|(_, p)| p.relative).collect(),
     )?
     .flags("elliptic", rows.iter().map(|(_, p)| p.elliptic).collect())?;
+    Ok(())
+}
+
+/// One row per model and time step, as `history.csv`: law, coupling, d, t, a_s, a, λ, γ, P,
+/// P_pas, P_act.
+fn history(t: &Columns, r: &HistoryResult) -> PyResult<()> {
+    let rows: Vec<_> = r
+        .histories
+        .iter()
+        .flat_map(|h| h.points.iter().map(move |p| (h.model, p)))
+        .collect();
+    t.names(
+        "law",
+        rows.iter().map(|(m, _)| Some(m.law.name())).collect(),
+    )?
+    .names(
+        "coupling",
+        rows.iter().map(|(m, _)| Some(m.coupling.name())).collect(),
+    )?
+    .numbers("d", rows.iter().map(|(m, _)| m.damage).collect())?
+    .numbers("t", rows.iter().map(|(_, p)| p.t).collect())?
+    .numbers("a_schedule", rows.iter().map(|(_, p)| p.schedule).collect())?
+    .numbers("a", rows.iter().map(|(_, p)| p.level).collect())?
+    .numbers("lambda", rows.iter().map(|(_, p)| p.lambda).collect())?
+    .numbers("gamma", rows.iter().map(|(_, p)| p.gamma).collect())?
+    .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
+    .numbers("P_pas", rows.iter().map(|(_, p)| p.passive).collect())?
+    .numbers("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?;
     Ok(())
 }
 

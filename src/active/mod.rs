@@ -5,10 +5,12 @@ pub mod coupling;
 pub mod curve;
 pub mod law;
 pub mod strain;
+pub mod time;
 
 pub use coupling::{Coupling, FrozenTangent};
 pub use curve::ActiveCurve;
 pub use law::{
-    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue,
+    effective_damage, ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw,
+    ImplicitLaw, Law, LawValue,
 };
 pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};

@@ -4,11 +4,13 @@
 //! does not apply is empty, never `NaN`; a non-finite number is an error naming the quantity and
 //! the row. `fits.csv`: one row per fitted parameter, its correlations with the other parameters
 //! in one readable cell (`w0: 0.99988`). `stability.csv`: one row per model and stretch.
+//! `history.csv`: one row per activation-in-time model and time step.
 
 use crate::app_error::{finite, AppError};
 use crate::scene::Results;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
 use crate::studies::fit::FitOutcome;
+use crate::studies::history::HistoryResult;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
 use crate::studies::StudyResult;
@@ -393,7 +395,64 @@ pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, A
     finish(w, "stability.csv")
 }
 
-/// The tables a run has data for: `fits.csv`, `stability.csv`.
+/// The header of `history.csv`: one row per activation-in-time study, model and time step.
+pub const HISTORY_COLUMNS: [&str; 14] = [
+    "study",
+    "loading",
+    "energy",
+    "law",
+    "coupling",
+    "d",
+    "t",
+    "a_schedule",
+    "a",
+    "lambda",
+    "gamma",
+    "P",
+    "P_pas",
+    "P_act",
+];
+
+/// `history.csv` of the activation-in-time studies (name, result): t [s], the schedule a_s and
+/// the activation level a [-], λ, γ [-], P, P_pas and the target (1 − d)·a·P_act(λ) \[kPa\].
+pub fn history_csv(studies: &[(&str, &HistoryResult)]) -> Result<Vec<u8>, AppError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let fail = csv_error("history.csv");
+    w.write_record(HISTORY_COLUMNS).map_err(&fail)?;
+    for &(study, r) in studies {
+        for h in &r.histories {
+            let m = h.model;
+            for p in &h.points {
+                let origin = || {
+                    format!(
+                        "history.csv: study {study:?}, d = {}, t = {} s",
+                        m.damage, p.t
+                    )
+                };
+                w.write_record([
+                    study.to_string(),
+                    r.loading.to_string(),
+                    r.energy.clone(),
+                    m.law.name().to_string(),
+                    m.coupling.name().to_string(),
+                    text(m.damage, "d", origin)?,
+                    text(p.t, "t", origin)?,
+                    text(p.schedule, "a_schedule", origin)?,
+                    text(p.level, "a", origin)?,
+                    text(p.lambda, "lambda", origin)?,
+                    text(p.gamma, "gamma", origin)?,
+                    text(p.stress, "P", origin)?,
+                    text(p.passive, "P_pas", origin)?,
+                    text(p.active_target, "P_act", origin)?,
+                ])
+                .map_err(&fail)?;
+            }
+        }
+    }
+    finish(w, "history.csv")
+}
+
+/// The tables a run has data for: `fits.csv`, `stability.csv`, `history.csv`.
 pub fn tables(results: &Results) -> Result<Vec<(&'static str, Vec<u8>)>, AppError> {
     let mut out = Vec::new();
     let fits = results.fits();
@@ -403,6 +462,10 @@ pub fn tables(results: &Results) -> Result<Vec<(&'static str, Vec<u8>)>, AppErro
     let stability = results.stability();
     if stability.iter().any(|(_, c)| !c.is_empty()) {
         out.push(("stability.csv", stability_csv(&stability)?));
+    }
+    let histories = results.histories();
+    if histories.iter().any(|(_, h)| !h.histories.is_empty()) {
+        out.push(("history.csv", history_csv(&histories)?));
     }
     Ok(out)
 }

@@ -18,6 +18,7 @@
 //! | `fig_cylinder` | a cylinder study | γ and λ_f at the centre, P (FE and 0D) per damage |
 //! | `fig_fe_vs_0d` | cylinder studies | P_FE − P_0D per damage, a panel per study |
 //! | `fig_fit_*`, `fig_stability_*` | fit and stability studies | data and fits; stability along the fibres |
+//! | `fig_history_*` | activation-in-time studies | a(t); P(t) or λ(t) and γ(t) per damage |
 //!
 //! A stem that two studies would share gets the study's name appended.
 
@@ -29,6 +30,7 @@ use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::scene::{Results, Scene};
 use crate::studies::cylinder::{bases_name, CylinderResult, SweepPoint};
 use crate::studies::fit::{FitKind, FitOutcome};
+use crate::studies::history::{HistoryPoint, HistoryResult};
 use crate::studies::slug;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
@@ -248,6 +250,9 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     }
     for (name, curves) in results.stability() {
         out.extend(stability_figure(name, curves));
+    }
+    for (name, h) in results.histories() {
+        out.extend(history_figure(name, h));
     }
     unique_stems(&mut out, &run);
     out
@@ -960,6 +965,82 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
         format!("Material stability along the fibres (study \"{study}\")"),
         "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.".into(),
         panels,
+    )
+}
+
+/// The figure of an activation-in-time study: a(t) with its schedule, then per damage value the
+/// stress history (prescribed stretch) or the stretch history (free contraction), and γ(t).
+fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
+    const TIME: &str = "time t [s]";
+    let over = |title: String, y: &str, series: Vec<Option<Series>>| -> Option<Panel> {
+        let series: Vec<Series> = series.into_iter().flatten().collect();
+        series
+            .iter()
+            .any(|s| !s.points.is_empty())
+            .then(|| Panel::new(title, TIME, y, series))
+    };
+    let first = r.histories.first()?;
+    let level = vec![
+        derived(
+            "activation level a(t)",
+            first.points.iter().map(|p| (p.t, p.level)).collect(),
+            Stroke::Solid,
+            0,
+        ),
+        derived(
+            "schedule a_s(t)",
+            first.points.iter().map(|p| (p.t, p.schedule)).collect(),
+            Stroke::Dashed,
+            GREY,
+        ),
+    ];
+    let free = r.loading == "free";
+    let per_damage = |y: fn(&HistoryPoint) -> f64| -> Vec<Option<Series>> {
+        r.histories
+            .iter()
+            .enumerate()
+            .map(|(i, h)| {
+                derived(
+                    format!("d = {}", h.model.damage),
+                    h.points.iter().map(|p| (p.t, y(p))).collect(),
+                    Stroke::Solid,
+                    i % 6,
+                )
+            })
+            .collect()
+    };
+    let (title, y_label, response): (&str, &str, Vec<Option<Series>>) = if free {
+        (
+            "Free contraction: stretch along the fibres",
+            LAMBDA,
+            per_damage(|p| p.lambda),
+        )
+    } else {
+        (
+            "Prescribed stretch: nominal stress along the fibres",
+            STRESS,
+            per_damage(|p| p.stress),
+        )
+    };
+    let m = first.model;
+    figure(
+        &prefixed("history", study),
+        format!("Activation in time (study \"{study}\")"),
+        format!(
+            "A homogeneous incompressible block along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+            m.law.name(),
+            m.coupling.name(),
+            if free {
+                "Zero axial load: the stretch solves P(λ) = 0 at each step."
+            } else {
+                "Prescribed stretch λ(t): the stress history."
+            }
+        ),
+        vec![
+            over("Activation level".into(), "activation level a [-]", level),
+            over(title.into(), y_label, response),
+            over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
+        ],
     )
 }
 

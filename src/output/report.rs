@@ -177,6 +177,9 @@ fn used(scene: &Scene, results: &Results) -> Used {
     for (_, curves) in results.stability() {
         chosen.extend(curves.iter().filter_map(|c| c.model));
     }
+    for (_, r) in results.histories() {
+        chosen.extend(r.histories.iter().map(|h| h.model));
+    }
     Used {
         energies,
         chosen,

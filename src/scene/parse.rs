@@ -55,7 +55,7 @@ fn study(text: &str, file: &str, item: Spanned<DeValue>) -> Result<StudySpec, Sc
             file,
             span,
             "kind",
-            "every study needs kind = \"uniaxial\" | \"cylinder\" | \"fit\" | \"stability\" | \"tradeoff\"",
+            "every study needs kind = \"uniaxial\" | \"cylinder\" | \"fit\" | \"stability\" | \"tradeoff\" | \"activation-in-time\"",
         ));
     };
     let kind = StudyKind::deserialize(ValueDeserializer::from(kind))

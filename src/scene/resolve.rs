@@ -79,7 +79,7 @@ fn studies(
         return Err(SpecError::new(
             "study",
             "(none)",
-            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\" or \"tradeoff\")",
+            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\", \"tradeoff\" or \"activation-in-time\")",
         ));
     }
     let mut studies: Vec<Study> = Vec::with_capacity(specs.len());

@@ -4,6 +4,7 @@
 use super::Scene;
 use crate::studies::cylinder::CylinderResult;
 use crate::studies::fit::FitOutcome;
+use crate::studies::history::HistoryResult;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::tradeoff::TradeoffResults;
 use crate::studies::uniaxial::UniaxialResult;
@@ -81,6 +82,17 @@ impl Results {
             .iter()
             .filter_map(|s| match &s.result {
                 StudyResult::Stability(c) => Some((s.name.as_str(), c.as_slice())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The activation-in-time histories, by study.
+    pub fn histories(&self) -> Vec<(&str, &HistoryResult)> {
+        self.studies
+            .iter()
+            .filter_map(|s| match &s.result {
+                StudyResult::ActivationInTime(h) => Some((s.name.as_str(), h)),
                 _ => None,
             })
             .collect()

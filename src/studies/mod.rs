@@ -10,12 +10,14 @@
 //! | `fit` | [`fit`] | fitted parameters with statistics |
 //! | `stability` | [`stability`] | softening and strong ellipticity along the fibres |
 //! | `tradeoff` | [`tradeoff`] | speed versus accuracy of every option |
+//! | `activation-in-time` | [`history`] | a 0D block driven in time by a(t) |
 //!
 //! Adding a kind: a module with its spec, `resolve`, study type and `run`, and one line in each
 //! of [`StudyKind`], [`StudySpec`], [`Study`] and the matches below.
 
 pub mod cylinder;
 pub mod fit;
+pub mod history;
 pub mod spec;
 pub mod stability;
 pub mod tradeoff;
@@ -45,6 +47,8 @@ pub enum StudyKind {
     Stability,
     /// Speed versus accuracy of every option that trades one for the other.
     Tradeoff,
+    /// A homogeneous block driven in time by an activation level a(t).
+    ActivationInTime,
 }
 
 impl StudyKind {
@@ -56,6 +60,7 @@ impl StudyKind {
             StudyKind::Fit => "fit",
             StudyKind::Stability => "stability",
             StudyKind::Tradeoff => "tradeoff",
+            StudyKind::ActivationInTime => "activation-in-time",
         }
     }
 
@@ -68,6 +73,7 @@ impl StudyKind {
             StudyKind::Fit => fit::HINTS,
             StudyKind::Stability => stability::HINTS,
             StudyKind::Tradeoff => tradeoff::HINTS,
+            StudyKind::ActivationInTime => history::HINTS,
         };
         hints
             .iter()
@@ -90,6 +96,8 @@ pub enum StudySpec {
     Stability(stability::StabilitySpec),
     /// `kind = "tradeoff"`.
     Tradeoff(tradeoff::TradeoffSpec),
+    /// `kind = "activation-in-time"`.
+    ActivationInTime(history::HistorySpec),
 }
 
 impl StudySpec {
@@ -102,6 +110,9 @@ impl StudySpec {
             StudyKind::Fit => StudySpec::Fit(Deserialize::deserialize(table)?),
             StudyKind::Stability => StudySpec::Stability(Deserialize::deserialize(table)?),
             StudyKind::Tradeoff => StudySpec::Tradeoff(Deserialize::deserialize(table)?),
+            StudyKind::ActivationInTime => {
+                StudySpec::ActivationInTime(Deserialize::deserialize(table)?)
+            }
         })
     }
 
@@ -113,6 +124,7 @@ impl StudySpec {
             StudySpec::Fit(_) => StudyKind::Fit,
             StudySpec::Stability(_) => StudyKind::Stability,
             StudySpec::Tradeoff(_) => StudyKind::Tradeoff,
+            StudySpec::ActivationInTime(_) => StudyKind::ActivationInTime,
         }
     }
 
@@ -140,6 +152,13 @@ impl StudySpec {
                 let (study, r) = tradeoff::resolve(s)?;
                 (Study::Tradeoff(study), StudySpec::Tradeoff(r))
             }
+            StudySpec::ActivationInTime(s) => {
+                let (study, r) = history::resolve(s, defaults)?;
+                (
+                    Study::ActivationInTime(study),
+                    StudySpec::ActivationInTime(r),
+                )
+            }
         })
     }
 }
@@ -157,6 +176,8 @@ pub enum Study {
     Stability(stability::StabilityStudy),
     /// Speed versus accuracy.
     Tradeoff(tradeoff::TradeoffStudy),
+    /// A 0D block driven in time.
+    ActivationInTime(history::HistoryStudy),
 }
 
 impl Study {
@@ -168,6 +189,7 @@ impl Study {
             Study::Fit(s) => &s.name,
             Study::Stability(s) => &s.name,
             Study::Tradeoff(s) => &s.name,
+            Study::ActivationInTime(s) => &s.name,
         }
     }
 
@@ -179,6 +201,7 @@ impl Study {
             Study::Fit(_) => StudyKind::Fit,
             Study::Stability(_) => StudyKind::Stability,
             Study::Tradeoff(_) => StudyKind::Tradeoff,
+            Study::ActivationInTime(_) => StudyKind::ActivationInTime,
         }
     }
 
@@ -190,6 +213,7 @@ impl Study {
             Study::Fit(s) => s.describe(),
             Study::Stability(s) => s.describe(),
             Study::Tradeoff(s) => s.describe(),
+            Study::ActivationInTime(s) => s.describe(),
         }
     }
 
@@ -206,6 +230,7 @@ impl Study {
             Study::Fit(s) => s.run(ctx),
             Study::Stability(s) => s.run(models, ctx),
             Study::Tradeoff(s) => s.run(models, fallback, ctx),
+            Study::ActivationInTime(s) => s.run(models, ctx),
         }
     }
 }
@@ -333,6 +358,8 @@ pub enum StudyResult {
     Stability(Vec<stability::StabilityCurve>),
     /// Trade-off measurements.
     Tradeoff(tradeoff::TradeoffResults),
+    /// Histories in time.
+    ActivationInTime(history::HistoryResult),
     /// Nothing: the study stopped with an error before computing a result (the error is its
     /// failure, [`Outcome::nothing`]).
     Nothing,

@@ -95,6 +95,15 @@ impl StretchSpec {
     /// The stretches: finite, > 0, ascending without duplicates, at most 100 000; errors name
     /// `key` (`stretch`, `stretch.step`).
     pub fn resolve(&self, key: &str) -> Result<Vec<f64>, SpecError> {
+        self.grid(key, false)
+    }
+
+    /// The same list read as times t \[s\]: finite, ≥ 0, ascending without duplicates.
+    pub fn resolve_times(&self, key: &str) -> Result<Vec<f64>, SpecError> {
+        self.grid(key, true)
+    }
+
+    fn grid(&self, key: &str, times: bool) -> Result<Vec<f64>, SpecError> {
         const MAX: usize = 100_000;
         let mut v = match self {
             StretchSpec::List(v) => v.clone(),
@@ -130,7 +139,7 @@ impl StretchSpec {
                     return Err(SpecError::new(
                         format!("{key}.step"),
                         step,
-                        format!("gives more than {MAX} stretches"),
+                        format!("gives more than {MAX} values"),
                     ));
                 }
                 // Rounded to 10 decimals so that 0.65 + 0.01 i prints as the decimal it means.
@@ -141,17 +150,19 @@ impl StretchSpec {
                 v
             }
         };
+        let (what, rule) = if times {
+            ("time", "every time must be finite and ≥ 0")
+        } else {
+            ("stretch", "every stretch must be finite and > 0")
+        };
         non_empty(
             key,
             &v,
-            "the stretch list is empty: give at least one stretch",
+            &format!("the {what} list is empty: give at least one {what}"),
         )?;
-        if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
-            return Err(SpecError::new(
-                key,
-                bad,
-                "every stretch must be finite and > 0",
-            ));
+        let admissible = |x: f64| x.is_finite() && (x > 0.0 || (times && x == 0.0));
+        if let Some(bad) = v.iter().find(|x| !admissible(**x)) {
+            return Err(SpecError::new(key, bad, rule));
         }
         v.sort_by(f64::total_cmp);
         v.dedup();

@@ -131,6 +131,29 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
     }
 }
 
+/// The damage a law sees when the active curve is scaled by s = (1 − d)·a: damage d ∈ [0, 1]
+/// (loss of activation) and activation level a ∈ [0, 1] (the recruited fraction of the optimal
+/// active stress, as 4C scales P_opt by its time-dependent factor) enter every law only through
+/// s P_act, so a law at (a, d) is the law at the effective damage
+///
+/// d_eff = 1 − s = d + (1 − d)(1 − a).
+///
+/// One concept, not two copies: the laws, their brackets and their exact derivatives serve
+/// both causes unchanged. Written so that a = 1 gives d_eff = d exactly (the chapter's runs are
+/// bit-for-bit unchanged) and a = 0 gives d_eff = 1 exactly, where every law returns γ = 0
+/// without a solve. Rejects d or a outside [0, 1].
+pub fn effective_damage(damage: f64, activation: f64) -> Result<f64> {
+    check_damage(damage)?;
+    if !(0.0..=1.0).contains(&activation) {
+        return Err(Error::InvalidParameter {
+            name: "activation level",
+            value: activation,
+            rule: "must lie in [0, 1]",
+        });
+    }
+    Ok(damage + (1.0 - damage) * (1.0 - activation))
+}
+
 /// Rejects d ∉ [0, 1].
 pub fn check_damage(damage: f64) -> Result<f64> {
     if (0.0..=1.0).contains(&damage) {

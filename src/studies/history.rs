@@ -1,0 +1,494 @@
+//! Activation-in-time studies (`kind = "activation-in-time"`): a homogeneous (0D) block along
+//! the fibres driven in time by an activation level a(t) ([`crate::active::time`]), quasi-static:
+//! at each time step the law is evaluated at the effective damage 1 − (1 − d)·a(t) and the state
+//! solved, either under a prescribed stretch λ(t) (the stress history) or under free contraction
+//! (zero axial load: the stretch history). One history per damage value, in parallel.
+//!
+//! Incompressible (the chapter's exact model, [`crate::uniaxial`]). The compressible block needs
+//! the lateral stretch solved at each step: that is the one call [`state`] makes, to be switched
+//! on the scene's incompressibility option once a nearly incompressible uniaxial point exists.
+
+use super::spec::{damages, Defaults, StretchSpec};
+use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
+use crate::app_error::{AppError, SpecError};
+use crate::energy::Energy;
+use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
+use crate::uniaxial::{along_fibres, free_contraction, UniaxialPoint};
+use crate::Muscle;
+use rayon::prelude::*;
+use serde::de::{self, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+use std::fmt;
+
+/// One motor-unit type as written (`{ fraction = 0.5, twitch_force = 0.37, contraction_time =
+/// 0.08, interstimulus = 0.02 }`); every key is required.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorUnitSpec {
+    /// Fraction ρ [-].
+    pub fraction: f64,
+    /// Twitch force F [-].
+    pub twitch_force: f64,
+    /// Twitch contraction time T \[s\].
+    pub contraction_time: f64,
+    /// Interstimulus interval I \[s\].
+    pub interstimulus: f64,
+}
+
+/// The word `free`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FreeWord {
+    /// Free contraction.
+    Free,
+}
+
+/// The loading: `stretch = 1.1` (constant), `stretch = [[0, 1.0], [1, 1.2]]` ((t [s], λ)
+/// points, linear between them) or `stretch = "free"` (zero axial load).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum LoadingSpec {
+    /// A constant stretch λ.
+    Constant(f64),
+    /// (t, λ) points.
+    Schedule(Vec<[f64; 2]>),
+    /// Free contraction.
+    Free(FreeWord),
+}
+
+// Hand-written so that errors inside keep their position in the file.
+impl<'de> Deserialize<'de> for LoadingSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = LoadingSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a stretch, a list of [t, stretch] points or \"free\"")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<LoadingSpec, E> {
+                Ok(LoadingSpec::Constant(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<LoadingSpec, E> {
+                Ok(LoadingSpec::Constant(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<LoadingSpec, E> {
+                Ok(LoadingSpec::Constant(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<LoadingSpec, E> {
+                match v {
+                    "free" => Ok(LoadingSpec::Free(FreeWord::Free)),
+                    other => Err(E::invalid_value(
+                        de::Unexpected::Str(other),
+                        &"\"free\" (or a number, or [[t, stretch], ...])",
+                    )),
+                }
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<LoadingSpec, A::Error> {
+                let mut v = Vec::new();
+                while let Some(p) = seq.next_element::<[f64; 2]>()? {
+                    v.push(p);
+                }
+                Ok(LoadingSpec::Schedule(v))
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+/// `[[study]] kind = "activation-in-time"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HistorySpec {
+    /// Label (default `activation in time`).
+    pub name: Option<String>,
+    /// Time steps t \[s\] (required): `[0, 0.1, 0.2]` or `{ from, to, step }`.
+    pub time: Option<StretchSpec>,
+    /// The activation schedule a_s: [t \[s\], value ∈ [0, 1]] points (default `[[0, 1]]`).
+    pub schedule: Option<Vec<[f64; 2]>>,
+    /// `constant` (default) or `linear` between schedule points.
+    pub interpolation: Option<Interpolation>,
+    /// Motor-unit types: a(t) is their twitch superposition driven by the schedule (default
+    /// none: a(t) = a_s(t)).
+    pub motor_units: Option<Vec<MotorUnitSpec>>,
+    /// The loading (default 1: isometric at the rest length).
+    pub stretch: Option<LoadingSpec>,
+    /// Activation law (default `activation.law`).
+    pub law: Option<LawKind>,
+    /// Coupling (default `activation.coupling`).
+    pub coupling: Option<CouplingKind>,
+    /// Damage values, one history each (default `activation.damage`).
+    pub damage: Option<Vec<f64>>,
+}
+
+/// Keys an activation-in-time study does not take, and what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    (
+        "laws",
+        "an activation-in-time study takes one law: law = \"...\"",
+    ),
+    (
+        "couplings",
+        "an activation-in-time study takes one coupling: coupling = \"...\"",
+    ),
+    (
+        "activation",
+        "the activation in time is schedule = [[t, a], ...] (and motor_units)",
+    ),
+];
+
+/// The loading of a validated study.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Loading {
+    /// λ(t), linear between (t, λ) points (one point: constant).
+    Prescribed(Schedule),
+    /// Zero axial load.
+    Free,
+}
+
+impl Loading {
+    /// `prescribed` or `free`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Loading::Prescribed(_) => "prescribed",
+            Loading::Free => "free",
+        }
+    }
+}
+
+/// A validated activation-in-time study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryStudy {
+    /// Label.
+    pub name: String,
+    /// Time steps \[s\], ascending.
+    pub times: Vec<f64>,
+    /// a(t).
+    pub activation: ActivationInTime,
+    /// The loading.
+    pub loading: Loading,
+    /// Activation law.
+    pub law: LawKind,
+    /// Coupling.
+    pub coupling: CouplingKind,
+    /// Damage values, one history each.
+    pub damages: Vec<f64>,
+}
+
+/// Twitch terms one run may sum at most (steps × stimuli): ≈ 1 s of arithmetic.
+pub const MAX_TWITCH_TERMS: f64 = 2e8;
+
+fn points(v: &[[f64; 2]]) -> Vec<(f64, f64)> {
+    v.iter().map(|p| (p[0], p[1])).collect()
+}
+
+/// Validates `spec`; returns the study and the spec with every default written out.
+pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, HistorySpec), SpecError> {
+    let time = spec.time.as_ref().ok_or_else(|| {
+        SpecError::new(
+            "time",
+            "(missing)",
+            "give the time steps in s: time = { from = 0, to = 1, step = 0.01 } or a list",
+        )
+    })?;
+    let times = time.resolve_times("time")?;
+    let written = spec.schedule.clone().unwrap_or_else(|| vec![[0.0, 1.0]]);
+    let interpolation = spec.interpolation.unwrap_or_default();
+    let schedule = Schedule::new(points(&written), interpolation)
+        .map_err(|e| SpecError::new(format!("schedule[{}]", e.index), e.value, e.rule))?;
+    let motor_units = match &spec.motor_units {
+        None => None,
+        Some(units) => {
+            let mut built = Vec::with_capacity(units.len());
+            for (j, u) in units.iter().enumerate() {
+                built.push(
+                    MotorUnit::new(
+                        u.fraction,
+                        u.twitch_force,
+                        u.contraction_time,
+                        u.interstimulus,
+                    )
+                    .map_err(|e| SpecError::model(&format!("motor_units[{j}]"), e))?,
+                );
+            }
+            Some(MotorUnits::new(built).map_err(|e| match e {
+                crate::Error::InvalidParameter { value, rule, .. } => SpecError::new(
+                    "motor_units",
+                    value,
+                    format!("{rule} (fractions sum to {value})"),
+                ),
+                other => SpecError::model("motor_units", other),
+            })?)
+        }
+    };
+    let activation = ActivationInTime::new(schedule, motor_units);
+    let last = times.last().copied().unwrap_or(0.0);
+    let terms = activation.stimuli_before(last) * times.len() as f64;
+    if terms > MAX_TWITCH_TERMS {
+        return Err(SpecError::new(
+            "motor_units",
+            format!("{terms:.3e} twitch terms"),
+            format!("the twitch sum over all time steps would take more than {MAX_TWITCH_TERMS:e} terms (steps × stimuli): use fewer time steps or longer interstimulus intervals"),
+        ));
+    }
+    for &t in &times {
+        let a = activation.level(t);
+        if !(a.is_finite() && (0.0..=1.0).contains(&a)) {
+            let key = if activation.motor_units().is_some() {
+                "motor_units"
+            } else {
+                "schedule"
+            };
+            return Err(SpecError::new(
+                key,
+                format!("a({t} s) = {a}"),
+                "the activation level must stay in [0, 1]: a fused tetanus tends to e·F·G, lower twitch_force (F ≈ 1/e ≈ 0.368 gives a ≈ 1)",
+            ));
+        }
+    }
+    let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
+    let loading = match &loading_spec {
+        LoadingSpec::Free(_) => Loading::Free,
+        LoadingSpec::Constant(l) => {
+            Loading::Prescribed(stretch_schedule(vec![(0.0, *l)], "stretch")?)
+        }
+        LoadingSpec::Schedule(p) => Loading::Prescribed(stretch_schedule(points(p), "stretch")?),
+    };
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let law = spec.law.unwrap_or(d.law);
+    d.models
+        .supports(law)
+        .map_err(|rule| SpecError::new("law", "\"explicit\"", rule))?;
+    let coupling = spec.coupling.unwrap_or(d.coupling);
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| "activation in time".into());
+    let resolved = HistorySpec {
+        name: Some(name.clone()),
+        time: Some(time.clone()),
+        schedule: Some(written),
+        interpolation: Some(interpolation),
+        motor_units: spec.motor_units.clone(),
+        stretch: Some(loading_spec),
+        law: Some(law),
+        coupling: Some(coupling),
+        damage: Some(damage.clone()),
+    };
+    Ok((
+        HistoryStudy {
+            name,
+            times,
+            activation,
+            loading,
+            law,
+            coupling,
+            damages: damage,
+        },
+        resolved,
+    ))
+}
+
+/// A stretch schedule: positive stretches, linear between points.
+fn stretch_schedule(p: Vec<(f64, f64)>, key: &str) -> Result<Schedule, SpecError> {
+    let single = p.len() == 1;
+    Schedule::checked(
+        p,
+        Interpolation::Linear,
+        |v| v.is_finite() && v > 0.0,
+        "stretches must be finite and > 0",
+    )
+    .map_err(|e| {
+        let key = if single {
+            key.to_string()
+        } else {
+            format!("{key}[{}]", e.index)
+        };
+        SpecError::new(key, e.value, e.rule)
+    })
+}
+
+/// One time step of a history.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HistoryPoint {
+    /// Time t \[s\].
+    pub t: f64,
+    /// The schedule a_s(t) [-].
+    pub schedule: f64,
+    /// The activation level a(t) [-].
+    pub level: f64,
+    /// Stretch along the fibres λ [-] (prescribed, or solved under free contraction).
+    pub lambda: f64,
+    /// γ [-].
+    pub gamma: f64,
+    /// Nominal stress along the fibres \[kPa\] (0 to rounding under free contraction).
+    pub stress: f64,
+    /// Passive stress P_pas(λ) \[kPa\].
+    pub passive: f64,
+    /// Target active stress (1 − d)·a·P_act(λ) \[kPa\].
+    pub active_target: f64,
+}
+
+/// The history of one model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct History {
+    /// The model.
+    pub model: ModelChoice,
+    /// The steps computed, in time order.
+    pub points: Vec<HistoryPoint>,
+}
+
+/// What an activation-in-time study computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryResult {
+    /// `prescribed` or `free`.
+    pub loading: &'static str,
+    /// The energy's name.
+    pub energy: String,
+    /// One history per damage value.
+    pub histories: Vec<History>,
+}
+
+/// The homogeneous state of `muscle` under `loading` at time `t`: the incompressible uniaxial
+/// point along the fibres (the hook for a compressible block: its lateral equilibrium goes here).
+pub fn state(muscle: &Muscle<Energy>, loading: &Loading, t: f64) -> crate::Result<UniaxialPoint> {
+    match loading {
+        Loading::Prescribed(s) => along_fibres(muscle, s.value(t)),
+        Loading::Free => free_contraction(muscle),
+    }
+}
+
+impl HistoryStudy {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: {} time steps in [{}, {}] s, {} loading, a(t) = {}, {} history(ies)",
+            self.name,
+            self.times.len(),
+            self.times.first().copied().unwrap_or(f64::NAN),
+            self.times.last().copied().unwrap_or(f64::NAN),
+            self.loading.name(),
+            if self.activation.motor_units().is_some() {
+                "twitch superposition"
+            } else {
+                "schedule"
+            },
+            self.damages.len()
+        )
+    }
+
+    /// Runs one history per damage value (in parallel); a step that cannot be computed ends its
+    /// history with a failure; a stop request ends every history at the step it reaches.
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        ctx.progress.log(&self.describe());
+        let choices: Vec<ModelChoice> = self
+            .damages
+            .iter()
+            .map(|&damage| ModelChoice {
+                law: self.law,
+                coupling: self.coupling,
+                damage,
+            })
+            .collect();
+        ctx.progress
+            .start(&self.name, choices.len() * self.times.len());
+        let computed: Vec<Result<(History, Option<Failure>), AppError>> = choices
+            .par_iter()
+            .map(|m| self.history(models, *m, ctx))
+            .collect();
+        ctx.progress.finish();
+        let mut histories = Vec::with_capacity(computed.len());
+        let mut failures = Vec::new();
+        for h in computed {
+            let (history, failure) = h.map_err(|e| e.within(&self.name))?;
+            histories.push(history);
+            failures.extend(failure);
+        }
+        let points = histories.iter().map(|h| h.points.len()).sum();
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::ActivationInTime,
+            models: histories.len(),
+            points,
+            requested: choices.len() * self.times.len(),
+            elapsed: Default::default(),
+            details: vec![self.describe()],
+            failures,
+            result: StudyResult::ActivationInTime(HistoryResult {
+                loading: self.loading.name(),
+                energy: crate::StrainEnergy::name(&models.energy).to_string(),
+                histories,
+            }),
+        })
+    }
+
+    /// The history of model `m`, and the failure that ended it early, if any.
+    fn history(
+        &self,
+        models: &Models,
+        m: ModelChoice,
+        ctx: &RunContext,
+    ) -> Result<(History, Option<Failure>), AppError> {
+        let mut muscle = models.muscle(m)?;
+        let passive = models.passive();
+        let label = models.label(&m);
+        let mut history = History {
+            model: m,
+            points: Vec::with_capacity(self.times.len()),
+        };
+        let every = (self.times.len() / 20).max(1);
+        for (i, &t) in self.times.iter().enumerate() {
+            if let Some(reason) = ctx.stop.and_then(|s| s.reason()) {
+                let failure = Failure {
+                    model: label,
+                    message: format!(
+                        "{reason}: stopped before t = {t} s; the steps solved before are kept"
+                    ),
+                };
+                return Ok((history, Some(failure)));
+            }
+            let level = self.activation.level(t);
+            let step = muscle.set_activation(level).and_then(|()| {
+                let p = state(&muscle, &self.loading, t)?;
+                let passive = along_fibres(&passive, p.lambda)?.stress;
+                Ok((p, passive))
+            });
+            let (p, passive_stress) = match step {
+                Ok(s) => s,
+                Err(e) => {
+                    let failure = Failure {
+                        model: label,
+                        message: format!(
+                            "at t = {t} s (a = {level}): {e}; the history stops there"
+                        ),
+                    };
+                    return Ok((history, Some(failure)));
+                }
+            };
+            let point = HistoryPoint {
+                t,
+                schedule: self.activation.schedule().value(t),
+                level,
+                lambda: p.lambda,
+                gamma: p.gamma,
+                stress: p.stress,
+                passive: passive_stress,
+                active_target: (1.0 - m.damage) * level * models.curve.value(p.lambda),
+            };
+            history.points.push(point);
+            if i % every == 0 || i + 1 == self.times.len() {
+                ctx.progress.point(&format!(
+                    "{}: {label}: t = {t} s ({}/{}), a = {level:.4}, lambda = {:.5}, P = {:.4} kPa",
+                    self.name,
+                    i + 1,
+                    self.times.len(),
+                    point.lambda,
+                    point.stress
+                ));
+            } else {
+                ctx.progress.advance(1);
+            }
+        }
+        Ok((history, None))
+    }
+}
