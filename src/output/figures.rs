@@ -1022,6 +1022,17 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
             per_damage(|p| p.stress),
         )
     };
+    let mut response = over(title.into(), y_label, response);
+    if let (true, Some(p)) = (free, response.as_mut()) {
+        // λ = 1 wherever a = 0: the whole range, from the deepest shortening to rest.
+        let low = p
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|q| q.1))
+            .fold(1.0, f64::min);
+        let pad = 0.05 * (1.0 - low).max(1e-3);
+        p.y_range = Some((low - pad, 1.0 + pad));
+    }
     let m = first.model;
     figure(
         &prefixed("history", study),
@@ -1038,7 +1049,7 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
         ),
         vec![
             over("Activation level".into(), "activation level a [-]", level),
-            over(title.into(), y_label, response),
+            response,
             over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
         ],
     )
