@@ -109,22 +109,33 @@ impl ActiveCurve {
     }
 
     /// ∫_{λ_min}^{λ} P_act(s) ds \[kPa\] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
-    /// panels of width ≤ 0.05: the integrand is C^∞ (flat to all orders at λ_min), so this is
-    /// exact to rounding.
+    /// equal panels of width ≤ 0.1, the first of which (where the integrand is flat to all orders,
+    /// e^{−c/(s − λ_min)}) is split into its quarters [0, ¼], [¼, ½] and [½, 1]. Measured against
+    /// 1 200 panels: ≤ 6e-16 kPa below λ = 0.75 (equal panels of 0.05 without the split: 4e-15,
+    /// which the energy law turned into a γ error of ≈ 1e-14 near λ = 0.67), rounding (≈ 1e-16
+    /// relative) above.
     pub fn integral(&self, lambda: f64) -> f64 {
         if lambda <= self.lambda_min {
             return 0.0;
         }
         let width = lambda - self.lambda_min;
-        let panels = (width / 0.05).ceil().max(1.0) as usize;
+        let panels = (width / 0.1).ceil().max(1.0) as usize;
         let h = width / panels as f64;
-        let mut sum = 0.0;
-        for p in 0..panels {
-            let mid = self.lambda_min + (p as f64 + 0.5) * h;
-            for &(x, w) in &GAUSS_16 {
-                sum += w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x));
-            }
-        }
-        sum * 0.5 * h
+        let panel = |a: f64, b: f64| {
+            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+            let sum: f64 = GAUSS_16
+                .iter()
+                .map(|&(x, w)| w * (self.value(mid - half * x) + self.value(mid + half * x)))
+                .sum();
+            sum * half
+        };
+        let first = [0.0, 0.25, 0.5, 1.0].map(|t| self.lambda_min + t * h);
+        let graded: f64 = first.windows(2).map(|w| panel(w[0], w[1])).sum();
+        (1..panels).fold(graded, |sum, p| {
+            sum + panel(
+                self.lambda_min + p as f64 * h,
+                self.lambda_min + (p + 1) as f64 * h,
+            )
+        })
     }
 }
