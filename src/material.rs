@@ -1,10 +1,10 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
-use crate::active::coupling::{couple, Coupling, FrozenTangent};
+use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
-use crate::response::{invariant_derivatives, Order};
+use crate::response::{first_non_finite, in_f_space, invariant_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
@@ -111,11 +111,37 @@ impl<E: StrainEnergy> Muscle<E> {
         if order == Order::Energy {
             return Ok(out);
         }
-        let (gradient, hessian) = couple(self.coupling, &d, &law, fibre_stretch);
-        let dj = kinematics.gradients(entries);
-        out.stress = Some(dj.transpose() * gradient);
-        out.tangent =
-            hessian.map(|k| dj.transpose() * k * dj + kinematics.curvature(&gradient, entries));
+        // The coupling (see crate::active::coupling): Ŵ's stress and tangent with ∂Ŵ/∂j₂ and
+        // ∂²Ŵ/∂j₂² raised for the consistent model, then the rank-one terms in dP/dγ ⊗ G′D₂.
+        let (g1, g2) = invariant_slopes(&law, fibre_stretch);
+        let (a, b) = match (self.coupling, &d.second) {
+            (Coupling::Consistent, Some(s)) => {
+                (d.d_gamma * g1, s.d_gammagamma * g1 * g1 + d.d_gamma * g2)
+            }
+            (Coupling::Consistent, None) => (d.d_gamma * g1, 0.0),
+            _ => (0.0, 0.0),
+        };
+        let f = in_f_space(kinematics, entries, &d, a, b)?;
+        out.stress = Some(f.stress);
+        if let (Some(mut t), Some(q)) = (f.tangent, f.dstress_dgamma) {
+            let r = f.fibre_gradient * g1;
+            match self.coupling {
+                Coupling::Frozen(FrozenTangent::Symmetric) => {}
+                Coupling::Frozen(FrozenTangent::Exact) => t += q * r.transpose(),
+                Coupling::Consistent => t += q * r.transpose() + r * q.transpose(),
+            }
+            if let Some(bad) = first_non_finite(t.as_slice()) {
+                return Err(crate::Error::NonFinite {
+                    quantity: "coupled stress tangent",
+                    value: bad,
+                    context: format!(
+                        "at fibre stretch {fibre_stretch}, gamma = {} (dgamma/dlambda = {})",
+                        law.gamma, law.slope
+                    ),
+                });
+            }
+            out.tangent = Some(t);
+        }
         Ok(out)
     }
 }

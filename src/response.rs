@@ -9,8 +9,12 @@
 //! - Ŵ_γ = −W + c g·Ie_γ, Ŵ_jγ = −Aᵀ g + c A_γᵀ g + c Aᵀ H Ie_γ,
 //! - Ŵ_γγ = −2 g·Ie_γ + c (Ie_γᵀ H Ie_γ + g·Ie_γγ),
 //!
-//! then P = Dᵀ Ŵ_j, ∂P/∂F = Dᵀ Ŵ_jj D + Σ Ŵ_j ∂²j/∂F², dP/dγ = Dᵀ Ŵ_jγ
-//! (D = ∂j/∂F, see [`crate::invariants`]).
+//! then P = Dᵀ Ŵ_j, ∂P/∂F = Σ Ŵ_j ∂²j/∂F² + Dᵀ Ŵ_jj D, dP/dγ = Dᵀ Ŵ_jγ (D = ∂j/∂F, see
+//! [`crate::invariants`]). The congruence is formed in F space, Dᵀ Ŵ_jj D = c D_eᵀ H D_e with
+//! D_e = A D the gradients of the elastic invariants (A has seven non-zero entries), over the
+//! rows of H that are not identically zero: an energy that is linear in tr C_e⁻¹ and C_e⁻¹:M
+//! (the chapter's) and ignores det C_e has a 2×2 block of H, not 5×5. Which rows are zero is
+//! read off H at each point, so any energy gets the right answer; the shortcut only saves work.
 
 use crate::active::strain::{check_activation, StrainMap};
 use crate::energy::{Invariants, StrainEnergy};
@@ -30,11 +34,12 @@ pub enum Order {
     Tangent,
 }
 
-/// Second derivatives of Ŵ(j, γ) in invariant space.
+/// Second derivatives of Ŵ(j, γ).
 #[derive(Debug, Clone, Copy)]
 pub struct SecondDerivatives {
-    /// ∂²Ŵ/∂j∂j.
-    pub d_jj: SMatrix<f64, 5, 5>,
+    /// H = ∂²W/∂Ie∂Ie, the Hessian of the user's energy at the elastic invariants Ie = A j
+    /// (Ŵ_jj = c Aᵀ H A; rows and columns of invariants the energy ignores are zero).
+    pub energy_hessian: SMatrix<f64, 5, 5>,
     /// ∂²Ŵ/∂j∂γ.
     pub d_jgamma: SVector<f64, 5>,
     /// ∂²Ŵ/∂γ².
@@ -52,17 +57,40 @@ pub struct InvariantDerivatives {
     pub d_gamma: f64,
     /// Present for [`Order::Tangent`].
     pub second: Option<SecondDerivatives>,
+    /// The active-strain map A(γ).
+    map: StrainMap,
+}
+
+impl InvariantDerivatives {
+    /// Ŵ_jj = c Aᵀ H A, the Hessian of Ŵ in the invariants of C (present for [`Order::Tangent`]).
+    pub fn d_jj(&self) -> Option<SMatrix<f64, 5, 5>> {
+        self.second
+            .as_ref()
+            .map(|s| self.map.congruence(&s.energy_hessian) * self.map.c)
+    }
 }
 
 fn invariants_of<T: Copy>(v: &SVector<T, 5>) -> Invariants<T> {
     Invariants::from_array([v[0], v[1], v[2], v[3], v[4]])
 }
 
-/// The first non-finite entry of `x`, if any. The test over all entries is one branch-free pass
-/// (the compiler vectorises it); the search runs only when it fails.
+/// The first non-finite entry of `x`, if any. The test over all entries is one pass of
+/// x·0 (0 for a finite x, NaN otherwise) summed on four independent lanes (SSE2 has no 64-bit
+/// integer compare, so the bit test is not vectorised); the search runs only when it fails.
 #[inline(always)]
-fn first_non_finite(x: &[f64]) -> Option<f64> {
-    if x.iter().fold(true, |ok, v| ok & v.is_finite()) {
+pub(crate) fn first_non_finite(x: &[f64]) -> Option<f64> {
+    let mut lanes = [0.0; 4];
+    let chunks = x.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for k in 0..4 {
+            lanes[k] += chunk[k] * 0.0;
+        }
+    }
+    for (k, v) in rest.iter().enumerate() {
+        lanes[k] += v * 0.0;
+    }
+    if (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) == 0.0 {
         None
     } else {
         x.iter().copied().find(|v| !v.is_finite())
@@ -165,6 +193,7 @@ pub fn invariant_derivatives<E: StrainEnergy>(
         d_j: SVector::zeros(),
         d_gamma: 0.0,
         second: None,
+        map,
     };
     let Some(g) = g else { return Ok(out) };
     // Finiteness is checked on the chained derivatives: a non-finite g or H shows there, and so
@@ -179,13 +208,13 @@ pub fn invariant_derivatives<E: StrainEnergy>(
     if let Some(h) = h {
         let h_ie_gamma = h * ie_gamma;
         let second = SecondDerivatives {
-            d_jj: map.congruence(&h) * c,
+            energy_hessian: h,
             d_jgamma: -a_t_g
                 + (map.rate_transpose_apply(&g) + map.transpose_apply(&h_ie_gamma)) * c,
             d_gammagamma: -2.0 * g.dot(&ie_gamma)
                 + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&map.rate2(j))),
         };
-        if let Some(bad) = first_non_finite(second.d_jj.as_slice())
+        if let Some(bad) = first_non_finite(h.as_slice())
             .or(first_non_finite(second.d_jgamma.as_slice()))
             .or(first_non_finite(&[second.d_gammagamma]))
         {
@@ -235,41 +264,104 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     if order == Order::Energy {
         return Ok(out);
     }
-    let grad = kinematics.gradients(entries);
+    let f = in_f_space(kinematics, entries, &d, 0.0, 0.0)?;
     out.denergy_dgamma = Some(d.d_gamma);
-    out.stress = Some(grad.tr_mul(&d.d_j));
-    if let Some(s) = d.second {
-        let mut t = kinematics.curvature(&d.d_j, entries);
-        if energy.uses_det_c() {
-            add_congruence::<5, N>(&mut t, &grad, &s.d_jj);
+    out.stress = Some(f.stress);
+    out.tangent = f.tangent;
+    out.dstress_dgamma = f.dstress_dgamma;
+    out.d2energy_dgamma2 = d.second.map(|s| s.d_gammagamma);
+    Ok(out)
+}
+
+/// Stress, tangent and dP/dγ over the entries of F (see [`in_f_space`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FSpace<const N: usize> {
+    /// P = Dᵀ (Ŵ_j + a e₂).
+    pub stress: SVector<f64, N>,
+    /// Σ_j (Ŵ_j + a e₂)_j ∂²j/∂F² + c D_eᵀ H D_e + b D₂ D₂ᵀ (with second derivatives).
+    pub tangent: Option<SMatrix<f64, N, N>>,
+    /// dP/dγ = Dᵀ Ŵ_jγ (with second derivatives).
+    pub dstress_dgamma: Option<SVector<f64, N>>,
+    /// D₂ = ∂(C:M)/∂F, the gradient of the fibre invariant j₂ = λ_f².
+    pub fibre_gradient: SVector<f64, N>,
+}
+
+/// The invariant-space derivatives `d` taken to the entries of F (module docs), with extra
+/// weights on the fibre invariant j₂ = C:M: `a` is added to ∂Ŵ/∂j₂ and `b` to ∂²Ŵ/∂j₂² (both 0
+/// with γ held; the consistent coupling's terms otherwise, see [`crate::active::coupling`]).
+/// Rejects a non-finite stress or tangent (an overflow of the products with F).
+#[inline(always)]
+pub(crate) fn in_f_space<const N: usize>(
+    kinematics: &Kinematics,
+    entries: &Entries<N>,
+    d: &InvariantDerivatives,
+    a: f64,
+    b: f64,
+) -> Result<FSpace<N>> {
+    let grad = kinematics.gradients(entries);
+    let mut w = d.d_j;
+    w[1] += a;
+    let fibre_gradient: SVector<f64, N> = grad.row(1).transpose();
+    let mut out = FSpace {
+        stress: grad.tr_mul(&w),
+        tangent: None,
+        dstress_dgamma: None,
+        fibre_gradient,
+    };
+    let j = || SVector::from(kinematics.invariants);
+    let gamma = 1.0 - d.map.c;
+    if let Some(s) = &d.second {
+        let mut t = kinematics.curvature(&w, entries);
+        let de = d.map.apply_rows(&grad);
+        let h = &s.energy_hessian;
+        let c = d.map.c;
+        // The rows of H in use (H is symmetric: its rows are its columns); any non-zero entry,
+        // NaN included, counts.
+        let nonzero = |r: usize, n: usize| (0..n).fold(false, |any, k| any | (h[(r, k)] != 0.0));
+        if nonzero(4, 5) {
+            add_congruence::<5, N>(&mut t, &de, h, c);
+        } else if nonzero(2, 4) | nonzero(3, 4) {
+            add_congruence::<4, N>(&mut t, &de, h, c);
         } else {
-            add_congruence::<4, N>(&mut t, &grad, &s.d_jj);
+            add_congruence::<2, N>(&mut t, &de, h, c);
+        }
+        if b != 0.0 {
+            t += fibre_gradient * fibre_gradient.transpose() * b;
+        }
+        if let Some(bad) = first_non_finite(t.as_slice()) {
+            return Err(non_finite("stress tangent", bad, &j(), gamma));
         }
         out.tangent = Some(t);
         out.dstress_dgamma = Some(grad.tr_mul(&s.d_jgamma));
-        out.d2energy_dgamma2 = Some(s.d_gammagamma);
+    }
+    if let Some(bad) = first_non_finite(out.stress.as_slice()) {
+        return Err(non_finite("stress", bad, &j(), gamma));
     }
     Ok(out)
 }
 
-/// T += Dᵀ K D for a symmetric K (∂²Ŵ/∂j∂j at γ held) whose rows and columns beyond the first
-/// `R` invariants are zero (R = 4 for an energy without det C): E = K D over those rows once,
-/// then the upper triangle (Dᵀ E)_ab = Σ_j D_ja E_jb, mirrored.
+/// T += c Eᵀ H E for a symmetric H whose rows and columns beyond the first `R` are zero, E the
+/// gradients of the elastic invariants (rows): G = H E over those rows once, then the upper
+/// triangle (Eᵀ G)_ab = Σ_j E_ja G_jb, mirrored.
 #[inline(always)]
 fn add_congruence<const R: usize, const N: usize>(
     t: &mut SMatrix<f64, N, N>,
-    d: &SMatrix<f64, 5, N>,
-    k: &SMatrix<f64, 5, 5>,
+    e: &SMatrix<f64, 5, N>,
+    h: &SMatrix<f64, 5, 5>,
+    c: f64,
 ) {
-    let e: [[f64; N]; R] = std::array::from_fn(|j| {
-        std::array::from_fn(|b| (0..R).map(|l| k[(j, l)] * d[(l, b)]).sum())
+    let g: [[f64; N]; R] = std::array::from_fn(|j| {
+        std::array::from_fn(|b| c * (0..R).map(|l| h[(j, l)] * e[(l, b)]).sum::<f64>())
     });
+    // Constant loop bounds (fully unrolled; the test on b folds away), the upper triangle only.
     for a in 0..N {
-        for b in a..N {
-            let v: f64 = (0..R).map(|j| d[(j, a)] * e[j][b]).sum();
-            t[(a, b)] += v;
-            if b != a {
-                t[(b, a)] += v;
+        for b in 0..N {
+            if b >= a {
+                let v: f64 = (0..R).map(|j| e[(j, a)] * g[j][b]).sum();
+                t[(a, b)] += v;
+                if b != a {
+                    t[(b, a)] += v;
+                }
             }
         }
     }
