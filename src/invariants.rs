@@ -220,18 +220,32 @@ impl Kinematics {
         w: &SVector<f64, 5>,
         entries: &Entries<N>,
     ) -> SMatrix<f64, N, N> {
+        let mut t = SMatrix::zeros();
+        self.curvature_into(w, entries, &mut t);
+        t
+    }
+
+    /// [`curvature`](Self::curvature) written into `t` (every entry is overwritten): the
+    /// routes build their tangent in place, without copying it.
+    #[inline(always)]
+    pub fn curvature_into<const N: usize>(
+        &self,
+        w: &SVector<f64, 5>,
+        entries: &Entries<N>,
+        t: &mut SMatrix<f64, N, N>,
+    ) {
         if entries.index[..] == FULL.index[..] {
-            let mut t = SMatrix::zeros();
-            self.weighted(w, [0, 1, 2]).fill(&mut t);
-            t
+            self.weighted(w, [0, 1, 2]).fill(t);
         } else if entries.index[..] == AXISYMMETRIC.index[..] && self.is_axisymmetric() {
-            self.axisymmetric_curvature(w)
+            self.axisymmetric_curvature(w, t);
         } else {
             let c = self.weighted(w, [0, 1, 2]);
-            SMatrix::from_fn(|x, y| {
-                let (a, b) = (entries.index[x], entries.index[y]);
-                c.entry(a, b) + c.det_entry(a, b)
-            })
+            for x in 0..N {
+                for y in 0..N {
+                    let (a, b) = (entries.index[x], entries.index[y]);
+                    t[(x, y)] = c.entry(a, b) + c.det_entry(a, b);
+                }
+            }
         }
     }
 
@@ -245,14 +259,17 @@ impl Kinematics {
     /// formula splits into the (r, z) block, its coupling with θθ through the det C term
     /// alone, T_kL,θθ = 4 w₅ J² β B_Lk, and T_θθ,θθ = 6 w₃ β⁴ + 2 w₁ + 2 w₅ J² β².
     #[inline(always)]
-    fn axisymmetric_curvature<const N: usize>(&self, w: &SVector<f64, 5>) -> SMatrix<f64, N, N> {
+    fn axisymmetric_curvature<const N: usize>(
+        &self,
+        w: &SVector<f64, 5>,
+        t: &mut SMatrix<f64, N, N>,
+    ) {
         let c = self.weighted(w, [0, 2]);
         let beta = self.b[(1, 1)];
         let beta2 = beta * beta;
         // Entry order of AXISYMMETRIC: (k, L) = 2 k + L in (r, z) block indices r = 0, z = 1,
         // then θθ.
-        let mut t = SMatrix::zeros();
-        c.fill(&mut t);
+        c.fill(t);
         for k in 0..2 {
             for l in 0..2 {
                 let v = 4.0 * c.j2w * beta * c.b[l][k];
@@ -261,7 +278,6 @@ impl Kinematics {
             }
         }
         t[(4, 4)] = 6.0 * w[2] * beta2 * beta2 + 2.0 * w[0] + 2.0 * c.j2w * beta2;
-        t
     }
 
     /// The ingredients of the curvature restricted to the rows and columns `idx` of the 3×3
@@ -309,25 +325,31 @@ impl<const D: usize> Weighted<D> {
         self.j2w * (4.0 * b[jj][i] * b[l][k] - 2.0 * b[l][i] * b[jj][k])
     }
 
-    /// Rows and columns (k, L) = D k + L < D² of `t`: the upper triangle of the block (the
-    /// formula is symmetric under (k, L) ↔ (i, J)), mirrored, by constant-bound loops (unrolled
-    /// by the compiler: the test on the index folds away, no index arithmetic at run time); the
-    /// det C term in the same pass, its weight 0 for energies that ignore det C.
+    /// Rows and columns (k, L) = D k + L < D² of `t`. The formula is symmetric under
+    /// (k, L) ↔ (i, J), so only the upper triangle is evaluated and mirrored: entry by entry
+    /// for the 2×2 block (16 entries, all loops unrolled), by the D×D sub-blocks (k, i) with
+    /// i ≥ k for all nine entries (81 entries: the loops over (k, i) stay loops, those over
+    /// (L, J) are unrolled). The det C term in the same pass, its weight 0 for energies that
+    /// ignore det C.
     #[inline(always)]
     fn fill<const N: usize>(&self, t: &mut SMatrix<f64, N, N>) {
         for k in 0..D {
-            for l in 0..D {
-                for i in 0..D {
+            for i in 0..D {
+                if D == 3 && i < k {
+                    continue;
+                }
+                for l in 0..D {
                     for jj in 0..D {
                         let (a, b) = (D * k + l, D * i + jj);
-                        if b >= a {
-                            let mut v = self.entry((k, l), (i, jj));
-                            if self.j2w != 0.0 {
-                                v += self.det_entry((k, l), (i, jj));
-                            }
-                            t[(a, b)] = v;
-                            t[(b, a)] = v;
+                        if D == 2 && b < a {
+                            continue;
                         }
+                        let mut v = self.entry((k, l), (i, jj));
+                        if self.j2w != 0.0 {
+                            v += self.det_entry((k, l), (i, jj));
+                        }
+                        t[(a, b)] = v;
+                        t[(b, a)] = v;
                     }
                 }
             }

@@ -4,7 +4,7 @@ use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
-use crate::response::{first_non_finite, in_f_space, invariant_derivatives, Order};
+use crate::response::{check_returned, in_f_space, unchecked_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
@@ -100,7 +100,7 @@ impl<E: StrainEnergy> Muscle<E> {
             }
         };
         let j = SVector::from(kinematics.invariants);
-        let d = invariant_derivatives(&self.energy, &j, law.gamma, order)?;
+        let d = unchecked_derivatives(&self.energy, &j, law.gamma, order)?;
         let mut out = MuscleResponse {
             gamma: law.gamma,
             fibre_stretch,
@@ -121,27 +121,34 @@ impl<E: StrainEnergy> Muscle<E> {
             (Coupling::Consistent, None) => (d.d_gamma * g1, 0.0),
             _ => (0.0, 0.0),
         };
-        let f = in_f_space(kinematics, entries, &d, a, b)?;
-        out.stress = Some(f.stress);
-        if let (Some(mut t), Some(q)) = (f.tangent, f.dstress_dgamma) {
+        out.tangent = d.second.map(|_| SMatrix::zeros());
+        let f = in_f_space(kinematics, entries, &d, (a, b), out.tangent.as_mut());
+        if let (Some(t), Some(q)) = (out.tangent.as_mut(), &f.dstress_dgamma) {
             let r = f.fibre_gradient * g1;
-            match self.coupling {
-                Coupling::Frozen(FrozenTangent::Symmetric) => {}
-                Coupling::Frozen(FrozenTangent::Exact) => t += q * r.transpose(),
-                Coupling::Consistent => t += q * r.transpose() + r * q.transpose(),
+            let (frozen, consistent) = match self.coupling {
+                Coupling::Frozen(FrozenTangent::Symmetric) => (false, false),
+                Coupling::Frozen(FrozenTangent::Exact) => (true, false),
+                Coupling::Consistent => (true, true),
+            };
+            for x in 0..N {
+                for y in 0..N {
+                    if frozen {
+                        t[(x, y)] += q[x] * r[y];
+                    }
+                    if consistent {
+                        t[(x, y)] += r[x] * q[y];
+                    }
+                }
             }
-            if let Some(bad) = first_non_finite(t.as_slice()) {
-                return Err(crate::Error::NonFinite {
-                    quantity: "coupled stress tangent",
-                    value: bad,
-                    context: format!(
-                        "at fibre stretch {fibre_stretch}, gamma = {} (dgamma/dlambda = {})",
-                        law.gamma, law.slope
-                    ),
-                });
-            }
-            out.tangent = Some(t);
         }
+        check_returned(
+            &d,
+            &f.stress,
+            out.tangent.as_ref(),
+            f.dstress_dgamma.as_ref(),
+            &kinematics.invariants,
+        )?;
+        out.stress = Some(f.stress);
         Ok(out)
     }
 }

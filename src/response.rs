@@ -74,9 +74,10 @@ fn invariants_of<T: Copy>(v: &SVector<T, 5>) -> Invariants<T> {
     Invariants::from_array([v[0], v[1], v[2], v[3], v[4]])
 }
 
-/// The first non-finite entry of `x`, if any. The test over all entries is one pass of
-/// x·0 (0 for a finite x, NaN otherwise) summed on four independent lanes (SSE2 has no 64-bit
-/// integer compare, so the bit test is not vectorised); the search runs only when it fails.
+/// The first non-finite entry of `x`, if any. The test over all entries is one sum on four
+/// independent lanes (a NaN or an infinity makes it non-finite; SSE2 has no 64-bit integer
+/// compare, so a bit test per entry is not vectorised); the search runs only when the sum is not
+/// finite (and finds nothing if it merely overflowed).
 #[inline(always)]
 pub(crate) fn first_non_finite(x: &[f64]) -> Option<f64> {
     let mut lanes = [0.0; 4];
@@ -84,13 +85,13 @@ pub(crate) fn first_non_finite(x: &[f64]) -> Option<f64> {
     let rest = chunks.remainder();
     for chunk in chunks {
         for k in 0..4 {
-            lanes[k] += chunk[k] * 0.0;
+            lanes[k] += chunk[k];
         }
     }
     for (k, v) in rest.iter().enumerate() {
-        lanes[k] += v * 0.0;
+        lanes[k] += v;
     }
-    if (lanes[0] + lanes[1]) + (lanes[2] + lanes[3]) == 0.0 {
+    if ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])).is_finite() {
         None
     } else {
         x.iter().copied().find(|v| !v.is_finite())
@@ -173,9 +174,35 @@ fn energy_hessian<E: StrainEnergy>(
     (w, SVector::from([g[0], g[1], g[2], g[3], 0.0]), h)
 }
 
-/// Derivatives of the active-strain energy in invariant space, to the order asked.
+/// Derivatives of the active-strain energy in invariant space, to the order asked. Rejects a
+/// non-finite value (an exp overflow of the energy, or of the map's s² = (1 − γ)⁻² factors).
 #[inline(always)]
 pub fn invariant_derivatives<E: StrainEnergy>(
+    energy: &E,
+    j: &SVector<f64, 5>,
+    gamma: f64,
+    order: Order,
+) -> Result<InvariantDerivatives> {
+    let d = unchecked_derivatives(energy, j, gamma, order)?;
+    let fail = |quantity, bad| Err(non_finite(quantity, bad, j, gamma));
+    if let Some(bad) = first_non_finite(d.d_j.as_slice()).or(first_non_finite(&[d.d_gamma])) {
+        return fail("energy gradient", bad);
+    }
+    if let Some(s) = &d.second {
+        if let Some(bad) = first_non_finite(s.energy_hessian.as_slice())
+            .or(first_non_finite(s.d_jgamma.as_slice()))
+            .or(first_non_finite(&[s.d_gammagamma]))
+        {
+            return fail("energy Hessian", bad);
+        }
+    }
+    Ok(d)
+}
+
+/// [`invariant_derivatives`] with only the energy checked: for the routes that check what they
+/// return (a non-finite derivative shows in their stress or tangent).
+#[inline(always)]
+pub(crate) fn unchecked_derivatives<E: StrainEnergy>(
     energy: &E,
     j: &SVector<f64, 5>,
     gamma: f64,
@@ -196,33 +223,55 @@ pub fn invariant_derivatives<E: StrainEnergy>(
         map,
     };
     let Some(g) = g else { return Ok(out) };
-    // Finiteness is checked on the chained derivatives: a non-finite g or H shows there, and so
-    // does a finite one that the map's s² = (1 − γ)⁻² factors overflow.
     let ie_gamma = map.rate(j);
     let a_t_g = map.transpose_apply(&g);
     out.d_j = a_t_g * c;
     out.d_gamma = -w + c * g.dot(&ie_gamma);
-    if let Some(bad) = first_non_finite(out.d_j.as_slice()).or(first_non_finite(&[out.d_gamma])) {
-        return Err(non_finite("energy gradient", bad, j, gamma));
-    }
     if let Some(h) = h {
         let h_ie_gamma = h * ie_gamma;
-        let second = SecondDerivatives {
+        out.second = Some(SecondDerivatives {
             energy_hessian: h,
             d_jgamma: -a_t_g
                 + (map.rate_transpose_apply(&g) + map.transpose_apply(&h_ie_gamma)) * c,
             d_gammagamma: -2.0 * g.dot(&ie_gamma)
                 + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&map.rate2(j))),
-        };
-        if let Some(bad) = first_non_finite(h.as_slice())
-            .or(first_non_finite(second.d_jgamma.as_slice()))
-            .or(first_non_finite(&[second.d_gammagamma]))
-        {
-            return Err(non_finite("energy Hessian", bad, j, gamma));
-        }
-        out.second = Some(second);
+        });
     }
     Ok(out)
+}
+
+/// Rejects a non-finite entry in what a route returns: the stress, ∂Ŵ/∂γ and, with second
+/// derivatives, the tangent, dP/dγ and ∂²Ŵ/∂γ² (a summed test per part, see
+/// [`first_non_finite`]; the entry is named only when it fails).
+#[inline(always)]
+pub(crate) fn check_returned<const N: usize>(
+    d: &InvariantDerivatives,
+    stress: &SVector<f64, N>,
+    tangent: Option<&SMatrix<f64, N, N>>,
+    dstress_dgamma: Option<&SVector<f64, N>>,
+    invariants: &[f64; 5],
+) -> Result<()> {
+    let gamma = 1.0 - d.map.c;
+    let j = SVector::from(*invariants);
+    let scalars = [d.d_gamma, d.second.map_or(0.0, |s| s.d_gammagamma)];
+    let parts: [(&'static str, &[f64]); 4] = [
+        ("stress", stress.as_slice()),
+        ("stress tangent", tangent.map_or(&[][..], |t| t.as_slice())),
+        (
+            "dP/dgamma",
+            dstress_dgamma.map_or(&[][..], |v| v.as_slice()),
+        ),
+        ("derivatives in gamma", &scalars),
+    ];
+    if parts.iter().all(|(_, x)| first_non_finite(x).is_none()) {
+        return Ok(());
+    }
+    for (quantity, x) in parts {
+        if let Some(bad) = x.iter().copied().find(|v| !v.is_finite()) {
+            return Err(non_finite(quantity, bad, &j, gamma));
+        }
+    }
+    Ok(())
 }
 
 /// Response of the active-strain energy at a given γ, over the entries of F in `entries`.
@@ -252,7 +301,7 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     entries: &Entries<N>,
 ) -> Result<Response<N>> {
     let j = SVector::from(kinematics.invariants);
-    let d = invariant_derivatives(energy, &j, gamma, order)?;
+    let d = unchecked_derivatives(energy, &j, gamma, order)?;
     let mut out = Response {
         energy: d.energy,
         denergy_dgamma: None,
@@ -264,22 +313,27 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     if order == Order::Energy {
         return Ok(out);
     }
-    let f = in_f_space(kinematics, entries, &d, 0.0, 0.0)?;
+    out.tangent = d.second.map(|_| SMatrix::zeros());
+    let f = in_f_space(kinematics, entries, &d, (0.0, 0.0), out.tangent.as_mut());
+    check_returned(
+        &d,
+        &f.stress,
+        out.tangent.as_ref(),
+        f.dstress_dgamma.as_ref(),
+        &kinematics.invariants,
+    )?;
     out.denergy_dgamma = Some(d.d_gamma);
     out.stress = Some(f.stress);
-    out.tangent = f.tangent;
     out.dstress_dgamma = f.dstress_dgamma;
     out.d2energy_dgamma2 = d.second.map(|s| s.d_gammagamma);
     Ok(out)
 }
 
-/// Stress, tangent and dP/dγ over the entries of F (see [`in_f_space`]).
+/// Stress and dP/dγ over the entries of F (see [`in_f_space`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FSpace<const N: usize> {
     /// P = Dᵀ (Ŵ_j + a e₂).
     pub stress: SVector<f64, N>,
-    /// Σ_j (Ŵ_j + a e₂)_j ∂²j/∂F² + c D_eᵀ H D_e + b D₂ D₂ᵀ (with second derivatives).
-    pub tangent: Option<SMatrix<f64, N, N>>,
     /// dP/dγ = Dᵀ Ŵ_jγ (with second derivatives).
     pub dstress_dgamma: Option<SVector<f64, N>>,
     /// D₂ = ∂(C:M)/∂F, the gradient of the fibre invariant j₂ = λ_f².
@@ -289,75 +343,80 @@ pub(crate) struct FSpace<const N: usize> {
 /// The invariant-space derivatives `d` taken to the entries of F (module docs), with extra
 /// weights on the fibre invariant j₂ = C:M: `a` is added to ∂Ŵ/∂j₂ and `b` to ∂²Ŵ/∂j₂² (both 0
 /// with γ held; the consistent coupling's terms otherwise, see [`crate::active::coupling`]).
-/// Rejects a non-finite stress or tangent (an overflow of the products with F).
+/// With second derivatives, `tangent` receives Σ_j (Ŵ_j + a e₂)_j ∂²j/∂F² + c D_eᵀ H D_e +
+/// b D₂ D₂ᵀ, written in place (every entry overwritten). Nothing is checked here: the caller
+/// checks what it returns ([`check_returned`]).
 #[inline(always)]
 pub(crate) fn in_f_space<const N: usize>(
     kinematics: &Kinematics,
     entries: &Entries<N>,
     d: &InvariantDerivatives,
-    a: f64,
-    b: f64,
-) -> Result<FSpace<N>> {
+    (a, b): (f64, f64),
+    tangent: Option<&mut SMatrix<f64, N, N>>,
+) -> FSpace<N> {
     let grad = kinematics.gradients(entries);
     let mut w = d.d_j;
     w[1] += a;
     let fibre_gradient: SVector<f64, N> = grad.row(1).transpose();
     let mut out = FSpace {
         stress: grad.tr_mul(&w),
-        tangent: None,
         dstress_dgamma: None,
         fibre_gradient,
     };
-    let j = || SVector::from(kinematics.invariants);
-    let gamma = 1.0 - d.map.c;
-    if let Some(s) = &d.second {
-        let mut t = kinematics.curvature(&w, entries);
-        let de = d.map.apply_rows(&grad);
+    if let (Some(s), Some(t)) = (&d.second, tangent) {
+        kinematics.curvature_into(&w, entries, t);
         let h = &s.energy_hessian;
-        let c = d.map.c;
         // The rows of H in use (H is symmetric: its rows are its columns); any non-zero entry,
         // NaN included, counts.
         let nonzero = |r: usize, n: usize| (0..n).fold(false, |any, k| any | (h[(r, k)] != 0.0));
         if nonzero(4, 5) {
-            add_congruence::<5, N>(&mut t, &de, h, c);
+            add_congruence::<5, N>(t, &d.map, &grad, h);
         } else if nonzero(2, 4) | nonzero(3, 4) {
-            add_congruence::<4, N>(&mut t, &de, h, c);
+            add_congruence::<4, N>(t, &d.map, &grad, h);
         } else {
-            add_congruence::<2, N>(&mut t, &de, h, c);
+            add_congruence::<2, N>(t, &d.map, &grad, h);
         }
         if b != 0.0 {
-            t += fibre_gradient * fibre_gradient.transpose() * b;
+            for x in 0..N {
+                for y in 0..N {
+                    t[(x, y)] += b * fibre_gradient[x] * fibre_gradient[y];
+                }
+            }
         }
-        if let Some(bad) = first_non_finite(t.as_slice()) {
-            return Err(non_finite("stress tangent", bad, &j(), gamma));
-        }
-        out.tangent = Some(t);
         out.dstress_dgamma = Some(grad.tr_mul(&s.d_jgamma));
     }
-    if let Some(bad) = first_non_finite(out.stress.as_slice()) {
-        return Err(non_finite("stress", bad, &j(), gamma));
-    }
-    Ok(out)
+    out
 }
 
-/// T += c Eᵀ H E for a symmetric H whose rows and columns beyond the first `R` are zero, E the
-/// gradients of the elastic invariants (rows): G = H E over those rows once, then the upper
-/// triangle (Eᵀ G)_ab = Σ_j E_ja G_jb, mirrored.
+/// T += c Eᵀ H E for a symmetric H whose rows and columns beyond the first `R` are zero, E = A D
+/// the gradients of the elastic invariants (rows; only the first `R` are formed): G = c H E
+/// over those rows once, then the upper triangle (Eᵀ G)_ab = Σ_j E_ja G_jb, mirrored. All loop
+/// bounds are constants (unrolled; the test on b folds away).
 #[inline(always)]
 fn add_congruence<const R: usize, const N: usize>(
     t: &mut SMatrix<f64, N, N>,
-    e: &SMatrix<f64, 5, N>,
+    map: &StrainMap,
+    d: &SMatrix<f64, 5, N>,
     h: &SMatrix<f64, 5, 5>,
-    c: f64,
 ) {
-    let g: [[f64; N]; R] = std::array::from_fn(|j| {
-        std::array::from_fn(|b| c * (0..R).map(|l| h[(j, l)] * e[(l, b)]).sum::<f64>())
-    });
-    // Constant loop bounds (fully unrolled; the test on b folds away), the upper triangle only.
+    let e: [[f64; N]; R] = std::array::from_fn(|r| std::array::from_fn(|k| map.row(r, d, k)));
+    let mut g = [[0.0; N]; R];
+    for j in 0..R {
+        for b in 0..N {
+            let mut v = 0.0;
+            for l in 0..R {
+                v += h[(j, l)] * e[l][b];
+            }
+            g[j][b] = map.c * v;
+        }
+    }
     for a in 0..N {
         for b in 0..N {
             if b >= a {
-                let v: f64 = (0..R).map(|j| e[(j, a)] * g[j][b]).sum();
+                let mut v = 0.0;
+                for j in 0..R {
+                    v += e[j][a] * g[j][b];
+                }
                 t[(a, b)] += v;
                 if b != a {
                     t[(b, a)] += v;
