@@ -141,13 +141,7 @@ impl<E: StrainEnergy> Muscle<E> {
                 }
             }
         }
-        check_returned(
-            &d,
-            &f.stress,
-            out.tangent.as_ref(),
-            f.dstress_dgamma.as_ref(),
-            &kinematics.invariants,
-        )?;
+        check_returned(&d, &f, out.tangent.as_ref(), &kinematics.invariants)?;
         out.stress = Some(f.stress);
         Ok(out)
     }

@@ -246,20 +246,19 @@ pub(crate) fn unchecked_derivatives<E: StrainEnergy>(
 #[inline(always)]
 pub(crate) fn check_returned<const N: usize>(
     d: &InvariantDerivatives,
-    stress: &SVector<f64, N>,
+    f: &FSpace<N>,
     tangent: Option<&SMatrix<f64, N, N>>,
-    dstress_dgamma: Option<&SVector<f64, N>>,
     invariants: &[f64; 5],
 ) -> Result<()> {
     let gamma = 1.0 - d.map.c;
     let j = SVector::from(*invariants);
     let scalars = [d.d_gamma, d.second.map_or(0.0, |s| s.d_gammagamma)];
     let parts: [(&'static str, &[f64]); 4] = [
-        ("stress", stress.as_slice()),
+        ("stress", f.stress.as_slice()),
         ("stress tangent", tangent.map_or(&[][..], |t| t.as_slice())),
         (
             "dP/dgamma",
-            dstress_dgamma.map_or(&[][..], |v| v.as_slice()),
+            f.dstress_dgamma.as_ref().map_or(&[][..], |v| v.as_slice()),
         ),
         ("derivatives in gamma", &scalars),
     ];
@@ -315,13 +314,7 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     }
     out.tangent = d.second.map(|_| SMatrix::zeros());
     let f = in_f_space(kinematics, entries, &d, (0.0, 0.0), out.tangent.as_mut());
-    check_returned(
-        &d,
-        &f.stress,
-        out.tangent.as_ref(),
-        f.dstress_dgamma.as_ref(),
-        &kinematics.invariants,
-    )?;
+    check_returned(&d, &f, out.tangent.as_ref(), &kinematics.invariants)?;
     out.denergy_dgamma = Some(d.d_gamma);
     out.stress = Some(f.stress);
     out.dstress_dgamma = f.dstress_dgamma;

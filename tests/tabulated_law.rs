@@ -321,3 +321,24 @@ fn bad_specs_and_unreachable_tolerances_are_typed_errors() {
         other => panic!("expected NoSolution, got {other:?}"),
     }
 }
+
+/// The 0D measurement a trade-off study calls: errors within the spec at the chapter's stretches,
+/// the build's report, two positive times (not compared: no timing in tests), and a typed error
+/// for a damage without a table.
+#[test]
+fn the_0d_comparison_reports_errors_within_the_spec() {
+    let spec = TableSpec::default();
+    let table = TabulatedLaw::new(implicit(), &[0.0], spec).unwrap();
+    let stretches: Vec<f64> = (0..=90).map(|i| 0.7 + 0.01 * i as f64).collect();
+    let c = table.compare(0.0, &stretches, 3).unwrap();
+    println!("{c:?}");
+    assert_eq!(c.report, table.reports()[0]);
+    assert!(c.gamma_error <= spec.gamma_tolerance);
+    // At λ ≤ 1.6 the stress is ≤ 8.4e3 kPa, so the tolerance is ≤ 1e-9 + 8.4e-10 kPa.
+    assert!(c.frozen_stress_error <= 1.84e-9 && c.consistent_stress_error <= 1.84e-9);
+    assert!(c.exact_seconds > 0.0 && c.table_seconds > 0.0);
+    assert!(matches!(
+        table.compare(0.5, &stretches, 1),
+        Err(Error::InvalidParameter { name: "damage", .. })
+    ));
+}

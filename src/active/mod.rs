@@ -10,6 +10,6 @@ pub use coupling::{Coupling, FrozenTangent};
 pub use curve::ActiveCurve;
 pub use law::{
     ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law,
-    LawRepresentation, LawValue, SolvedLaw, TableReport, TableSpec, TabulatedLaw,
+    LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw,
 };
 pub use strain::{active_energy, check_activation, fibre_path_energy};

@@ -23,7 +23,7 @@ pub use energy_fit::{BelowMinimum, EnergyLaw};
 pub use explicit::ExplicitLaw;
 pub use implicit::ImplicitLaw;
 pub use tabulated::{
-    LawRepresentation, SolvedLaw, TableReport, TableSpec, TabulatedLaw, MIN_WIDTH,
+    LawRepresentation, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw, MIN_WIDTH,
 };
 
 use crate::active::strain::fibre_path_energy;

@@ -418,6 +418,69 @@ impl<E: StrainEnergy> TabulatedLaw<E> {
     fn table(&self, damage: f64) -> Option<&Table> {
         self.tables.iter().find(|t| t.damage == damage)
     }
+
+    /// The 0D measurement of the table of `damage` against the exact law at `stretches`: the
+    /// largest errors (γ, frozen and consistent fibre stress) and the time per evaluation of
+    /// each (γ, γ′, γ″; the smallest of `repeats` passes over all stretches), with the build's
+    /// report. Errors if `damage` has no table, or if the exact law fails at a stretch.
+    pub fn compare(
+        &self,
+        damage: f64,
+        stretches: &[f64],
+        repeats: usize,
+    ) -> Result<TableComparison> {
+        let table = self.table(damage).ok_or(Error::InvalidParameter {
+            name: "damage",
+            value: damage,
+            rule: "must be one of the damages the law was tabulated for",
+        })?;
+        let mut worst = PointErrors::default();
+        for &l in stretches {
+            worst = worst.max(errors_at(
+                &self.exact,
+                damage,
+                l,
+                self.evaluate(l, damage)?,
+                &self.spec,
+            )?);
+        }
+        let time = |law: &dyn Fn(f64) -> Result<LawValue>| -> Result<f64> {
+            let mut best = f64::INFINITY;
+            for _ in 0..repeats.max(1) {
+                let start = Instant::now();
+                for &l in stretches {
+                    std::hint::black_box(law(std::hint::black_box(l))?);
+                }
+                best = best.min(start.elapsed().as_secs_f64());
+            }
+            Ok(best / stretches.len().max(1) as f64)
+        };
+        Ok(TableComparison {
+            report: table.report,
+            gamma_error: worst.gamma,
+            frozen_stress_error: worst.frozen,
+            consistent_stress_error: worst.consistent,
+            exact_seconds: time(&|l| self.exact.evaluate(l, damage))?,
+            table_seconds: time(&|l| self.evaluate(l, damage))?,
+        })
+    }
+}
+
+/// A tabulated law against its exact law in 0D ([`TabulatedLaw::compare`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TableComparison {
+    /// The build's report (pieces, memory, build time, errors at the check points).
+    pub report: TableReport,
+    /// Largest |γ_table − γ_exact| at the stretches compared.
+    pub gamma_error: f64,
+    /// Largest error of the frozen model's fibre stress \[kPa\].
+    pub frozen_stress_error: f64,
+    /// Largest error of the consistent model's fibre stress \[kPa\].
+    pub consistent_stress_error: f64,
+    /// Time per evaluation (γ, γ′, γ″) of the exact law [s].
+    pub exact_seconds: f64,
+    /// Time per evaluation of the table [s].
+    pub table_seconds: f64,
 }
 
 impl<E: StrainEnergy> ActivationLaw for TabulatedLaw<E> {
