@@ -99,6 +99,16 @@ fn block_product(x: &Matrix3<f64>, y: &Matrix3<f64>) -> Matrix3<f64> {
     )
 }
 
+/// X v for a block-diagonal 3×3 X and v in the (0, 2) plane.
+#[inline(always)]
+fn block_apply(x: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        x[(0, 0)] * v[0] + x[(0, 2)] * v[2],
+        0.0,
+        x[(2, 0)] * v[0] + x[(2, 2)] * v[2],
+    )
+}
+
 /// F and m leave θ = index 1 uncoupled from (r, z) = (0, 2): F_rθ = F_θr = F_zθ = F_θz = 0
 /// and m_θ = 0, so that B, C⁻¹, g and Q are block diagonal.
 #[inline(always)]
@@ -157,9 +167,16 @@ impl Kinematics {
         let b_t = b.transpose();
         let c_inv = product(&b, &b_t);
         let b_t_b = product(&b_t, &b);
-        let f_m = f * m;
-        let b_t_m = b_t * m;
-        let c_inv_m = b * b_t_m;
+        let apply = |x: &Matrix3<f64>, v: &Vector3<f64>| {
+            if axisymmetric {
+                block_apply(x, v)
+            } else {
+                x * v
+            }
+        };
+        let f_m = apply(f, m);
+        let b_t_m = apply(&b_t, m);
+        let c_inv_m = apply(&b, &b_t_m);
         let invariants = [
             f.norm_squared(),
             f_m.norm_squared(),
