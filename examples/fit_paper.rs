@@ -12,12 +12,12 @@
 
 use activemuscle::active::{ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti};
-use activemuscle::fit::plot::FitPlot;
 use activemuscle::fit::{
     active_from_total, explicit_law_errors, fit_active_curve, fit_damage, fit_explicit_law,
     fit_passive, Data, Direction, ExplicitTarget, FitSetup,
 };
 use activemuscle::material::Muscle;
+use activemuscle::output::plot::{render, Figure, Panel, Scale, Series, Stroke};
 use activemuscle::uniaxial::along_fibres;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -44,16 +44,60 @@ fn with_noise(data: &Data, sigma: f64, seed: u64) -> Result<Data, Box<dyn Error>
     Ok(Data::new(data.lambda().to_vec(), noisy)?)
 }
 
-fn points(data: &Data) -> Vec<(f64, f64)> {
-    data.lambda()
-        .iter()
-        .copied()
-        .zip(data.stress().iter().copied())
-        .collect()
-}
-
 fn curve_of(lambda: &[f64], f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
     lambda.iter().map(|&l| (l, f(l))).collect()
+}
+
+/// Data (red circles) and model curves (the first solid, the others dashed) against λ, written
+/// as `<stem>.png` and `<stem>.svg`.
+struct FitPlot {
+    title: String,
+    y_label: String,
+    data_label: String,
+    data: Vec<(f64, f64)>,
+    curves: Vec<(String, Vec<(f64, f64)>)>,
+}
+
+impl FitPlot {
+    fn write(self, stem: &Path) -> Result<(), Box<dyn Error>> {
+        if let Some(dir) = stem.parent() {
+            std::fs::create_dir_all(dir)?;
+        }
+        let mut series = vec![Series::new(self.data_label, self.data, Stroke::Markers, 1)];
+        for (k, (label, points)) in self.curves.into_iter().enumerate() {
+            let stroke = if k == 0 {
+                Stroke::Solid
+            } else {
+                Stroke::Dashed
+            };
+            series.push(Series::new(
+                label,
+                points,
+                stroke,
+                if k == 0 { 0 } else { k + 1 },
+            ));
+        }
+        let figure = Figure {
+            stem: stem.display().to_string(),
+            heading: self.title.clone(),
+            caption: String::new(),
+            panels: vec![Panel {
+                title: self.title,
+                x_label: "stretch λ [-]".into(),
+                y_label: self.y_label,
+                series,
+                x_range: None,
+                y_range: None,
+                scale: Scale::Linear,
+            }],
+        };
+        render(
+            &figure,
+            &stem.with_extension("png"),
+            &stem.with_extension("svg"),
+        )?;
+        Ok(())
+    }
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -89,8 +133,8 @@ fn main() -> Result<(), Box<dyn Error>> {
     FitPlot {
         title: "Chapter's energy fitted to the EBI passive curve".into(),
         y_label: "P_pas [kPa]".into(),
-        data_label: "EBI (eq. D:Webi)".into(),
-        data: points(&data),
+        data_label: "EBI (eq. (4))".into(),
+        data: data.points(),
         curves: vec![
             (
                 format!(
@@ -103,7 +147,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 }),
             ),
             (
-                "GM, Table D:parpass".into(),
+                "GM, Table 1".into(),
                 curve_of(&lam, |l| {
                     along_fibres(&chapter, l).map_or(f64::NAN, |p| p.stress)
                 }),
@@ -135,10 +179,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         title: "Active curve fitted to P_total − P_pas (noise 1 % of P_opt)".into(),
         y_label: "P_act [kPa]".into(),
         data_label: "data − P_pas".into(),
-        data: points(&active),
+        data: active.points(),
         curves: vec![
             ("fitted P_act".into(), curve_of(&fine, |l| c.value(l))),
-            ("Table D:paratt".into(), curve_of(&fine, |l| curve.value(l))),
+            ("Table 2".into(), curve_of(&fine, |l| curve.value(l))),
         ],
     }
     .write(&out.join("active_curve"))?;
@@ -197,9 +241,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         }),
     ));
     FitPlot {
-        title: "Explicit law (eq. D:gamma) against the implicit law".into(),
+        title: "Explicit law (eq. (14)) against the implicit law".into(),
         y_label: "activation γ [-]".into(),
-        data_label: "implicit γ (eq. D:eqgammaesplicita)".into(),
+        data_label: "implicit γ (eq. (13))".into(),
         data: gammas,
         curves,
     }
@@ -233,7 +277,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 ),
                 y_label: "P_total [kPa]".into(),
                 data_label: "weakened muscle".into(),
-                data: points(&noisy),
+                data: noisy.points(),
                 curves: vec![
                     (
                         format!("P_pas + (1 − d) P_act, fitted d = {df:.4}"),

@@ -13,25 +13,35 @@
 //! - [`uniaxial`]: homogeneous tests along and across the fibres.
 //! - [`oracle`]: the slow reference route (dual numbers over F's nine entries).
 //! - [`fem`]: the axisymmetric mixed finite-element solver.
+//! - [`fit`]: least squares with dual-number Jacobians.
+//!
+//! The application layer, imports in one direction: [`models`] (laws, couplings, muscles and
+//! energies from choices) → [`studies`] (uniaxial, cylinder, fit, stability, tradeoff: spec,
+//! validation, run, typed results) → [`scene`] (scene files: parse, resolve, run) → [`output`]
+//! (CSV, figures, report); [`app_error`] is the errors of all four.
 
 pub mod active;
+pub mod app_error;
 pub mod energy;
 pub mod error;
 pub mod fem;
 pub mod fit;
 pub mod invariants;
 pub mod material;
+pub mod models;
 pub mod oracle;
 pub mod output;
+pub mod random;
 pub mod response;
 pub mod roots;
 pub mod scalar;
 pub mod scene;
 pub mod stability;
+pub mod studies;
 pub mod testing;
-pub mod tradeoff;
 pub mod uniaxial;
 
+pub use app_error::AppError;
 pub use energy::{Energy, StrainEnergy};
 pub use error::{Error, Result};
 pub use material::Muscle;

@@ -1,19 +1,17 @@
 //! `activemuscle`: runs scene files (TOML) of active skeletal-muscle studies and writes the
 //! curves, the figures and a report. Without arguments it runs the chapter's whole study.
 
-use activemuscle::output::csv::{tables, to_csv};
-use activemuscle::output::figures::figures;
-use activemuscle::output::plot::{render, Figure};
-use activemuscle::output::report::{html, RunInfo};
-use activemuscle::output::Staging;
-use activemuscle::scene::run::{run, Results, RunOptions};
-use activemuscle::scene::{Scene, Study};
-use activemuscle::tradeoff::{report, TradeoffOptions};
+use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
+use activemuscle::scene::{Printing, Results, RunOptions, Scene};
+use activemuscle::studies::tradeoff::run as run_tradeoff;
+use activemuscle::studies::{Silent, Stop, StudyResult};
+use activemuscle::AppError;
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// Active skeletal-muscle mechanics after Giantesio & Musesti: homogeneous tests and an
 /// axisymmetric FE cylinder, with loss of activation.
@@ -21,7 +19,7 @@ use std::time::Instant;
 /// Without a subcommand, runs the chapter's whole study (the embedded scenes/paper.toml) and
 /// writes curves.csv, the figures (PNG + SVG), report.html and VTK fields into out/.
 #[derive(Parser, Debug)]
-#[command(name = "activemuscle", version, about, long_about)]
+#[command(name = "activemuscle", version, about, long_about, after_help = EXIT_STATUS)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -33,7 +31,11 @@ enum Command {
     ///
     /// Writes into DIR: curves.csv (one row per point), fig_*.png and fig_*.svg, report.html
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
-    /// written atomically: a failed run leaves no half-written file.
+    /// committed all or nothing: a run that fails leaves the previous outputs as they were. DIR
+    /// belongs to one run at a time (.activemuscle.lock); a re-run replaces its own files and
+    /// removes those it no longer writes (.activemuscle-manifest); a non-empty directory that no
+    /// run wrote is refused without --force; /, your home, . and its ancestors always.
+    #[command(after_help = EXIT_STATUS)]
     Run {
         /// Scene file (TOML). Omit to run the chapter's study (scenes/paper.toml, embedded).
         scene: Option<PathBuf>,
@@ -43,6 +45,14 @@ enum Command {
         /// No progress bars or log lines; print only the summary.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote (they are left
+        /// alone unless an output has the same name).
+        #[arg(long)]
+        force: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the sweeps keep
+        /// the stretches they solved, everything computed is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
     },
     /// Measure speed against accuracy for every option that trades one for the other.
     ///
@@ -61,6 +71,9 @@ enum Command {
         /// Print only the findings and where the outputs are.
         #[arg(long, short)]
         quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote.
+        #[arg(long)]
+        force: bool,
     },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
@@ -69,78 +82,25 @@ enum Command {
     },
 }
 
-fn load(scene: Option<&Path>) -> Result<Scene, String> {
-    match scene {
-        Some(p) => Scene::load(p),
-        None => Scene::paper(),
-    }
-    .map_err(|e| format!("invalid scene: {e}"))
+fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
+    Ok(match scene {
+        Some(p) => Scene::load(p)?,
+        None => Scene::paper()?,
+    })
 }
 
-fn describe(scene: &Scene) -> Vec<String> {
-    let mut v = Vec::new();
-    for s in &scene.studies {
-        match s {
-            Study::Uniaxial(u) => v.push(format!(
-                "{}: {} stretches, {} passive curve(s), {} constant-γ curve(s), {} active model(s)",
-                u.name,
-                u.stretches.len(),
-                usize::from(u.passive) + u.compare.len(),
-                u.constant_gamma.len(),
-                u.models.len()
-            )),
-            Study::Cylinder(c) => v.push(format!(
-                "{}: {} × {} cells, {} stretches, {} FE sweep(s)",
-                c.name,
-                c.nr,
-                c.nz,
-                c.stretches.len(),
-                c.damages.len()
-            )),
-            Study::Fit(f) => v.push(format!(
-                "{}: {} fit(s) of {} parameter(s) {:?} to {}",
-                f.name,
-                f.cases.len(),
-                f.free.len(),
-                f.free,
-                f.source
-            )),
-            Study::Stability(st) => v.push(format!(
-                "{}: {} model(s) × {} stretches, {} normals",
-                st.name,
-                st.models.len() + usize::from(st.passive),
-                st.stretches.len(),
-                st.normals
-            )),
-            Study::Tradeoff(t) => v.push(format!(
-                "{}: option groups {}",
-                t.name,
-                t.options
-                    .groups
-                    .iter()
-                    .map(|g| g.key())
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )),
-        }
-    }
-    v
-}
-
-fn check(path: &Path) -> Result<(), String> {
+fn check(path: &Path) -> Result<Ended, AppError> {
     let scene = load(Some(path))?;
-    let text = toml::to_string_pretty(&scene.resolved)
-        .map_err(|e| format!("cannot print the resolved scene: {e}"))?;
     println!(
         "# {}: valid. Resolved scene (every default written out):\n",
         scene.file
     );
-    println!("{text}");
+    println!("{}", scene.resolved_toml()?);
     println!("# What `activemuscle run` would compute:");
-    for line in describe(&scene) {
-        println!("#   {line}");
+    for study in &scene.studies {
+        println!("#   {}", study.describe());
     }
-    Ok(())
+    Ok(Ended::Complete)
 }
 
 fn rustc_version() -> Option<String> {
@@ -153,7 +113,9 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
-fn summary(results: &Results, out: &Path, wall: f64) {
+/// Prints the table of studies, every failure and where the outputs are; says whether the run
+/// is complete.
+fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     println!();
     println!(
         "{:<48} {:>9} {:>7} {:>14} {:>9}",
@@ -161,55 +123,151 @@ fn summary(results: &Results, out: &Path, wall: f64) {
     );
     println!("{}", "-".repeat(91));
     for s in &results.studies {
+        let points = match s.result {
+            StudyResult::Nothing => "FAILED".to_string(),
+            _ => format!("{}/{}", s.points, s.requested),
+        };
         println!(
             "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
             s.name,
-            s.kind,
+            s.kind.name(),
             s.models,
-            format!("{}/{}", s.points, s.requested),
+            points,
             s.elapsed.as_secs_f64()
         );
     }
-    for c in &results.fe_vs_0d {
-        if c.bases == "sliding" {
-            let worst = c
-                .points
-                .iter()
-                .map(|p| (p.1 - p.2).abs())
-                .fold(0.0f64, f64::max);
+    for (_, c) in results.cylinders() {
+        if c.bases != activemuscle::fem::Bases::Sliding {
+            continue;
+        }
+        for s in &c.sweeps {
+            if let Some((worst, _)) = s.worst_against_0d() {
+                println!(
+                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
+                    s.label
+                );
+            }
+        }
+    }
+    for (study, f) in results.failures() {
+        println!("FAILED: {study} — {}: {}", f.model, f.message);
+    }
+    for s in &results.studies {
+        if s.failures.is_empty() && s.points < s.requested {
             println!(
-                "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
-                c.label
+                "FAILED: {} — {} of {} requested points computed",
+                s.name, s.points, s.requested
             );
         }
     }
-    for n in &results.notes {
-        println!("note: {} — {}: {}", n.study, n.model, n.message);
-    }
-    let failed = results.fits.iter().filter(|f| !f.converged).count();
-    if failed > 0 {
-        println!(
-            "{failed} of {} fit(s) did NOT converge (best points reported in fits.csv and report.html); the run continued",
-            results.fits.len()
-        );
-    }
     println!(
-        "{} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
-        results.rows.len(),
+        "{rows} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
         out.display()
     );
+    if !results.complete() {
+        let failed = results.studies.iter().filter(|s| !s.complete()).count();
+        println!(
+            "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
+             everything computed was written",
+            results.studies.len()
+        );
+    }
 }
 
-fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
-    let start = Instant::now();
+fn command_line() -> String {
+    std::env::args().collect::<Vec<_>>().join(" ")
+}
+
+/// The exit statuses, for `--help`.
+const EXIT_STATUS: &str = "Exit status:
+  0    every requested point, sweep and fit was computed and written
+  1    invalid input or usage (nothing computed), or the outputs could not be written
+  3    something requested failed or the time limit (--max-seconds) was reached (named on
+       the FAILED lines of the summary and in report.html); everything computed was written
+  130  interrupted (Ctrl-C, SIGINT): the stretches solved so far were written; a second
+       interrupt aborts at once and writes nothing
+
+Progress: a bar per study on a terminal, else one line per solved stretch; --quiet: neither.";
+
+/// Exit status of a run that wrote everything it computed but not everything requested.
+const EXIT_INCOMPLETE: u8 = 3;
+
+/// How a command ended, when it did not end in an error (exit status 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Ended {
+    /// Everything requested was computed and written (exit status 0).
+    Complete,
+    /// Something requested failed; everything computed was written (exit status 3).
+    Incomplete,
+    /// Interrupted (SIGINT); everything computed was written (exit status 130).
+    Interrupted,
+}
+
+/// Exit status of an interrupted run (128 + SIGINT, the shell's convention).
+const EXIT_INTERRUPTED: u8 = 130;
+
+/// The reason an interrupted run gives.
+const INTERRUPTED: &str = "interrupted (SIGINT)";
+
+/// Stops `stop` on the first SIGINT; exits at once with status 130 on the second.
+fn on_interrupt(stop: &Stop) {
+    let stop = stop.clone();
+    let count = AtomicUsize::new(0);
+    let installed = ctrlc::set_handler(move || {
+        if count.fetch_add(1, Ordering::SeqCst) > 0 {
+            eprintln!("second interrupt: aborting without writing");
+            std::process::exit(i32::from(EXIT_INTERRUPTED));
+        }
+        eprintln!(
+            "interrupt: stopping after the current Newton iteration and writing what was solved \
+             (interrupt again to abort)"
+        );
+        stop.stop(INTERRUPTED);
+    });
+    if let Err(e) = installed {
+        eprintln!("warning: no interrupt handler ({e}): Ctrl-C will end the run without writing");
+    }
+}
+
+/// Stops `stop` once `seconds` of wall time have passed (a detached timer thread).
+fn time_limit(stop: &Stop, seconds: f64) -> Result<(), AppError> {
+    if !(seconds.is_finite() && seconds > 0.0) {
+        return Err(AppError::Invalid(format!(
+            "--max-seconds {seconds}: must be a finite number of seconds > 0"
+        )));
+    }
+    let stop = stop.clone();
+    let limit = Duration::from_secs_f64(seconds);
+    std::thread::spawn(move || {
+        std::thread::sleep(limit);
+        stop.stop(&format!(
+            "time limit of {seconds} s (--max-seconds) reached"
+        ));
+    });
+    Ok(())
+}
+
+fn run_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+    max_seconds: Option<f64>,
+) -> Result<Ended, AppError> {
+    let started = Instant::now();
     let scene = load(scene)?;
-    let mut staging = Staging::new(out).map_err(|e| e.to_string())?;
-    let vtk_dir = staging.dir().join("vtk");
+    let stop = Stop::new();
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
+    let mut staging = Staging::open(out, force)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
-        vtk_dir: Some(vtk_dir),
+        vtk_dir: Some(staging.dir().join("vtk")),
+        stop: Some(stop.clone()),
     };
+    on_interrupt(&stop);
     if !quiet {
         println!(
             "activemuscle {}: {} ({})",
@@ -218,101 +276,51 @@ fn run_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), Stri
             scene.file
         );
     }
-    let results = run(&scene, &options).map_err(|e| e.to_string())?;
-
-    let mut files = Vec::new();
-    staging
-        .write(
-            "curves.csv",
-            &to_csv(&results.rows).map_err(|e| e.to_string())?,
-        )
-        .map_err(|e| e.to_string())?;
-    files.push("curves.csv".to_string());
-    for (name, bytes) in tables(&results).map_err(|e| e.to_string())? {
-        staging.write(name, &bytes).map_err(|e| e.to_string())?;
-        files.push(name.to_string());
-    }
-    staging
-        .write("scene.toml", scene.source.as_bytes())
-        .map_err(|e| e.to_string())?;
-    files.push("scene.toml".to_string());
-    let mut rendered = Vec::new();
-    for f in figures(&scene, &results) {
-        let png = staging
-            .path(Path::new(&format!("{}.png", f.stem)))
-            .map_err(|e| e.to_string())?;
-        let svg = staging
-            .path(Path::new(&format!("{}.svg", f.stem)))
-            .map_err(|e| e.to_string())?;
-        render(&f, &png, &svg).map_err(|e| e.to_string())?;
-        let bytes =
-            std::fs::read(&png).map_err(|e| format!("cannot read back {}: {e}", png.display()))?;
-        files.push(format!("{}.png", f.stem));
-        files.push(format!("{}.svg", f.stem));
-        rendered.push((f, bytes));
-    }
-    for v in &results.vtk_files {
-        let rel = Path::new("vtk").join(v);
-        staging.adopt(&rel).map_err(|e| e.to_string())?;
-        files.push(rel.display().to_string());
-    }
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    if let Some(t) = &results.tradeoff {
-        let (staged, pngs) = report::stage(
-            t,
-            &mut staging,
-            &scene.title,
-            &command,
-            start.elapsed().as_secs_f64(),
-        )
-        .map_err(|e| e.to_string())?;
-        files.extend(staged);
-        for f in pngs {
-            let figure = Figure {
-                heading: format!("Speed versus accuracy: {}", f.option),
-                caption: report::caption(&f.option, &t.rows),
-                stem: f.stem,
-                panels: Vec::new(),
-            };
-            rendered.push((figure, f.png));
-        }
-    }
-    let info = RunInfo {
-        command,
-        wall: start.elapsed(),
-        version: env!("CARGO_PKG_VERSION").to_string(),
+    let results = scene.run(&options);
+    // A time limit reached after the last study is no stop.
+    let reason = stop
+        .reason()
+        .filter(|r| r == INTERRUPTED || !results.complete());
+    let meta = RunMeta {
+        command: command_line(),
+        started,
         rustc: rustc_version(),
-        files,
     };
-    let page = html(&scene, &results, &rendered, &info).map_err(|e| e.to_string())?;
-    staging
-        .write("report.html", page.as_bytes())
-        .map_err(|e| e.to_string())?;
-    staging.commit().map_err(|e| e.to_string())?;
-    summary(&results, out, start.elapsed().as_secs_f64());
-    Ok(())
+    let rows = write_run(&mut staging, &scene, &results, &meta)?;
+    staging.commit()?;
+    summary(&results, rows, out, started.elapsed().as_secs_f64());
+    if let Some(reason) = &reason {
+        println!("STOPPED: {reason}; what was solved before is written");
+    }
+    Ok(if reason.as_deref() == Some(INTERRUPTED) {
+        Ended::Interrupted
+    } else if results.complete() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
-fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(), String> {
-    use activemuscle::tradeoff::run as run_tradeoff;
-    let start = Instant::now();
+fn tradeoff_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+) -> Result<Ended, AppError> {
+    let started = Instant::now();
     let scene = load(scene)?;
+    // The output directory is taken before computing: a refusal costs nothing.
+    let mut staging = Staging::open(out, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
-    let chosen = scene.studies.iter().find_map(|s| match s {
-        Study::Tradeoff(t) => Some(t.options.clone()),
-        _ => None,
-    });
-    let options = TradeoffOptions {
-        verbose: !quiet,
-        ..chosen.unwrap_or_default()
-    };
-    let results = run_tradeoff(&scene, &options).map_err(|e| e.to_string())?;
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let wall = start.elapsed().as_secs_f64();
-    let files = report::write_all(&results, out, &scene.title, &command, wall)
-        .map_err(|e| e.to_string())?;
+    let options = scene.tradeoff_options().cloned().unwrap_or_default();
+    let printing = Printing::new(true, false);
+    let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
+    let results = run_tradeoff(&scene.models, &options, &scene.fallback(), progress)?;
+    let wall = started.elapsed().as_secs_f64();
+    let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
+    staging.commit()?;
     if !quiet {
-        println!("\n{}", report::markdown(&results.rows));
+        println!("\n{}", tradeoff::markdown(&results.rows));
     }
     for f in &results.findings {
         println!("{f}");
@@ -321,23 +329,59 @@ fn tradeoff_command(scene: Option<&Path>, out: &Path, quiet: bool) -> Result<(),
         "{} files in {} (tradeoff.html, tradeoff.csv); wall time {:.1} s",
         files.len(),
         out.display(),
-        start.elapsed().as_secs_f64()
+        started.elapsed().as_secs_f64()
     );
-    Ok(())
+    // A variant that could not be measured (no finite error) is a failure of what was asked.
+    let failed: Vec<String> = results
+        .rows
+        .iter()
+        .filter(|r| !r.error.max_rel.is_finite())
+        .map(|r| format!("{}: {}", r.option, r.variant))
+        .collect();
+    for f in &failed {
+        println!("FAILED: {f} (not measured: see tradeoff.md)");
+    }
+    Ok(if failed.is_empty() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let outcome = match &cli.command {
-        None => run_command(None, Path::new("out"), false),
-        Some(Command::Run { scene, out, quiet }) => run_command(scene.as_deref(), out, *quiet),
-        Some(Command::Check { scene }) => check(scene),
-        Some(Command::Tradeoff { scene, out, quiet }) => {
-            tradeoff_command(scene.as_deref(), out, *quiet)
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // --help and --version print and succeed; a usage error is an invalid input (1).
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::FAILURE
+            } else {
+                ExitCode::SUCCESS
+            };
         }
     };
+    let outcome = match &cli.command {
+        None => run_command(None, Path::new("out"), false, false, None),
+        Some(Command::Run {
+            scene,
+            out,
+            quiet,
+            force,
+            max_seconds,
+        }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
+        Some(Command::Check { scene }) => check(scene),
+        Some(Command::Tradeoff {
+            scene,
+            out,
+            quiet,
+            force,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
+    };
     match outcome {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Ended::Complete) => ExitCode::SUCCESS,
+        Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
+        Ok(Ended::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

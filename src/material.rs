@@ -31,6 +31,9 @@ pub struct MuscleResponse<const N: usize> {
     pub stress: Option<SVector<f64, N>>,
     /// Its derivative in F \[kPa\] ([`Order::Tangent`]); non-symmetric for the exact frozen model.
     pub tangent: Option<SMatrix<f64, N, N>>,
+    /// dP/dγ = ∂²Ŵ/∂F∂γ at F held \[kPa\] ([`Order::Tangent`]): the stress's rate in the
+    /// activation, whatever the coupling (for the consistent model it is not the γ-rate of `stress`).
+    pub dstress_dgamma: Option<SVector<f64, N>>,
 }
 
 impl<E: StrainEnergy> Muscle<E> {
@@ -107,6 +110,7 @@ impl<E: StrainEnergy> Muscle<E> {
             energy: d.energy,
             stress: None,
             tangent: None,
+            dstress_dgamma: None,
         };
         if order == Order::Energy {
             return Ok(out);
@@ -143,6 +147,7 @@ impl<E: StrainEnergy> Muscle<E> {
         }
         check_returned(&d, &f, out.tangent.as_ref(), &kinematics.invariants)?;
         out.stress = Some(f.stress);
+        out.dstress_dgamma = f.dstress_dgamma;
         Ok(out)
     }
 }

@@ -1,9 +1,14 @@
 //! Safeguarded scalar root finding.
 
+/// Iterations [`newton_bisection`] takes at most (bisection alone shrinks any bracket of f64
+/// numbers to one ulp in fewer).
+pub const MAX_ITERATIONS: usize = 200;
+
 /// Root of `f` in [lo, hi] with f(lo) < 0 < f(hi), by Newton steps that fall back to bisection
 /// whenever a step leaves the bracket or the derivative is unusable (rtsafe). `f` returns the
 /// value and the derivative; a non-finite value shrinks the bracket from above. Converges when
-/// the bracket or the step is below `xtol`; returns why it failed otherwise.
+/// the bracket or the step is below `xtol`; after [`MAX_ITERATIONS`] returns why it failed, with
+/// the bracket and the last iterate.
 pub fn newton_bisection(
     f: impl Fn(f64) -> (f64, f64),
     mut lo: f64,
@@ -11,8 +16,10 @@ pub fn newton_bisection(
     xtol: f64,
 ) -> Result<f64, String> {
     let mut x = 0.5 * (lo + hi);
-    for _ in 0..200 {
-        let (fx, dfx) = f(x);
+    let mut fx = f64::NAN;
+    for _ in 0..MAX_ITERATIONS {
+        let dfx;
+        (fx, dfx) = f(x);
         if fx == 0.0 {
             return Ok(x);
         }
@@ -35,6 +42,6 @@ pub fn newton_bisection(
         }
     }
     Err(format!(
-        "no convergence in 200 iterations (bracket [{lo}, {hi}])"
+        "no convergence in {MAX_ITERATIONS} iterations (bracket [{lo}, {hi}], next x = {x}, last residual {fx}, tolerance {xtol})"
     ))
 }

@@ -4,30 +4,10 @@
 
 use nalgebra::{Matrix3, Unit, UnitQuaternion, Vector3};
 
-/// SplitMix64: a small seeded generator (no dependency), enough for reproducible test sampling.
-#[derive(Debug, Clone)]
-pub struct Sampler(u64);
+pub use crate::random::Sampler;
 
+/// Test geometry drawn from a [`Sampler`].
 impl Sampler {
-    /// A generator with the given seed.
-    pub fn new(seed: u64) -> Self {
-        Self(seed)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.uniform()
-    }
-
     /// A random unit vector.
     pub fn unit_vector(&mut self) -> Vector3<f64> {
         loop {

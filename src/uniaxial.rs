@@ -32,6 +32,35 @@ pub struct UniaxialPoint {
     pub lateral: [f64; 2],
 }
 
+/// Direction of a uniaxial test relative to the fibres (in a scene: `direction = "along" | "across"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Direction {
+    /// Stretch along the fibres ([`along_fibres`]).
+    #[default]
+    Along,
+    /// Stretch across the fibres, lateral faces traction free ([`across_fibres`]).
+    Across,
+}
+
+impl Direction {
+    /// `along` or `across`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Along => "along",
+            Direction::Across => "across",
+        }
+    }
+
+    /// The uniaxial test of `muscle` at stretch `lambda` in this direction.
+    pub fn point<E: StrainEnergy>(self, muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
+        match self {
+            Direction::Along => along_fibres(muscle, lambda),
+            Direction::Across => across_fibres(muscle, lambda),
+        }
+    }
+}
+
 fn fibre() -> Vector3<f64> {
     Vector3::new(1.0, 0.0, 0.0)
 }

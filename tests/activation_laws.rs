@@ -1,4 +1,4 @@
-//! Activation laws: the implicit law solves eq. D:eqgammaesplicita, the energy law its energy
+//! Activation laws: the implicit law solves eq. (13), the energy law its energy
 //! counterpart; derivatives are exact; the couplings reproduce the active target curve.
 
 use activemuscle::active::{

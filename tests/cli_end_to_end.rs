@@ -6,7 +6,8 @@ use activemuscle::energy::{Energy, GiantesioMusesti};
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 use std::collections::HashMap;
-use std::process::Command;
+
+mod binary;
 
 const SCENE: &str = r#"
 title = "end-to-end test"
@@ -40,25 +41,13 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let scene = dir.join("small.toml");
     std::fs::write(&scene, SCENE).expect("write scene");
     let out_dir = dir.join("out");
-    let out = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
-        .arg("run")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out_dir)
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    binary::run_quiet(Some(&scene), &out_dir);
 
     let csv = std::fs::read_to_string(out_dir.join("curves.csv")).expect("curves.csv");
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations")
+        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations")
     );
     let gm = GiantesioMusesti::paper();
     let energy = Energy::GiantesioMusesti(gm);
@@ -67,8 +56,15 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let mut muscles: HashMap<(String, String), Muscle<Energy>> = HashMap::new();
     let (mut uniaxial, mut cylinder) = (0, 0);
     for line in lines {
-        let c: Vec<&str> = line.split(',').collect();
+        // The study's name first (the scene's defaults); the other columns as they were.
+        let study = line.split(',').next().unwrap_or_default();
+        let c: Vec<&str> = line.split(',').skip(1).collect();
         assert_eq!(c.len(), 13, "{line}");
+        let expected_study = match c[0] {
+            "uniaxial" => "uniaxial along fibres",
+            _ => "cylinder sliding explicit frozen",
+        };
+        assert_eq!(study, expected_study, "{line}");
         let lambda: f64 = c[7].parse().expect("lambda");
         let p: f64 = c[9].parse().expect("P");
         let (law, d) = (c[4].to_string(), c[6].to_string());

@@ -330,7 +330,9 @@ fn the_shipped_tradeoff_scene_is_valid() {
 #[test]
 fn check_prints_the_parameters_of_the_energies_that_run() {
     use activemuscle::energy::{EhretBolItskov, GiantesioMusesti};
-    use activemuscle::scene::schema::{EnergyKind, EnergySpec, SceneFile};
+    use activemuscle::models::EnergySpec;
+    use activemuscle::scene::SceneSpec;
+    use activemuscle::studies::StudySpec;
     let path = scene_file(
         "energies",
         "[material]\nenergy = \"ehret-bol-itskov\"\nmu = 0.2\nalpha = 15.0\nbeta = 2.0\nw0 = 0.6\n\
@@ -340,54 +342,63 @@ fn check_prints_the_parameters_of_the_energies_that_run() {
          reference = { energy = \"ehret-bol-itskov\", beta = 3.0 }\n",
     );
     let stdout = succeeds(&["check".as_ref(), path.as_ref()]);
-    let printed: SceneFile = toml::from_str(&stdout).expect("check prints TOML");
-    let values = |e: &EnergySpec| (e.energy, e.mu, e.alpha, e.beta, e.w0);
-    let m = &printed.material;
+    let printed: SceneSpec = toml::from_str(&stdout).expect("check prints TOML");
+    // Every parameter, by name (a TOML table has no order).
+    let sorted = |mut p: Vec<(String, f64)>| {
+        p.sort_by(|a, b| a.0.cmp(&b.0));
+        p
+    };
+    let values = |e: &EnergySpec| (e.energy.clone(), sorted(e.parameters.clone()));
+    let named = |name: &str, v: &[(&str, f64)]| {
+        let p = v.iter().map(|(n, x)| (n.to_string(), *x)).collect();
+        (name.to_string(), sorted(p))
+    };
     assert_eq!(
-        (m.energy, m.mu, m.alpha, m.beta, m.w0),
-        (
-            EnergyKind::EhretBolItskov,
-            Some(0.2),
-            Some(15.0),
-            Some(2.0),
-            Some(0.6)
+        values(&printed.material.energy),
+        named(
+            "ehret-bol-itskov",
+            &[("mu", 0.2), ("alpha", 15.0), ("beta", 2.0), ("w0", 0.6)]
         )
     );
     // What is left out is the chapter's value, as the library states it.
     let (ebi, gm) = (EhretBolItskov::paper(), GiantesioMusesti::paper());
-    let compare = printed.studies[0]
-        .compare
-        .as_ref()
-        .expect("compare printed");
+    let StudySpec::Uniaxial(uniaxial) = &printed.studies[0] else {
+        panic!("study 0 is uniaxial: {:?}", printed.studies[0]);
+    };
+    let compare = uniaxial.compare.as_ref().expect("compare printed");
     assert_eq!(
         values(&compare[0]),
-        (
-            EnergyKind::EhretBolItskov,
-            Some(ebi.mu()),
-            Some(10.0),
-            Some(ebi.beta()),
-            Some(ebi.w0())
+        named(
+            "ehret-bol-itskov",
+            &[
+                ("mu", ebi.mu()),
+                ("alpha", 10.0),
+                ("beta", ebi.beta()),
+                ("w0", ebi.w0())
+            ]
         )
     );
     assert_eq!(
         values(&compare[1]),
-        (
-            EnergyKind::GiantesioMusesti,
-            Some(gm.mu()),
-            Some(gm.alpha()),
-            None,
-            Some(gm.w0())
+        named(
+            "giantesio-musesti",
+            &[("mu", gm.mu()), ("alpha", gm.alpha()), ("w0", gm.w0())]
         )
     );
-    let reference = printed.studies[1].reference.as_ref().expect("reference");
+    let StudySpec::Fit(fit) = &printed.studies[1] else {
+        panic!("study 1 is a fit: {:?}", printed.studies[1]);
+    };
+    let reference = fit.reference.as_ref().expect("reference");
     assert_eq!(
         values(reference),
-        (
-            EnergyKind::EhretBolItskov,
-            Some(ebi.mu()),
-            Some(ebi.alpha()),
-            Some(3.0),
-            Some(ebi.w0())
+        named(
+            "ehret-bol-itskov",
+            &[
+                ("mu", ebi.mu()),
+                ("alpha", ebi.alpha()),
+                ("beta", 3.0),
+                ("w0", ebi.w0())
+            ]
         )
     );
 }

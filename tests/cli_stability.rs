@@ -3,6 +3,8 @@
 
 use std::process::Command;
 
+mod binary;
+
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");
 
 #[test]
@@ -17,19 +19,7 @@ fn a_stability_study_writes_its_table_csv_and_figure() {
     )
     .expect("scene");
     let out_dir = d.join("out");
-    let out = Command::new(BIN)
-        .arg("run")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out_dir)
-        .arg("--quiet")
-        .output()
-        .expect("run binary");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    binary::run_quiet(Some(&scene), &out_dir);
     let csv = std::fs::read_to_string(out_dir.join("stability.csv")).expect("stability.csv");
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(

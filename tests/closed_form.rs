@@ -197,7 +197,7 @@ fn axisymmetric_closed_form_matches_fast_ad_and_oracle() {
     eprintln!("  closed form vs 3D closed form: {}", vs_full.show());
 }
 
-/// The closed form's P is the chapter's eq. D:stressPKtotale (without the pressure), evaluated
+/// The closed form's P is the chapter's eq. (7) (without the pressure), evaluated
 /// literally with matrices: P = μ/2 (1−γ) F_e { e^{α(I_e−1)} A − C_e⁻¹ A C_e⁻¹ } F_a⁻¹.
 #[test]
 fn closed_form_stress_is_the_papers_formula() {
@@ -226,7 +226,5 @@ fn closed_form_stress_is_the_papers_formula() {
         assert!(r <= TOL, "paper's P vs closed form: {r:e}");
         worst = worst.max(r);
     }
-    eprintln!(
-        "closed-form P vs eq. D:stressPKtotale by matrices: max relative difference {worst:.2e}"
-    );
+    eprintln!("closed-form P vs eq. (7) by matrices: max relative difference {worst:.2e}");
 }

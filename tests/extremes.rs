@@ -190,7 +190,7 @@ fn non_positive_jacobian_is_rejected() {
     }
 }
 
-/// eq. D:Ptotcalcolato evaluated as exp(x + ln I_e′): an independent route to P_tot.
+/// eq. (10) evaluated as exp(x + ln I_e′): an independent route to P_tot.
 fn p_tot_closed(l: f64, g: f64) -> f64 {
     let (mu, alpha, w0) = (0.1599, 19.35, 0.7335);
     let c2 = (1.0 - g).powi(2);

@@ -103,3 +103,38 @@ fn vtu_output_holds_the_fields_with_the_homogeneous_values() {
         .all(|v| (v - mu / lambda).abs() < 1e-9 * mu));
     std::fs::remove_dir_all(&directory).unwrap();
 }
+
+#[test]
+fn the_solver_returns_the_path_of_every_file_it_wrote() {
+    let material = NeoHookean::new(4.0).unwrap();
+    let directory = std::env::temp_dir().join(format!("fem_vtu_paths_{}", std::process::id()));
+    let options = SolverOptions {
+        vtk: Some(VtkOutput {
+            directory: directory.clone(),
+            stretches: vec![0.9, 1.3],
+        }),
+        ..SolverOptions::default()
+    };
+    let mesh = Mesh::structured(1.0, 2.0, 2, 3, 1.0).unwrap();
+    let mut solver = AxisymmetricSolver::new(mesh, Bases::Sliding, &material, options).unwrap();
+    let results = solver
+        .sweep(&[0.9, 1.1, 1.3])
+        .unwrap()
+        .into_result()
+        .unwrap();
+    let files: Vec<Option<std::path::PathBuf>> =
+        results.iter().map(|r| r.vtk_file.clone()).collect();
+    assert_eq!(
+        files,
+        [
+            Some(directory.join("lambda_0.9000.vtu")),
+            None,
+            Some(directory.join("lambda_1.3000.vtu")),
+        ]
+    );
+    for file in files.iter().flatten() {
+        assert!(file.is_file(), "{file:?}");
+    }
+    assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 2);
+    std::fs::remove_dir_all(&directory).unwrap();
+}

@@ -155,7 +155,7 @@ fn a_fit_that_does_not_converge_is_an_error_with_the_best_point() {
         ..FitOptions::default()
     };
     match fit_active_curve(&start, &data, &FitSetup::new().options(options)) {
-        Err(FitError::NotConverged { best, reason }) => {
+        Err(FitError::NotConverged { best, reason, .. }) => {
             assert!(!best.converged);
             assert_eq!(best.values.len(), 3);
             assert!(best.residual_norm.is_finite());

@@ -19,7 +19,7 @@ fn grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
 }
 
 /// The chapter says its energy simplifies EBI fitted to the same data: fitting (α, w0) with
-/// μ = 0.1599 to EBI's passive curve on [1, 1.5] must land near Table D:parpass.
+/// μ = 0.1599 to EBI's passive curve on [1, 1.5] must land near Table 1.
 #[test]
 fn chapter_energy_fitted_to_the_ebi_curve_lands_near_table_parpass() {
     let ebi = Muscle::passive(EhretBolItskov::paper());

@@ -1,5 +1,5 @@
-//! The dual-number stress equals the chapter's closed forms: P_pas (eq. D:Ppas), P_tot
-//! (eq. D:Ptotcalcolato) and the full tensor of eq. D:stressPKtotale with the pressure from
+//! The dual-number stress equals the chapter's closed forms: P_pas (eq. (11)), P_tot
+//! (eq. (10)) and the full tensor of eq. (7) with the pressure from
 //! traction-free lateral faces, to 1e-12 relative, over λ ∈ [0.65, 1.6] and γ ∈ [0, 0.4].
 
 use activemuscle::active::{ConstantLaw, Coupling, Law};
@@ -14,7 +14,7 @@ const MU: f64 = 0.1599;
 const ALPHA: f64 = 19.35;
 const W0: f64 = 0.7335;
 
-/// eq. D:Ppas.
+/// eq. (11).
 fn p_pas(l: f64) -> f64 {
     let f = 1.0 - 2.0 / 3.0 * W0;
     MU / 2.0
@@ -23,7 +23,7 @@ fn p_pas(l: f64) -> f64 {
             + W0 / 3.0)
 }
 
-/// eq. D:Ptotcalcolato with I_e, K_e and their λ-derivatives as printed.
+/// eq. (10) with I_e, K_e and their λ-derivatives as printed.
 fn p_tot(l: f64, g: f64) -> f64 {
     let c2 = (1.0 - g).powi(2);
     let ie = W0 / 3.0 * (l * l / c2 + 2.0 / l) + (1.0 - W0) * l * l / c2;
@@ -32,7 +32,7 @@ fn p_tot(l: f64, g: f64) -> f64 {
     (1.0 - g) * MU / 4.0 * (ie_d * (ALPHA * (ie - 1.0)).exp() + ke_d)
 }
 
-/// eq. D:stressPKtotale without the pressure term:
+/// eq. (7) without the pressure term:
 /// μ/2 (1−γ) F_e { e^{α(I_e−1)} A − C_e⁻¹ A C_e⁻¹ } F_a⁻¹, A = w0/3 I + (1−w0) M.
 fn p_hat(f: &Matrix3<f64>, m: &Vector3<f64>, g: f64) -> Matrix3<f64> {
     let mm = m * m.transpose();

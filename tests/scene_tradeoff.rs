@@ -4,9 +4,10 @@
 
 use activemuscle::active::{ActivationLaw, ActiveCurve, BelowMinimum, EnergyLaw};
 use activemuscle::energy::GiantesioMusesti;
-use activemuscle::scene::schema::LawKind;
-use activemuscle::scene::{Scene, SceneError, Study, TradeoffStudy};
-use activemuscle::tradeoff::study::{Geometry, OptionGroup, TradeoffOptions};
+use activemuscle::models::LawKind;
+use activemuscle::scene::{Scene, SceneError};
+use activemuscle::studies::tradeoff::{Geometry, OptionGroup, TradeoffOptions, TradeoffStudy};
+use activemuscle::studies::Study;
 
 const FILE: &str = "tradeoff_scene.toml";
 
@@ -162,6 +163,7 @@ fn bad_tradeoff_options_are_named_with_line_key_value_and_rule() {
 fn scene_gamma(text: &str, lambda: f64) -> f64 {
     let scene = Scene::parse(text, FILE).unwrap();
     scene
+        .models
         .law(LawKind::Energy)
         .unwrap()
         .evaluate(lambda, 0.0)
@@ -220,7 +222,7 @@ fn scenes_choose_what_the_energy_law_does_below_lambda_min() {
         2,
         "activation.below_minimum",
         "\"none\"",
-        "expected `zero-work` or `inactive`",
+        "expected `inactive` or `zero-work`",
     );
 }
 

@@ -130,6 +130,28 @@ fn stress_derivative_in_gamma_passes_the_taylor_test() {
     }
 }
 
+/// The muscle's dP/dγ is the held-γ rate ∂²Ŵ/∂F∂γ at the law's γ for every law and coupling, and
+/// that rate passes the Taylor test above.
+#[test]
+fn muscle_stress_rate_in_gamma_is_the_held_gamma_rate_at_the_laws_gamma() {
+    let gm = GiantesioMusesti::paper();
+    let kin = Kinematics::new(&sample_f(), &fibre()).unwrap();
+    for (name, law) in laws() {
+        for coupling in COUPLINGS {
+            let muscle = Muscle::new(gm, law.clone(), 0.1, coupling).unwrap();
+            let r = muscle.respond(&kin, Order::Tangent, &FULL).unwrap();
+            let held = active_response(&gm, &kin, r.gamma, Order::Tangent, &FULL).unwrap();
+            let (dp, expected) = (r.dstress_dgamma.unwrap(), held.dstress_dgamma.unwrap());
+            assert!(
+                (dp - expected).norm() <= 1e-13 * expected.norm(),
+                "{name} {coupling:?}: {dp} vs {expected}"
+            );
+            let stress_only = muscle.respond(&kin, Order::Stress, &FULL).unwrap();
+            assert!(stress_only.dstress_dgamma.is_none());
+        }
+    }
+}
+
 #[test]
 fn consistent_tangent_is_symmetric_and_frozen_exact_tangent_is_not() {
     for (name, law) in laws().into_iter().skip(1) {

@@ -7,15 +7,14 @@ use activemuscle::active::{
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxiF, AxisymmetricMaterial, Bases, NeoHookean, SolverOptions};
-use activemuscle::scene::Scene;
-use activemuscle::tradeoff::measure::finalise;
-use activemuscle::tradeoff::study::{
-    activation_law_fe_rows, fe_row, fe_run, run, FeRun, Geometry, OptionGroup, TradeoffOptions,
+use activemuscle::models::Models;
+use activemuscle::studies::tradeoff::measure::finalise;
+use activemuscle::studies::tradeoff::{
+    activation_law_fe_rows, curve_error, fe_row, fe_run, pareto_front, run, time_median, time_runs,
+    CurveError, Fallback, FeRun, FiniteDifferenceTangent, Geometry, Measurement, OptionGroup,
+    OracleRoute, Timing, TradeoffOptions,
 };
-use activemuscle::tradeoff::{
-    curve_error, pareto_front, time_median, CurveError, FiniteDifferenceTangent, Measurement,
-    OracleRoute,
-};
+use activemuscle::studies::Silent;
 use activemuscle::Muscle;
 use nalgebra::SMatrix;
 
@@ -58,7 +57,7 @@ fn sliding_neo_hookean_error_reported_is_the_solver_error() {
     let row = fe_row("fe", "sliding", false, &run, &closed_form_run(mu, &run));
     // The homogeneous solution is in the FE space: the only error is the solver's.
     assert!(row.error.max_abs < 1e-8, "{:?}", row.error);
-    assert!(row.time_s > 0.0 && row.iterations.unwrap() > 0);
+    assert!(row.time.median > 0.0 && row.iterations.unwrap() > 0);
 }
 
 #[test]
@@ -107,7 +106,7 @@ fn curve_error_uses_a_floored_relative_denominator() {
 }
 
 #[test]
-fn time_median_repeats_short_runs_and_reports_their_median() {
+fn time_median_repeats_short_runs_and_reports_their_median_and_spread() {
     let mut calls = 0;
     let (t, v) = time_median(|| -> Result<usize, ()> {
         calls += 1;
@@ -115,8 +114,60 @@ fn time_median_repeats_short_runs_and_reports_their_median() {
         Ok(calls)
     })
     .unwrap();
-    assert!(calls >= 3 && v == calls);
-    assert!((0.02..0.2).contains(&t), "{t}");
+    // At least three runs and until 0.3 s are spent: 15 runs of 20 ms, give or take the machine.
+    assert!(calls >= 3 && v == calls && t.runs == calls);
+    assert!((0.02..0.2).contains(&t.median), "{t:?}");
+    assert!(
+        t.low <= t.median && t.median <= t.high && t.low >= 0.02,
+        "{t:?}"
+    );
+}
+
+#[test]
+fn long_work_runs_three_times_and_a_failed_run_once() {
+    let mut calls = 0;
+    let (t, _) = time_median(|| -> Result<(), ()> {
+        calls += 1;
+        std::thread::sleep(std::time::Duration::from_millis(110));
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!((calls, t.runs), (3, 3));
+    let mut calls = 0;
+    let (t, failed) = time_runs(
+        || -> Result<bool, ()> {
+            calls += 1;
+            Ok(true)
+        },
+        |failed| !failed,
+    )
+    .unwrap();
+    assert!(failed && calls == 1 && t.runs == 1);
+}
+
+#[test]
+fn spreads_are_percentiles_and_overlapping_or_close_times_are_no_measurable_difference() {
+    // Nearest rank: 10th and 90th percentiles of 1..=11 are 2 and 10; of three runs, min and max.
+    let mut many: Vec<f64> = (1..=11).rev().map(f64::from).collect();
+    let t = Timing::of(&mut many);
+    assert_eq!((t.median, t.low, t.high, t.runs), (6.0, 2.0, 10.0, 11));
+    let three = |a: f64, b: f64, c: f64| Timing::of(&mut [a, b, c]);
+    let (fast, slow) = (three(1.0, 1.1, 1.2), three(2.0, 2.1, 2.4));
+    assert_eq!(fast.speedup_over(&slow), Some(2.1 / 1.1));
+    assert_eq!(slow.speedup_over(&fast), Some(1.1 / 2.1));
+    assert!(fast.against(&slow, "B").starts_with("1.91× faster than B"));
+    assert!(slow.against(&fast, "A").starts_with("1.91× slower than A"));
+    // A loaded machine: the medians differ, the spreads overlap.
+    let (a, b) = (three(1.0, 1.5, 3.0), three(1.2, 1.3, 2.0));
+    assert_eq!(a.speedup_over(&b), None);
+    assert!(a
+        .against(&b, "B")
+        .starts_with("no measurable difference in time from B"));
+    // Disjoint spreads but 5 % apart: within what load drift between variants makes.
+    let (a, b) = (three(1.0, 1.0, 1.01), three(1.05, 1.05, 1.06));
+    assert_eq!(a.speedup_over(&b), None);
+    // One run has no spread to compare.
+    assert_eq!(Timing::once(1.0).speedup_over(&slow), None);
 }
 
 #[test]
@@ -146,7 +197,7 @@ fn finalise_fills_speedup_error_ratio_and_front_per_option() {
             o,
             v,
             r,
-            t,
+            Timing::once(t),
             "P",
             CurveError {
                 max_abs: e,
@@ -302,9 +353,8 @@ fn curve_0d(m: &Muscle<GiantesioMusesti>) -> (Vec<f64>, Vec<f64>) {
 fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
     // Sliding bases: the FE solution is homogeneous uniaxial tension, so the stress error of a
     // law against the implicit law in the FE is the 0D error between the two laws.
-    let scene = Scene::paper().unwrap();
     let rows = activation_law_fe_rows(
-        &scene,
+        &Models::paper(),
         "activation law (FE, sliding)",
         geometry(),
         (2, 8),
@@ -337,7 +387,7 @@ fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
     assert_eq!(rows[0].error, CurveError::ZERO);
     for (row, (name, m)) in rows[1..].iter().zip(&variants) {
         assert_eq!(row.variant, *name);
-        assert!(!row.reference && row.time_s > 0.0 && row.iterations.unwrap() > 0);
+        assert!(!row.reference && row.time.median > 0.0 && row.iterations.unwrap() > 0);
         let (p, g) = curve_0d(m);
         let expected = curve_error(&p_ref, &p);
         let expected_gamma = curve_error(&g_ref, &g).max_abs;
@@ -359,7 +409,6 @@ fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
 
 #[test]
 fn the_study_runs_only_the_option_groups_asked_for() {
-    let scene = Scene::paper().unwrap();
     let options = TradeoffOptions {
         groups: vec![OptionGroup::ActivationLawFe],
         geometry: Some(geometry()),
@@ -367,7 +416,7 @@ fn the_study_runs_only_the_option_groups_asked_for() {
         fe_stretches: vec![1.1, 1.17],
         ..TradeoffOptions::default()
     };
-    let results = run(&scene, &options).unwrap();
+    let results = run(&Models::paper(), &options, &Fallback::default(), &Silent).unwrap();
     let variants: Vec<&str> = results.rows.iter().map(|r| r.variant.as_str()).collect();
     assert_eq!(
         variants,
@@ -383,7 +432,67 @@ fn the_study_runs_only_the_option_groups_asked_for() {
         .all(|r| r.option == "activation law (FE)"));
     // Speed-ups are against the implicit law's time, measured in the same run.
     let r = &results.rows[1];
-    assert!((r.speedup - results.rows[0].time_s / r.time_s).abs() < 1e-12);
+    assert!((r.speedup - results.rows[0].time.median / r.time.median).abs() < 1e-12);
     assert_eq!(results.findings.len(), 1);
     assert!(results.findings[0].contains("clamped cylinder (1 × 4 cells, 2 stretches)"));
+}
+
+#[test]
+fn the_zero_error_reference_is_drawn_on_the_lower_edge_a_decade_below_the_smallest_error_and_labelled(
+) {
+    use activemuscle::output::tradeoff::{caption, figure};
+    let row = |v: &str, reference: bool, times: &mut [f64], e: f64| {
+        Measurement::new(
+            "opt",
+            v,
+            reference,
+            Timing::of(times),
+            "P",
+            CurveError {
+                max_abs: e,
+                max_rel: e,
+            },
+        )
+    };
+    let mut rows = vec![
+        row("tight", true, &mut [1.0, 1.1, 1.2], 0.0),
+        row("loose", false, &mut [0.5, 0.55, 0.6], 1e-6),
+        row("looser", false, &mut [0.2, 0.25, 0.3], 1e-3),
+    ];
+    finalise(&mut rows);
+    let f = figure("opt", &rows);
+    let panel = &f.panels[0];
+    let frame = panel.frame();
+    // Errors 1e-6 … 1e-3: the frame from a decade below to a decade above; the zero on its edge.
+    assert!(
+        (frame.y.0 - 1e-7).abs() < 1e-20 && (frame.y.1 - 1e-2).abs() < 1e-15,
+        "{frame:?}"
+    );
+    let marker = |text: &str| {
+        panel
+            .series
+            .iter()
+            .find(|s| s.annotation.as_deref() == Some(text))
+            .unwrap_or_else(|| panic!("{text} not annotated"))
+    };
+    assert_eq!(
+        marker("tight (reference): error 0").points,
+        vec![(1.1, frame.y.0)]
+    );
+    assert_eq!(marker("loose").points, vec![(0.55, 1e-6)]);
+    // Every variant's median inside the frame; its spread a bar from the fastest to the slowest run.
+    for r in &rows {
+        let y = if r.error.max_rel == 0.0 {
+            frame.y.0
+        } else {
+            r.error.max_rel
+        };
+        assert!(frame.contains((r.time.median, y)), "{}", r.variant);
+        assert!(panel
+            .series
+            .iter()
+            .any(|s| s.points == vec![(r.time.low, y), (r.time.high, y)]));
+    }
+    assert!(caption("opt", &rows)
+        .contains("An error of 0 (the reference's own) is drawn on the lower edge"));
 }

@@ -1,7 +1,7 @@
 //! Hand-derived closed form of the chapter's active model, written ONLY as the benchmark's
 //! yardstick (and as an independent check of the AD routes in `tests/closed_form.rs`).
 //!
-//! Passive energy (eq. D:Wpassiva) W(C) = μ/4 { (e^{α(I−1)} − 1)/α + K − 1 } with
+//! Passive energy (eq. (1)) W(C) = μ/4 { (e^{α(I−1)} − 1)/α + K − 1 } with
 //! I = A : C, K = A : C⁻¹, A = a I + b M, a = w0/3, b = 1 − w0, M = m ⊗ m.
 //! Active strain F_a = I − γ M, N = F_a⁻¹ = I + (s − 1) M with c = 1 − γ, s = 1/c, and
 //! Ŵ(F, γ) = c W(C_e), C_e = N C N.
@@ -13,7 +13,7 @@
 //!
 //! so with B = F⁻¹, C⁻¹ = B Bᵀ, e = e^{α(I_e − 1)} and κ = c μ/2:
 //!
-//! - P = κ (e F Â − g),  g = Bᵀ Ǎ C⁻¹ (this is eq. D:stressPKtotale without the pressure:
+//! - P = κ (e F Â − g),  g = Bᵀ Ǎ C⁻¹ (this is eq. (7) without the pressure:
 //!   F_e {e A − C_e⁻¹ A C_e⁻¹} F_a⁻¹ = e F Â − Bᵀ Ǎ C⁻¹),
 //! - ∂P_kL/∂F_iJ = κ { 2α e (FÂ)_kL (FÂ)_iJ + e δ_ki Â_LJ + B_Jk g_iL + Q_ki C⁻¹_JL + g_kJ B_Li },
 //!   Q = Bᵀ Ǎ B (from ∂B_ab/∂F_iJ = −B_ai B_Jb); major-symmetric,

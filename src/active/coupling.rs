@@ -14,10 +14,12 @@
 
 use super::law::LawValue;
 
-/// Which linearisation the frozen model uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Which linearisation the frozen model uses (in a scene: `frozen_tangent = "exact" | "symmetric"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum FrozenTangent {
     /// The exact (non-symmetric) linearisation: quadratic Newton convergence.
+    #[default]
     Exact,
     /// ∂²Ŵ/∂F² at frozen γ only: symmetric, inexact, linear Newton convergence.
     Symmetric,

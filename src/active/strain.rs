@@ -50,15 +50,20 @@ pub fn active_energy<E: StrainEnergy, T: Scalar>(energy: &E, j: &[T; 5], gamma: 
 /// j = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1] (eq. D:Wattgamma). Its λ-derivative is P_tot
 /// (eq. D:Ptotcalcolato).
 pub fn fibre_path_energy<E: StrainEnergy, T: Scalar>(energy: &E, lambda: T, gamma: T) -> T {
+    active_energy(energy, &fibre_path_invariants(lambda), gamma)
+}
+
+/// The invariants j = [tr C, C:M, tr C⁻¹, C⁻¹:M, det C] = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1] of the
+/// incompressible uniaxial path along the fibres, F = diag(λ, λ^-½, λ^-½), m = e₁.
+pub fn fibre_path_invariants<T: Scalar>(lambda: T) -> [T; 5] {
     let inv = lambda.recip();
-    let j = [
+    [
         lambda * lambda + inv * 2.0,
         lambda * lambda,
         inv * inv + lambda * 2.0,
         inv * inv,
         T::one(),
-    ];
-    active_energy(energy, &j, gamma)
+    ]
 }
 
 /// The active-strain map at a fixed γ, Ie = A(γ) j, applied by its seven non-zero entries:

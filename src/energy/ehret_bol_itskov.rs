@@ -1,4 +1,4 @@
-use super::{open_unit, positive, Invariants, ScalarWith, StrainEnergy};
+use super::{open_unit, positive, Invariants, Parameter, ScalarWith, Shipped, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -28,13 +28,16 @@ impl EhretBolItskov {
     }
 
     /// The parameters quoted in the chapter after eq. D:Webi.
+    pub const PAPER: Self = Self {
+        mu: 0.1599,
+        alpha: 19.69,
+        beta: 1.190,
+        w0: 0.7388,
+    };
+
+    /// The parameters quoted in the chapter after eq. D:Webi.
     pub fn paper() -> Self {
-        Self {
-            mu: 0.1599,
-            alpha: 19.69,
-            beta: 1.190,
-            w0: 0.7388,
-        }
+        Self::PAPER
     }
 
     /// Shear-like modulus μ \[kPa\].
@@ -78,10 +81,29 @@ impl StrainEnergy for EhretBolItskov {
     }
 
     fn name(&self) -> &str {
-        "ehret-bol-itskov"
+        Self::NAME
     }
 
     fn uses_det_c(&self) -> bool {
         false
+    }
+}
+
+impl Shipped for EhretBolItskov {
+    const NAME: &'static str = "ehret-bol-itskov";
+    const PARAMETERS: &'static [Parameter] = &[
+        Parameter::positive("mu", "μ", "kPa", Some(Self::PAPER.mu)),
+        Parameter::positive("alpha", "α", "-", Some(Self::PAPER.alpha)),
+        Parameter::positive("beta", "β", "-", Some(Self::PAPER.beta)),
+        Parameter::fraction("w0", "w0", Some(Self::PAPER.w0)),
+    ];
+    fn values(&self) -> Vec<f64> {
+        vec![self.mu, self.alpha, self.beta, self.w0]
+    }
+    fn from_values(v: &[f64]) -> Result<Self> {
+        Self::new(v[0], v[1], v[2], v[3])
+    }
+    fn energy_of<T: Scalar>(p: &[T], invariants: &Invariants<T>) -> T {
+        Self::energy_with(p[0], p[1], p[2], p[3], invariants)
     }
 }

@@ -1,4 +1,4 @@
-use super::{open_unit, positive, Invariants, ScalarWith, StrainEnergy};
+use super::{open_unit, positive, Invariants, Parameter, ScalarWith, Shipped, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -26,12 +26,15 @@ impl GiantesioMusesti {
     }
 
     /// The chapter's parameters (Table D:parpass).
+    pub const PAPER: Self = Self {
+        mu: 0.1599,
+        alpha: 19.35,
+        w0: 0.7335,
+    };
+
+    /// The chapter's parameters (Table D:parpass).
     pub fn paper() -> Self {
-        Self {
-            mu: 0.1599,
-            alpha: 19.35,
-            w0: 0.7335,
-        }
+        Self::PAPER
     }
 
     /// Shear-like modulus μ \[kPa\].
@@ -69,10 +72,28 @@ impl StrainEnergy for GiantesioMusesti {
     }
 
     fn name(&self) -> &str {
-        "giantesio-musesti"
+        Self::NAME
     }
 
     fn uses_det_c(&self) -> bool {
         false
+    }
+}
+
+impl Shipped for GiantesioMusesti {
+    const NAME: &'static str = "giantesio-musesti";
+    const PARAMETERS: &'static [Parameter] = &[
+        Parameter::positive("mu", "μ", "kPa", Some(Self::PAPER.mu)),
+        Parameter::positive("alpha", "α", "-", Some(Self::PAPER.alpha)),
+        Parameter::fraction("w0", "w0", Some(Self::PAPER.w0)),
+    ];
+    fn values(&self) -> Vec<f64> {
+        vec![self.mu, self.alpha, self.w0]
+    }
+    fn from_values(v: &[f64]) -> Result<Self> {
+        Self::new(v[0], v[1], v[2])
+    }
+    fn energy_of<T: Scalar>(p: &[T], invariants: &Invariants<T>) -> T {
+        Self::energy_with(p[0], p[1], p[2], invariants)
     }
 }

@@ -5,14 +5,6 @@
 //! and their derivatives with respect to F (see [`crate::invariants`]), so a model never writes a
 //! derivative by hand.
 
-mod ehret_bol_itskov;
-mod giantesio_musesti;
-mod neo_hookean;
-
-pub use ehret_bol_itskov::EhretBolItskov;
-pub use giantesio_musesti::GiantesioMusesti;
-pub use neo_hookean::NeoHookean;
-
 use crate::Scalar;
 use crate::{Error, Result};
 
@@ -132,39 +124,209 @@ pub(crate) fn open_unit(name: &'static str, value: f64) -> Result<f64> {
     }
 }
 
-/// Any of the shipped energies, chosen at run time (e.g. from a scene file).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Energy {
-    /// The chapter's passive energy, eq. D:Wpassiva.
-    GiantesioMusesti(GiantesioMusesti),
-    /// The Ehret–Böl–Itskov energy, eq. D:Webi.
-    EhretBolItskov(EhretBolItskov),
-    /// Incompressible neo-Hookean reference.
-    NeoHookean(NeoHookean),
+/// A named parameter of an energy: what a scene writes, a fit frees, a report prints.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Parameter {
+    /// Name in scene files, fits and outputs (`mu`).
+    pub name: &'static str,
+    /// Symbol in the docs (`μ`).
+    pub symbol: &'static str,
+    /// Unit (`kPa`, or `-` for a dimensionless parameter).
+    pub unit: &'static str,
+    /// The chapter's value, used when a scene leaves the parameter out; `None`: it must be given.
+    pub default: Option<f64>,
+    /// Admissible range [lower, upper] (the constructor may exclude an end); the default bounds
+    /// of a fit.
+    pub range: (f64, f64),
 }
 
-impl StrainEnergy for Energy {
-    fn energy<T: Scalar>(&self, invariants: &Invariants<T>) -> T {
-        match self {
-            Energy::GiantesioMusesti(w) => w.energy(invariants),
-            Energy::EhretBolItskov(w) => w.energy(invariants),
-            Energy::NeoHookean(w) => w.energy(invariants),
+impl Parameter {
+    /// A parameter that must be > 0.
+    pub const fn positive(
+        name: &'static str,
+        symbol: &'static str,
+        unit: &'static str,
+        default: Option<f64>,
+    ) -> Self {
+        Self {
+            name,
+            symbol,
+            unit,
+            default,
+            range: (0.0, f64::INFINITY),
         }
     }
 
-    fn name(&self) -> &str {
-        match self {
-            Energy::GiantesioMusesti(w) => w.name(),
-            Energy::EhretBolItskov(w) => w.name(),
-            Energy::NeoHookean(w) => w.name(),
+    /// A dimensionless parameter in (0, 1).
+    pub const fn fraction(name: &'static str, symbol: &'static str, default: Option<f64>) -> Self {
+        Self {
+            name,
+            symbol,
+            unit: "-",
+            default,
+            range: (0.0, 1.0),
         }
+    }
+}
+
+/// An energy with named parameters that can be read, rebuilt from numbers (validated) and passed
+/// to the energy's one formula as dual numbers (derivatives in the parameters, for fitting).
+/// Every [`Shipped`] energy and [`Energy`] implement it.
+pub trait Parametric: StrainEnergy + Sized {
+    /// The parameters, in order.
+    fn parameters(&self) -> &'static [Parameter];
+
+    /// Current values, in the order of [`parameters`](Self::parameters).
+    fn parameter_values(&self) -> Vec<f64>;
+
+    /// The same model with new parameter values, validated by its constructor.
+    fn rebuilt(&self, values: &[f64]) -> Result<Self>;
+
+    /// W(C) \[kPa\] with the parameters given as scalars (dual numbers differentiate in them).
+    fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T;
+
+    /// Names of the parameters, in order.
+    fn parameter_names(&self) -> Vec<&'static str> {
+        self.parameters().iter().map(|p| p.name).collect()
+    }
+}
+
+/// A shipped energy: its name, its parameter table and its formula over those parameters. Its
+/// file in `src/energy/` implements this (and [`StrainEnergy`]); one line in
+/// `shipped_energies!` below makes it a choice of [`Energy`], of scene files (`energy = "name"`
+/// with its parameters by name), of `check`'s printout, of passive fits and of the report.
+pub trait Shipped: StrainEnergy + Sized {
+    /// Name in scene files and outputs (`giantesio-musesti`).
+    const NAME: &'static str;
+    /// The parameters, in the order of [`values`](Self::values).
+    const PARAMETERS: &'static [Parameter];
+    /// The parameter values.
+    fn values(&self) -> Vec<f64>;
+    /// The energy with these parameter values (in the order of [`PARAMETERS`](Self::PARAMETERS)),
+    /// validated.
+    fn from_values(values: &[f64]) -> Result<Self>;
+    /// W(C) \[kPa\] with the parameters given as scalars, in the same order.
+    fn energy_of<T: Scalar>(parameters: &[T], invariants: &Invariants<T>) -> T;
+}
+
+impl<E: Shipped> Parametric for E {
+    fn parameters(&self) -> &'static [Parameter] {
+        E::PARAMETERS
+    }
+    fn parameter_values(&self) -> Vec<f64> {
+        self.values()
+    }
+    fn rebuilt(&self, values: &[f64]) -> Result<Self> {
+        E::from_values(values)
+    }
+    fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T {
+        E::energy_of(parameters, invariants)
+    }
+}
+
+/// One entry of [`SHIPPED`]: a shipped energy's name, parameters and constructor.
+#[derive(Debug, Clone, Copy)]
+pub struct ShippedEnergy {
+    /// Name in scene files (`energy = "..."`).
+    pub name: &'static str,
+    /// Its parameters.
+    pub parameters: &'static [Parameter],
+    build: fn(&[f64]) -> Result<Energy>,
+}
+
+impl ShippedEnergy {
+    /// The shipped energy called `name`.
+    pub fn find(name: &str) -> Option<&'static ShippedEnergy> {
+        SHIPPED.iter().find(|e| e.name == name)
     }
 
-    fn uses_det_c(&self) -> bool {
-        match self {
-            Energy::GiantesioMusesti(w) => w.uses_det_c(),
-            Energy::EhretBolItskov(w) => w.uses_det_c(),
-            Energy::NeoHookean(w) => w.uses_det_c(),
+    /// The energy with parameter `values`, one per parameter, in order; validated.
+    pub fn build(&self, values: &[f64]) -> Result<Energy> {
+        if values.len() != self.parameters.len() {
+            return Err(Error::InvalidParameter {
+                name: "parameters",
+                value: values.len() as f64,
+                rule: "give one value per parameter of the energy",
+            });
         }
+        (self.build)(values)
     }
+}
+
+/// The shipped energies: `shipped_energies! { file::Type, ... }` declares each energy's module
+/// (`src/energy/file.rs`) and re-exports its type, and generates [`Energy`] (one variant per type,
+/// named as the type), its [`StrainEnergy`] and [`Parametric`] implementations and [`SHIPPED`].
+macro_rules! shipped_energies {
+    ($($(#[$doc:meta])* $file:ident::$energy:ident),* $(,)?) => {
+        $(mod $file;
+        pub use $file::$energy;)*
+
+        /// Any of the shipped energies, chosen at run time (e.g. from a scene file).
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum Energy {
+            $($(#[$doc])* $energy($energy),)*
+        }
+
+        impl StrainEnergy for Energy {
+            fn energy<T: Scalar>(&self, invariants: &Invariants<T>) -> T {
+                match self {
+                    $(Energy::$energy(w) => w.energy(invariants),)*
+                }
+            }
+
+            fn name(&self) -> &str {
+                match self {
+                    $(Energy::$energy(w) => w.name(),)*
+                }
+            }
+
+            fn uses_det_c(&self) -> bool {
+                match self {
+                    $(Energy::$energy(w) => w.uses_det_c(),)*
+                }
+            }
+        }
+
+        impl Parametric for Energy {
+            fn parameters(&self) -> &'static [Parameter] {
+                match self {
+                    $(Energy::$energy(_) => $energy::PARAMETERS,)*
+                }
+            }
+            fn parameter_values(&self) -> Vec<f64> {
+                match self {
+                    $(Energy::$energy(w) => w.values(),)*
+                }
+            }
+            fn rebuilt(&self, values: &[f64]) -> Result<Self> {
+                Ok(match self {
+                    $(Energy::$energy(_) => Energy::$energy($energy::from_values(values)?),)*
+                })
+            }
+            fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T {
+                match self {
+                    $(Energy::$energy(_) => $energy::energy_of(parameters, invariants),)*
+                }
+            }
+        }
+
+        /// The shipped energies, in the order of [`Energy`]'s variants (the first is the
+        /// chapter's, the default of scene files).
+        pub const SHIPPED: &[ShippedEnergy] = &[$(ShippedEnergy {
+            name: $energy::NAME,
+            parameters: $energy::PARAMETERS,
+            build: |v| Ok(Energy::$energy($energy::from_values(v)?)),
+        },)*];
+    };
+}
+
+// A new shipped energy: its file in this directory (`impl StrainEnergy` and `impl Shipped`) and
+// one line here.
+shipped_energies! {
+    /// The chapter's passive energy, eq. (1).
+    giantesio_musesti::GiantesioMusesti,
+    /// The Ehret–Böl–Itskov energy, eq. (4).
+    ehret_bol_itskov::EhretBolItskov,
+    /// Incompressible neo-Hookean reference.
+    neo_hookean::NeoHookean,
 }

@@ -1,4 +1,4 @@
-use super::{positive, Invariants, ScalarWith, StrainEnergy};
+use super::{positive, Invariants, Parameter, ScalarWith, Shipped, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -34,10 +34,25 @@ impl StrainEnergy for NeoHookean {
     }
 
     fn name(&self) -> &str {
-        "neo-hookean"
+        Self::NAME
     }
 
     fn uses_det_c(&self) -> bool {
         false
+    }
+}
+
+impl Shipped for NeoHookean {
+    const NAME: &'static str = "neo-hookean";
+    /// μ has no chapter value: a scene must give it.
+    const PARAMETERS: &'static [Parameter] = &[Parameter::positive("mu", "μ", "kPa", None)];
+    fn values(&self) -> Vec<f64> {
+        vec![self.mu]
+    }
+    fn from_values(v: &[f64]) -> Result<Self> {
+        Self::new(v[0])
+    }
+    fn energy_of<T: Scalar>(p: &[T], invariants: &Invariants<T>) -> T {
+        Self::energy_with(p[0], invariants)
     }
 }

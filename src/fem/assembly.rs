@@ -7,10 +7,10 @@
 //! lists are built once with the pattern; the hot loop allocates nothing. The element loop is
 //! compiled once per [`Element`] with fixed-size matrices; the choice is made once per assembly.
 
+use super::condensation::Condensation;
 use super::dofs::DofMap;
 use super::element::{
-    deformation, Element, ElementMatrix, ElementVector, Q1P0Reference, Q2Q1Reference,
-    ReferenceElement,
+    deformation, zeroed, Element, Q1P0Reference, Q2Q1Reference, ReferenceElement,
 };
 use super::error::{FemError, FemResult};
 use super::material::{AxiF, AxisymmetricMaterial};
@@ -58,6 +58,9 @@ struct Buffers<'a> {
     kbuf: &'a mut [f64],
     gbuf: &'a mut [f64],
     scale_buf: &'a mut [f64],
+    /// Per-cell data of the static condensation (one unused value per cell without it).
+    cdata: &'a mut [f64],
+    condensation: Option<&'a Condensation>,
     rates: &'a [f64],
     n_free: usize,
 }
@@ -116,22 +119,28 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         buf: Buffers<'_>,
     ) -> crate::Result<()> {
         let re = &self.re;
-        let (rates, n_free) = (buf.rates, buf.n_free);
+        let (rates, n_free, condensation) = (buf.rates, buf.n_free, buf.condensation);
+        let n_k = buf.kbuf.len() / self.coords.len().max(1);
+        let n_c = buf.cdata.len() / self.coords.len().max(1);
         buf.rbuf
             .par_chunks_mut(ND)
-            .zip(buf.kbuf.par_chunks_mut(ND * ND))
+            .zip(buf.kbuf.par_chunks_mut(n_k.max(1)))
+            .zip(buf.cdata.par_chunks_mut(n_c.max(1)))
             .zip(buf.gbuf.par_chunks_mut(ND))
             .zip(buf.scale_buf.par_iter_mut())
             .zip(self.coords.par_iter().zip(self.dofs.par_iter()))
-            .try_for_each(|((((rb, kb), gb), sc), (xe, d))| {
+            .try_for_each(|(((((rb, kb), cd), gb), sc), (xe, d))| {
                 let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
                 let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
-                let mut r = ElementVector::<ND>::zeros();
+                let mut r = zeroed::<ND, 1>();
                 let scale = if tangent {
-                    let mut k = ElementMatrix::<ND>::zeros();
+                    let mut k = zeroed::<ND, ND>();
                     let s = re.residual_tangent(xe, &u, &p, material, &mut r, Some(&mut k))?;
-                    kb.copy_from_slice(k.as_slice());
-                    let mut g = ElementVector::<ND>::zeros();
+                    match condensation {
+                        Some(c) => c.condense_cell(k.as_slice(), ND, kb, cd)?,
+                        None => kb.copy_from_slice(k.as_slice()),
+                    }
+                    let mut g = zeroed::<ND, 1>();
                     let mut any = false;
                     for (j, &dj) in d.iter().enumerate() {
                         if (dj as usize) >= n_free && rates[dj as usize] != 0.0 {
@@ -178,10 +187,11 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     }
 }
 
-/// Compressed-column pattern of the free–free block of the tangent.
+/// Compressed-column pattern of the system matrix: the free–free block of the tangent,
+/// condensed ([`Assembler::system_index`]).
 #[derive(Debug, Clone)]
 pub struct Pattern {
-    /// Dimension (number of free dofs).
+    /// Dimension (number of unknowns of the system).
     pub n: usize,
     /// Column pointers (length n + 1).
     pub col_ptr: Vec<u32>,
@@ -194,9 +204,10 @@ pub struct Pattern {
 pub struct Assembler {
     kernel: Kernel,
     n_free: usize,
-    /// Sparsity pattern of the free–free tangent.
+    /// Sparsity pattern of the system matrix: the free–free tangent, the Q2/Q1 centre nodes
+    /// condensed out ([`super::condensation`]).
     pub pattern: Pattern,
-    /// Tangent values (aligned with `pattern.row_idx`).
+    /// System matrix values (aligned with `pattern.row_idx`).
     pub values: Vec<f64>,
     /// Residual on every dof, prescribed ones included (there it is the reaction).
     pub residual: Vec<f64>,
@@ -212,6 +223,9 @@ pub struct Assembler {
     rbuf: Vec<f64>,
     gbuf: Vec<f64>,
     scale_buf: Vec<f64>,
+    cdata: Vec<f64>,
+    condensation: Option<Condensation>,
+    index: Vec<u32>,
     rates: Vec<f64>,
 }
 
@@ -237,6 +251,137 @@ fn counting_lists(n: usize, targets: &[u32]) -> (Vec<u32>, Vec<u32>) {
     (ptr, src)
 }
 
+/// Which entries of a cell's matrix enter the system: `couples(i, j)` for local dofs i, j.
+type Couples<'a> = &'a (dyn Fn(usize, usize) -> bool + Sync);
+
+/// The pattern of the system matrix on `n` unknowns from the cells' system dofs (`m` per cell
+/// in `cell_dofs`, `u32::MAX` for a dof outside the system) and the local `couples` rule.
+fn system_pattern(
+    cell_dofs: &[u32],
+    m: usize,
+    n: usize,
+    couples: Couples<'_>,
+    mesh: &Mesh,
+) -> FemResult<Pattern> {
+    let inside = |g: u32| g != u32::MAX;
+    // Two passes over the cells into one flat buffer (column j's rows, duplicates included, at
+    // start[j]..), then each column sorted and deduplicated in place: one allocation, not one
+    // per column.
+    let mut start = vec![0usize; n + 1];
+    for d in cell_dofs.chunks_exact(m) {
+        for j in (0..m).filter(|&j| inside(d[j])) {
+            start[d[j] as usize + 1] += (0..m).filter(|&i| inside(d[i]) && couples(i, j)).count();
+        }
+    }
+    for j in 0..n {
+        start[j + 1] += start[j];
+    }
+    let mut flat = vec![0u32; start[n]];
+    let mut fill = start.clone();
+    for d in cell_dofs.chunks_exact(m) {
+        for j in (0..m).filter(|&j| inside(d[j])) {
+            for i in (0..m).filter(|&i| inside(d[i]) && couples(i, j)) {
+                flat[fill[d[j] as usize]] = d[i];
+                fill[d[j] as usize] += 1;
+            }
+        }
+    }
+    drop(fill);
+    if let Some(i) = (0..n).find(|&j| start[j] == start[j + 1]) {
+        return Err(FemError::InvalidInput {
+            name: "mesh",
+            value: format!(
+                "free dof {i} of {} {} cells",
+                mesh.n_elements(),
+                mesh.element
+            ),
+            rule: "every free dof must couple to a free displacement dof (refine the mesh)",
+        });
+    }
+    let (col_ptr, row_idx) = deduplicate_columns(flat, &start)?;
+    Ok(Pattern {
+        n,
+        col_ptr,
+        row_idx,
+    })
+}
+
+/// Sorts and deduplicates each column `flat[start[j]..start[j + 1]]` in place and compacts them.
+fn deduplicate_columns(mut flat: Vec<u32>, start: &[usize]) -> FemResult<(Vec<u32>, Vec<u32>)> {
+    let n = start.len() - 1;
+    let mut col_ptr = Vec::with_capacity(n + 1);
+    col_ptr.push(0u32);
+    let mut len = 0usize;
+    for j in 0..n {
+        let column = &mut flat[start[j]..start[j + 1]];
+        column.sort_unstable();
+        let mut kept = 0;
+        for k in 0..column.len() {
+            if k == 0 || column[k] != column[kept - 1] {
+                column[kept] = column[k];
+                kept += 1;
+            }
+        }
+        flat.copy_within(start[j]..start[j] + kept, len);
+        len += kept;
+        if len >= u32::MAX as usize {
+            return Err(FemError::InvalidInput {
+                name: "pattern",
+                value: len.to_string(),
+                rule: "too many nonzeros for 32-bit indices",
+            });
+        }
+        col_ptr.push(len as u32);
+    }
+    flat.truncate(len);
+    flat.shrink_to_fit();
+    Ok((col_ptr, flat))
+}
+
+/// Position in the system's values of every cell-matrix entry (m × m per cell, column-major;
+/// u32::MAX: not in the system).
+fn value_positions(
+    cell_dofs: &[u32],
+    m: usize,
+    pattern: &Pattern,
+    couples: Couples<'_>,
+) -> Vec<u32> {
+    let inside = |g: u32| g != u32::MAX;
+    let n_k = m * m;
+    let mut pos = vec![u32::MAX; cell_dofs.len() / m * n_k];
+    pos.par_chunks_mut(n_k)
+        .zip(cell_dofs.par_chunks_exact(m))
+        .for_each(|(p, d)| {
+            for j in (0..m).filter(|&j| inside(d[j])) {
+                let (lo, hi) = (
+                    pattern.col_ptr[d[j] as usize] as usize,
+                    pattern.col_ptr[d[j] as usize + 1] as usize,
+                );
+                let rows = &pattern.row_idx[lo..hi];
+                for i in (0..m).filter(|&i| inside(d[i]) && couples(i, j)) {
+                    if let Ok(k) = rows.binary_search(&d[i]) {
+                        p[i + m * j] = (lo + k) as u32;
+                    }
+                }
+            }
+        });
+    pos
+}
+
+/// The system's numbering of the free dofs (`u32::MAX` for a condensed bubble dof) and its size.
+fn system_numbering(n_free: usize, condensation: Option<&Condensation>) -> (Vec<u32>, usize) {
+    let bubble = condensation.map(Condensation::bubble_flags);
+    let mut index = vec![u32::MAX; n_free];
+    let mut next = 0u32;
+    for (g, slot) in index.iter_mut().enumerate() {
+        if !bubble.as_ref().is_some_and(|b| b[g]) {
+            *slot = next;
+            next += 1;
+        }
+    }
+    (index, next as usize)
+}
+
 impl Assembler {
     /// Validates the element geometry and builds the pattern and the gather lists.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> FemResult<Self> {
@@ -256,8 +401,10 @@ impl Assembler {
         }
         let nd = dofs.dofs_per_element();
         let nu = 2 * mesh.element.nodes();
-        let n_k = nd * nd;
-        if n_el.checked_mul(n_k).is_none_or(|v| v >= u32::MAX as usize) {
+        if n_el
+            .checked_mul(nd * nd)
+            .is_none_or(|v| v >= u32::MAX as usize)
+        {
             return Err(FemError::InvalidInput {
                 name: "elements",
                 value: n_el.to_string(),
@@ -269,82 +416,40 @@ impl Assembler {
             Element::Q1P0 => Kernel::Q1P0(Box::new(Cells::new(Q1P0Reference::new(), mesh, dofs)?)),
         };
         let n = dofs.n_free;
-        let free = |g: u32| (g as usize) < n;
-        // Column lists of the free–free pattern (no pressure–pressure block: K_pp = 0).
-        let mut cols: Vec<Vec<u32>> = vec![Vec::new(); n];
-        for d in dofs.element_dofs.chunks_exact(nd) {
-            for j in 0..nd {
-                if !free(d[j]) {
-                    continue;
+        let condensation = Condensation::new(mesh, dofs);
+        let (index, n_system) = system_numbering(n, condensation.as_ref());
+        // The cells' dofs in the system: all but the condensed bubble, in the system numbering;
+        // the condensed cell matrix couples every pair, the plain one all but pressure–pressure.
+        let (m, global) = match &condensation {
+            Some(c) => (c.dofs_per_cell(), c.cell_dofs()),
+            None => (nd, dofs.element_dofs.as_slice()),
+        };
+        let system: Vec<u32> = global
+            .iter()
+            .map(|&g| {
+                if (g as usize) < n {
+                    index[g as usize]
+                } else {
+                    u32::MAX
                 }
-                for i in 0..nd {
-                    if free(d[i]) && !(i >= nu && j >= nu) {
-                        cols[d[j] as usize].push(d[i]);
-                    }
-                }
-            }
-        }
-        if let Some(i) = cols.iter().position(Vec::is_empty) {
-            return Err(FemError::InvalidInput {
-                name: "mesh",
-                value: format!("free dof {i} of {} {} cells", n_el, mesh.element),
-                rule: "every free dof must couple to a free displacement dof (refine the mesh)",
-            });
-        }
-        let mut col_ptr = Vec::with_capacity(n + 1);
-        col_ptr.push(0u32);
-        let mut row_idx = Vec::new();
-        for c in cols.iter_mut() {
-            c.sort_unstable();
-            c.dedup();
-            row_idx.extend_from_slice(c);
-            if row_idx.len() >= u32::MAX as usize {
-                return Err(FemError::InvalidInput {
-                    name: "pattern",
-                    value: row_idx.len().to_string(),
-                    rule: "too many nonzeros for 32-bit indices",
-                });
-            }
-            col_ptr.push(row_idx.len() as u32);
-        }
-        drop(cols);
-        let nnz = row_idx.len();
-        // Position of every element-matrix entry in `values` (u32::MAX: not in the system).
-        let mut pos = vec![u32::MAX; n_el * n_k];
-        pos.par_chunks_mut(n_k)
-            .zip(dofs.element_dofs.par_chunks_exact(nd))
-            .for_each(|(p, d)| {
-                for j in 0..nd {
-                    if !free(d[j]) {
-                        continue;
-                    }
-                    let (lo, hi) = (
-                        col_ptr[d[j] as usize] as usize,
-                        col_ptr[d[j] as usize + 1] as usize,
-                    );
-                    let rows = &row_idx[lo..hi];
-                    for i in 0..nd {
-                        if free(d[i]) && !(i >= nu && j >= nu) {
-                            if let Ok(k) = rows.binary_search(&d[i]) {
-                                p[i + nd * j] = (lo + k) as u32;
-                            }
-                        }
-                    }
-                }
-            });
+            })
+            .collect();
+        let condensed = condensation.is_some();
+        let couples = move |i: usize, j: usize| condensed || !(i >= nu && j >= nu);
+        let pattern = system_pattern(&system, m, n_system, &couples, mesh)?;
+        let nnz = pattern.row_idx.len();
+        let pos = value_positions(&system, m, &pattern, &couples);
+        drop(system);
         let (val_ptr, val_src) = counting_lists(nnz, &pos);
         drop(pos);
         let (res_ptr, res_src) = counting_lists(dofs.n_total, &dofs.element_dofs);
         let mut rates = vec![0.0; dofs.n_total];
         rates[dofs.n_free..].copy_from_slice(&dofs.prescribed_rate);
+        let n_c = condensation.as_ref().map_or(1, Condensation::data_per_cell);
         Ok(Self {
             kernel,
             n_free: n,
-            pattern: Pattern {
-                n,
-                col_ptr,
-                row_idx,
-            },
+            pattern,
             values: vec![0.0; nnz],
             residual: vec![0.0; dofs.n_total],
             rate_force: vec![0.0; dofs.n_total],
@@ -353,12 +458,44 @@ impl Assembler {
             val_src,
             res_ptr,
             res_src,
-            kbuf: vec![0.0; n_el * n_k],
+            kbuf: vec![0.0; n_el * m * m],
             rbuf: vec![0.0; n_el * nd],
             gbuf: vec![0.0; n_el * nd],
             scale_buf: vec![0.0; n_el],
+            cdata: vec![0.0; n_el * n_c],
+            condensation,
+            index,
             rates,
         })
+    }
+
+    /// The system's index of every free dof (`u32::MAX`: a condensed centre-node dof); the
+    /// identity without condensation.
+    pub fn system_index(&self) -> &[u32] {
+        &self.index
+    }
+
+    /// Whether the Q2/Q1 centre nodes are condensed out of the system ([`super::condensation`]).
+    pub fn is_condensed(&self) -> bool {
+        self.condensation.is_some()
+    }
+
+    /// The system's right-hand side for `f` on the free dofs: f_e − W f_b
+    /// ([`Condensation::condense`]), or f itself without condensation.
+    pub fn condense(&self, f: &[f64], system: &mut [f64]) {
+        match &self.condensation {
+            Some(c) => c.condense(&self.cdata, &self.index, f, system),
+            None => system.copy_from_slice(f),
+        }
+    }
+
+    /// The solution on the free dofs of K x = f from the system's solution `y`
+    /// ([`Condensation::expand`]), or y itself without condensation.
+    pub fn expand(&self, f: &[f64], y: &[f64], x: &mut [f64]) {
+        match &self.condensation {
+            Some(c) => c.expand(&self.cdata, &self.index, f, y, x),
+            None => x.copy_from_slice(y),
+        }
     }
 
     /// The element of the cells.
@@ -391,6 +528,8 @@ impl Assembler {
             kbuf: &mut self.kbuf,
             gbuf: &mut self.gbuf,
             scale_buf: &mut self.scale_buf,
+            cdata: &mut self.cdata,
+            condensation: self.condensation.as_ref(),
             rates: &self.rates,
             n_free: self.n_free,
         };

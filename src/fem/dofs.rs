@@ -43,6 +43,31 @@ pub struct DofMap {
     pub top_axial: Vec<u32>,
 }
 
+/// Which displacement components of every node are held, and their rate d x_c/dλ (L for u_z on
+/// z = L).
+fn constraints(mesh: &Mesh, bases: Bases) -> (Vec<[bool; 2]>, Vec<[f64; 2]>) {
+    let nn = mesh.n_nodes();
+    let mut fixed = vec![[false; 2]; nn];
+    let mut rate = vec![[0.0f64; 2]; nn];
+    for &a in mesh.boundary(Boundary::Axis) {
+        fixed[a as usize][0] = true;
+    }
+    for &a in mesh.boundary(Boundary::Bottom) {
+        fixed[a as usize][1] = true;
+        if bases == Bases::Clamped {
+            fixed[a as usize][0] = true;
+        }
+    }
+    for &a in mesh.boundary(Boundary::Top) {
+        fixed[a as usize][1] = true;
+        rate[a as usize][1] = mesh.length;
+        if bases == Bases::Clamped {
+            fixed[a as usize][0] = true;
+        }
+    }
+    (fixed, rate)
+}
+
 impl DofMap {
     /// Dofs per cell: 2 per node, then the cell's pressure dofs.
     pub fn dofs_per_element(&self) -> usize {
@@ -58,24 +83,7 @@ impl DofMap {
     /// Numbers the dofs of `mesh` (for its [`Mesh::element`]) with the conditions of `bases`.
     pub fn new(mesh: &Mesh, bases: Bases) -> Self {
         let nn = mesh.n_nodes();
-        let mut fixed = vec![[false; 2]; nn];
-        let mut rate = vec![[0.0f64; 2]; nn];
-        for &a in mesh.boundary(Boundary::Axis) {
-            fixed[a as usize][0] = true;
-        }
-        for &a in mesh.boundary(Boundary::Bottom) {
-            fixed[a as usize][1] = true;
-            if bases == Bases::Clamped {
-                fixed[a as usize][0] = true;
-            }
-        }
-        for &a in mesh.boundary(Boundary::Top) {
-            fixed[a as usize][1] = true;
-            rate[a as usize][1] = mesh.length;
-            if bases == Bases::Clamped {
-                fixed[a as usize][0] = true;
-            }
-        }
+        let (fixed, rate) = constraints(mesh, bases);
         let element = mesh.element;
         let mut has_p = vec![false; nn];
         if element == Element::Q2Q1 {

@@ -227,6 +227,53 @@ pub struct QuadratureGeometry<const NU: usize> {
     pub b: BMatrix<NU>,
 }
 
+/// A zero matrix, zeroed as one block (cheaper than nalgebra's entry-wise `zeros` in hot
+/// loops).
+pub fn zeroed<const R: usize, const C: usize>() -> SMatrix<f64, R, C> {
+    SMatrix::from_array_storage(nalgebra::ArrayStorage([[0.0; R]; C]))
+}
+
+/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU), using the structure of B: node a's u_r
+/// column is (∂N_a/∂r, ∂N_a/∂z, 0, 0, N_a/r) and its u_z column (0, 0, ∂N_a/∂r, ∂N_a/∂z, 0), so
+/// the 2 × 2 block of nodes (a, b) costs 10 products once D's columns are combined for b. With
+/// `lower`, only the blocks a ≥ b (for a symmetric D; see [`mirror_node_blocks`]).
+fn add_btdb<const NU: usize, const R: usize>(
+    k: &mut SMatrix<f64, R, R>,
+    b: &BMatrix<NU>,
+    d: &SMatrix<f64, 5, 5>,
+    lower: bool,
+) {
+    for nb in 0..NU / 2 {
+        let (rb, zb) = (2 * nb, 2 * nb + 1);
+        let (dr, dz, nr) = (b[(0, rb)], b[(1, rb)], b[(4, rb)]);
+        let cr: [f64; 5] =
+            std::array::from_fn(|i| d[(i, 0)] * dr + d[(i, 1)] * dz + d[(i, 4)] * nr);
+        let cz: [f64; 5] = std::array::from_fn(|i| d[(i, 2)] * dr + d[(i, 3)] * dz);
+        for na in if lower { nb } else { 0 }..NU / 2 {
+            let (ra, za) = (2 * na, 2 * na + 1);
+            let (ar, az, an) = (b[(0, ra)], b[(1, ra)], b[(4, ra)]);
+            k[(ra, rb)] += ar * cr[0] + az * cr[1] + an * cr[4];
+            k[(za, rb)] += ar * cr[2] + az * cr[3];
+            k[(ra, zb)] += ar * cz[0] + az * cz[1] + an * cz[4];
+            k[(za, zb)] += ar * cz[2] + az * cz[3];
+        }
+    }
+}
+
+/// Completes a matrix of 2 × 2 node blocks of which [`add_btdb`] filled the blocks a ≥ b:
+/// block (b, a) = block (a, b)ᵀ.
+fn mirror_node_blocks<const NU: usize>(k: &mut SMatrix<f64, NU, NU>) {
+    for nb in 0..NU / 2 {
+        for na in nb + 1..NU / 2 {
+            for i in 0..2 {
+                for j in 0..2 {
+                    k[(2 * nb + i, 2 * na + j)] = k[(2 * na + j, 2 * nb + i)];
+                }
+            }
+        }
+    }
+}
+
 /// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ElementScale {
@@ -286,7 +333,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         }
         // Inverse Jacobian: ∂ξ/∂r = z_η/det, ∂ξ/∂z = −r_η/det, ∂η/∂r = −z_ξ/det, ∂η/∂z = r_ξ/det.
         let (xi_r, xi_z, eta_r, eta_z) = (z_eta / det, -r_eta / det, -z_xi / det, r_xi / det);
-        let mut b = BMatrix::<NU>::zeros();
+        let mut b = zeroed::<5, NU>();
         for a in 0..NN {
             let [dxi, deta] = self.dn[q][a];
             let dr = dxi * xi_r + deta * eta_r;
@@ -344,7 +391,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         residual: &mut ElementVector<ND>,
         tangent: Option<&mut ElementMatrix<ND>>,
     ) -> crate::Result<ElementScale> {
-        residual.fill(0.0);
+        residual.as_mut_slice().fill(0.0);
         let mut scale = ElementScale::default();
         match tangent {
             None => {
@@ -364,7 +411,9 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                 }
             }
             Some(k) => {
-                k.fill(0.0);
+                // Contiguous zeroing (nalgebra's `fill` walks the matrix entry by entry).
+                k.as_mut_slice().fill(0.0);
+                let mut kuu_lower = zeroed::<NU, NU>();
                 for q in 0..NQ {
                     let g = &self.geometry_checked(q, x)?;
                     let f = deformation(&g.b, u);
@@ -378,19 +427,13 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
                     let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
-                    // K_uu += Bᵀ D B with D = (A − p H) dV.
+                    // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
+                    // material) only the node blocks below the diagonal, mirrored at the end.
                     let d = (a - jacobian_hessian(&f) * pq) * g.dv;
-                    // B is sparse: a u_r column is (∂N/∂r, ∂N/∂z, 0, 0, N/r), a u_z column
-                    // (0, 0, ∂N/∂r, ∂N/∂z, 0); only those entries are multiplied.
-                    let db = d * g.b;
-                    for j in 0..NU {
-                        let c = db.column(j);
-                        for a in 0..NN {
-                            let (ra, za) = (2 * a, 2 * a + 1);
-                            k[(ra, j)] +=
-                                g.b[(0, ra)] * c[0] + g.b[(1, ra)] * c[1] + g.b[(4, ra)] * c[4];
-                            k[(za, j)] += g.b[(2, za)] * c[2] + g.b[(3, za)] * c[3];
-                        }
+                    if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
+                        add_btdb(&mut kuu_lower, &g.b, &d, true);
+                    } else {
+                        add_btdb(k, &g.b, &d, false);
                     }
                     // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
                     let bdj = g.b.tr_mul(&dj) * (-g.dv);
@@ -399,6 +442,8 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     k.fixed_view_mut::<NP, NU>(NU, 0)
                         .add_assign(&kup.transpose());
                 }
+                mirror_node_blocks(&mut kuu_lower);
+                k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&kuu_lower);
             }
         }
         Ok(scale)

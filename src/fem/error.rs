@@ -10,15 +10,23 @@ pub enum StepFailure {
     #[error("material error at a trial state: {0}")]
     Material(crate::Error),
     /// Newton did not meet both convergence criteria within the allowed iterations.
-    #[error("no convergence in {iterations} Newton iterations (scaled residual {residual:.3e})")]
+    #[error(
+        "no convergence in {iterations} Newton iterations: scaled residual {residual:.3e} and \
+         scaled increment {increment:.3e}, both must reach the tolerance"
+    )]
     MaxIterations {
         /// Iterations performed.
         iterations: usize,
         /// Last scaled residual norm.
         residual: f64,
+        /// Last scaled increment norm.
+        increment: f64,
     },
     /// The backtracking line search found no step length that decreases the residual.
-    #[error("line search failed: no decrease of the scaled residual {residual:.3e} along the Newton direction")]
+    #[error(
+        "line search failed: no decrease of the scaled residual {residual:.3e} along the Newton \
+         direction (a residual at its round-off floor, or a poor direction)"
+    )]
     LineSearch {
         /// Scaled residual at the start of the search.
         residual: f64,
@@ -29,6 +37,9 @@ pub enum StepFailure {
         /// What the linear solver reported.
         detail: String,
     },
+    /// The sweep was cancelled ([`super::SolverOptions::cancel`]) during this step.
+    #[error("cancelled")]
+    Cancelled,
 }
 
 /// Every fallible operation of the FE solver returns this error.
@@ -67,6 +78,43 @@ pub enum FemError {
         /// Why that last trial was rejected.
         cause: StepFailure,
     },
+    /// A direction of the sweep used up its load steps ([`super::SolverOptions::max_steps`]).
+    #[error(
+        "target stretch {target} not reached: largest converged stretch {reached} after \
+         {steps} load steps (the limit, SolverOptions::max_steps)"
+    )]
+    StepLimit {
+        /// The requested stretch.
+        target: f64,
+        /// The last stretch solved.
+        reached: f64,
+        /// Load steps taken in this direction.
+        steps: usize,
+    },
+    /// The sweep was cancelled ([`super::SolverOptions::cancel`]); the stretches solved before
+    /// are kept in [`super::Sweep::results`].
+    #[error("sweep cancelled on the way to stretch {target}")]
+    Cancelled {
+        /// The target being solved for when the sweep stopped.
+        target: f64,
+    },
+    /// The estimated memory of the solve exceeds the limit; nothing large was allocated.
+    #[error(
+        "the solve on {mesh} ({dofs:.0} dofs) needs an estimated {} of memory, above the limit of {} \
+         (SolverOptions::memory_limit; by default half the available memory): use a coarser mesh",
+        bytes(*estimate),
+        bytes(*limit as f64)
+    )]
+    MemoryLimit {
+        /// The mesh, in words.
+        mesh: String,
+        /// Its free dofs (estimate).
+        dofs: f64,
+        /// The memory estimate \[bytes\].
+        estimate: f64,
+        /// The limit \[bytes\].
+        limit: u64,
+    },
     /// The reference state λ = 1 (the pressure balancing the stress at F = I) was not found.
     #[error("reference state λ = 1 not found: {cause}")]
     ReferenceState {
@@ -81,6 +129,16 @@ pub enum FemError {
         /// The underlying error.
         source: std::io::Error,
     },
+}
+
+/// A byte count in MiB or GiB.
+fn bytes(b: f64) -> String {
+    const MIB: f64 = 1024.0 * 1024.0;
+    if b >= 1024.0 * MIB {
+        format!("{:.1} GiB", b / (1024.0 * MIB))
+    } else {
+        format!("{:.1} MiB", b / MIB)
+    }
 }
 
 /// Result alias of the FE solver.

@@ -9,6 +9,8 @@
 
 use super::element::Element;
 use super::error::{FemError, FemResult};
+use super::memory::{self, MemoryEstimate};
+use super::solver::LinearSolver;
 use std::collections::HashMap;
 
 /// Boundary parts of the meridian rectangle.
@@ -81,11 +83,37 @@ fn z_breaks(length: f64, nz: usize, grading: f64) -> Vec<f64> {
     z
 }
 
+/// The nodes of the Q2 lattice: `mr` per row, uniform in r on [0, R]; rows at the cell
+/// boundaries `zc` and their midpoints.
+fn lattice(radius: f64, zc: &[f64], mr: usize) -> Vec<[f64; 2]> {
+    let nz = zc.len() - 1;
+    let mut znodes = Vec::with_capacity(2 * nz + 1);
+    for j in 0..nz {
+        znodes.push(zc[j]);
+        znodes.push(0.5 * (zc[j] + zc[j + 1]));
+    }
+    znodes.push(zc[nz]);
+    let mut nodes = Vec::with_capacity(mr * znodes.len());
+    for &z in &znodes {
+        for i in 0..mr {
+            let r = if i == mr - 1 {
+                radius
+            } else {
+                radius * i as f64 / (mr - 1) as f64
+            };
+            nodes.push([r, z]);
+        }
+    }
+    nodes
+}
+
 impl Mesh {
     /// Structured nr × nz mesh of [0, R] × [0, L] with 9-node (Q2/Q1) cells (uniform in r; in z
     /// uniform if `grading == 1`, otherwise geometrically refined towards both bases with
     /// middle/base cell-height ratio `grading` ≥ 1). For Q1/P0 cells on the same cells, see
-    /// [`Mesh::with_element`].
+    /// [`Mesh::with_element`]. A mesh on which even the cheapest solve (Q1/P0 on its cells) would
+    /// exceed the default memory limit ([`memory::default_limit`]) is refused with
+    /// [`FemError::MemoryLimit`] from its counts, before anything is allocated.
     pub fn structured(
         radius: f64,
         length: f64,
@@ -117,25 +145,12 @@ impl Mesh {
                 rule: "mesh too large for 32-bit indices",
             });
         }
-        let zc = z_breaks(length, nz, grading);
-        let mut znodes = Vec::with_capacity(mz);
-        for j in 0..nz {
-            znodes.push(zc[j]);
-            znodes.push(0.5 * (zc[j] + zc[j + 1]));
-        }
-        znodes.push(length);
+        let mut cheapest =
+            MemoryEstimate::structured(nr, nz, Element::Q1P0, LinearSolver::SymmetricPartGmres);
+        cheapest.mesh = format!("{nr} × {nz} cells with the cheapest element, Q1/P0");
+        cheapest.check(memory::default_limit())?;
+        let nodes = lattice(radius, &z_breaks(length, nz, grading), mr);
         let id = |i: usize, j: usize| (j * mr + i) as u32;
-        let mut nodes = Vec::with_capacity(mr * mz);
-        for &z in &znodes {
-            for i in 0..mr {
-                let r = if i == mr - 1 {
-                    radius
-                } else {
-                    radius * i as f64 / (mr - 1) as f64
-                };
-                nodes.push([r, z]);
-            }
-        }
         let mut connectivity = Vec::with_capacity(9 * nr * nz);
         for cj in 0..nz {
             for ci in 0..nr {

@@ -12,8 +12,16 @@
 //! for any constitutive model behind [`AxisymmetricMaterial`]. Boundary conditions: u_r = 0 on
 //! the axis, u_z = 0 at z = 0, u_z = (λ − 1) L at z = L, lateral surface traction free, bases
 //! [`Bases::Sliding`] or [`Bases::Clamped`]. See [`solver::AxisymmetricSolver`].
+//!
+//! Layers: [`mesh`], [`dofs`], [`element`] and [`assembly`] build the discrete problem;
+//! [`problem`] makes it a [`NonlinearSystem`]; [`continuation`] drives any such system through
+//! the load path (load stepping, Newton, line search); [`tangent_solver`] solves the Newton
+//! systems ([`ldlt`] with its fill-reducing ordering, [`pattern_lu`], [`linear`]); [`vtk`]
+//! writes fields; [`memory`] bounds the work before it starts.
 
 pub mod assembly;
+pub mod condensation;
+pub mod continuation;
 pub mod dofs;
 pub mod element;
 pub mod error;
@@ -21,19 +29,23 @@ pub mod kinematics;
 pub mod ldlt;
 pub mod linear;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod pattern_lu;
+pub mod problem;
 pub mod solver;
 pub mod tangent_solver;
 pub mod vtk;
 
 pub use assembly::QuadraturePoint;
+pub use continuation::{Cancel, NonlinearSystem};
 pub use dofs::Bases;
 pub use element::Element;
 pub use error::{FemError, FemResult, StepFailure};
 pub use material::{AxiF, AxisymmetricMaterial, NeoHookean};
+pub use memory::MemoryEstimate;
 pub use mesh::{Boundary, Mesh};
 pub use solver::{
-    AxisymmetricSolver, IterationRecord, LinearSolver, SolverOptions, State, StepRecord,
+    AxisymmetricSolver, IterationRecord, LinearSolver, Progress, SolverOptions, State, StepRecord,
     StretchResult, Sweep, Timings, VtkOutput,
 };

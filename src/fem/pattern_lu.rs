@@ -59,9 +59,14 @@ pub struct PatternLu {
 }
 
 impl PatternLu {
-    /// Set-up for `pattern` with the supernodal structure of `symbolic` (which must be
-    /// supernodal and carry the ordering).
-    pub fn new(pattern: &Pattern, symbolic: &SymbolicCholesky<u32>) -> Result<Self, String> {
+    /// Set-up for `pattern` with the supernodal structure of `symbolic`, the analysis of the
+    /// matrix permuted by `perm` (`perm[k]`: original index of the k-th eliminated dof; faer's
+    /// own ordering composed with it if the analysis carries one).
+    pub fn new(
+        pattern: &Pattern,
+        symbolic: &SymbolicCholesky<u32>,
+        perm: &[u32],
+    ) -> Result<Self, String> {
         let n = pattern.n;
         let sn = match symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(s) => s,
@@ -70,8 +75,8 @@ impl PatternLu {
             }
         };
         let perm: Vec<u32> = match symbolic.perm() {
-            Some(p) => p.arrays().0.to_vec(),
-            None => (0..n as u32).collect(),
+            Some(p) => p.arrays().0.iter().map(|&k| perm[k as usize]).collect(),
+            None => perm.to_vec(),
         };
         let mut perm_inv = vec![0u32; n];
         for (k, &i) in perm.iter().enumerate() {
@@ -165,45 +170,9 @@ impl PatternLu {
         let (w, r) = (e - b, self.rows[s].len());
         let (l_all, ut_all) = (&mut self.l, &mut self.ut);
         let l = &mut l_all[self.l_ptr[s]..self.l_ptr[s + 1]];
-        // P D = L₁₁ U₁₁ in place (unblocked, column-major, leading dimension w + r).
         let ld = w + r;
         let ut = &mut ut_all[self.ut_ptr[s]..self.ut_ptr[s + 1]];
-        for k in 0..w {
-            // Partial pivoting inside the diagonal block (rows b..e only, so the pattern is
-            // kept): the row swap is applied to the L panel and to the columns of the Uᵀ panel
-            // (the same equations' entries right of the block).
-            let mut p = k;
-            for i in k + 1..w {
-                if l[i + k * ld].abs() > l[p + k * ld].abs() {
-                    p = i;
-                }
-            }
-            self.pivots[b + k] = (b + p) as u32;
-            if p != k {
-                for j in 0..w {
-                    l.swap(k + j * ld, p + j * ld);
-                }
-                for q in 0..r {
-                    ut.swap(q + k * r, q + p * r);
-                }
-            }
-            let pivot = l[k + k * ld];
-            if pivot == 0.0 || !pivot.is_finite() {
-                return Err(format!("pivot {pivot:e} at dof {}", b + k));
-            }
-            // Column k of L below the pivot, the off-diagonal rows included: L₂₁ = A₂₁ U₁₁⁻¹.
-            for i in k + 1..ld {
-                l[i + k * ld] /= pivot;
-            }
-            for j in k + 1..w {
-                let ukj = l[k + j * ld];
-                if ukj != 0.0 {
-                    for i in k + 1..ld {
-                        l[i + j * ld] -= l[i + k * ld] * ukj;
-                    }
-                }
-            }
-        }
+        factor_diagonal_block(l, ut, w, r, b, &mut self.pivots[b..e])?;
         if r == 0 {
             return Ok(());
         }
@@ -224,7 +193,15 @@ impl PatternLu {
             1.0,
             Par::Seq,
         );
-        // Scatter −S into the supernodes owning the columns of R.
+        self.scatter_schur(s);
+        Ok(())
+    }
+
+    /// Subtracts the Schur complement S (in `schur`) of supernode `s` from the supernodes that
+    /// own the columns of its off-diagonal rows R.
+    fn scatter_schur(&mut self, s: usize) {
+        let r = self.rows[s].len();
+        let (l_all, ut_all) = (&mut self.l, &mut self.ut);
         let rows = &self.rows[s];
         let mut jj = 0;
         while jj < r {
@@ -261,7 +238,6 @@ impl PatternLu {
                 jj += 1;
             }
         }
-        Ok(())
     }
 
     /// x ← K⁻¹ x with the factorisation (fails if there is none).
@@ -326,6 +302,60 @@ impl PatternLu {
             None => Ok(()),
         }
     }
+}
+
+/// P D = L₁₁ U₁₁ in place for the diagonal block D (w × w) of a supernode's L panel `l`
+/// (column-major, leading dimension w + r; the block's first dof is `b`), unblocked, with
+/// partial pivoting inside the block: rows never leave it, so the pattern is kept. A row swap is
+/// applied to the L panel and to the columns of the Uᵀ panel `ut` (r × w: the same equations'
+/// entries right of the block); `pivots[k]` records the row exchanged with row k. The rows below
+/// the block become L₂₁ = A₂₁ U₁₁⁻¹.
+fn factor_diagonal_block(
+    l: &mut [f64],
+    ut: &mut [f64],
+    w: usize,
+    r: usize,
+    b: usize,
+    pivots: &mut [u32],
+) -> Result<(), String> {
+    let ld = w + r;
+    for k in 0..w {
+        // Partial pivoting inside the diagonal block (rows b..e only, so the pattern is
+        // kept): the row swap is applied to the L panel and to the columns of the Uᵀ panel
+        // (the same equations' entries right of the block).
+        let mut p = k;
+        for i in k + 1..w {
+            if l[i + k * ld].abs() > l[p + k * ld].abs() {
+                p = i;
+            }
+        }
+        pivots[k] = (b + p) as u32;
+        if p != k {
+            for j in 0..w {
+                l.swap(k + j * ld, p + j * ld);
+            }
+            for q in 0..r {
+                ut.swap(q + k * r, q + p * r);
+            }
+        }
+        let pivot = l[k + k * ld];
+        if pivot == 0.0 || !pivot.is_finite() {
+            return Err(format!("pivot {pivot:e} at dof {}", b + k));
+        }
+        // Column k of L below the pivot, the off-diagonal rows included: L₂₁ = A₂₁ U₁₁⁻¹.
+        for i in k + 1..ld {
+            l[i + k * ld] /= pivot;
+        }
+        for j in k + 1..w {
+            let ukj = l[k + j * ld];
+            if ukj != 0.0 {
+                for i in k + 1..ld {
+                    l[i + j * ld] -= l[i + k * ld] * ukj;
+                }
+            }
+        }
+    }
+    Ok(())
 }
 
 impl Preconditioner for PatternLu {
@@ -414,7 +444,8 @@ mod tests {
             },
         )
         .unwrap();
-        let mut lu = PatternLu::new(&pattern, &symbolic).unwrap();
+        let identity: Vec<u32> = (0..n as u32).collect();
+        let mut lu = PatternLu::new(&pattern, &symbolic, &identity).unwrap();
         lu.factorise(&values).unwrap();
         let x_true: Vec<f64> = (0..n).map(|i| ((i * 13) % 17) as f64 - 8.0).collect();
         // b = A x.

@@ -7,9 +7,14 @@
 //!
 //! - LDLᵀ of the symmetric part (K + Kᵀ)/2 ([`super::ldlt`]): pattern of K, no pivoting; for a
 //!   symmetric tangent GMRES converges in one iteration;
-//! - once GMRES on it needs more than 40 iterations (a strongly non-symmetric tangent, e.g. the
+//! - once GMRES on it needs more than 10 iterations (a strongly non-symmetric tangent, e.g. the
 //!   frozen active-strain model), an LU of K on the LDLᵀ's supernodes ([`super::pattern_lu`]:
-//!   same fill as the LDLᵀ, pivoting inside the diagonal blocks), from then on preferred;
+//!   same fill as the LDLᵀ, pivoting inside the diagonal blocks), from then on preferred. Ten
+//!   GMRES iterations (a matrix product and two triangular solves each) cost about one
+//!   factorisation, so past them the LU, with one or two iterations per solve, is cheaper
+//!   (the limit was 40 before the centre nodes were condensed; with it, the condensed frozen
+//!   tangent stayed on the LDLᵀ: the 8 × 32 frozen sweep at d = 0.5 took 472 GMRES iterations
+//!   for 119 solves, against 119 with 10);
 //! - faer's LU with partial pivoting ([`super::linear`]), solving directly, for a tangent on
 //!   which the pattern LU meets a zero pivot or does not precondition (after three such tangents
 //!   in a row, for good), or when `LinearSolver::Lu` is chosen.
@@ -28,13 +33,14 @@ use super::assembly::Pattern;
 use super::ldlt::{Gmres, Preconditioner, SymmetricPartLdlt};
 use super::linear::SparseLu;
 use super::pattern_lu::PatternLu;
-use super::solver::Timings;
+use super::problem::Timings;
 use std::time::Instant;
 
 /// Normwise backward error to which every linear solve is converged.
 const TOLERANCE: f64 = 1e-12;
-/// GMRES iterations allowed with the LDLᵀ of the symmetric part before switching to an LU.
-const LDLT_ITERATIONS: usize = 40;
+/// GMRES iterations allowed with the LDLᵀ of the symmetric part before switching to an LU
+/// (about the cost of one factorisation).
+const LDLT_ITERATIONS: usize = 10;
 /// GMRES iterations allowed with the pattern LU (exact up to its pivots: one or two).
 const PATTERN_LU_ITERATIONS: usize = 20;
 /// Consecutive failures of the pattern LU after which faer's LU is used for good.
@@ -136,7 +142,7 @@ impl TangentSolver {
         let mut r = Err(String::new());
         if !self.prefer_lu {
             if let Some(ldlt) = self.ldlt.as_mut() {
-                r = ldlt.factorise(pattern, values);
+                r = ldlt.factorise(values);
                 if r.is_ok() {
                     self.current = Factor::Ldlt;
                 } else {
@@ -148,7 +154,7 @@ impl TangentSolver {
         if self.current == Factor::None && !skip && self.pattern_lu_strikes < PATTERN_LU_STRIKES {
             if self.pattern_lu.is_none() {
                 if let Some(ldlt) = self.ldlt.as_ref() {
-                    self.pattern_lu = PatternLu::new(pattern, ldlt.symbolic()).ok();
+                    self.pattern_lu = PatternLu::new(pattern, ldlt.symbolic(), ldlt.perm()).ok();
                 }
             }
             match self.pattern_lu.as_mut().map(|p| p.factorise(values)) {

@@ -1,8 +1,137 @@
-//! VTK XML unstructured-grid (`.vtu`, ASCII) writer for ParaView.
+//! VTK XML unstructured-grid (`.vtu`, ASCII) output for ParaView: the fields of a solved
+//! state ([`write_state`]) and the writer ([`write_vtu`]). The file of a stretch is named once,
+//! by [`file_name`].
 
-use super::element::Element;
+use super::assembly::QuadraturePoint;
+use super::dofs::DofMap;
+use super::element::{jacobian, jacobian_gradient, Element};
+use super::error::{FemError, FemResult};
+use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
 use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// The file name of the fields at stretch λ: `lambda_<λ with 4 decimals>.vtu`.
+pub fn file_name(stretch: f64) -> String {
+    format!("lambda_{stretch:.4}.vtu")
+}
+
+/// Writes the fields of the state `x` into `directory` (created if missing) under
+/// [`file_name`]`(stretch)`; returns the path written.
+pub fn write_stretch<M: AxisymmetricMaterial + ?Sized>(
+    directory: &Path,
+    stretch: f64,
+    mesh: &Mesh,
+    dofs: &DofMap,
+    material: &M,
+    qps: &[QuadraturePoint],
+    x: &[f64],
+) -> FemResult<PathBuf> {
+    std::fs::create_dir_all(directory).map_err(|source| FemError::Io {
+        path: directory.display().to_string(),
+        source,
+    })?;
+    let path = directory.join(file_name(stretch));
+    write_state(&path, mesh, dofs, material, qps, x)?;
+    Ok(path)
+}
+
+/// Writes the state `x` (quadrature points `qps`) as a VTK unstructured grid in the (r, z)
+/// plane: point data u (u_r, u_z, 0) and p (Q2/Q1: Q1-interpolated to all nodes; Q1/P0:
+/// volume-weighted mean of the cell pressures around each node); cell data J, γ, λ_f, P_zz
+/// (nominal, pressure included) as volume-weighted averages over the cell's quadrature points.
+pub fn write_state<M: AxisymmetricMaterial + ?Sized>(
+    path: &Path,
+    mesh: &Mesh,
+    dofs: &DofMap,
+    material: &M,
+    qps: &[QuadraturePoint],
+    x: &[f64],
+) -> FemResult<()> {
+    let cell = cell_sums(mesh.n_elements(), material, qps)?;
+    let pressure = nodal_pressure(mesh, dofs, &cell, x);
+    let u: Vec<[f64; 2]> = dofs
+        .node_u
+        .iter()
+        .map(|d| [x[d[0] as usize], x[d[1] as usize]])
+        .collect();
+    let cells: Vec<[f64; 4]> = cell
+        .iter()
+        .map(|c| [c[0] / c[4], c[1] / c[4], c[2] / c[4], c[3] / c[4]])
+        .collect();
+    write_vtu(path, mesh, &u, &pressure, &cells).map_err(|source| FemError::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
+/// Per cell: ∫ J, ∫ γ, ∫ λ_f, ∫ P_zz and the volume ∫ dV over its quadrature points.
+fn cell_sums<M: AxisymmetricMaterial + ?Sized>(
+    n_cells: usize,
+    material: &M,
+    qps: &[QuadraturePoint],
+) -> FemResult<Vec<[f64; 5]>> {
+    let mut cell = vec![[0.0f64; 5]; n_cells];
+    for q in qps {
+        let (gamma, lf) = material.point_fields(&q.f)?;
+        let pk = material.stress(&q.f)?;
+        let pzz = pk[3] - q.pressure * jacobian_gradient(&q.f)[3];
+        let c = &mut cell[q.element];
+        c[0] += jacobian(&q.f) * q.dv;
+        c[1] += gamma * q.dv;
+        c[2] += lf * q.dv;
+        c[3] += pzz * q.dv;
+        c[4] += q.dv;
+    }
+    Ok(cell)
+}
+
+/// The pressure at every node (see [`write_state`]); `cell` from [`cell_sums`].
+fn nodal_pressure(mesh: &Mesh, dofs: &DofMap, cell: &[[f64; 5]], x: &[f64]) -> Vec<f64> {
+    let mut pressure = vec![0.0f64; mesh.n_nodes()];
+    match mesh.element {
+        Element::Q2Q1 => {
+            for conn in mesh.elements() {
+                let pc: Vec<f64> = conn[..4]
+                    .iter()
+                    .map(|&a| x[dofs.node_p[a as usize] as usize])
+                    .collect();
+                // Q1 interpolation at the reference positions of the 9 nodes.
+                let vals = [
+                    pc[0],
+                    pc[1],
+                    pc[2],
+                    pc[3],
+                    0.5 * (pc[0] + pc[1]),
+                    0.5 * (pc[1] + pc[2]),
+                    0.5 * (pc[2] + pc[3]),
+                    0.5 * (pc[3] + pc[0]),
+                    0.25 * (pc[0] + pc[1] + pc[2] + pc[3]),
+                ];
+                for (a, v) in conn.iter().zip(vals) {
+                    pressure[*a as usize] = v;
+                }
+            }
+        }
+        Element::Q1P0 => {
+            // The cell-constant pressure, volume-averaged over the cells around each node.
+            let mut weight = vec![0.0f64; mesh.n_nodes()];
+            for (e, conn) in mesh.elements().enumerate() {
+                let pe = x[dofs.element_p[e] as usize];
+                for &a in conn {
+                    pressure[a as usize] += pe * cell[e][4];
+                    weight[a as usize] += cell[e][4];
+                }
+            }
+            for (p, w) in pressure.iter_mut().zip(&weight) {
+                if *w > 0.0 {
+                    *p /= w;
+                }
+            }
+        }
+    }
+    pressure
+}
 
 /// An error (nothing written) if any value of `field` is not finite, naming the field and where.
 fn refuse_non_finite(
@@ -30,7 +159,7 @@ const VTK_QUAD: u8 = 9;
 /// cells as VTK_QUAD) with point data `u` (as a 3-vector) and `p`, and cell data J, γ, λ_f,
 /// P_zz from `cells` (one [J, γ, λ_f, P_zz] per element).
 pub fn write_vtu(
-    path: &std::path::Path,
+    path: &Path,
     mesh: &Mesh,
     u: &[[f64; 2]],
     p: &[f64],
@@ -44,10 +173,6 @@ pub fn write_vtu(
     }
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
     let (nn, ne) = (mesh.nodes.len(), mesh.n_elements());
-    let cell_type = match mesh.element {
-        Element::Q2Q1 => VTK_BIQUADRATIC_QUAD,
-        Element::Q1P0 => VTK_QUAD,
-    };
     writeln!(w, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         w,
@@ -55,38 +180,7 @@ pub fn write_vtu(
     )?;
     writeln!(w, "<UnstructuredGrid>")?;
     writeln!(w, r#"<Piece NumberOfPoints="{nn}" NumberOfCells="{ne}">"#)?;
-    writeln!(
-        w,
-        r#"<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">"#
-    )?;
-    for x in &mesh.nodes {
-        writeln!(w, "{:e} {:e} 0", x[0], x[1])?;
-    }
-    writeln!(w, "</DataArray></Points>")?;
-    writeln!(w, "<Cells>")?;
-    writeln!(
-        w,
-        r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#
-    )?;
-    for e in mesh.elements() {
-        let s: Vec<String> = e.iter().map(|a| a.to_string()).collect();
-        writeln!(w, "{}", s.join(" "))?;
-    }
-    writeln!(w, "</DataArray>")?;
-    writeln!(
-        w,
-        r#"<DataArray type="Int64" Name="offsets" format="ascii">"#
-    )?;
-    for i in 0..ne {
-        writeln!(w, "{}", mesh.element.nodes() * (i + 1))?;
-    }
-    writeln!(w, "</DataArray>")?;
-    writeln!(w, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
-    for _ in 0..ne {
-        writeln!(w, "{cell_type}")?;
-    }
-    writeln!(w, "</DataArray>")?;
-    writeln!(w, "</Cells>")?;
+    write_geometry(&mut w, mesh)?;
     writeln!(w, r#"<PointData Vectors="u" Scalars="p">"#)?;
     writeln!(
         w,
@@ -118,4 +212,45 @@ pub fn write_vtu(
     writeln!(w, "</UnstructuredGrid>")?;
     writeln!(w, "</VTKFile>")?;
     w.flush()
+}
+
+/// The `<Points>` and `<Cells>` sections of `mesh`.
+fn write_geometry(w: &mut impl Write, mesh: &Mesh) -> std::io::Result<()> {
+    let ne = mesh.n_elements();
+    let cell_type = match mesh.element {
+        Element::Q2Q1 => VTK_BIQUADRATIC_QUAD,
+        Element::Q1P0 => VTK_QUAD,
+    };
+    writeln!(
+        w,
+        r#"<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">"#
+    )?;
+    for x in &mesh.nodes {
+        writeln!(w, "{:e} {:e} 0", x[0], x[1])?;
+    }
+    writeln!(w, "</DataArray></Points>")?;
+    writeln!(w, "<Cells>")?;
+    writeln!(
+        w,
+        r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#
+    )?;
+    for e in mesh.elements() {
+        let s: Vec<String> = e.iter().map(|a| a.to_string()).collect();
+        writeln!(w, "{}", s.join(" "))?;
+    }
+    writeln!(w, "</DataArray>")?;
+    writeln!(
+        w,
+        r#"<DataArray type="Int64" Name="offsets" format="ascii">"#
+    )?;
+    for i in 0..ne {
+        writeln!(w, "{}", mesh.element.nodes() * (i + 1))?;
+    }
+    writeln!(w, "</DataArray>")?;
+    writeln!(w, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
+    for _ in 0..ne {
+        writeln!(w, "{cell_type}")?;
+    }
+    writeln!(w, "</DataArray>")?;
+    writeln!(w, "</Cells>")
 }

@@ -1,8 +1,8 @@
-//! Fit 2: the active curve (eq. D:pact) to active-stress data,
+//! Fit 2: the active curve (eq. (8)) to active-stress data,
 //!
 //! r_i = P_act(λ_i; λ_min, λ_opt, k, P_opt) − P_i \[kPa\],
 //!
-//! with P_opt fixed by default (the chapter's practice: Table D:paratt). Data of the total stress
+//! with P_opt fixed by default (the chapter's practice: Table 2). Data of the total stress
 //! of a tetanised muscle become active data by subtracting the model's passive stress
 //! ([`active_from_total`]): P_act,i = P_i − P_pas(λ_i).
 
@@ -25,7 +25,7 @@ pub struct ActiveFit {
 }
 
 /// Active data P_i − P_pas(λ_i) from total-stress data along the fibres, with P_pas of the
-/// passive `energy` (eq. D:Ppas).
+/// passive `energy` (eq. (11)).
 pub fn active_from_total<E: StrainEnergy>(energy: &E, total: &Data) -> Result<Data, FitError> {
     let muscle = Muscle::passive(energy.clone());
     let stress = total
@@ -49,6 +49,8 @@ impl Residuals for CurveProblem<'_> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let p = self.selection.assemble(theta);
+        // Parameters the curve's constructor refuses (λ_opt ≤ λ_min, k = 0) are outside the model.
+        ActiveCurve::new(p[0].re(), p[1].re(), p[2].re(), p[3].re())?;
         Ok(self
             .data
             .lambda()

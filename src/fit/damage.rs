@@ -1,6 +1,6 @@
 //! Fit 4: the damage d that best explains a weakened total curve (the chapter's loss of
 //! activation read backwards). With the implicit activation law the total stress along the fibres
-//! is exactly (eq. D:eqgammaesplicita)
+//! is exactly (eq. (13))
 //!
 //! P(λ; d) = P_pas(λ) + (1 − d) P_act(λ),
 //!

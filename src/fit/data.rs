@@ -1,9 +1,18 @@
 //! Stress–stretch data: (λ, P) pairs, λ dimensionless and strictly increasing, P the nominal
-//! stress in kPa. Read from CSV with the header `lambda,P`.
+//! stress in kPa. Read from CSV with the header `lambda,P`, at most [`MAX_DATA_BYTES`] bytes and
+//! [`MAX_DATA_POINTS`] points (a file beyond either is refused, read no further than the limit).
 
 use super::FitError;
 use std::io::Read;
 use std::path::Path;
+
+/// The largest data file a fit reads: 64 MiB (a measured curve takes a few kB; `/dev/zero` or a
+/// wrong file must not fill the memory).
+pub const MAX_DATA_BYTES: u64 = 64 * 1024 * 1024;
+
+/// The most points a fit takes: 100 000 (each point costs one model evaluation per residual,
+/// and a Jacobian takes one per free parameter).
+pub const MAX_DATA_POINTS: usize = 100_000;
 
 /// Validated stress–stretch data: λ_i > 0 strictly increasing, all values finite.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,17 +58,31 @@ impl Data {
         Self::from_csv_reader(file, &path.display().to_string())
     }
 
-    /// Reads CSV with header `lambda,P` from any reader; `source_name` appears in errors.
+    /// Reads CSV with header `lambda,P` from any reader; `source_name` appears in errors. Reads
+    /// at most [`MAX_DATA_BYTES`] + 1 bytes and refuses more than [`MAX_DATA_POINTS`] points
+    /// ([`FitError::DataTooLarge`]).
     pub fn from_csv_reader(reader: impl Read, source_name: &str) -> Result<Self, FitError> {
         let csv_error = |line: u64, message: String| FitError::Csv {
             source_name: source_name.to_string(),
             line,
             message,
         };
+        let too_large = |what: String| FitError::DataTooLarge {
+            source_name: source_name.to_string(),
+            what,
+        };
+        let mut bytes = Vec::new();
+        reader
+            .take(MAX_DATA_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| csv_error(0, e.to_string()))?;
+        if bytes.len() as u64 > MAX_DATA_BYTES {
+            return Err(too_large(format!("more than {MAX_DATA_BYTES} bytes")));
+        }
         let mut rdr = csv::ReaderBuilder::new()
             .has_headers(true)
             .trim(csv::Trim::All)
-            .from_reader(reader);
+            .from_reader(bytes.as_slice());
         let header = rdr
             .headers()
             .map_err(|e| csv_error(1, e.to_string()))?
@@ -73,6 +96,9 @@ impl Data {
         }
         let (mut lambda, mut stress, mut locations) = (Vec::new(), Vec::new(), Vec::new());
         for record in rdr.records() {
+            if lambda.len() == MAX_DATA_POINTS {
+                return Err(too_large(format!("more than {MAX_DATA_POINTS} points")));
+            }
             let record = record.map_err(|e| {
                 let line = e.position().map_or(0, |p| p.line());
                 csv_error(line, e.to_string())
@@ -108,6 +134,15 @@ impl Data {
     /// Nominal stresses P_i \[kPa\].
     pub fn stress(&self) -> &[f64] {
         &self.stress
+    }
+
+    /// The points (λ_i, P_i).
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        self.lambda
+            .iter()
+            .copied()
+            .zip(self.stress.iter().copied())
+            .collect()
     }
 
     /// Number of points.

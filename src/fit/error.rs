@@ -112,12 +112,27 @@ pub enum FitError {
     },
     /// The fit did not converge. `best` holds the best point found (its `converged` is false):
     /// it is not a solution.
-    #[error("fit did not converge ({reason}); best point found: {:?} = {:?}, residual norm {}", best.names, best.values, best.residual_norm)]
+    #[error("fit did not converge: {reason}; the Gauss-Newton step at the best point is {}; best point found: {} (residual norm {:.6e})", step_text(&best.names, step), list(&best.names, &best.values), best.residual_norm)]
     NotConverged {
-        /// Why (solver termination, size of the remaining Gauss–Newton step).
-        reason: String,
+        /// Why the search stopped short of a solution.
+        reason: NotConverged,
+        /// The Gauss–Newton step δ at the best point (not negligible, see [`super::solver`]);
+        /// empty if the Jacobian cannot be computed there.
+        step: Vec<f64>,
         /// The best point found, with its statistics.
         best: Box<FitReport>,
+    },
+    /// A data file larger than a fit reads.
+    #[error(
+        "{source_name}: {what} (a fit reads at most {} bytes and {} points)",
+        super::MAX_DATA_BYTES,
+        super::MAX_DATA_POINTS
+    )]
+    DataTooLarge {
+        /// File name or `"<reader>"`.
+        source_name: String,
+        /// What exceeded the limit.
+        what: String,
     },
     /// Writing a plot failed.
     #[error("plot {path}: {message}")]
@@ -127,4 +142,138 @@ pub enum FitError {
         /// What went wrong.
         message: String,
     },
+}
+
+/// Why a least-squares search stopped short of a solution (see [`super::solver`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum NotConverged {
+    /// The iteration cap was reached before the Gauss–Newton step became negligible.
+    IterationCap {
+        /// The cap (Levenberg–Marquardt iterations).
+        iterations: u64,
+    },
+    /// No step from θ = `at` lowered the cost: `tries` ever more damped (shorter) steps were
+    /// tried; `infeasible` of them left the bounds or could not be evaluated.
+    NoDecrease {
+        /// Where the search stopped.
+        at: Vec<f64>,
+        /// Steps tried.
+        tries: u32,
+        /// Of which outside the bounds or not computable (exp overflow, invalid parameters).
+        infeasible: u32,
+    },
+    /// Every trial step from θ = `at` gave a non-finite cost or left the bounds, down to the
+    /// shortest one tried, at θ = `last`.
+    NonFiniteCost {
+        /// Where the search stopped.
+        at: Vec<f64>,
+        /// The last (shortest) trial point.
+        last: Vec<f64>,
+        /// Steps tried.
+        tries: u32,
+    },
+    /// The Jacobian at θ = `at` could not be computed or is not finite.
+    Jacobian {
+        /// Where.
+        at: Vec<f64>,
+        /// Why.
+        reason: String,
+    },
+    /// The search stalled against a bound: no step within the bounds lowers the cost, and the
+    /// Gauss–Newton step from the best point takes parameter `name` from `value` to `target`,
+    /// past `bound` (the least-squares minimum lies beyond it).
+    BeyondBound {
+        /// Parameter name.
+        name: String,
+        /// Its value at the best point.
+        value: f64,
+        /// Where the Gauss–Newton step takes it.
+        target: f64,
+        /// The bound it crosses.
+        bound: f64,
+    },
+    /// The search machinery itself failed (argmin reported an error).
+    Solver {
+        /// The message.
+        message: String,
+    },
+}
+
+impl std::fmt::Display for NotConverged {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NotConverged::IterationCap { iterations } => {
+                write!(f, "iteration cap of {iterations} reached")
+            }
+            NotConverged::NoDecrease {
+                at,
+                tries,
+                infeasible,
+            } => write!(
+                f,
+                "no step from theta = {} lowers the cost ({tries} ever shorter steps tried, {infeasible} of them outside the bounds or not computable)",
+                vector(at)
+            ),
+            NotConverged::NonFiniteCost { at, last, tries } => write!(
+                f,
+                "non-finite cost at every trial point from theta = {} ({tries} ever shorter steps, the last at theta = {}): the model overflows or leaves its bounds there",
+                vector(at),
+                vector(last)
+            ),
+            NotConverged::Jacobian { at, reason } => {
+                write!(
+                    f,
+                    "the Jacobian at theta = {} cannot be computed: {reason}",
+                    vector(at)
+                )
+            }
+            NotConverged::BeyondBound {
+                name,
+                value,
+                target,
+                bound,
+            } => write!(
+                f,
+                "the least-squares minimum lies beyond the bounds: the Gauss-Newton step takes {name} from {} to {}, past the bound {}",
+                number(*value),
+                number(*target),
+                number(*bound)
+            ),
+            NotConverged::Solver { message } => write!(f, "the solver failed: {message}"),
+        }
+    }
+}
+
+/// `a = 1, b = 2` from names and values.
+fn list(names: &[String], values: &[f64]) -> String {
+    names
+        .iter()
+        .zip(values)
+        .map(|(n, v)| format!("{n} = {}", number(*v)))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The Gauss–Newton step in words.
+fn step_text(names: &[String], step: &[f64]) -> String {
+    if step.is_empty() {
+        "not computable".into()
+    } else {
+        format!("still {}", list(names, step))
+    }
+}
+
+/// x in plain notation for 1e-4 ≤ |x| < 1e7 (and 0), else in scientific notation.
+fn number(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e7).contains(&x.abs()) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// `[a, b]` with [`number`].
+fn vector(v: &[f64]) -> String {
+    let items: Vec<String> = v.iter().map(|&x| number(x)).collect();
+    format!("[{}]", items.join(", "))
 }

@@ -1,5 +1,5 @@
-//! Fit 3: (a, b) of the explicit activation law (eq. D:gamma) against the implicit law
-//! (eq. D:eqgammaesplicita) on a set of stretches λ_i, with residuals either in the activation,
+//! Fit 3: (a, b) of the explicit activation law (eq. (14)) against the implicit law
+//! (eq. (13)) on a set of stretches λ_i, with residuals either in the activation,
 //!
 //! r_i = γ_expl(λ_i; a, b) − γ_impl(λ_i)  [-],
 //!
@@ -13,19 +13,21 @@
 use super::{Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
 use crate::active::law::check_damage;
 use crate::active::{fibre_path_energy, ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
-use crate::energy::GiantesioMusesti;
+use crate::energy::{positive, GiantesioMusesti};
 use crate::material::Muscle;
 use crate::uniaxial::along_fibres;
 use crate::Scalar;
 use num_dual::Dual;
 
-/// What the explicit law is fitted to.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// What the explicit law is fitted to (in a scene: `residual = "stress" | "activation"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum ExplicitTarget {
     /// The implicit activation γ(λ) (dimensionless residuals).
     Activation,
     /// The total stress the implicit law reproduces (residuals in kPa; the chapter's choice:
     /// "a least square optimization on the resulting P_act").
+    #[default]
     Stress,
 }
 
@@ -66,6 +68,9 @@ impl Residuals for ExplicitProblem<'_> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let p = self.selection.assemble(theta);
+        // a = 0 or b = 0 (the bounds' ends) is not a law.
+        positive("a", p[0].re())?;
+        positive("b", p[1].re())?;
         self.lambda
             .iter()
             .zip(&self.reference)

@@ -1,12 +1,12 @@
 //! Least-squares fitting of the model's parameters to stress–stretch data, the way the chapter
-//! obtained them: (α, w0) of the passive energy with μ fixed (Table D:parpass), (λ_min, λ_opt, k)
-//! of the active curve with P_opt fixed (Table D:paratt), (a, b) of the explicit law (eq. D:gamma),
+//! obtained them: (α, w0) of the passive energy with μ fixed (Table 1), (λ_min, λ_opt, k)
+//! of the active curve with P_opt fixed (Table 2), (a, b) of the explicit law (eq. (14)),
 //! and — read backwards — the damage d of a weakened muscle (section "Loss of activation").
 //!
 //! | fit | model of the data | default free parameters |
 //! |---|---|---|
 //! | [`fit_passive`] | P(λ) = dW(λ)/dλ along (or across) the fibres, any [`Parametric`] energy | all but μ |
-//! | [`fit_active_curve`] | P_act(λ) of eq. D:pact (data: active stress, or total minus passive via [`active_from_total`]) | λ_min, λ_opt, k |
+//! | [`fit_active_curve`] | P_act(λ) of eq. (8) (data: active stress, or total minus passive via [`active_from_total`]) | λ_min, λ_opt, k |
 //! | [`fit_explicit_law`] | γ_expl(λ; a, b) against the implicit γ, or the stress P_tot(λ, γ_expl) against P_pas + P_act | a, b |
 //! | [`fit_damage`] | P_pas(λ) + (1 − d) P_act(λ) | d |
 //!
@@ -23,18 +23,22 @@ mod damage;
 mod data;
 mod error;
 mod explicit;
+mod levenberg;
 mod parametric;
 mod passive;
-pub mod plot;
 pub mod solver;
 
+pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit, CURVE_PARAMETERS};
 pub use damage::{fit_damage, DamageFit};
-pub use data::Data;
-pub use error::FitError;
+pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
+pub use error::{FitError, NotConverged};
 pub use explicit::{explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget};
-pub use parametric::Parametric;
-pub use passive::{across_stress_with, fibre_stress_with, fit_passive, Direction, PassiveFit};
+pub use levenberg::MAX_TRIES;
+pub use parametric::{parameter_bounds, Parametric};
+pub use passive::{
+    across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
+};
 pub use solver::{least_squares, residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
 
 use crate::Scalar;
@@ -57,7 +61,7 @@ pub struct FitReport {
     pub residual_norm: f64,
     /// RMS error √(‖r‖²/m).
     pub rms: f64,
-    /// Solver iterations (Nelder–Mead plus Gauss–Newton).
+    /// Solver iterations (Nelder–Mead plus Levenberg–Marquardt).
     pub iterations: u64,
     /// True only if the final Gauss–Newton step is negligible (see [`solver`]).
     pub converged: bool,

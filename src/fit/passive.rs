@@ -1,7 +1,7 @@
 //! Fit 1: passive parameters of any [`Parametric`] energy to uniaxial (λ, P) data.
 //!
 //! Along the fibres (F = diag(λ, λ^-½, λ^-½), m = e₁) the nominal stress is the derivative of the
-//! energy along the path (eq. D:Ppas),
+//! energy along the path (eq. (11)),
 //!
 //! P(λ; θ) = d/dλ W(j(λ); θ),  j(λ) = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1],
 //!
@@ -16,21 +16,15 @@
 //! arithmetic from the converged root, a = a* − w_a/w_aa (exact first derivatives, since
 //! w_a(a*) = 0).
 
-use super::{Data, FitError, FitReport, FitSetup, Parametric, Residuals, Selection};
+use super::{
+    parameter_bounds, Data, FitError, FitReport, FitSetup, Parametric, Residuals, Selection,
+};
+use crate::active::fibre_path_invariants;
 use crate::energy::Invariants;
 use crate::material::Muscle;
-use crate::uniaxial::across_fibres;
+use crate::uniaxial::{across_fibres, Direction};
 use crate::Scalar;
-use num_dual::{Dual, Dual2, DualNum};
-
-/// Direction of a uniaxial test relative to the fibres.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Direction {
-    /// Stretch along the fibres.
-    Along,
-    /// Stretch across the fibres, lateral faces traction free.
-    Across,
-}
+use num_dual::{Dual, Dual2};
 
 /// A fitted energy and its report.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,14 +40,7 @@ pub struct PassiveFit<E> {
 pub fn fibre_stress_with<E: Parametric, T: Scalar>(energy: &E, parameters: &[T], lambda: f64) -> T {
     let lifted: Vec<Dual<T>> = parameters.iter().map(|&p| Dual::from_re(p)).collect();
     let l = Dual::from_re(T::from(lambda)).derivative();
-    let inv = l.recip();
-    let j = Invariants::from_array([
-        l * l + inv * 2.0,
-        l * l,
-        inv * inv + l * 2.0,
-        inv * inv,
-        Dual::from_re(T::one()),
-    ]);
+    let j = Invariants::from_array(fibre_path_invariants(l));
     energy.energy_with(&lifted, &j).eps
 }
 
@@ -103,6 +90,9 @@ impl<E: Parametric> Residuals for PassiveProblem<'_, E> {
 
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let params = self.selection.assemble(theta);
+        // Parameters the energy's constructor refuses (e.g. w0 = 1) are outside the model.
+        self.energy
+            .rebuilt(&params.iter().map(|p| p.re()).collect::<Vec<_>>())?;
         let mut out = Vec::with_capacity(self.count());
         for (direction, data) in self.sets {
             for (&l, &p) in data.lambda().iter().zip(data.stress()) {
@@ -117,6 +107,17 @@ impl<E: Parametric> Residuals for PassiveProblem<'_, E> {
     }
 }
 
+/// The parameters a passive fit frees by default: all but μ (the chapter's practice), or all if
+/// μ is the only one.
+pub fn default_passive_free<'a>(names: &[&'a str]) -> Vec<&'a str> {
+    let free: Vec<&str> = names.iter().copied().filter(|n| *n != "mu").collect();
+    if free.is_empty() {
+        names.to_vec()
+    } else {
+        free
+    }
+}
+
 /// Fits the parameters of `energy` chosen in `setup` (default: all but μ, as the chapter does)
 /// to uniaxial data sets: each `(direction, data)` contributes its residuals
 /// P_model(λ_i) − P_i \[kPa\]. The model's other parameters stay at their values.
@@ -126,15 +127,11 @@ pub fn fit_passive<E: Parametric>(
     setup: &FitSetup,
 ) -> Result<PassiveFit<E>, FitError> {
     let names = energy.parameter_names();
-    let mut default_free: Vec<&str> = names.iter().copied().filter(|n| *n != "mu").collect();
-    if default_free.is_empty() {
-        default_free = names.to_vec();
-    }
     let selection = setup.resolve(
-        names,
+        &names,
         &energy.parameter_values(),
-        &energy.parameter_bounds(),
-        &default_free,
+        &parameter_bounds(energy),
+        &default_passive_free(&names),
     )?;
     let problem = PassiveProblem {
         energy,

@@ -1,38 +1,38 @@
 //! The least-squares engine shared by every fit: residuals written once for any scalar, their
-//! Jacobian from dual numbers, Gauss–Newton with a backtracking (Armijo) line search from argmin,
-//! optionally preceded by a Nelder–Mead search, and the statistics of the solution.
+//! Jacobian from dual numbers, a Levenberg–Marquardt search run by argmin (optionally preceded by
+//! argmin's Nelder–Mead), and the statistics of the solution.
 //!
 //! Given residuals r(θ) ∈ ℝᵐ of p free parameters θ, the fit minimises S(θ) = ‖r(θ)‖². With the
 //! Jacobian J = ∂r/∂θ (m × p, exact: column j is the ε-part of r evaluated with θ_j seeded as a
-//! dual number), Gauss–Newton steps δ = −(JᵀJ)⁻¹ Jᵀ r along which a backtracking line search
-//! looks for sufficient decrease.
+//! dual number), the Gauss–Newton step is δ = −(JᵀJ)⁻¹ Jᵀ r; the search damps it
+//! (Levenberg–Marquardt, [`super::levenberg`]) until it lowers S, on residuals and variables scaled
+//! to O(1) so that data of any magnitude (up to S overflowing at the start) are handled alike.
 //!
-//! **Bounds** lower_j ≤ θ_j ≤ upper_j act as a barrier: a trial point outside them (or one where
-//! the model cannot be evaluated, e.g. exp overflow) has infinite cost, so the line search
-//! shortens the step. A minimum on a bound is therefore not reached and reported as not converged.
+//! **Bounds** lower_j ≤ θ_j ≤ upper_j: a step that would cross a bound goes 9/10 of the way to it
+//! (Nelder–Mead: a vertex outside them has infinite cost, as has any point where the model cannot
+//! be evaluated, e.g. exp overflow). A minimum beyond a bound is therefore approached, not
+//! reached, and reported as such ([`NotConverged::BeyondBound`]).
 //!
-//! **Convergence** is decided at the best point θ* found, independently of the solver's own
-//! stopping rule: the Gauss–Newton step there must be negligible,
-//! |δ_j| ≤ step_tolerance (1 + |θ*_j|) or |δ_j| ≤ 10⁻³ σ_j (small next to its standard error).
+//! **Convergence** is decided at the best point θ* found: the Gauss–Newton step there must be
+//! negligible, |δ_j| ≤ step_tolerance (1 + |θ*_j|) for every j, or small next to the standard
+//! errors, δᵀ Σ⁻¹ δ ≤ 10⁻⁶ p (10⁻³ standard errors in the covariance's metric; for uncorrelated
+//! parameters |δ_j| ≲ 10⁻³ σ_j). Otherwise the fit is [`FitError::NotConverged`] with the reason ([`NotConverged`]: the
+//! iteration cap, no decrease after [`MAX_TRIES`](super::MAX_TRIES) ever shorter steps, a non-finite cost at every
+//! trial, a Jacobian that cannot be computed, a minimum beyond a bound) and the best point.
 //!
 //! **Statistics** at θ*: s² = S/(m − p), covariance Σ = s² (JᵀJ)⁻¹, standard errors σ_j = √Σ_jj,
 //! correlation ρ_ij = (JᵀJ)⁻¹_ij / √((JᵀJ)⁻¹_ii (JᵀJ)⁻¹_jj) (defined also for exact data),
-//! RMS error √(S/m).
+//! RMS error √(S/m); all computed in the scaled variables, so none overflows where S would.
 
-use super::{FitError, FitReport};
-use crate::Scalar;
-use argmin::core::{
-    CostFunction, Error as ArgminError, Executor, Jacobian, Operator, State, TerminationReason,
+use super::levenberg::{
+    norm, power_of_two_below, GaussNewton, LevenbergMarquardt, Linearisation, Scaled, Stop,
 };
-use argmin::solver::gaussnewton::GaussNewtonLS;
-use argmin::solver::linesearch::condition::ArmijoCondition;
-use argmin::solver::linesearch::BacktrackingLineSearch;
+use super::{FitError, FitReport, NotConverged};
+use crate::Scalar;
+use argmin::core::{Executor, Jacobian, State, TerminationReason};
 use argmin::solver::neldermead::NelderMead;
-use argmin_math::{ArgminDot, ArgminInv, ArgminTranspose};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use num_dual::Dual64;
-use std::cell::RefCell;
-use std::rc::Rc;
 
 /// A least-squares problem: residuals r_i(θ) [kPa or dimensionless], written once for any
 /// scalar. `f64` gives the values; [`Dual64`] with one θ_j seeded gives column j of the Jacobian.
@@ -74,14 +74,16 @@ impl Bounds {
     }
 }
 
-/// The search strategy.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// The search strategy (in a scene: `method = "gauss-newton" | "nelder-mead"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Method {
-    /// Gauss–Newton with a backtracking line search (argmin `GaussNewtonLS`).
+    /// Gauss–Newton damped by Levenberg–Marquardt ([`super::levenberg`], run by argmin).
     #[default]
     GaussNewton,
-    /// A derivative-free Nelder–Mead simplex search (argmin `NelderMead`) from the start, then
-    /// Gauss–Newton from its best point. For poor starting values.
+    /// A derivative-free Nelder–Mead simplex search (argmin `NelderMead`, at most 2000
+    /// iterations) from the start, then Levenberg–Marquardt from its best point. For poor
+    /// starting values.
     NelderMead,
 }
 
@@ -90,18 +92,18 @@ pub enum Method {
 pub struct FitOptions {
     /// Search strategy.
     pub method: Method,
-    /// Maximum Gauss–Newton iterations.
+    /// Maximum Levenberg–Marquardt iterations (each at most [`MAX_TRIES`](super::MAX_TRIES) trial steps).
     pub max_iterations: u64,
-    /// Relative size of the final Gauss–Newton step below which the fit has converged.
+    /// Relative size of the Gauss–Newton step below which the fit has converged.
     pub step_tolerance: f64,
 }
 
 impl Default for FitOptions {
-    /// Gauss–Newton, 100 iterations, step tolerance 1e-9.
+    /// Gauss–Newton (damped), 1000 iterations, step tolerance 1e-9.
     fn default() -> Self {
         Self {
             method: Method::GaussNewton,
-            max_iterations: 100,
+            max_iterations: 1000,
             step_tolerance: 1e-9,
         }
     }
@@ -133,121 +135,13 @@ pub fn residuals_and_jacobian<R: Residuals>(
     Ok((values, jac))
 }
 
-/// The Jacobian as a thin argmin-compatible matrix type (argmin-math's `vec` backend has no
-/// inverse).
-#[derive(Debug, Clone)]
-struct Jac(DMatrix<f64>);
-
-impl ArgminTranspose<Jac> for Jac {
-    fn t(self) -> Jac {
-        Jac(self.0.transpose())
-    }
-}
-
-impl ArgminInv<Jac> for Jac {
-    fn inv(&self) -> Result<Jac, ArgminError> {
-        self.0.clone().try_inverse().map(Jac).ok_or_else(|| {
-            argmin::core::ArgminError::InvalidParameter {
-                text: "JᵀJ is singular".into(),
-            }
-            .into()
-        })
-    }
-}
-
-impl ArgminDot<Jac, Jac> for Jac {
-    fn dot(&self, other: &Jac) -> Jac {
-        Jac(&self.0 * &other.0)
-    }
-}
-
-impl ArgminDot<Vec<f64>, Vec<f64>> for Jac {
-    fn dot(&self, other: &Vec<f64>) -> Vec<f64> {
-        (&self.0 * DVector::from_column_slice(other))
-            .as_slice()
-            .to_vec()
-    }
-}
-
-/// The problem as argmin sees it: infeasible points have infinite residuals; the best feasible
-/// point ever evaluated is remembered, so a failure still reports it.
-struct Wrapped<'a, R> {
-    problem: &'a R,
-    bounds: &'a [Bounds],
-    best: Rc<RefCell<(f64, Vec<f64>)>>,
-}
-
-impl<R> Clone for Wrapped<'_, R> {
-    fn clone(&self) -> Self {
-        Self {
-            problem: self.problem,
-            bounds: self.bounds,
-            best: Rc::clone(&self.best),
-        }
-    }
-}
-
-impl<R: Residuals> Wrapped<'_, R> {
-    fn evaluate(&self, theta: &[f64]) -> Option<Vec<f64>> {
-        if !theta.iter().zip(self.bounds).all(|(t, b)| b.contains(*t)) {
-            return None;
-        }
-        let r = self.problem.residuals(theta).ok()?;
-        if !r.iter().all(|x| x.is_finite()) {
-            return None;
-        }
-        let cost: f64 = r.iter().map(|x| x * x).sum();
-        let mut best = self.best.borrow_mut();
-        if cost < best.0 {
-            *best = (cost, theta.to_vec());
-        }
-        Some(r)
-    }
-}
-
-impl<R: Residuals> Operator for Wrapped<'_, R> {
-    type Param = Vec<f64>;
-    type Output = Vec<f64>;
-
-    fn apply(&self, theta: &Vec<f64>) -> Result<Vec<f64>, ArgminError> {
-        Ok(self
-            .evaluate(theta)
-            .unwrap_or_else(|| vec![f64::INFINITY; self.problem.count()]))
-    }
-}
-
-impl<R: Residuals> Jacobian for Wrapped<'_, R> {
-    type Param = Vec<f64>;
-    type Jacobian = Jac;
-
-    fn jacobian(&self, theta: &Vec<f64>) -> Result<Jac, ArgminError> {
-        residuals_and_jacobian(self.problem, theta)
-            .map(|(_, j)| Jac(j))
-            .map_err(|e| {
-                argmin::core::ArgminError::InvalidParameter {
-                    text: e.to_string(),
-                }
-                .into()
-            })
-    }
-}
-
-impl<R: Residuals> CostFunction for Wrapped<'_, R> {
-    type Param = Vec<f64>;
-    type Output = f64;
-
-    fn cost(&self, theta: &Vec<f64>) -> Result<f64, ArgminError> {
-        Ok(self
-            .evaluate(theta)
-            .map_or(f64::INFINITY, |r| r.iter().map(|x| x * x).sum()))
-    }
-}
-
 /// Minimises ‖r(θ)‖² over the free parameters named `names`, from `start`, within `bounds`.
 ///
-/// Returns the report at a converged point, or [`FitError::NotConverged`] carrying the best point
-/// found. Errors before the search: [`FitError::TooFewPoints`] (m ≤ p),
-/// [`FitError::StartOutOfBounds`], [`FitError::BadStart`].
+/// Returns the report at a converged point, or [`FitError::NotConverged`] carrying the reason and
+/// the best point found. Errors before the search: [`FitError::NoFreeParameter`],
+/// [`FitError::TooFewPoints`] (m ≤ p), [`FitError::StartOutOfBounds`] (also NaN starts and bounds),
+/// [`FitError::BadStart`] (the model or the residual norm not finite at the start); after it,
+/// [`FitError::Unidentifiable`] (JᵀJ singular at the best point).
 pub fn least_squares<R: Residuals>(
     problem: &R,
     names: &[String],
@@ -255,6 +149,129 @@ pub fn least_squares<R: Residuals>(
     bounds: &[Bounds],
     options: &FitOptions,
 ) -> Result<FitReport, FitError> {
+    let scaled = Scaled {
+        problem,
+        bounds,
+        scale: start_scale(problem, names, start, bounds)?,
+    };
+    let mut stages = Vec::new();
+    let mut iterations = 0;
+    let mut theta = start.to_vec();
+    if options.method == Method::NelderMead {
+        let (best, its, note) = nelder_mead(&scaled, start);
+        theta = best;
+        iterations += its;
+        stages.push(note);
+    }
+    let search = Executor::new(
+        scaled.clone(),
+        LevenbergMarquardt::new(bounds, scaled.scale, options.step_tolerance),
+    )
+    .configure(|s| s.param(theta.clone()).max_iters(options.max_iterations))
+    .ctrlc(false)
+    .run();
+    let stop = match search {
+        Ok(mut res) => {
+            iterations += res.state().get_iter();
+            if let Some(best) = res.state.take_param() {
+                theta = best;
+            }
+            match res.solver.stop {
+                Some(stop) => Ok(stop),
+                None => Err(NotConverged::IterationCap {
+                    iterations: options.max_iterations,
+                }),
+            }
+        }
+        Err(e) => Err(NotConverged::Solver {
+            message: e.to_string(),
+        }),
+    };
+    let (mut report, gauss_newton) = statistics(&scaled, names, &theta, iterations)?;
+    let gn = match gauss_newton {
+        Ok(Some(gn)) => gn,
+        Ok(None) => {
+            return Err(FitError::Unidentifiable {
+                names: names.to_vec(),
+                values: theta,
+            })
+        }
+        Err(reason) => {
+            let reason = NotConverged::Jacobian { at: theta, reason };
+            report.termination = format!("Levenberg-Marquardt: {reason}");
+            return Err(FitError::NotConverged {
+                reason,
+                step: vec![],
+                best: Box::new(report),
+            });
+        }
+    };
+    if gn.negligible(&theta, options.step_tolerance) {
+        stages.push(format!(
+            "Levenberg-Marquardt: Gauss-Newton step negligible after {} iterations",
+            report.iterations
+        ));
+        report.termination = stages.join("; ");
+        report.converged = true;
+        return Ok(report);
+    }
+    let stalled = matches!(stop, Ok(Stop::NoDecrease { .. }));
+    let reason = match (gn.beyond(&theta, bounds), stop) {
+        // Stuck because the step that would lower the cost leaves the bounds.
+        (Some((j, target, bound)), _) if stalled => NotConverged::BeyondBound {
+            name: names[j].clone(),
+            value: theta[j],
+            target,
+            bound,
+        },
+        (
+            _,
+            Ok(Stop::NoDecrease {
+                tries,
+                infeasible,
+                last,
+            }),
+        ) if infeasible == tries => NotConverged::NonFiniteCost {
+            at: theta.clone(),
+            last,
+            tries,
+        },
+        (
+            _,
+            Ok(Stop::NoDecrease {
+                tries, infeasible, ..
+            }),
+        ) => NotConverged::NoDecrease {
+            at: theta.clone(),
+            tries,
+            infeasible,
+        },
+        (_, Ok(Stop::Jacobian(reason))) => NotConverged::Jacobian {
+            at: theta.clone(),
+            reason,
+        },
+        (_, Ok(Stop::Converged)) => NotConverged::Solver {
+            message: "the search stopped as converged at a point where the check fails".into(),
+        },
+        (_, Err(reason)) => reason,
+    };
+    stages.push(format!("Levenberg-Marquardt: {reason}"));
+    report.termination = stages.join("; ");
+    Err(FitError::NotConverged {
+        reason,
+        step: gn.step,
+        best: Box::new(report),
+    })
+}
+
+/// Checks the request and the start; returns the residual scale s, the power of two at or
+/// below ‖r(start)‖ (1 if that is 0).
+fn start_scale<R: Residuals>(
+    problem: &R,
+    names: &[String],
+    start: &[f64],
+    bounds: &[Bounds],
+) -> Result<f64, FitError> {
     let (m, p) = (problem.count(), start.len());
     if p == 0 {
         return Err(FitError::NoFreeParameter);
@@ -276,103 +293,56 @@ pub fn least_squares<R: Residuals>(
             });
         }
     }
-    let wrapped = Wrapped {
-        problem,
-        bounds,
-        best: Rc::new(RefCell::new((f64::INFINITY, start.to_vec()))),
+    let bad = |reason: String| FitError::BadStart {
+        start: start.to_vec(),
+        reason,
     };
-    match problem.residuals(start) {
-        Ok(r) if r.iter().all(|x| x.is_finite()) => {}
-        Ok(r) => {
-            return Err(FitError::BadStart {
-                start: start.to_vec(),
-                reason: format!("non-finite residuals {r:?}"),
-            })
-        }
-        Err(e) => {
-            return Err(FitError::BadStart {
-                start: start.to_vec(),
-                reason: e.to_string(),
-            })
-        }
+    let r = problem.residuals(start).map_err(|e| bad(e.to_string()))?;
+    if let Some(x) = r.iter().find(|x| !x.is_finite()) {
+        return Err(bad(format!("a residual is {x}")));
     }
-    wrapped.evaluate(start);
-
-    let mut notes = Vec::new();
-    let mut iterations = 0;
-    if options.method == Method::NelderMead {
-        let simplex = initial_simplex(start, bounds);
-        let outcome = NelderMead::new(simplex)
-            .with_sd_tolerance(1e-14)
-            .and_then(|nm| {
-                Executor::new(wrapped.clone(), nm)
-                    .configure(|s| s.max_iters(2000))
-                    .ctrlc(false)
-                    .run()
-            });
-        match outcome {
-            Ok(res) => {
-                iterations += res.state().get_iter();
-                notes.push(format!(
-                    "Nelder-Mead: {}",
-                    reason(res.state().get_termination_reason())
-                ));
-            }
-            Err(e) => notes.push(format!("Nelder-Mead failed: {e}")),
-        }
+    let size = norm(&r);
+    if !size.is_finite() {
+        let largest = r.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        return Err(bad(format!(
+            "the residual norm overflows f64 (largest |residual| {largest:e})"
+        )));
     }
+    Ok(power_of_two_below(size))
+}
 
-    let gn_start = wrapped.best.borrow().1.clone();
-    let outcome = ArmijoCondition::new(1e-4)
-        .and_then(|armijo| BacktrackingLineSearch::new(armijo).rho(0.5))
-        .and_then(|ls| GaussNewtonLS::new(ls).with_tolerance(1e-14))
-        .and_then(|gn| {
-            Executor::new(wrapped.clone(), gn)
-                .configure(|s| s.param(gn_start).max_iters(options.max_iterations))
+/// Nelder–Mead from `start` (at most 2000 iterations): its best point, iterations and a note.
+fn nelder_mead<R: Residuals>(scaled: &Scaled<R>, start: &[f64]) -> (Vec<f64>, u64, String) {
+    let outcome = NelderMead::new(initial_simplex(start, scaled.bounds))
+        .with_sd_tolerance(1e-14)
+        .and_then(|nm| {
+            Executor::new(scaled.clone(), nm)
+                .configure(|s| s.max_iters(2000))
                 .ctrlc(false)
                 .run()
         });
     match outcome {
-        Ok(res) => {
-            iterations += res.state().get_iter();
-            notes.push(format!(
-                "Gauss-Newton: {}",
-                reason(res.state().get_termination_reason())
-            ));
+        Ok(mut res) => {
+            let its = res.state().get_iter();
+            let why = match res.state().get_termination_reason() {
+                Some(TerminationReason::SolverConverged) => {
+                    "cost spread of the simplex below 1e-14"
+                }
+                Some(TerminationReason::MaxItersReached) => "iteration cap reached",
+                _ => "stopped",
+            };
+            let best = res
+                .state
+                .take_best_param()
+                .unwrap_or_else(|| start.to_vec());
+            (
+                best,
+                its,
+                format!("Nelder-Mead: {why} after {its} iterations"),
+            )
         }
-        Err(e) => notes.push(format!("Gauss-Newton failed: {e}")),
+        Err(e) => (start.to_vec(), 0, format!("Nelder-Mead failed: {e}")),
     }
-
-    let theta = wrapped.best.borrow().1.clone();
-    let mut report = statistics(problem, names, &theta, iterations)?;
-    report.termination = notes.join("; ");
-    let (step, singular) = gauss_newton_step(problem, &theta)?;
-    if singular {
-        return Err(FitError::Unidentifiable {
-            names: names.to_vec(),
-            values: theta,
-        });
-    }
-    let small = step.iter().enumerate().all(|(j, d)| {
-        d.abs() <= options.step_tolerance * (1.0 + theta[j].abs())
-            || d.abs() <= 1e-3 * report.standard_errors[j]
-    });
-    if small {
-        report.converged = true;
-        Ok(report)
-    } else {
-        Err(FitError::NotConverged {
-            reason: format!(
-                "{}; the Gauss-Newton step at the best point is still {step:?}",
-                report.termination
-            ),
-            best: Box::new(report),
-        })
-    }
-}
-
-fn reason(r: Option<&TerminationReason>) -> String {
-    r.map_or_else(|| "not terminated".to_string(), |r| r.text().to_string())
 }
 
 /// Start plus one vertex per parameter, displaced by 5 % (or 0.05 of the bound width, or 0.05)
@@ -400,54 +370,38 @@ fn initial_simplex(start: &[f64], bounds: &[Bounds]) -> Vec<Vec<f64>> {
     simplex
 }
 
-/// The Gauss–Newton step (JᵀJ)⁻¹ Jᵀ r at θ and whether JᵀJ is singular.
-fn gauss_newton_step<R: Residuals>(
-    problem: &R,
-    theta: &[f64],
-) -> Result<(Vec<f64>, bool), FitError> {
-    let (r, j) = residuals_and_jacobian(problem, theta)?;
-    let jtj = j.transpose() * &j;
-    let jtr = j.transpose() * DVector::from_vec(r);
-    match jtj.cholesky() {
-        Some(ch) => Ok((ch.solve(&jtr).as_slice().to_vec(), false)),
-        None => Ok((vec![f64::NAN; theta.len()], true)),
-    }
-}
-
-/// The report at θ: residuals, norms, standard errors and correlations (NaN where JᵀJ is
-/// singular).
+/// The report at θ (residuals, norms, standard errors and correlations; NaN where JᵀJ is
+/// singular or the Jacobian cannot be computed) and the Gauss–Newton step there: `None` if JᵀJ
+/// is singular, an error if the Jacobian cannot be computed.
 fn statistics<R: Residuals>(
-    problem: &R,
+    scaled: &Scaled<R>,
     names: &[String],
     theta: &[f64],
     iterations: u64,
-) -> Result<FitReport, FitError> {
-    let (r, j) = residuals_and_jacobian(problem, theta)?;
-    let (m, p) = (r.len(), theta.len());
-    let sum: f64 = r.iter().map(|x| x * x).sum();
-    let s2 = sum / (m - p) as f64;
-    let inverse = (j.transpose() * &j)
-        .cholesky()
-        .map(|c| c.inverse())
-        .unwrap_or_else(|| DMatrix::from_element(p, p, f64::NAN));
-    let standard_errors = (0..p).map(|i| (s2 * inverse[(i, i)]).sqrt()).collect();
-    let correlation = (0..p)
-        .map(|a| {
-            (0..p)
-                .map(|b| inverse[(a, b)] / (inverse[(a, a)] * inverse[(b, b)]).sqrt())
-                .collect()
-        })
-        .collect();
-    Ok(FitReport {
+) -> Result<(FitReport, Result<Option<GaussNewton>, String>), FitError> {
+    let residuals = scaled.problem.residuals(theta)?;
+    let (m, p) = (residuals.len(), theta.len());
+    let reduced: Vec<f64> = residuals.iter().map(|r| r / scaled.scale).collect();
+    let gauss_newton = scaled
+        .jacobian(&theta.to_vec())
+        .map(|j| Linearisation::new(&reduced, j, scaled.scale).gauss_newton())
+        .map_err(|e| e.to_string());
+    let residual_norm = scaled.scale * norm(&reduced);
+    let (standard_errors, correlation) = match &gauss_newton {
+        Ok(Some(gn)) => (gn.standard_errors.clone(), gn.correlation.clone()),
+        _ => (vec![f64::NAN; p], vec![vec![f64::NAN; p]; p]),
+    };
+    let report = FitReport {
         names: names.to_vec(),
         values: theta.to_vec(),
         standard_errors,
         correlation,
-        residual_norm: sum.sqrt(),
-        rms: (sum / m as f64).sqrt(),
-        residuals: r,
+        residual_norm,
+        rms: residual_norm / (m as f64).sqrt(),
+        residuals,
         iterations,
         converged: false,
         termination: String::new(),
-    })
+    };
+    Ok((report, gauss_newton))
 }

@@ -1,50 +1,199 @@
-//! Atomic outputs: every file of a run is written into a hidden staging directory inside the
-//! output directory, then renamed into place one by one (a rename within one file system is
-//! atomic). A run that fails before [`Staging::commit`] removes the staging directory, so it
-//! never leaves a half-written file under a final name.
+//! Atomic outputs in a directory one run owns.
+//!
+//! - **One run at a time**: a run holds `.activemuscle.lock` (its pid) from [`Staging::open`] to
+//!   the end; a second run refuses while that pid lives, a lock left by a dead run is taken over.
+//! - **Ownership**: `.activemuscle-manifest` lists the files the last run wrote. A non-empty
+//!   directory without it is not ours and is refused unless forced; `/`, the home directory, the
+//!   working directory and its ancestors are always refused (they hold user files).
+//! - **All or nothing**: every file is written into a staging directory
+//!   `.activemuscle-partial-<pid>` inside the output directory, then [`Staging::commit`] moves
+//!   the previous run's files aside, renames the new ones into place (a rename within one file
+//!   system is atomic) and, if any rename fails, puts everything back as it was. Files of the
+//!   previous run that this run did not write are removed: no stale file survives a re-run.
+//! - **Cleaning**: staging directories of dead runs are removed when a run opens the directory;
+//!   a run that fails before its commit removes its own.
 
+use crate::app_error::AppError;
 use std::path::{Path, PathBuf};
 
-/// The staging area of one run.
+/// The lock file (content: the pid of the run holding it).
+pub const LOCK: &str = ".activemuscle.lock";
+/// The list of the files the last run wrote, one relative path a line.
+pub const MANIFEST: &str = ".activemuscle-manifest";
+/// Prefix of staging directories.
+pub const PARTIAL: &str = ".activemuscle-partial-";
+/// Prefix of the directory a commit moves the previous run's files to.
+const OLD: &str = ".activemuscle-old-";
+
+/// The staging area of one run, holding its output directory's lock.
 #[derive(Debug)]
 pub struct Staging {
     dir: PathBuf,
     root: PathBuf,
     files: Vec<PathBuf>,
+    lock: Option<PathBuf>,
     committed: bool,
+    /// Whether this run created the output directory (removed again, if still empty, when the
+    /// run ends without a commit).
+    created: bool,
 }
 
-/// An output error: which file, what went wrong.
-#[derive(Debug)]
-pub struct OutputError(pub String);
-
-impl std::fmt::Display for OutputError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(&self.0)
+fn refuse(root: &Path, message: impl Into<String>) -> AppError {
+    AppError::Output {
+        file: root.display().to_string(),
+        message: message.into(),
     }
 }
 
-impl std::error::Error for OutputError {}
+/// Whether process `pid` is alive (Linux `/proc`; elsewhere every pid counts as alive).
+fn alive(pid: u32) -> bool {
+    !Path::new("/proc").is_dir() || Path::new(&format!("/proc/{pid}")).exists()
+}
 
-fn io(what: &str, path: &Path, e: std::io::Error) -> OutputError {
-    OutputError(format!("cannot {what} {}: {e}", path.display()))
+/// Directories that hold user files and are never an output directory: `/`, the home
+/// directory, the working directory and its ancestors.
+fn user_directory(root: &Path) -> Option<&'static str> {
+    let root = std::fs::canonicalize(root).ok()?;
+    if root.parent().is_none() {
+        return Some("the root of the file system");
+    }
+    let home = std::env::var_os("HOME").and_then(|h| std::fs::canonicalize(h).ok());
+    if home.as_deref() == Some(root.as_path()) {
+        return Some("your home directory");
+    }
+    let cwd = std::env::current_dir()
+        .ok()
+        .and_then(|c| std::fs::canonicalize(c).ok());
+    match cwd {
+        Some(c) if c == root => Some("the working directory"),
+        Some(c) if c.starts_with(&root) => Some("an ancestor of the working directory"),
+        _ => None,
+    }
+}
+
+/// Whether `name` is one of the run's own bookkeeping entries.
+fn bookkeeping(name: &str) -> bool {
+    name == LOCK || name == MANIFEST || name.starts_with(PARTIAL) || name.starts_with(OLD)
+}
+
+/// The files the last run wrote, from the manifest (`None`: no manifest).
+fn manifest(root: &Path) -> Option<Vec<PathBuf>> {
+    let text = std::fs::read_to_string(root.join(MANIFEST)).ok()?;
+    Some(
+        text.lines()
+            .filter(|l| !l.is_empty() && !l.starts_with('#'))
+            .map(PathBuf::from)
+            // Never follow a manifest out of the directory.
+            .filter(|p| {
+                p.components()
+                    .all(|c| matches!(c, std::path::Component::Normal(_)))
+            })
+            .collect(),
+    )
+}
+
+/// Takes `root`'s lock for this process, or says which live run holds it.
+fn lock(root: &Path) -> Result<PathBuf, AppError> {
+    let path = root.join(LOCK);
+    for _ in 0..2 {
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&path)
+        {
+            Ok(mut f) => {
+                use std::io::Write;
+                writeln!(f, "{}", std::process::id())
+                    .map_err(|e| AppError::io("write", &path, e))?;
+                return Ok(path);
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                let holder = std::fs::read_to_string(&path)
+                    .ok()
+                    .and_then(|t| t.trim().parse::<u32>().ok());
+                match holder {
+                    Some(pid) if alive(pid) => {
+                        return Err(refuse(
+                            root,
+                            format!(
+                            "another run (pid {pid}) is writing into this directory; wait for it, \
+                                 or remove {LOCK} if no such run is alive"
+                        ),
+                        ))
+                    }
+                    // A dead run's (or an unreadable) lock: taken over.
+                    _ => {
+                        std::fs::remove_file(&path)
+                            .map_err(|e| AppError::io("remove the stale lock", &path, e))?;
+                    }
+                }
+            }
+            Err(e) => return Err(AppError::io("create the lock", &path, e)),
+        }
+    }
+    Err(refuse(root, format!("could not take {LOCK}")))
 }
 
 impl Staging {
-    /// Creates `root` if needed and a fresh staging directory inside it.
-    pub fn new(root: &Path) -> Result<Self, OutputError> {
-        std::fs::create_dir_all(root).map_err(|e| io("create the output directory", root, e))?;
-        let dir = root.join(format!(".activemuscle-partial-{}", std::process::id()));
-        if dir.exists() {
-            std::fs::remove_dir_all(&dir).map_err(|e| io("clear", &dir, e))?;
+    /// [`Self::open`] without forcing.
+    pub fn new(root: &Path) -> Result<Self, AppError> {
+        Self::open(root, false)
+    }
+
+    /// Takes `root` for this run (created if needed; see the module's rules): refuses a
+    /// directory of user files, a directory another live run holds, and a non-empty directory
+    /// that no run of ours wrote unless `force`; removes dead runs' staging directories; creates
+    /// this run's staging directory.
+    pub fn open(root: &Path, force: bool) -> Result<Self, AppError> {
+        if let Some(what) = user_directory(root) {
+            return Err(refuse(
+                root,
+                format!("refusing to write outputs into {what}: give a directory of their own, e.g. --out out"),
+            ));
         }
-        std::fs::create_dir_all(&dir).map_err(|e| io("create", &dir, e))?;
-        Ok(Self {
-            dir,
+        let created = !root.exists();
+        std::fs::create_dir_all(root)
+            .map_err(|e| AppError::io("create the output directory", root, e))?;
+        let lock = lock(root)?;
+        let staging = Self {
+            dir: root.join(format!("{PARTIAL}{}", std::process::id())),
             root: root.to_path_buf(),
             files: Vec::new(),
+            lock: Some(lock),
             committed: false,
-        })
+            created,
+        };
+        let entries: Vec<String> = std::fs::read_dir(root)
+            .map_err(|e| AppError::io("list", root, e))?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        // Another output directory inside (e.g. `tradeoff --out out/tradeoff`) is ours too.
+        let foreign = entries
+            .iter()
+            .filter(|n| !bookkeeping(n) && !root.join(n).join(MANIFEST).is_file())
+            .count();
+        if foreign > 0 && manifest(root).is_none() && !force {
+            return Err(refuse(
+                root,
+                format!(
+                    "the directory holds {foreign} entries that no activemuscle run wrote (no {MANIFEST}): \
+                     refusing to mix outputs with them; choose an empty or new directory, or pass --force"
+                ),
+            ));
+        }
+        // Holding the lock, every other staging or set-aside directory is a dead run's.
+        for name in entries
+            .iter()
+            .filter(|n| n.starts_with(PARTIAL) || n.starts_with(OLD))
+        {
+            let p = root.join(name);
+            std::fs::remove_dir_all(&p)
+                .map_err(|e| AppError::io("remove the dead run's", &p, e))?;
+        }
+        std::fs::create_dir_all(&staging.dir)
+            .map_err(|e| AppError::io("create", &staging.dir, e))?;
+        Ok(staging)
     }
 
     /// The staging directory (for writers that take a path, e.g. the FE solver's VTK output).
@@ -53,10 +202,10 @@ impl Staging {
     }
 
     /// The staged path of `relative`, registered for the commit (parent directories created).
-    pub fn path(&mut self, relative: &Path) -> Result<PathBuf, OutputError> {
+    pub fn path(&mut self, relative: &Path) -> Result<PathBuf, AppError> {
         let p = self.dir.join(relative);
         if let Some(parent) = p.parent() {
-            std::fs::create_dir_all(parent).map_err(|e| io("create", parent, e))?;
+            std::fs::create_dir_all(parent).map_err(|e| AppError::io("create", parent, e))?;
         }
         if !self.files.iter().any(|f| f == relative) {
             self.files.push(relative.to_path_buf());
@@ -65,13 +214,13 @@ impl Staging {
     }
 
     /// Registers a file some other writer has already put into the staging directory.
-    pub fn adopt(&mut self, relative: &Path) -> Result<(), OutputError> {
+    pub fn adopt(&mut self, relative: &Path) -> Result<(), AppError> {
         let p = self.dir.join(relative);
         if !p.is_file() {
-            return Err(OutputError(format!(
-                "expected staged file {} is missing",
-                p.display()
-            )));
+            return Err(AppError::Output {
+                file: p.display().to_string(),
+                message: "expected staged file is missing".into(),
+            });
         }
         if !self.files.iter().any(|f| f == relative) {
             self.files.push(relative.to_path_buf());
@@ -80,35 +229,93 @@ impl Staging {
     }
 
     /// Writes `bytes` to the staged `relative`.
-    pub fn write(&mut self, relative: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+    pub fn write(&mut self, relative: &str, bytes: &[u8]) -> Result<PathBuf, AppError> {
         let p = self.path(Path::new(relative))?;
-        std::fs::write(&p, bytes).map_err(|e| io("write", &p, e))?;
+        std::fs::write(&p, bytes).map_err(|e| AppError::io("write", &p, e))?;
         Ok(p)
     }
 
-    /// Moves every staged file into the output directory, in the order registered (so the file
-    /// registered last — the report — appears last), and removes the staging directory.
-    pub fn commit(mut self) -> Result<Vec<PathBuf>, OutputError> {
-        let mut done = Vec::new();
-        for rel in &self.files {
-            let from = self.dir.join(rel);
-            let to = self.root.join(rel);
-            if let Some(parent) = to.parent() {
-                std::fs::create_dir_all(parent).map_err(|e| io("create", parent, e))?;
+    /// Replaces the previous run's files by the staged ones, all or nothing: the previous files
+    /// (from the manifest) are moved aside, the staged ones renamed into place in the order
+    /// registered (the report last); if a rename fails, the new files go back and the old ones
+    /// return. Then the manifest is written, the old files and the staging directory removed,
+    /// and the lock released.
+    pub fn commit(mut self) -> Result<Vec<PathBuf>, AppError> {
+        let old_dir = self.root.join(format!("{OLD}{}", std::process::id()));
+        let old: Vec<PathBuf> = manifest(&self.root)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|f| self.root.join(f).is_file())
+            .collect();
+        let mut aside = Vec::new();
+        let mut placed = Vec::new();
+        let result = (|| -> Result<(), AppError> {
+            for rel in &old {
+                move_file(&self.root.join(rel), &old_dir.join(rel))?;
+                aside.push(rel.clone());
             }
-            std::fs::rename(&from, &to).map_err(|e| io("move into place", &to, e))?;
-            done.push(to);
+            for rel in &self.files {
+                move_file(&self.dir.join(rel), &self.root.join(rel))?;
+                placed.push(rel.clone());
+            }
+            Ok(())
+        })();
+        if let Err(e) = result {
+            // Put everything back: the new files into staging, the old ones into place.
+            for rel in placed.iter().rev() {
+                let _ = move_file(&self.root.join(rel), &self.dir.join(rel));
+            }
+            for rel in aside.iter().rev() {
+                let _ = move_file(&old_dir.join(rel), &self.root.join(rel));
+            }
+            let _ = std::fs::remove_dir_all(&old_dir);
+            return Err(
+                e.within("nothing of this run was committed; the previous outputs are unchanged")
+            );
         }
+        let mut text =
+            String::from("# files written by the last activemuscle run into this directory\n");
+        for rel in &self.files {
+            text.push_str(&format!("{}\n", rel.display()));
+        }
+        let manifest = self.root.join(MANIFEST);
+        std::fs::write(&manifest, text).map_err(|e| AppError::io("write", &manifest, e))?;
         self.committed = true;
-        std::fs::remove_dir_all(&self.dir).map_err(|e| io("remove", &self.dir, e))?;
-        Ok(done)
+        // Directories the old files left empty (e.g. vtk/<sweep>/ of a study now gone).
+        for rel in old.iter().filter(|r| !self.files.contains(r)) {
+            let mut dir = rel.parent();
+            while let Some(d) = dir.filter(|d| !d.as_os_str().is_empty()) {
+                if std::fs::remove_dir(self.root.join(d)).is_err() {
+                    break;
+                }
+                dir = d.parent();
+            }
+        }
+        let _ = std::fs::remove_dir_all(&old_dir);
+        std::fs::remove_dir_all(&self.dir).map_err(|e| AppError::io("remove", &self.dir, e))?;
+        Ok(self.files.iter().map(|f| self.root.join(f)).collect())
     }
+}
+
+/// Renames `from` to `to`, creating `to`'s parent.
+fn move_file(from: &Path, to: &Path) -> Result<(), AppError> {
+    if let Some(parent) = to.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| AppError::io("create", parent, e))?;
+    }
+    std::fs::rename(from, to).map_err(|e| AppError::io("move into place", to, e))
 }
 
 impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.dir);
+        }
+        if let Some(lock) = self.lock.take() {
+            let _ = std::fs::remove_file(lock);
+        }
+        if self.created && !self.committed {
+            // Fails, harmlessly, unless the directory is empty.
+            let _ = std::fs::remove_dir(&self.root);
         }
     }
 }

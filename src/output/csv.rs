@@ -1,15 +1,22 @@
-//! `curves.csv`: one row per computed point, long ("tidy") form.
+//! The tables of a run, projected from its typed results for writing.
 //!
-//! Columns: `model, direction, bases, energy, law, coupling, d, lambda, gamma, P, P_pas, P_act,
-//! newton_iterations`. A cell that does not apply is empty, never `NaN`; a non-finite number is
-//! an error naming the quantity and the row.
+//! `curves.csv`: one row per computed point, long ("tidy") form, columns [`COLUMNS`]. A cell that
+//! does not apply is empty, never `NaN`; a non-finite number is an error naming the quantity and
+//! the row. `fits.csv`: one row per fitted parameter, its correlations with the other parameters
+//! in one readable cell (`w0: 0.99988`). `stability.csv`: one row per model and stretch.
 
-use super::atomic::OutputError;
-use crate::scene::run::{Results, Row};
-use crate::scene::{FitOutcome, StabilityCurve};
+use crate::app_error::{finite, AppError};
+use crate::scene::Results;
+use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
+use crate::studies::fit::FitOutcome;
+use crate::studies::stability::StabilityCurve;
+use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
+use crate::studies::StudyResult;
+use crate::uniaxial::Direction;
 
 /// The header of `curves.csv`.
-pub const COLUMNS: [&str; 13] = [
+pub const COLUMNS: [&str; 14] = [
+    "study",
     "model",
     "direction",
     "bases",
@@ -25,32 +32,213 @@ pub const COLUMNS: [&str; 13] = [
     "newton_iterations",
 ];
 
-fn number(x: f64, quantity: &str, row: &Row) -> Result<String, OutputError> {
-    if x.is_finite() {
-        Ok(x.to_string())
-    } else {
-        Err(OutputError(format!(
-            "refusing to write non-finite {quantity} = {x} ({} {} {}, d = {:?}, lambda = {})",
-            row.model, row.energy, row.law, row.d, row.lambda
-        )))
+/// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row<'a> {
+    /// The study's name.
+    pub study: &'a str,
+    /// `uniaxial` | `cylinder`.
+    pub model: &'static str,
+    /// `along` | `across` (uniaxial).
+    pub direction: Option<&'static str>,
+    /// `sliding` | `clamped` (cylinder).
+    pub bases: Option<&'static str>,
+    /// Energy name.
+    pub energy: &'a str,
+    /// `passive` | `constant` | `implicit` | `explicit` | `energy`.
+    pub law: &'static str,
+    /// `frozen` | `consistent` (active laws only).
+    pub coupling: Option<&'static str>,
+    /// Damage (active laws only).
+    pub d: Option<f64>,
+    /// Stretch λ.
+    pub lambda: f64,
+    /// γ (uniaxial) or γ at the centre of the cylinder.
+    pub gamma: Option<f64>,
+    /// Nominal stress along the stretch \[kPa\].
+    pub p: f64,
+    /// Passive stress of the material at λ \[kPa\] (active uniaxial rows along the fibres).
+    pub p_pas: Option<f64>,
+    /// Target active stress (1 − d) P_act(λ) \[kPa\] (same rows).
+    pub p_act: Option<f64>,
+    /// Newton iterations to reach this stretch from the previous one (cylinder).
+    pub newton_iterations: Option<usize>,
+}
+
+/// What tells one curve of `curves.csv` from the others: every column but the point's values,
+/// and γ for a constant-γ curve (`study | model | direction | bases | energy | law | coupling | d
+/// | γ`, empty cells empty). The figures mark the series that draw a curve with it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CurveId(pub String);
+
+impl Row<'_> {
+    /// The curve this point belongs to.
+    pub fn curve(&self) -> CurveId {
+        let number = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        CurveId(
+            [
+                self.study,
+                self.model,
+                self.direction.unwrap_or(""),
+                self.bases.unwrap_or(""),
+                self.energy,
+                self.law,
+                self.coupling.unwrap_or(""),
+                &number(self.d),
+                &number(self.gamma.filter(|_| self.law == "constant")),
+            ]
+            .join(" | "),
+        )
     }
 }
 
-fn optional(x: Option<f64>, quantity: &str, row: &Row) -> Result<String, OutputError> {
+/// The (law, coupling, d) cells of a uniaxial curve.
+fn law_cells(model: CurveModel) -> (&'static str, Option<&'static str>, Option<f64>) {
+    match model {
+        CurveModel::Passive => ("passive", None, None),
+        CurveModel::Constant(_) => ("constant", None, None),
+        CurveModel::Active(m) => (m.law.name(), Some(m.coupling.name()), Some(m.damage)),
+    }
+}
+
+/// The row of point `p` of curve `c` of uniaxial study `study`.
+fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &CurvePoint) -> Row<'a> {
+    let (law, coupling, d) = law_cells(c.model);
+    Row {
+        study,
+        model: "uniaxial",
+        direction: Some(direction.name()),
+        bases: None,
+        energy: &c.energy,
+        law,
+        coupling,
+        d,
+        lambda: p.lambda,
+        gamma: Some(p.gamma),
+        p: p.stress,
+        p_pas: p.passive,
+        p_act: p.active_target,
+        newton_iterations: None,
+    }
+}
+
+/// The row of point `p` of sweep `sweep` of cylinder study `study`.
+fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &SweepPoint) -> Row<'a> {
+    let m = sweep.model;
+    Row {
+        study,
+        model: "cylinder",
+        direction: None,
+        bases: Some(bases_name(c.bases)),
+        energy: &c.energy,
+        law: m.law.name(),
+        coupling: Some(m.coupling.name()),
+        d: Some(m.damage),
+        lambda: p.lambda,
+        gamma: Some(p.gamma_centre),
+        p: p.stress,
+        p_pas: None,
+        p_act: None,
+        newton_iterations: Some(p.newton_iterations),
+    }
+}
+
+/// The curve of `curves.csv` that uniaxial curve `c` of study `study` writes.
+pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
+    let p = c.points.first().copied().unwrap_or(CurvePoint {
+        lambda: 1.0,
+        gamma: match c.model {
+            CurveModel::Constant(g) => g,
+            _ => 0.0,
+        },
+        stress: 0.0,
+        passive: None,
+        active_target: None,
+    });
+    uniaxial_row(study, direction, c, &p).curve()
+}
+
+/// The curve of `curves.csv` that FE sweep `sweep` of cylinder study `study` writes.
+pub fn sweep_curve(study: &str, c: &CylinderResult, sweep: &Sweep) -> CurveId {
+    let p = sweep.points.first().copied().unwrap_or(SweepPoint {
+        lambda: 1.0,
+        gamma_centre: 0.0,
+        fibre_stretch_centre: 1.0,
+        stress: 0.0,
+        newton_iterations: 0,
+        stress_0d: None,
+        passive_0d: None,
+        active_0d: 0.0,
+    });
+    sweep_row(study, c, sweep, &p).curve()
+}
+
+/// The rows of `curves.csv`, in study order.
+pub fn rows(results: &Results) -> Vec<Row<'_>> {
+    let mut rows = Vec::new();
+    for s in &results.studies {
+        let study = s.name.as_str();
+        match &s.result {
+            StudyResult::Uniaxial(u) => {
+                for c in &u.curves {
+                    rows.extend(
+                        c.points
+                            .iter()
+                            .map(|p| uniaxial_row(study, u.direction, c, p)),
+                    );
+                }
+            }
+            StudyResult::Cylinder(c) => {
+                for sweep in &c.sweeps {
+                    rows.extend(sweep.points.iter().map(|p| sweep_row(study, c, sweep, p)));
+                }
+            }
+            _ => {}
+        }
+    }
+    rows
+}
+
+fn number(x: f64, quantity: &str, row: &Row) -> Result<String, AppError> {
+    finite(x, quantity, || {
+        format!(
+            "study {:?}: {} {} {}, d = {:?}, lambda = {}",
+            row.study, row.model, row.energy, row.law, row.d, row.lambda
+        )
+    })
+    .map(|x| x.to_string())
+}
+
+fn optional(x: Option<f64>, quantity: &str, row: &Row) -> Result<String, AppError> {
     x.map_or(Ok(String::new()), |v| number(v, quantity, row))
 }
 
+fn csv_error(file: &str) -> impl Fn(csv::Error) -> AppError + '_ {
+    move |e| AppError::Output {
+        file: file.to_string(),
+        message: e.to_string(),
+    }
+}
+
+fn finish(w: csv::Writer<Vec<u8>>, file: &str) -> Result<Vec<u8>, AppError> {
+    w.into_inner().map_err(|e| AppError::Output {
+        file: file.to_string(),
+        message: e.error().to_string(),
+    })
+}
+
 /// The CSV text of `rows`.
-pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, OutputError> {
+pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    let fail = |e: csv::Error| OutputError(format!("CSV: {e}"));
-    w.write_record(COLUMNS).map_err(fail)?;
+    let fail = csv_error("curves.csv");
+    w.write_record(COLUMNS).map_err(&fail)?;
     for r in rows {
         let record = [
+            r.study.to_string(),
             r.model.to_string(),
             r.direction.unwrap_or("").to_string(),
             r.bases.unwrap_or("").to_string(),
-            r.energy.clone(),
+            r.energy.to_string(),
             r.law.to_string(),
             r.coupling.unwrap_or("").to_string(),
             optional(r.d, "d", r)?,
@@ -63,10 +251,9 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, OutputError> {
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
         ];
-        w.write_record(&record).map_err(fail)?;
+        w.write_record(&record).map_err(&fail)?;
     }
-    w.into_inner()
-        .map_err(|e| OutputError(format!("CSV: {}", e.error())))
+    finish(w, "curves.csv")
 }
 
 /// The header of `fits.csv`: one row per fitted parameter.
@@ -103,115 +290,119 @@ pub const STABILITY_COLUMNS: [&str; 11] = [
 ];
 
 /// `x` as text if finite, else an error naming the quantity and where it came from.
-pub fn finite(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, OutputError> {
-    checked(x, quantity, origin).map(|x| x.to_string())
+fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, AppError> {
+    finite(x, quantity, origin).map(|x| x.to_string())
 }
 
-/// `x` if finite, else an error naming the quantity and where it came from.
-pub fn checked(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<f64, OutputError> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(OutputError(format!(
-            "refusing to write non-finite {quantity} = {x} ({})",
-            origin()
-        )))
-    }
-}
-
-/// `fits.csv` of the fits, converged or not.
-pub fn fits_csv(fits: &[FitOutcome]) -> Result<Vec<u8>, OutputError> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let fail = |e: csv::Error| OutputError(format!("fits.csv: {e}"));
-    w.write_record(FIT_COLUMNS).map_err(fail)?;
-    for f in fits {
-        for (j, name) in f.names.iter().enumerate() {
-            let origin = || {
-                format!(
-                    "fits.csv: study {:?}, {}, parameter {name}",
-                    f.study_name, f.case
-                )
-            };
-            let opt =
-                |x: Option<f64>, q: &str| x.map_or(Ok(String::new()), |v| finite(v, q, origin));
-            let correlation = f.correlation.get(j).map_or(Ok(String::new()), |row| {
-                row.iter()
-                    .zip(&f.names)
-                    .map(|(c, other)| Ok(format!("{other}:{}", opt(*c, "correlation")?)))
-                    .collect::<Result<Vec<_>, OutputError>>()
-                    .map(|v| v.join(";"))
-            })?;
-            w.write_record([
-                f.study_name.clone(),
-                f.fit.to_string(),
-                f.case.clone(),
-                name.clone(),
-                finite(f.values[j], "fitted value", origin)?,
-                opt(
-                    f.standard_errors.get(j).copied().flatten(),
-                    "standard error",
-                )?,
-                opt(f.reference.get(j).copied().flatten(), "reference value")?,
-                correlation,
-                f.converged.to_string(),
-                finite(f.rms, "RMS error", origin)?,
-                f.unit.to_string(),
-                finite(f.residual_norm, "residual norm", origin)?,
-                f.iterations.to_string(),
-                f.points.to_string(),
-            ])
-            .map_err(fail)?;
+/// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`
+/// (`n/a` where the fit could not estimate one), each number written by `number`.
+pub fn correlations(
+    row: &[Option<f64>],
+    names: &[String],
+    j: usize,
+    number: impl Fn(f64) -> Result<String, AppError>,
+) -> Result<String, AppError> {
+    let mut parts = Vec::new();
+    for (k, (c, other)) in row.iter().zip(names).enumerate() {
+        if k != j {
+            parts.push(format!(
+                "{other}: {}",
+                c.map_or(Ok("n/a".to_string()), &number)?
+            ));
         }
     }
-    w.into_inner()
-        .map_err(|e| OutputError(format!("fits.csv: {}", e.error())))
+    Ok(parts.join("; "))
 }
 
-/// `stability.csv` of the stability curves.
-pub fn stability_csv(curves: &[StabilityCurve], names: &[String]) -> Result<Vec<u8>, OutputError> {
+/// `fits.csv` of the fits of each study (name, fits), converged or not.
+pub fn fits_csv(studies: &[(&str, &[FitOutcome])]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    let fail = |e: csv::Error| OutputError(format!("stability.csv: {e}"));
-    w.write_record(STABILITY_COLUMNS).map_err(fail)?;
-    for c in curves {
-        let study = names.get(c.study).cloned().unwrap_or_default();
-        for p in &c.points {
-            let origin = || {
-                format!(
-                    "stability.csv: study {study:?}, {}, d = {:?}, lambda = {}",
-                    c.label(),
-                    c.d,
-                    p.lambda
-                )
-            };
-            w.write_record([
-                study.clone(),
-                c.law.to_string(),
-                c.coupling.unwrap_or("").to_string(),
-                c.d.map_or(Ok(String::new()), |d| finite(d, "d", origin))?,
-                finite(p.lambda, "lambda", origin)?,
-                finite(p.stress, "P", origin)?,
-                finite(p.slope, "dP/dlambda", origin)?,
-                finite(p.least, "ellipticity minimum", origin)?,
-                finite(p.relative, "relative ellipticity", origin)?,
-                p.elliptic.to_string(),
-                (p.slope < 0.0).to_string(),
-            ])
-            .map_err(fail)?;
+    let fail = csv_error("fits.csv");
+    w.write_record(FIT_COLUMNS).map_err(&fail)?;
+    for &(study, fits) in studies {
+        for f in fits {
+            for (j, name) in f.names.iter().enumerate() {
+                let origin = || format!("fits.csv: study {study:?}, {}, parameter {name}", f.case);
+                let opt =
+                    |x: Option<f64>, q: &str| x.map_or(Ok(String::new()), |v| text(v, q, origin));
+                let correlation = f.correlation.get(j).map_or(Ok(String::new()), |row| {
+                    correlations(row, &f.names, j, |c| {
+                        finite(c, "correlation", origin).map(|c| format!("{c:.5}"))
+                    })
+                })?;
+                w.write_record([
+                    study.to_string(),
+                    f.kind.name().to_string(),
+                    f.case.clone(),
+                    name.clone(),
+                    text(f.values[j], "fitted value", origin)?,
+                    opt(
+                        f.standard_errors.get(j).copied().flatten(),
+                        "standard error",
+                    )?,
+                    opt(f.reference.get(j).copied().flatten(), "reference value")?,
+                    correlation,
+                    f.converged.to_string(),
+                    text(f.rms, "RMS error", origin)?,
+                    f.unit.to_string(),
+                    text(f.residual_norm, "residual norm", origin)?,
+                    f.iterations.to_string(),
+                    f.points.to_string(),
+                ])
+                .map_err(&fail)?;
+            }
         }
     }
-    w.into_inner()
-        .map_err(|e| OutputError(format!("stability.csv: {}", e.error())))
+    finish(w, "fits.csv")
 }
 
-/// The extra tables a run has data for: `fits.csv`, `stability.csv`.
-pub fn tables(results: &Results) -> Result<Vec<(&'static str, Vec<u8>)>, OutputError> {
+/// `stability.csv` of the stability curves of each study (name, curves).
+pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, AppError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let fail = csv_error("stability.csv");
+    w.write_record(STABILITY_COLUMNS).map_err(&fail)?;
+    for &(study, curves) in studies {
+        for c in curves {
+            for p in &c.points {
+                let origin = || {
+                    format!(
+                        "stability.csv: study {study:?}, {}, d = {:?}, lambda = {}",
+                        c.label(),
+                        c.damage(),
+                        p.lambda
+                    )
+                };
+                w.write_record([
+                    study.to_string(),
+                    c.model.map_or("passive", |m| m.law.name()).to_string(),
+                    c.model.map_or("", |m| m.coupling.name()).to_string(),
+                    c.damage()
+                        .map_or(Ok(String::new()), |d| text(d, "d", origin))?,
+                    text(p.lambda, "lambda", origin)?,
+                    text(p.stress, "P", origin)?,
+                    text(p.slope, "dP/dlambda", origin)?,
+                    text(p.least, "ellipticity minimum", origin)?,
+                    text(p.relative, "relative ellipticity", origin)?,
+                    p.elliptic.to_string(),
+                    (p.slope < 0.0).to_string(),
+                ])
+                .map_err(&fail)?;
+            }
+        }
+    }
+    finish(w, "stability.csv")
+}
+
+/// The tables a run has data for: `fits.csv`, `stability.csv`.
+pub fn tables(results: &Results) -> Result<Vec<(&'static str, Vec<u8>)>, AppError> {
     let mut out = Vec::new();
-    if !results.fits.is_empty() {
-        out.push(("fits.csv", fits_csv(&results.fits)?));
+    let fits = results.fits();
+    if fits.iter().any(|(_, f)| !f.is_empty()) {
+        out.push(("fits.csv", fits_csv(&fits)?));
     }
-    if !results.stability.is_empty() {
-        let names: Vec<String> = results.studies.iter().map(|s| s.name.clone()).collect();
-        out.push(("stability.csv", stability_csv(&results.stability, &names)?));
+    let stability = results.stability();
+    if stability.iter().any(|(_, c)| !c.is_empty()) {
+        out.push(("stability.csv", stability_csv(&stability)?));
     }
     Ok(out)
 }

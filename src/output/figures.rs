@@ -1,540 +1,966 @@
-//! The chapter's figures (and two of ours) built from the rows of a run. A figure whose data the
-//! scene did not compute is skipped.
+//! The figures of a run, built from what each study computed: every curve of `curves.csv` is
+//! drawn in some figure with a legend entry (the series carry its
+//! [`CurveId`](super::csv::CurveId)), headings and captions name the scene's energy, laws,
+//! couplings and damages, axes follow the data (clipped where a curve blows up, and the caption
+//! says so: [`Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
+//! heading says which.
+//!
+//! | figure | drawn when | shows |
+//! |---|---|---|
+//! | `fig_passive_<direction>` | a uniaxial study has passive curves (not only the material's, already in `fig_transverse_isotropy`) | each passive energy |
+//! | `fig_transverse_isotropy` | the material's passive curve is computed along and across the fibres | both |
+//! | `fig_constant_gamma` | constant γ | each γ; a zoom on the zero crossings |
+//! | `fig_active_curve`, `fig_damage_active` | active models along the fibres (two damages or more for the second) | P_act, (1 − d) P_act |
+//! | `fig_gamma_and_stresses` | the implicit law, frozen, along the fibres | γ; P_tot, P_pas, (1 − d) P_act at the smallest damage |
+//! | `fig_explicit_vs_implicit_gamma`, `fig_explicit_ptot` | the explicit (and implicit) law, frozen, along the fibres | γ of both; P_tot against its target |
+//! | `fig_laws` | active models | γ and P of every law × coupling at the smallest damage, with the target |
+//! | `fig_loss_of_activation` | two damages or more | P per law × coupling, a curve per damage |
+//! | `fig_cylinder` | a cylinder study | γ and λ_f at the centre, P (FE and 0D) per damage |
+//! | `fig_fe_vs_0d` | cylinder studies | P_FE − P_0D per damage, a panel per study |
+//! | `fig_fit_*`, `fig_stability_*` | fit and stability studies | data and fits; stability along the fibres |
+//!
+//! A stem that two studies would share gets the study's name appended.
 
-use super::plot::{Figure, Panel, Series, Stroke};
-use crate::energy::StrainEnergy;
-use crate::scene::run::{Results, Row};
-use crate::scene::Scene;
+use super::csv::{sweep_curve, uniaxial_curve};
+use super::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
+use crate::active::ActiveCurve;
+use crate::fem::Bases;
+use crate::models::{CouplingKind, LawKind, ModelChoice};
+use crate::scene::{Results, Scene};
+use crate::studies::cylinder::{bases_name, CylinderResult, SweepPoint};
+use crate::studies::fit::{FitKind, FitOutcome};
+use crate::studies::slug;
+use crate::studies::stability::StabilityCurve;
+use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
+use crate::studies::StudyResult;
+use crate::uniaxial::Direction;
+use crate::StrainEnergy;
 
 const LAMBDA: &str = "stretch λ [-]";
 const STRESS: &str = "nominal stress P [kPa]";
 const GAMMA: &str = "activation γ [-]";
 
-fn curve(
-    rows: &[Row],
-    keep: impl Fn(&Row) -> bool,
-    y: impl Fn(&Row) -> Option<f64>,
-) -> Vec<(f64, f64)> {
-    let mut v: Vec<(f64, f64)> = rows
+/// `0, 0.1, 0.5`.
+fn list(values: &[f64]) -> String {
+    values
         .iter()
-        .filter(|r| keep(r))
-        .filter_map(|r| y(r).map(|y| (r.lambda, y)))
-        .collect();
-    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        .map(f64::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup();
     v
 }
 
-fn series(
+/// ` — the chapter's Fig. n` for a figure of the chapter's energy; with another energy, which.
+fn chapter(n: u32, energy: &str) -> String {
+    if energy == "giantesio-musesti" {
+        format!(" — the chapter's Fig. {n}")
+    } else {
+        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+    }
+}
+
+/// `implicit law, frozen coupling`.
+fn words(law: LawKind, coupling: CouplingKind) -> String {
+    format!("{} law, {} coupling", law.name(), coupling.name())
+}
+
+/// The uniaxial curves of one study.
+#[derive(Clone, Copy)]
+struct Uniaxial<'a> {
+    study: &'a str,
+    direction: Direction,
+    curves: &'a [Curve],
+}
+
+impl<'a> Uniaxial<'a> {
+    fn along(&self) -> bool {
+        self.direction == Direction::Along
+    }
+
+    fn dir(&self) -> &'static str {
+        match self.direction {
+            Direction::Along => "along",
+            Direction::Across => "across",
+        }
+    }
+
+    fn passive(&self) -> impl Iterator<Item = &'a Curve> {
+        self.curves
+            .iter()
+            .filter(|c| c.model == CurveModel::Passive)
+    }
+
+    fn active(&self) -> impl Iterator<Item = (ModelChoice, &'a Curve)> {
+        self.curves.iter().filter_map(|c| match c.model {
+            CurveModel::Active(m) => Some((m, c)),
+            _ => None,
+        })
+    }
+
+    /// The curve of `law`, `coupling` at damage `d`.
+    fn model(&self, law: LawKind, coupling: CouplingKind, d: f64) -> Option<&'a Curve> {
+        self.active()
+            .find(|(m, _)| m.law == law && m.coupling == coupling && m.damage == d)
+            .map(|(_, c)| c)
+    }
+
+    fn damages(&self) -> Vec<f64> {
+        sorted_unique(self.active().map(|(m, _)| m.damage).collect())
+    }
+
+    /// (law, coupling) pairs in run order.
+    fn pairs(&self) -> Vec<(LawKind, CouplingKind)> {
+        let mut v = Vec::new();
+        for (m, _) in self.active() {
+            if !v.contains(&(m.law, m.coupling)) {
+                v.push((m.law, m.coupling));
+            }
+        }
+        v
+    }
+
+    /// A series of `y` along curve `c`, marked as drawing it; `None` without points.
+    fn series(
+        &self,
+        c: &Curve,
+        label: impl Into<String>,
+        y: impl Fn(&CurvePoint) -> Option<f64>,
+        stroke: Stroke,
+        colour: usize,
+    ) -> Option<Series> {
+        let points: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .filter_map(|p| y(p).map(|v| (p.lambda, v)))
+            .collect();
+        (!points.is_empty()).then(|| {
+            Series::new(label, points, stroke, colour).drawing(uniaxial_curve(
+                self.study,
+                self.direction,
+                c,
+            ))
+        })
+    }
+}
+
+fn stress(p: &CurvePoint) -> Option<f64> {
+    Some(p.stress)
+}
+
+fn gamma(p: &CurvePoint) -> Option<f64> {
+    Some(p.gamma)
+}
+
+/// P_pas + (1 − d) P_act, the target of an active curve along the fibres.
+fn target(p: &CurvePoint) -> Option<f64> {
+    Some(p.passive? + p.active_target?)
+}
+
+/// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.
+fn derived(
     label: impl Into<String>,
     points: Vec<(f64, f64)>,
     stroke: Stroke,
     colour: usize,
 ) -> Option<Series> {
-    if points.is_empty() {
-        None
-    } else {
-        Some(Series {
-            label: label.into(),
-            points,
-            stroke,
-            colour,
-        })
-    }
+    (!points.is_empty()).then(|| Series::new(label, points, stroke, colour))
 }
 
-fn panel(
-    title: &str,
-    y_label: &str,
-    series: Vec<Option<Series>>,
-    y_range: Option<(f64, f64)>,
-) -> Option<Panel> {
+/// A legend entry without points, in grey: what a stroke means.
+fn key(label: &str, stroke: Stroke) -> Option<Series> {
+    Some(Series::new(label, Vec::new(), stroke, GREY))
+}
+
+/// A panel over λ, or `None` if none of its series has points.
+fn panel(title: impl Into<String>, y_label: &str, series: Vec<Option<Series>>) -> Option<Panel> {
     let series: Vec<Series> = series.into_iter().flatten().collect();
-    if series.is_empty() {
-        None
-    } else {
-        Some(Panel {
-            title: title.into(),
-            x_label: LAMBDA.into(),
-            y_label: y_label.into(),
-            series,
-            y_range,
-        })
+    series
+        .iter()
+        .any(|s| !s.points.is_empty())
+        .then(|| Panel::new(title, LAMBDA, y_label, series))
+}
+
+/// A figure of the panels that have data, or `None` if none has.
+fn figure(
+    stem: &str,
+    heading: String,
+    caption: String,
+    panels: Vec<Option<Panel>>,
+) -> Option<Figure> {
+    let panels: Vec<Panel> = panels.into_iter().flatten().collect();
+    (!panels.is_empty()).then(|| Figure::new(stem, heading, caption, panels))
+}
+
+/// What the figures are drawn from.
+struct Run<'a> {
+    results: &'a Results,
+    /// The material's energy.
+    material: String,
+    curve: ActiveCurve,
+    uniaxial: Vec<Uniaxial<'a>>,
+}
+
+/// Every figure the results support: the uniaxial studies' (in study order), the transverse
+/// isotropy, the cylinders', the FE-vs-0D differences, the fits' and the stability studies'.
+pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
+    let run = Run {
+        results,
+        material: scene.models.energy.name().to_string(),
+        curve: scene.models.curve,
+        uniaxial: results
+            .uniaxial()
+            .map(|(study, u)| Uniaxial {
+                study,
+                direction: u.direction,
+                curves: &u.curves,
+            })
+            .collect(),
+    };
+    let isotropy = transverse_isotropy(&run);
+    let mut out: Vec<Figure> = Vec::new();
+    let mut active_curve_drawn = false;
+    for u in &run.uniaxial {
+        out.extend(passive(&run, u, isotropy.is_some()));
+        out.extend(constant_gamma(u));
+        if u.along() && u.active().next().is_some() && !active_curve_drawn {
+            active_curve_drawn = true;
+            out.extend(active_curve(&run, u));
+        }
+        out.extend(gamma_and_stresses(&run, u));
+        out.extend(damage_active(&run, u));
+        out.extend(explicit_vs_implicit_gamma(u));
+        out.extend(explicit_ptot(u));
+        out.extend(laws(&run, u));
+        out.extend(loss_of_activation(u));
+    }
+    out.extend(isotropy);
+    for (study, c) in results.cylinders() {
+        out.extend(cylinder(&run, study, c));
+    }
+    out.extend(fe_vs_0d(results));
+    for (name, fits) in results.fits() {
+        out.extend(fit_figure(name, fits));
+    }
+    for (name, curves) in results.stability() {
+        out.extend(stability_figure(name, curves));
+    }
+    unique_stems(&mut out, &run);
+    out
+}
+
+/// Appends the study's name to a stem that another figure already has (and a number if that
+/// is taken too).
+fn unique_stems(figures: &mut [Figure], run: &Run) {
+    let studies: Vec<&str> = run
+        .results
+        .studies
+        .iter()
+        .map(|s| s.name.as_str())
+        .collect();
+    for i in 1..figures.len() {
+        if figures[..i].iter().any(|f| f.stem == figures[i].stem) {
+            let own = studies
+                .iter()
+                .find(|s| figures[i].heading.contains(&format!("\"{s}\"")))
+                .map_or(i.to_string(), |s| slug(s));
+            let kind = figures[i].stem.trim_start_matches("fig_").to_string();
+            let stem = if own.starts_with(&kind) {
+                format!("fig_{own}")
+            } else {
+                format!("fig_{kind}_{own}")
+            };
+            // Two study names may give one slug ("cyl A", "cyl-a"): then a number as well.
+            let taken = |t: &str| figures[..i].iter().any(|f| f.stem == t);
+            figures[i].stem = (1..)
+                .map(|n| {
+                    if n == 1 {
+                        stem.clone()
+                    } else {
+                        format!("{stem}_{n}")
+                    }
+                })
+                .find(|t| !taken(t))
+                .unwrap_or(stem);
+        }
     }
 }
 
-fn figure(stem: &str, heading: &str, caption: &str, panels: Vec<Option<Panel>>) -> Option<Figure> {
-    if panels.is_empty() || panels.iter().any(Option::is_none) {
+/// Passive stress of each passive energy of study `u`; left out when its only curve is the
+/// material's and the transverse-isotropy figure draws it.
+fn passive(run: &Run, u: &Uniaxial, in_isotropy: bool) -> Option<Figure> {
+    let curves: Vec<&Curve> = u.passive().collect();
+    if curves.is_empty() || (in_isotropy && curves.len() == 1 && curves[0].energy == run.material) {
         return None;
     }
-    Some(Figure {
-        stem: stem.into(),
-        heading: heading.into(),
-        caption: caption.into(),
-        panels: panels.into_iter().flatten().collect(),
-    })
-}
-
-fn along(r: &Row) -> bool {
-    r.model == "uniaxial" && r.direction == Some("along")
-}
-
-fn active(r: &Row, law: &str, coupling: &str, d: f64) -> bool {
-    along(r) && r.law == law && r.coupling == Some(coupling) && r.d == Some(d)
-}
-
-fn damages(rows: &[Row], keep: impl Fn(&Row) -> bool) -> Vec<f64> {
-    let mut d: Vec<f64> = rows
+    let energies: Vec<&str> = curves.iter().map(|c| c.energy.as_str()).collect();
+    let like_fig_3 = u.along()
+        && energies.contains(&"giantesio-musesti")
+        && energies.contains(&"ehret-bol-itskov");
+    let series = curves
         .iter()
-        .filter(|r| keep(r))
-        .filter_map(|r| r.d)
+        .enumerate()
+        .map(|(i, c)| {
+            let stroke = if i == 0 {
+                Stroke::Solid
+            } else {
+                Stroke::Dashed
+            };
+            u.series(c, c.energy.clone(), stress, stroke, i)
+        })
         .collect();
-    d.sort_by(f64::total_cmp);
-    d.dedup();
-    d
+    figure(
+        &format!("fig_passive_{}", u.dir()),
+        format!(
+            "Passive stress {} the fibres: {}{} (study \"{}\")",
+            u.dir(),
+            energies.join(", "),
+            if like_fig_3 { " — the chapter's Fig. 3" } else { "" },
+            u.study
+        ),
+        format!(
+            "Nominal stress of the passive energ{} {} in uniaxial tension {} the fibres (lateral faces traction free).",
+            if energies.len() == 1 { "y" } else { "ies" },
+            energies.join(" and "),
+            u.dir()
+        ),
+        vec![panel(
+            format!("Passive stress {} the fibres", u.dir()),
+            STRESS,
+            series,
+        )],
+    )
 }
 
-/// Every figure the results support, in the chapter's order, then ours.
-pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
-    let rows = &results.rows;
-    let material = scene.material.name().to_string();
-    let mut out = Vec::new();
-    // Stress range in which the active model's features are visible (the passive exponential
-    // reaches hundreds of kPa at λ = 1.6).
-    let active_range = Some((-5.0, 160.0));
-
-    // D:paragoneebi — passive energies along the fibres.
-    let mut energies: Vec<String> = rows
-        .iter()
-        .filter(|r| along(r) && r.law == "passive")
-        .map(|r| r.energy.clone())
-        .collect();
-    energies.dedup();
-    energies.sort();
-    energies.dedup();
-    if energies.len() >= 2 {
-        let s = energies
+/// The chapter's Fig. 2: the material's passive stress along and across the fibres.
+fn transverse_isotropy(run: &Run) -> Option<Figure> {
+    let find = |d: Direction| {
+        run.uniaxial
             .iter()
-            .enumerate()
-            .map(|(i, e)| {
-                series(
-                    e.clone(),
-                    curve(
-                        rows,
-                        |r| along(r) && r.law == "passive" && &r.energy == e,
-                        |r| Some(r.p),
-                    ),
-                    if i == 0 {
-                        Stroke::Solid
-                    } else {
-                        Stroke::Dashed
-                    },
-                    i,
-                )
+            .filter(|u| u.direction == d)
+            .find_map(|u| {
+                u.passive()
+                    .find(|c| c.energy == run.material)
+                    .map(|c| (*u, c))
             })
-            .collect();
-        out.extend(figure(
-            "fig_passive_vs_ebi",
-            "Fig. D:paragoneebi — passive energies in uniaxial tension along the fibres",
-            "Nominal stress of the chapter's passive energy (eq. D:Wpassiva) and of the Ehret–Böl–Itskov energy (eq. D:Webi) it simplifies, uniaxial tension along the fibres.",
-            vec![panel("Passive stress along the fibres", STRESS, s, Some((-5.0, 160.0)))],
-        ));
-    }
-
-    // D:biaxial — transverse isotropy.
-    let material = &material;
-    let passive_dir = |dir: &'static str| {
-        curve(
-            rows,
-            move |r| {
-                r.model == "uniaxial"
-                    && r.direction == Some(dir)
-                    && r.law == "passive"
-                    && &r.energy == material
-            },
-            |r| Some(r.p),
-        )
     };
-    out.extend(figure(
+    let ((ua, along), (ux, across)) = (find(Direction::Along)?, find(Direction::Across)?);
+    figure(
         "fig_transverse_isotropy",
-        "Fig. D:biaxial — transversely isotropic behaviour",
-        "Passive nominal stress of the chapter's energy in uniaxial tension along and across the fibres (both lateral faces traction free).",
+        format!(
+            "Transversely isotropic behaviour of {}{}",
+            run.material,
+            chapter(2, &run.material)
+        ),
+        format!(
+            "Passive nominal stress of {} in uniaxial tension along and across the fibres (lateral faces traction free), on the scale of the softer curve across the fibres.",
+            run.material
+        ),
         vec![panel(
             "Passive stress along and across the fibres",
             STRESS,
-            vec![
-                series("along the fibres", passive_dir("along"), Stroke::Solid, 0),
-                series("across the fibres", passive_dir("across"), Stroke::Dashed, 1),
-            ],
-            Some((-5.0, 160.0)),
+            vec![ua.series(along, "along the fibres", stress, Stroke::Solid, 0), ux.series(across, "across the fibres", stress, Stroke::Dashed, 1)],
         )],
-    ));
+    )
+}
 
-    // D:gamma-s-s — constant γ.
-    let mut gammas: Vec<f64> = rows
+/// The chapter's Fig. 5 (along the fibres): constant γ; a second panel zooms on P = 0 when a
+/// curve crosses it, to show the zero crossings move below λ = 1.
+fn constant_gamma(u: &Uniaxial) -> Option<Figure> {
+    let curves: Vec<(f64, &Curve)> = u
+        .curves
         .iter()
-        .filter(|r| along(r) && r.law == "constant")
-        .filter_map(|r| r.gamma)
+        .filter_map(|c| match c.model {
+            CurveModel::Constant(g) => Some((g, c)),
+            _ => None,
+        })
         .collect();
-    gammas.sort_by(f64::total_cmp);
-    gammas.dedup();
-    out.extend(figure(
-        "fig_constant_gamma",
-        "Fig. D:gamma-s-s — stress–stretch curves for constant γ",
-        "Uniaxial tension along the fibres with γ held constant: the stress grows with γ and its zero moves below λ = 1 (to about 1 − γ). The y range is narrow (μ = 0.16 kPa) so that the zero crossings show.",
-        vec![panel(
-            "Constant activation γ",
-            STRESS,
-            gammas
-                .iter()
-                .enumerate()
-                .map(|(i, g)| series(format!("γ = {g}"), curve(rows, |r| along(r) && r.law == "constant" && r.gamma == Some(*g), |r| Some(r.p)), Stroke::Solid, i))
-                .collect(),
-            Some((-0.5, 3.0)),
-        )],
-    ));
-
-    // D:fattiva — the active curve.
-    let lambdas: Vec<f64> = {
-        let mut l: Vec<f64> = rows.iter().filter(|r| along(r)).map(|r| r.lambda).collect();
-        l.sort_by(f64::total_cmp);
-        l.dedup();
-        l
+    let gammas: Vec<f64> = curves.iter().map(|c| c.0).collect();
+    let all = || -> Vec<Option<Series>> {
+        curves
+            .iter()
+            .enumerate()
+            .map(|(i, (g, c))| u.series(c, format!("γ = {g}"), stress, Stroke::Solid, i))
+            .collect()
     };
-    let pact: Vec<(f64, f64)> = lambdas.iter().map(|&l| (l, scene.curve.value(l))).collect();
-    out.extend(figure(
-        "fig_active_curve",
-        "Fig. D:fattiva — the active curve",
-        "P_act(λ) of eq. D:pact with the parameters of Table D:paratt (the chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program).",
-        vec![panel("Active curve P_act (eq. D:pact)", STRESS, vec![series("P_act", pact.clone(), Stroke::Solid, 1)], None)],
-    ));
+    let stresses = || {
+        curves
+            .iter()
+            .flat_map(|(_, c)| c.points.iter().map(|p| p.stress))
+    };
+    let lowest = stresses().fold(f64::INFINITY, f64::min);
+    let positive = stresses().filter(|&p| p > 0.0);
+    let (small, large) = positive.fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p), b.max(p)));
+    // Over three decades or more (γ shifts the exponential stiffening): a log axis, and a
+    // linear one near P = 0 for the zero crossings.
+    let log = large > 1e3 * small;
+    let top = if log {
+        panel(
+            format!("Constant activation, {} the fibres (log axis)", u.dir()),
+            STRESS,
+            all(),
+        )
+        .map(|p| Panel {
+            scale: Scale::LogY,
+            ..p
+        })
+    } else {
+        panel(
+            format!("Constant activation, {} the fibres", u.dir()),
+            STRESS,
+            all(),
+        )
+    };
+    let zoom = (log && lowest < 0.0).then(|| {
+        let mut p = panel("Near P = 0: the zero crossings", STRESS, all())?;
+        p.y_range = Some((1.2 * lowest, -6.0 * lowest));
+        Some(p)
+    });
+    figure(
+        "fig_constant_gamma",
+        format!(
+            "Stress–stretch curves for constant γ = {}{} (study \"{}\")",
+            list(&gammas),
+            match curves.first() {
+                Some((_, c)) if u.along() => chapter(5, &c.energy),
+                _ => String::new(),
+            },
+            u.study
+        ),
+        format!(
+            "Uniaxial tension {} the fibres with γ held constant: the stress grows with γ{}.{}",
+            u.dir(),
+            if u.along() {
+                " and its zero moves below λ = 1 (to about 1 − γ)"
+            } else {
+                ""
+            },
+            if log {
+                " Top: P > 0 on a log axis (γ shifts the exponential stiffening to smaller λ); bottom: a linear axis near P = 0."
+            } else {
+                ""
+            }
+        ),
+        vec![top, zoom.flatten()],
+    )
+}
 
-    // D:pactgamma — γ(λ) of the implicit law; P_tot, P_act, P_pas.
-    let implicit = |r: &Row| active(r, "implicit", "frozen", 0.0);
-    out.extend(figure(
+/// The chapter's Fig. 7: P_act at the stretches of study `u`.
+fn active_curve(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let lambdas = sorted_unique(
+        u.curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(|p| p.lambda))
+            .collect(),
+    );
+    let points = lambdas.iter().map(|&l| (l, run.curve.value(l))).collect();
+    figure(
+        "fig_active_curve",
+        "The active curve P_act — the chapter's Fig. 7".into(),
+        format!(
+            "P_act(λ) of the scene's active curve (λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa; the chapter's values are in its Table 2). The chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program.",
+            run.curve.lambda_min(),
+            run.curve.lambda_opt(),
+            run.curve.k(),
+            run.curve.p_opt()
+        ),
+        vec![panel("Active curve P_act", STRESS, vec![derived("P_act", points, Stroke::Solid, 1)])],
+    )
+}
+
+/// The chapter's Fig. 8: γ of the implicit law (frozen) and its stresses, at the smallest damage.
+fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let d = *u.damages().first()?;
+    let c = u
+        .model(LawKind::Implicit, CouplingKind::Frozen, d)
+        .filter(|_| u.along())?;
+    let act = |p: &CurvePoint| p.active_target;
+    figure(
         "fig_gamma_and_stresses",
-        "Fig. D:pactgamma — γ(λ) and the stresses P_tot, P_act, P_pas",
-        "Top: γ solving eq. D:eqgammaesplicita (implicit law, d = 0). Bottom: the resulting total stress P_tot with P_act and P_pas (frozen model).",
+        format!(
+            "γ(λ) of the implicit law and the stresses P_tot, P_act, P_pas at d = {d}{}",
+            if d == 0.0 { chapter(8, &c.energy) } else { String::new() }
+        ),
+        format!(
+            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas.",
+            run.material
+        ),
         vec![
-            panel("Activation γ (implicit law, d = 0)", GAMMA, vec![series("γ implicit", curve(rows, implicit, |r| r.gamma), Stroke::Solid, 0)], None),
+            panel(format!("Activation γ, implicit law, d = {d}"), GAMMA, vec![u.series(c, "γ, implicit law", gamma, Stroke::Solid, 0)]),
             panel(
                 "Total, active and passive stress",
                 STRESS,
                 vec![
-                    series("P_tot", curve(rows, implicit, |r| Some(r.p)), Stroke::Solid, 0),
-                    series("P_act", curve(rows, implicit, |r| r.p_act), Stroke::Dashed, 1),
-                    series("P_pas", curve(rows, implicit, |r| r.p_pas), Stroke::Dotted, 2),
+                    u.series(c, "P_tot", stress, Stroke::Solid, 0),
+                    derived("(1 − d) P_act", xy(c, act), Stroke::Dashed, 1),
+                    derived("P_pas", xy(c, |p| p.passive), Stroke::Dotted, 2),
                 ],
-                active_range,
             ),
         ],
-    ));
+    )
+}
 
-    // D:figdpact — (1 − d) P_act.
-    let ds = damages(rows, |r| along(r) && r.law == "implicit");
-    out.extend(figure(
+/// (λ, y) of the points of `c` where `y` has a value.
+fn xy(c: &Curve, y: impl Fn(&CurvePoint) -> Option<f64>) -> Vec<(f64, f64)> {
+    c.points
+        .iter()
+        .filter_map(|p| y(p).map(|v| (p.lambda, v)))
+        .collect()
+}
+
+/// The chapter's Fig. 9: (1 − d) P_act for the damages of study `u` (two or more).
+fn damage_active(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let ds = u.damages();
+    if ds.len() < 2 || !u.along() {
+        return None;
+    }
+    let lambdas = sorted_unique(
+        u.active()
+            .flat_map(|(_, c)| c.points.iter().map(|p| p.lambda))
+            .collect(),
+    );
+    let series = ds
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            let points = lambdas
+                .iter()
+                .map(|&l| (l, (1.0 - d) * run.curve.value(l)))
+                .collect();
+            derived(format!("d = {d}"), points, Stroke::Solid, i)
+        })
+        .collect();
+    figure(
         "fig_damage_active",
-        "Fig. D:figdpact — (1 − d) P_act for d = 0 … 0.5",
-        "The active curve scaled by the loss of activation 1 − d.",
-        vec![panel(
-            "(1 − d) P_act",
-            STRESS,
-            ds.iter()
-                .enumerate()
-                .map(|(i, d)| {
-                    series(
-                        format!("d = {d}"),
-                        pact.iter().map(|&(l, p)| (l, (1.0 - d) * p)).collect(),
-                        Stroke::Solid,
-                        i,
-                    )
-                })
-                .collect(),
-            None,
-        )],
-    ));
+        format!("(1 − d) P_act for d = {} — the chapter's Fig. 9", list(&ds)),
+        "The active curve scaled by the loss of activation 1 − d.".into(),
+        vec![panel("(1 − d) P_act", STRESS, series)],
+    )
+}
 
-    // D:figapprgamma — explicit (solid) vs implicit (dotted) γ.
-    out.extend(figure(
+/// The damage of the chapter's figures: 0 if computed, else the smallest, for `laws` frozen.
+fn common_damage(u: &Uniaxial, laws: &[LawKind]) -> Option<f64> {
+    u.damages().into_iter().find(|&d| {
+        laws.iter()
+            .all(|&l| u.model(l, CouplingKind::Frozen, d).is_some())
+    })
+}
+
+/// The chapter's Fig. 10: explicit against implicit γ (frozen, along the fibres).
+fn explicit_vs_implicit_gamma(u: &Uniaxial) -> Option<Figure> {
+    let d = common_damage(u, &[LawKind::Explicit, LawKind::Implicit]).filter(|_| u.along())?;
+    let of = |l| u.model(l, CouplingKind::Frozen, d);
+    let energy = &of(LawKind::Explicit)?.energy;
+    figure(
         "fig_explicit_vs_implicit_gamma",
-        "Fig. D:figapprgamma — explicit γ (eq. D:gamma) vs the implicit solution",
-        "γ from the closed form eq. D:gamma (solid) and from solving eq. D:eqgammaesplicita (dotted), d = 0.",
+        format!(
+            "Explicit against implicit γ at d = {d}{}",
+            if d == 0.0 { chapter(10, energy) } else { String::new() }
+        ),
+        format!("γ from the explicit law's closed form (solid) and from solving the implicit law (dotted), d = {d}."),
         vec![panel(
             "Explicit and implicit γ",
             GAMMA,
             vec![
-                series("explicit, eq. D:gamma", curve(rows, |r| active(r, "explicit", "frozen", 0.0), |r| r.gamma), Stroke::Solid, 0),
-                series("implicit, eq. D:eqgammaesplicita", curve(rows, implicit, |r| r.gamma), Stroke::Dotted, 1),
+                u.series(of(LawKind::Explicit)?, "explicit law", gamma, Stroke::Solid, 0),
+                u.series(of(LawKind::Implicit)?, "implicit law", gamma, Stroke::Dotted, 1),
             ],
-            None,
         )],
-    ));
+    )
+}
 
-    // D:figapprgammaptot — P_tot with explicit γ.
-    let explicit = |r: &Row| active(r, "explicit", "frozen", 0.0);
-    out.extend(figure(
+/// The chapter's Fig. 11: P_tot with the explicit γ against its target.
+fn explicit_ptot(u: &Uniaxial) -> Option<Figure> {
+    let d = common_damage(u, &[LawKind::Explicit]).filter(|_| u.along())?;
+    let c = u.model(LawKind::Explicit, CouplingKind::Frozen, d)?;
+    figure(
         "fig_explicit_ptot",
-        "Fig. D:figapprgammaptot — P_tot with the explicit γ",
-        "Total stress of the frozen model with γ from eq. D:gamma, against the target P_pas + P_act it approximates (the chapter compares with the experimental data instead).",
+        format!(
+            "P_tot with the explicit γ at d = {d}{}",
+            if d == 0.0 { chapter(11, &c.energy) } else { String::new() }
+        ),
+        format!("Total stress of the frozen model with γ from the explicit law, d = {d}, against the target P_pas + (1 − d) P_act it approximates (the chapter compares with the experimental data instead)."),
         vec![panel(
-            "P_tot with explicit γ",
+            "P_tot with the explicit γ",
             STRESS,
             vec![
-                series("P_tot, explicit γ", curve(rows, explicit, |r| Some(r.p)), Stroke::Solid, 0),
-                series("P_pas + P_act (target)", curve(rows, explicit, |r| Some(r.p_pas? + r.p_act?)), Stroke::Dashed, 1),
+                u.series(c, "P_tot, explicit law", stress, Stroke::Solid, 0),
+                derived("P_pas + (1 − d) P_act (target)", xy(c, target), Stroke::Dashed, 1),
             ],
-            active_range,
         )],
-    ));
+    )
+}
 
-    // D:figfenics — the clamped cylinder, explicit law, frozen, d = 0 … 0.5.
-    let cyl = |r: &Row| {
-        r.model == "cylinder"
-            && r.bases == Some("clamped")
-            && r.law == "explicit"
-            && r.coupling == Some("frozen")
+/// Colour of a law.
+fn law_colour(law: LawKind) -> usize {
+    match law {
+        LawKind::Implicit => 0,
+        LawKind::Explicit => 1,
+        LawKind::Energy => 2,
+    }
+}
+
+/// Solid for frozen, dashed for consistent.
+fn coupling_stroke(c: CouplingKind) -> Stroke {
+    match c {
+        CouplingKind::Frozen => Stroke::Solid,
+        CouplingKind::Consistent => Stroke::Dashed,
+    }
+}
+
+/// Every law × coupling of study `u` at its smallest damage: γ and P, with the target along
+/// the fibres.
+fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let d = *u.damages().first()?;
+    let pairs = u.pairs();
+    let of = |y: fn(&CurvePoint) -> Option<f64>| -> Vec<Option<Series>> {
+        pairs
+            .iter()
+            .filter_map(|&(l, c)| u.model(l, c, d).map(|curve| (l, c, curve)))
+            .map(|(l, c, curve)| u.series(curve, words(l, c), y, coupling_stroke(c), law_colour(l)))
+            .collect()
     };
-    let cds = damages(rows, cyl);
-    out.extend(figure(
-        "fig_cylinder",
-        "Fig. D:figfenics — the cylinder: γ and P_tot for d = 0 … 0.5",
-        "Axisymmetric FE cylinder (R = 1, L = 4 unless the scene says otherwise), clamped bases, explicit law, frozen coupling. Top: γ at the centre of the cylinder; bottom: nominal axial stress (reaction / πR²).",
-        vec![
-            panel("γ at the centre of the cylinder", GAMMA, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), curve(rows, |r| cyl(r) && r.d == Some(*d), |r| r.gamma), Stroke::Solid, i)).collect(), None),
-            panel("Nominal axial stress", STRESS, cds.iter().enumerate().map(|(i, d)| series(format!("d = {d}"), curve(rows, |r| cyl(r) && r.d == Some(*d), |r| Some(r.p)), Stroke::Solid, i)).collect(), active_range),
-        ],
-    ));
-
-    // Ours: frozen vs consistent.
-    let mut s = Vec::new();
-    for (i, law) in ["implicit", "explicit", "energy"].iter().enumerate() {
-        s.push(series(
-            format!("{law}, frozen"),
-            curve(rows, |r| active(r, law, "frozen", 0.0), |r| Some(r.p)),
-            Stroke::Solid,
-            i,
+    // γ = g(λ_f) does not depend on the coupling: one curve per law.
+    let mut laws: Vec<LawKind> = pairs.iter().map(|p| p.0).collect();
+    laws.dedup();
+    let gammas = laws
+        .iter()
+        .filter_map(|&l| u.active().find(|(m, _)| m.law == l && m.damage == d))
+        .map(|(m, c)| {
+            derived(
+                format!("{} law", m.law.name()),
+                xy(c, gamma),
+                Stroke::Solid,
+                law_colour(m.law),
+            )
+        })
+        .collect();
+    let mut p = of(stress);
+    if u.along() {
+        let c = u.active().find(|(m, _)| m.damage == d).map(|(_, c)| c)?;
+        p.push(derived(
+            "P_pas + (1 − d) P_act (target)",
+            xy(c, target),
+            Stroke::Dotted,
+            3,
         ));
-        s.push(series(
-            format!("{law}, consistent"),
-            curve(rows, |r| active(r, law, "consistent", 0.0), |r| Some(r.p)),
+    }
+    let names: Vec<String> = pairs.iter().map(|&(l, c)| words(l, c)).collect();
+    figure(
+        "fig_laws",
+        format!(
+            "Activation laws and couplings {} the fibres at d = {d}: {} (study \"{}\")",
+            u.dir(),
+            names.join("; "),
+            u.study
+        ),
+        format!(
+            "Uniaxial tension {} the fibres, energy {}, d = {d}. Solid: frozen coupling, P = ∂Ŵ/∂F at γ = g(λ_f) held (the chapter's model); dashed: consistent coupling, the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres, the energy law so that its consistent model does.",
+            u.dir(),
+            run.material
+        ),
+        vec![
+            panel(format!("Activation γ, d = {d} (either coupling)"), GAMMA, gammas),
+            panel(format!("Nominal stress, d = {d}"), STRESS, p),
+        ],
+    )
+}
+
+/// One panel per law × coupling of study `u`, a curve per damage (two or more damages).
+fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
+    let ds = u.damages();
+    if ds.len() < 2 {
+        return None;
+    }
+    let panels = u
+        .pairs()
+        .into_iter()
+        .map(|(l, c)| {
+            let mut s = Vec::new();
+            for (i, &d) in ds.iter().enumerate() {
+                if let Some(curve) = u.model(l, c, d) {
+                    s.push(u.series(curve, format!("d = {d}"), stress, Stroke::Solid, i));
+                    s.push(derived("", xy(curve, target), Stroke::Dotted, i));
+                }
+            }
+            if u.along() {
+                s.push(key("dotted: P_pas + (1 − d) P_act", Stroke::Dotted));
+            }
+            panel(words(l, c), STRESS, s)
+        })
+        .collect();
+    figure(
+        "fig_loss_of_activation",
+        format!(
+            "Loss of activation {} the fibres, d = {} (study \"{}\")",
+            u.dir(),
+            list(&ds),
+            u.study
+        ),
+        format!(
+            "Nominal stress in uniaxial tension {} the fibres for each damage d, a panel per law and coupling{}.",
+            u.dir(),
+            if u.along() { "; dotted in the same colour: the target P_pas + (1 − d) P_act" } else { "" }
+        ),
+        panels,
+    )
+}
+
+/// A cylinder study: γ and λ_f at the centre, and the nominal stress (FE solid, the homogeneous
+/// 0D curve of the same model dashed), a curve per damage.
+fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
+    let by_damage = |y: fn(&SweepPoint) -> f64| -> Vec<Option<Series>> {
+        c.sweeps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let points: Vec<(f64, f64)> = s.points.iter().map(|p| (p.lambda, y(p))).collect();
+                (!points.is_empty()).then(|| {
+                    Series::new(format!("d = {}", s.model.damage), points, Stroke::Solid, i)
+                        .drawing(sweep_curve(study, c, s))
+                })
+            })
+            .collect()
+    };
+    let mut fibre = by_damage(|p| p.fibre_stretch_centre);
+    let lambdas: Vec<f64> = c
+        .sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.lambda))
+        .collect();
+    let (lo, hi) = lambdas
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &l| {
+            (a.0.min(l), a.1.max(l))
+        });
+    let lmin = run.curve.lambda_min();
+    fibre.push(derived(
+        format!("λ_min = {lmin}"),
+        vec![(lo, lmin), (hi, lmin)],
+        Stroke::Dashed,
+        GREY,
+    ));
+    let mut p = by_damage(|p| p.stress);
+    for (i, s) in c.sweeps.iter().enumerate() {
+        p.push(derived(
+            "",
+            s.points
+                .iter()
+                .filter_map(|q| q.stress_0d.map(|z| (q.lambda, z)))
+                .collect(),
             Stroke::Dashed,
             i,
         ));
     }
-    s.push(series(
-        "P_pas + P_act (target)",
-        curve(rows, implicit, |r| Some(r.p_pas? + r.p_act?)),
-        Stroke::Dotted,
-        3,
-    ));
-    if s.iter().filter(|x| x.is_some()).count() >= 3 {
-        out.extend(figure(
-            "fig_frozen_vs_consistent",
-            "Frozen vs consistent coupling (ours)",
-            "Uniaxial tension along the fibres, d = 0. Frozen: P = ∂Ŵ/∂F at γ = g(λ) held (the chapter's model). Consistent: the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The energy law is built so that its consistent model reproduces P_pas + P_act; the implicit law so that its frozen model does.",
-            vec![panel("Frozen vs consistent coupling, d = 0", STRESS, s, active_range)],
-        ));
-    }
-
-    // Ours: FE vs 0D.
-    let mut s = Vec::new();
-    let mut colour = 0;
-    for c in &results.fe_vs_0d {
-        let dmax = results
-            .fe_vs_0d
-            .iter()
-            .filter(|o| o.study == c.study)
-            .map(|o| o.d)
-            .fold(0.0, f64::max);
-        if !(c.d == 0.0 || c.d == dmax) {
-            continue;
-        }
-        let short = c.label.split(", ").skip(1).collect::<Vec<_>>().join(", ");
-        s.push(series(
-            format!("FE {} bases: {short}", c.bases),
-            c.points.iter().map(|p| (p.0, p.1)).collect(),
-            Stroke::Markers,
-            colour,
-        ));
-        s.push(series(
-            format!("0D: {short}"),
-            c.points.iter().map(|p| (p.0, p.2)).collect(),
-            Stroke::Solid,
-            colour,
-        ));
-        colour += 1;
-    }
-    if !s.is_empty() {
-        out.extend(figure(
-            "fig_fe_vs_0d",
-            "FE cylinder vs homogeneous (0D) tension (ours)",
-            "Markers: FE nominal stress (axial reaction / πR²); lines: the homogeneous uniaxial curve of the same model. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect.",
-            vec![panel("FE vs 0D", STRESS, s, active_range)],
-        ));
-    }
-    out.extend(fit_figures(results));
-    out.extend(stability_figures(results));
-    out
+    p.push(key("dashed: homogeneous (0D)", Stroke::Dashed));
+    let m = c.sweeps.first()?.model;
+    let ds: Vec<f64> = c.sweeps.iter().map(|s| s.model.damage).collect();
+    let like_fig_12 = c.bases == Bases::Clamped
+        && m.law == LawKind::Explicit
+        && m.coupling == CouplingKind::Frozen;
+    let geometry = run
+        .results
+        .studies
+        .iter()
+        .find(|s| s.name == study && matches!(s.result, StudyResult::Cylinder(_)))
+        .and_then(|s| s.details.first())
+        .map_or(String::new(), |d| format!(" ({d})"));
+    figure(
+        "fig_cylinder",
+        format!(
+            "The cylinder \"{study}\": {} bases, {}, d = {}{}",
+            bases_name(c.bases),
+            words(m.law, m.coupling),
+            list(&ds),
+            if like_fig_12 { chapter(12, &c.energy) } else { String::new() }
+        ),
+        format!(
+            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: the homogeneous uniaxial (0D) curve of the same model.",
+            c.energy
+        ),
+        vec![
+            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre)),
+            panel("Fibre stretch λ_f at the centre", "fibre stretch λ_f [-]", fibre),
+            panel("Nominal axial stress", STRESS, p),
+        ],
+    )
 }
 
-/// One figure per fit study: data (markers), the fit (solid) and the model at the reference or
-/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
-fn fit_figures(results: &Results) -> Vec<Figure> {
-    let mut studies: Vec<usize> = results.fits.iter().map(|f| f.study).collect();
-    studies.dedup();
-    let mut out = Vec::new();
-    for study in studies {
-        let fits: Vec<_> = results.fits.iter().filter(|f| f.study == study).collect();
-        let Some(first) = fits.first() else { continue };
-        let mut panels = Vec::new();
-        let status = |f: &crate::scene::FitOutcome| {
-            let values: Vec<String> = f
-                .names
+/// P_FE − P_0D of every sweep, a panel per cylinder study.
+fn fe_vs_0d(results: &Results) -> Option<Figure> {
+    let panels = results
+        .cylinders()
+        .map(|(study, c)| {
+            let s = c
+                .sweeps
                 .iter()
-                .zip(&f.values)
-                .map(|(n, v)| format!("{n} = {v:.4}"))
+                .enumerate()
+                .map(|(i, w)| {
+                    let points = w
+                        .points
+                        .iter()
+                        .filter_map(|p| p.stress_0d.map(|z| (p.lambda, p.stress - z)))
+                        .collect();
+                    derived(format!("d = {}", w.model.damage), points, Stroke::Solid, i)
+                })
                 .collect();
-            format!(
-                "fit: {}{}",
-                values.join(", "),
-                if f.converged { "" } else { " (NOT converged)" }
+            panel(
+                format!("{study} ({} bases): P_FE − P_0D", bases_name(c.bases)),
+                "P_FE − P_0D [kPa]",
+                s,
             )
-        };
-        if first.fit == "damage" {
-            let mut s = Vec::new();
-            for (i, f) in fits.iter().enumerate() {
-                s.push(series(
-                    f.case.clone(),
+        })
+        .collect();
+    figure(
+        "fig_fe_vs_0d",
+        "FE cylinder against homogeneous (0D) tension (ours)".into(),
+        "Nominal stress of the FE cylinder (axial reaction / πR²) minus the homogeneous uniaxial curve of the same model, per damage. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect. The table \"FE vs homogeneous (0D) tension\" gives the largest difference where the active stress dominates.".into(),
+        panels,
+    )
+}
+
+/// `Fit: chapter's energy …` for a study called `fit: chapter's energy …` or `chapter's energy …`.
+fn fit_heading(study: &str) -> String {
+    let rest = study
+        .strip_prefix("fit:")
+        .or_else(|| study.strip_prefix("Fit:"))
+        .unwrap_or(study)
+        .trim();
+    format!("Fit: {rest}")
+}
+
+/// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or
+/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
+fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
+    let first = fits.first()?;
+    let mut panels = Vec::new();
+    let status = |f: &FitOutcome| {
+        let values: Vec<String> = f
+            .names
+            .iter()
+            .zip(&f.values)
+            .map(|(n, v)| format!("{n} = {v:.4}"))
+            .collect();
+        format!(
+            "fit: {}{}",
+            values.join(", "),
+            if f.converged { "" } else { " (NOT converged)" }
+        )
+    };
+    let start = |f: &FitOutcome, colour| {
+        f.plot.start.as_ref().and_then(|(label, points)| {
+            derived(label.clone(), points.clone(), Stroke::Dashed, colour)
+        })
+    };
+    if first.kind == FitKind::Damage {
+        let mut s = Vec::new();
+        for (i, f) in fits.iter().enumerate() {
+            s.push(derived(
+                f.case.clone(),
+                f.plot.data.clone(),
+                Stroke::Markers,
+                i,
+            ));
+            s.push(derived(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+        }
+        s.push(start(first, 7));
+        panels.push(panel(fit_heading(study), &first.plot.y_label, s));
+    } else {
+        for f in fits {
+            let s = vec![
+                derived(
+                    f.plot.data_label.clone(),
                     f.plot.data.clone(),
                     Stroke::Markers,
-                    i,
-                ));
-                s.push(series(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
-            }
-            if let Some((label, points)) = &first.plot.start {
-                s.push(series(label.clone(), points.clone(), Stroke::Dashed, 7));
-            }
-            panels.push(panel(&first.study_name, &first.plot.y_label, s, None));
-        } else {
-            for f in &fits {
-                let mut s = vec![
-                    series(
-                        f.plot.data_label.clone(),
-                        f.plot.data.clone(),
-                        Stroke::Markers,
-                        1,
-                    ),
-                    series(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
-                ];
-                if let Some((label, points)) = &f.plot.start {
-                    s.push(series(label.clone(), points.clone(), Stroke::Dashed, 2));
-                }
-                panels.push(panel(
-                    &format!("{}: {}", f.study_name, f.case),
-                    &f.plot.y_label,
-                    s,
-                    None,
-                ));
-            }
-        }
-        let stem = prefixed("fit", &first.study_name);
-        out.extend(figure(
-            &stem,
-            &format!("Fit: {}", first.study_name),
-            &format!(
-                "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
-                first.fit, first.source
-            ),
-            panels.into_iter().flatten().map(Some).collect(),
-        ));
-    }
-    out
-}
-
-/// One figure per stability study, a panel per damage value: the stress along the fibres of each
-/// law × coupling (solid frozen, dashed consistent), with markers on the points where the curve
-/// softens (dP/dλ < 0) and, in black-ish, where strong ellipticity is lost.
-fn stability_figures(results: &Results) -> Vec<Figure> {
-    let mut studies: Vec<usize> = results.stability.iter().map(|c| c.study).collect();
-    studies.dedup();
-    let mut out = Vec::new();
-    for study in studies {
-        let curves: Vec<_> = results
-            .stability
-            .iter()
-            .filter(|c| c.study == study)
-            .collect();
-        let name = results
-            .studies
-            .get(study)
-            .map_or("stability".to_string(), |s| s.name.clone());
-        let mut ds: Vec<f64> = curves.iter().filter_map(|c| c.d).collect();
-        ds.sort_by(f64::total_cmp);
-        ds.dedup();
-        if ds.is_empty() {
-            ds.push(0.0);
-        }
-        let colour = |law: &str| match law {
-            "implicit" => 0,
-            "explicit" => 1,
-            "energy" => 2,
-            _ => 5,
-        };
-        let mut panels = Vec::new();
-        for d in &ds {
-            let mut s = Vec::new();
-            let (mut soft_labelled, mut lost_labelled) = (false, false);
-            for c in curves.iter().filter(|c| c.d.is_none() || c.d == Some(*d)) {
-                let stroke = if c.coupling == Some("consistent") {
-                    Stroke::Dashed
-                } else if c.law == "passive" {
-                    Stroke::Dotted
-                } else {
-                    Stroke::Solid
-                };
-                let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
-                s.push(series(c.label(), all, stroke, colour(c.law)));
-                let soft: Vec<(f64, f64)> = c
-                    .points
-                    .iter()
-                    .filter(|p| p.slope < 0.0)
-                    .map(|p| (p.lambda, p.stress))
-                    .collect();
-                let label = if soft.is_empty() || soft_labelled {
-                    String::new()
-                } else {
-                    soft_labelled = true;
-                    "dP/dλ < 0 (circles in the curve's colour)".to_string()
-                };
-                s.push(series(label, soft, Stroke::Markers, colour(c.law)));
-                let lost: Vec<(f64, f64)> = c
-                    .points
-                    .iter()
-                    .filter(|p| !p.elliptic)
-                    .map(|p| (p.lambda, p.stress))
-                    .collect();
-                let label = if lost.is_empty() || lost_labelled {
-                    String::new()
-                } else {
-                    lost_labelled = true;
-                    "strong ellipticity lost".to_string()
-                };
-                s.push(series(label, lost, Stroke::Markers, 6));
-            }
+                    1,
+                ),
+                derived(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+                start(f, 2),
+            ];
             panels.push(panel(
-                &format!("Stability along the fibres, d = {d}"),
-                STRESS,
+                format!("{}: {}", fit_heading(study), f.case),
+                &f.plot.y_label,
                 s,
-                Some((-5.0, 160.0)),
             ));
         }
-        out.extend(figure(
-            &prefixed("stability", &name),
-            &format!("Material stability along the fibres: {name}"),
-            "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.",
-            panels.into_iter().flatten().map(Some).collect(),
+    }
+    figure(
+        &prefixed("fit", study),
+        fit_heading(study),
+        format!(
+            "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
+            first.kind.name(),
+            first.source
+        ),
+        panels,
+    )
+}
+
+/// The figure of a stability study, a panel per damage value: the stress along the fibres of
+/// each law × coupling (solid frozen, dashed consistent), with markers on the points where the
+/// curve softens (dP/dλ < 0) and, in pink, where strong ellipticity is lost.
+fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
+    let mut ds = sorted_unique(curves.iter().filter_map(StabilityCurve::damage).collect());
+    if ds.is_empty() {
+        ds.push(0.0);
+    }
+    let colour = |c: &StabilityCurve| c.model.map_or(5, |m| law_colour(m.law));
+    let mut panels = Vec::new();
+    for d in &ds {
+        let mut s = Vec::new();
+        let (mut soft_labelled, mut lost_labelled) = (false, false);
+        for c in curves
+            .iter()
+            .filter(|c| c.damage().is_none() || c.damage() == Some(*d))
+        {
+            let stroke = c
+                .model
+                .map_or(Stroke::Dotted, |m| coupling_stroke(m.coupling));
+            let all: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.stress)).collect();
+            s.push(derived(c.label(), all, stroke, colour(c)));
+            let soft: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .filter(|p| p.slope < 0.0)
+                .map(|p| (p.lambda, p.stress))
+                .collect();
+            let label = if soft.is_empty() || soft_labelled {
+                String::new()
+            } else {
+                soft_labelled = true;
+                "dP/dλ < 0 (circles in the curve's colour)".to_string()
+            };
+            s.push(derived(label, soft, Stroke::Markers, colour(c)));
+            let lost: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .filter(|p| !p.elliptic)
+                .map(|p| (p.lambda, p.stress))
+                .collect();
+            let label = if lost.is_empty() || lost_labelled {
+                String::new()
+            } else {
+                lost_labelled = true;
+                "strong ellipticity lost".to_string()
+            };
+            s.push(derived(label, lost, Stroke::Markers, 6));
+        }
+        panels.push(panel(
+            format!("Stability along the fibres, d = {d}"),
+            STRESS,
+            s,
         ));
     }
-    out
+    figure(
+        &prefixed("stability", study),
+        format!("Material stability along the fibres (study \"{study}\")"),
+        "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.".into(),
+        panels,
+    )
 }
 
 /// `fig_<kind>_<name>`, without repeating the kind when the name starts with it.
@@ -547,20 +973,16 @@ fn prefixed(kind: &str, name: &str) -> String {
     }
 }
 
-/// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).
-pub fn slug(text: &str) -> String {
-    let mut s: String = text
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    while s.contains("__") {
-        s = s.replace("__", "_");
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_headings_say_fit_once() {
+        assert_eq!(
+            fit_heading("fit: damage of weakened muscles"),
+            "Fit: damage of weakened muscles"
+        );
+        assert_eq!(fit_heading("my damage"), "Fit: my damage");
     }
-    s.trim_matches('_').to_string()
 }

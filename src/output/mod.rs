@@ -1,5 +1,6 @@
-//! Outputs of a run: `curves.csv` (tidy), the figures (PNG + SVG), `report.html` (self-contained)
-//! and the cylinder's VTK fields, all written atomically through [`atomic::Staging`].
+//! Outputs of a run, from its typed results: `curves.csv` (tidy), `fits.csv`, `stability.csv`,
+//! the figures (PNG + SVG), the trade-off files, `report.html` (self-contained) and the
+//! cylinder's VTK fields, all written atomically through [`atomic::Staging`].
 
 pub mod atomic;
 pub mod base64;
@@ -7,5 +8,82 @@ pub mod csv;
 pub mod figures;
 pub mod plot;
 pub mod report;
+pub mod tradeoff;
 
-pub use atomic::{OutputError, Staging};
+pub use atomic::Staging;
+
+use crate::app_error::AppError;
+use crate::scene::{Results, Scene};
+use report::RunInfo;
+use std::path::Path;
+use std::time::Instant;
+
+/// What the report says about the run besides its results.
+#[derive(Debug, Clone)]
+pub struct RunMeta {
+    /// The command line.
+    pub command: String,
+    /// When the run started (the report gives the wall time up to its writing).
+    pub started: Instant,
+    /// `rustc --version`, if known.
+    pub rustc: Option<String>,
+}
+
+/// Writes every output of a run into `staging` (committed by the caller): `curves.csv`, the
+/// tables, `scene.toml` (the scene as given), the figures, the VTK files the solver wrote into
+/// `staging`'s `vtk/`, the trade-off files and, last, `report.html`. Returns the number of rows
+/// of `curves.csv`.
+pub fn write_run(
+    staging: &mut Staging,
+    scene: &Scene,
+    results: &Results,
+    meta: &RunMeta,
+) -> Result<usize, AppError> {
+    let rows = csv::rows(results);
+    let mut files = Vec::new();
+    staging.write("curves.csv", &csv::to_csv(&rows)?)?;
+    files.push("curves.csv".to_string());
+    for (name, bytes) in csv::tables(results)? {
+        staging.write(name, &bytes)?;
+        files.push(name.to_string());
+    }
+    staging.write("scene.toml", scene.source.as_bytes())?;
+    files.push("scene.toml".to_string());
+    let mut rendered = Vec::new();
+    for f in figures::figures(scene, results) {
+        let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
+        let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
+        plot::render(&f, &png, &svg)?;
+        let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
+        files.push(format!("{}.png", f.stem));
+        files.push(format!("{}.svg", f.stem));
+        rendered.push((f, bytes));
+    }
+    for v in results.vtk_files() {
+        let rel = Path::new("vtk").join(v);
+        staging.adopt(&rel)?;
+        files.push(rel.display().to_string());
+    }
+    if let Some(t) = results.tradeoff() {
+        let (staged, figures) = tradeoff::stage(
+            t,
+            staging,
+            &scene.title,
+            &meta.command,
+            meta.started.elapsed().as_secs_f64(),
+        )?;
+        files.extend(staged);
+        rendered.extend(figures);
+    }
+    let info = RunInfo {
+        command: meta.command.clone(),
+        wall: meta.started.elapsed(),
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        rustc: meta.rustc.clone(),
+        files,
+        rows: rows.len(),
+    };
+    let page = report::html(scene, results, &rendered, &info)?;
+    staging.write("report.html", page.as_bytes())?;
+    Ok(rows.len())
+}

@@ -1,8 +1,14 @@
-//! Line charts as PNG (bitmap backend, embedded DejaVu Sans) and SVG, one file pair per figure.
+//! Line charts as PNG (bitmap backend, embedded DejaVu Sans) and SVG, one file pair per figure:
+//! the one drawing routine of the crate (the report's figures, the trade-off figures, the fit
+//! example's).
 
-use super::atomic::OutputError;
+use super::csv::CurveId;
+use crate::app_error::AppError;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
 use std::path::Path;
 use std::sync::Once;
@@ -16,8 +22,23 @@ pub enum Stroke {
     Dashed,
     /// Dotted line.
     Dotted,
-    /// Circles at the points, no line.
+    /// Open circles at the points, no line.
     Markers,
+    /// Filled circles at the points, no line.
+    Filled,
+}
+
+/// The axes of a panel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scale {
+    /// Linear x and y.
+    #[default]
+    Linear,
+    /// Logarithmic x and y (labels in powers of ten).
+    LogLog,
+    /// Linear x, logarithmic y (labels in powers of ten): curves that grow exponentially, side
+    /// by side over many decades; values ≤ 0 are not drawn.
+    LogY,
 }
 
 /// One curve.
@@ -29,8 +50,46 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Line style.
     pub stroke: Stroke,
-    /// Colour index into the palette.
+    /// Colour index into the palette, or [`GREY`].
     pub colour: usize,
+    /// Text written next to each point (markers).
+    pub annotation: Option<String>,
+    /// The curve of `curves.csv` this series draws, if it draws one (checked: every curve of
+    /// `curves.csv` is drawn with a legend entry).
+    pub curve: Option<CurveId>,
+}
+
+impl Series {
+    /// A series without annotation.
+    pub fn new(
+        label: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        stroke: Stroke,
+        colour: usize,
+    ) -> Self {
+        Self {
+            label: label.into(),
+            points,
+            stroke,
+            colour,
+            annotation: None,
+            curve: None,
+        }
+    }
+
+    /// The same series, marked as drawing the curve `id` of `curves.csv`.
+    pub fn drawing(mut self, id: CurveId) -> Self {
+        self.curve = Some(id);
+        self
+    }
+
+    /// Finite points.
+    fn finite(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.points
+            .iter()
+            .copied()
+            .filter(|(x, y)| x.is_finite() && y.is_finite())
+    }
 }
 
 /// One chart.
@@ -44,8 +103,285 @@ pub struct Panel {
     pub y_label: String,
     /// Curves.
     pub series: Vec<Series>,
-    /// Optional fixed y range.
+    /// Fixed x range (default: the data's, padded).
+    pub x_range: Option<(f64, f64)>,
+    /// Fixed y range (default: the data's, padded, clipped where a curve blows up: see
+    /// [`Panel::frame`]).
     pub y_range: Option<(f64, f64)>,
+    /// The axes.
+    pub scale: Scale,
+}
+
+/// The ranges a panel is drawn on, and what they leave out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// x range.
+    pub x: (f64, f64),
+    /// y range.
+    pub y: (f64, f64),
+    /// Whether the data rise above `y.1` (the y axis was clipped there).
+    pub clipped_above: bool,
+    /// Whether the data fall below `y.0`.
+    pub clipped_below: bool,
+}
+
+impl Frame {
+    /// Whether `(x, y)` is drawn.
+    pub fn contains(&self, (x, y): (f64, f64)) -> bool {
+        x >= self.x.0 && x <= self.x.1 && y >= self.y.0 && y <= self.y.1
+    }
+}
+
+/// The `q`-quantile (0 ≤ q ≤ 1) of sorted values (nearest rank).
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+}
+
+/// How far a curve reaches beyond its own interquartile range before the rest of it counts as a
+/// blow-up, in interquartile ranges; and how far above the curves that do not blow up the frame
+/// reaches into one that does, in their own height.
+const CLIP_REACH: f64 = 2.0;
+
+/// Fewer points than this tell nothing of a blow-up: such a curve is drawn whole.
+const MIN_POINTS: usize = 8;
+
+/// Where a linear y axis is cut above, if a curve blows up: `None` if none does. `curves` are
+/// each curve's values, sorted.
+///
+/// A curve blows up when it has [`MIN_POINTS`] points or more and its maximum lies above
+/// q75 + [`CLIP_REACH`] · (q75 − q25) of its own values (the passive exponential reaches 10⁴ kPa at λ = 1.6 where the active features are tens
+/// of kPa). The cut is at that level, taken as the upper median over the curves that blow up
+/// (one that blows up early does not set the scale of the others); if some curves do not blow
+/// up, at most [`CLIP_REACH`] times their height above their maximum and never below it: they
+/// stay whole in the frame. It keeps every curve's lowest tenth and y = 0 in view.
+fn limit(curves: &[Vec<f64>]) -> Option<f64> {
+    let mut calm: Option<f64> = None;
+    let mut tops = Vec::new();
+    let mut tenth = f64::NEG_INFINITY;
+    for c in curves {
+        let (q25, q75) = (quantile(c, 0.25), quantile(c, 0.75));
+        let top = q75 + CLIP_REACH * (q75 - q25);
+        let max = c[c.len() - 1];
+        tenth = tenth.max(quantile(c, 0.1));
+        if c.len() >= MIN_POINTS && max > top {
+            tops.push(top);
+        } else {
+            calm = Some(calm.map_or(max, |m| m.max(max)));
+        }
+    }
+    if tops.is_empty() {
+        return None;
+    }
+    tops.sort_by(f64::total_cmp);
+    let blown = tops[tops.len() / 2];
+    let cut = match calm {
+        Some(m) => m.max(blown.min(m + CLIP_REACH * m.abs())),
+        None => blown,
+    };
+    Some(cut.max(tenth).max(0.0))
+}
+
+impl Panel {
+    /// A linear panel with ranges from its data.
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+        series: Vec<Series>,
+    ) -> Self {
+        Self {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series,
+            x_range: None,
+            y_range: None,
+            scale: Scale::Linear,
+        }
+    }
+
+    /// The ranges the panel is drawn on. x: the data's (padded 2 %) unless fixed. y, unless fixed:
+    /// on a log axis the positive data's; on a linear axis the data's (padded 5 %), cut where
+    /// curves blow up (see `limit`), never so that y = 0 leaves the frame.
+    pub fn frame(&self) -> Frame {
+        let log = self.scale != Scale::Linear;
+        let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+        // Every series' sorted values, and whether it is a line (markers often mark parts of
+        // other curves: only lines set where the axis is cut, unless there are none).
+        let mut curves: Vec<(Vec<f64>, bool)> = Vec::new();
+        for s in &self.series {
+            let mut own: Vec<f64> = s
+                .finite()
+                .map(|p| p.1)
+                .filter(|&y| !log || y > 0.0)
+                .collect();
+            if own.is_empty() {
+                continue;
+            }
+            own.sort_by(f64::total_cmp);
+            for (x, _) in s.finite() {
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+            }
+            curves.push((own, !matches!(s.stroke, Stroke::Markers | Stroke::Filled)));
+        }
+        if curves.is_empty() {
+            return Frame {
+                x: self.x_range.unwrap_or((0.0, 1.0)),
+                y: self
+                    .y_range
+                    .unwrap_or(if log { (1e-3, 1.0) } else { (0.0, 1.0) }),
+                clipped_above: false,
+                clipped_below: false,
+            };
+        }
+        let lo = curves.iter().map(|c| c.0[0]).fold(f64::INFINITY, f64::min);
+        let hi = curves
+            .iter()
+            .map(|c| c.0[c.0.len() - 1])
+            .fold(f64::NEG_INFINITY, f64::max);
+        let pad = |a: f64, b: f64, f: f64| {
+            let w = (b - a).abs().max(1e-9 * a.abs().max(b.abs()).max(1e-300));
+            (a - f * w, b + f * w)
+        };
+        let x = self.x_range.unwrap_or_else(|| pad(x0, x1, 0.02));
+        if let Some(y) = self.y_range {
+            return Frame {
+                x,
+                y,
+                clipped_above: hi > y.1,
+                clipped_below: lo < y.0,
+            };
+        }
+        if log {
+            return Frame {
+                x,
+                y: (lo / 2.0, hi * 2.0),
+                clipped_above: false,
+                clipped_below: false,
+            };
+        }
+        let lines = curves.iter().any(|c| c.1);
+        let curves: Vec<Vec<f64>> = curves
+            .into_iter()
+            .filter(|c| c.1 || !lines)
+            .map(|c| c.0)
+            .collect();
+        let top = limit(&curves).filter(|&t| hi > t);
+        let negated: Vec<Vec<f64>> = curves
+            .iter()
+            .map(|c| c.iter().rev().map(|y| -y).collect())
+            .collect();
+        let bottom = limit(&negated).map(|b| -b).filter(|&b| lo < b);
+        let (a, b) = pad(bottom.unwrap_or(lo), top.unwrap_or(hi), 0.05);
+        Frame {
+            x,
+            y: (bottom.unwrap_or(a), top.unwrap_or(b)),
+            clipped_above: top.is_some(),
+            clipped_below: bottom.is_some(),
+        }
+    }
+
+    /// What the frame leaves out, in words: a clipped axis with how far the data go, and every
+    /// labelled series with no point inside the frame.
+    pub fn notes(&self) -> Vec<String> {
+        let f = self.frame();
+        let symbol = axis_symbol(&self.x_label);
+        let unit = axis_unit(&self.y_label);
+        let mut notes = Vec::new();
+        let extreme = |above: bool| {
+            self.series
+                .iter()
+                .flat_map(Series::finite)
+                .max_by(|a, b| {
+                    if above {
+                        a.1.total_cmp(&b.1)
+                    } else {
+                        b.1.total_cmp(&a.1)
+                    }
+                })
+                .unwrap_or((f64::NAN, f64::NAN))
+        };
+        if f.clipped_above {
+            let (x, y) = extreme(true);
+            notes.push(format!(
+                "{}: y axis cut at {}{unit} (the curves go on up to {}{unit} at {symbol} = {})",
+                self.title,
+                short(f.y.1),
+                short(y),
+                short(x)
+            ));
+        }
+        if f.clipped_below {
+            let (x, y) = extreme(false);
+            notes.push(format!(
+                "{}: y axis cut at {}{unit} (the curves go down to {}{unit} at {symbol} = {})",
+                self.title,
+                short(f.y.0),
+                short(y),
+                short(x)
+            ));
+        }
+        if self.scale == Scale::LogY
+            && self
+                .series
+                .iter()
+                .flat_map(Series::finite)
+                .any(|p| p.1 <= 0.0)
+        {
+            notes.push(format!("{}: values ≤ 0 (not on the log axis)", self.title));
+        }
+        for s in &self.series {
+            if !s.label.is_empty() && !s.points.is_empty() && !s.finite().any(|p| f.contains(p)) {
+                notes.push(format!(
+                    "{}: \"{}\" lies outside this frame",
+                    self.title, s.label
+                ));
+            }
+        }
+        notes
+    }
+}
+
+/// The unit of an axis label, with a leading space: `P [kPa]` → ` kPa`; none for `[-]`.
+fn axis_unit(label: &str) -> String {
+    match label.split_once('[').and_then(|(_, u)| u.split_once(']')) {
+        Some((u, _)) if u != "-" && !u.is_empty() => format!(" {u}"),
+        _ => String::new(),
+    }
+}
+
+/// The symbol of an axis label: `stretch λ [-]` → `λ`.
+fn axis_symbol(label: &str) -> &str {
+    label
+        .split('[')
+        .next()
+        .and_then(|s| s.split_whitespace().last())
+        .unwrap_or("x")
+}
+
+/// A number in four significant digits (whole below 1e5) without trailing zeros, scientific
+/// outside [1e-3, 1e5):
+/// `0.1`, `-2.5`, `1.628e5`, `2e-12`, `0` (also for −0).
+pub fn short(x: f64) -> String {
+    let a = x.abs();
+    let trim = |s: &str| -> String {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s.to_string()
+        }
+    };
+    if a == 0.0 {
+        "0".into()
+    } else if (1e-3..1e5).contains(&a) {
+        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
+        trim(&format!("{x:.digits$}"))
+    } else {
+        let s = format!("{x:.3e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        format!("{}e{exponent}", trim(mantissa))
+    }
 }
 
 /// A figure: one or more panels stacked vertically.
@@ -61,6 +397,36 @@ pub struct Figure {
     pub panels: Vec<Panel>,
 }
 
+impl Figure {
+    /// A figure whose caption ends with what its frames leave out ([`Panel::notes`]).
+    pub fn new(
+        stem: impl Into<String>,
+        heading: impl Into<String>,
+        caption: impl Into<String>,
+        panels: Vec<Panel>,
+    ) -> Self {
+        let mut caption: String = caption.into();
+        let notes: Vec<String> = panels.iter().flat_map(Panel::notes).collect();
+        if !notes.is_empty() {
+            caption.push_str(&format!(" Not in the frame: {}.", notes.join("; ")));
+        }
+        Self {
+            stem: stem.into(),
+            heading: heading.into(),
+            caption,
+            panels,
+        }
+    }
+
+    /// Every series of every panel.
+    pub fn series(&self) -> impl Iterator<Item = &Series> {
+        self.panels.iter().flat_map(|p| p.series.iter())
+    }
+}
+
+/// A figure with the bytes of its PNG (for embedding in a report).
+pub type Rendered = (Figure, Vec<u8>);
+
 const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
@@ -72,27 +438,83 @@ const PALETTE: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
+/// The colour index of grey (outside the palette's cycle).
+pub const GREY: usize = usize::MAX;
+
+fn colour(index: usize) -> RGBColor {
+    if index == GREY {
+        RGBColor(120, 120, 120)
+    } else {
+        PALETTE[index % PALETTE.len()]
+    }
+}
+
 static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Registers the embedded font as "sans-serif" (once per process).
-pub fn register_font() {
+fn register_font() {
     REGISTER.call_once(|| {
         // An invalid font would only lose the text of the PNGs; the SVGs do not need it.
         let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
     });
 }
 
+/// Plot area of one panel \[px\] (the legend goes to its right).
 const PANEL_SIZE: (u32, u32) = (900, 560);
+/// Legend text size \[px\], height of one entry, width of the glyph before the text.
+const LEGEND_FONT: u32 = 15;
+const LEGEND_ROW: u32 = 21;
+const LEGEND_GLYPH: u32 = 34;
 
-/// Writes `figure` as `<dir>/<stem>.png` and `<dir>/<stem>.svg`.
-pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), OutputError> {
+/// The legend entries of a panel: the labelled series.
+fn entries(panel: &Panel) -> impl Iterator<Item = &Series> {
+    panel.series.iter().filter(|s| !s.label.is_empty())
+}
+
+/// Rows of a legend column in a panel of height `h`.
+fn legend_rows(h: u32) -> usize {
+    ((h.saturating_sub(70)) / LEGEND_ROW).max(1) as usize
+}
+
+/// Width \[px\] of the legend of `panel` (0 without entries), in columns of at most
+/// [`legend_rows`] entries.
+fn legend_width(panel: &Panel, h: u32) -> u32 {
+    let widest = entries(panel)
+        .map(|s| {
+            ("sans-serif", LEGEND_FONT)
+                .into_font()
+                .box_size(&s.label)
+                .map_or(8 * s.label.chars().count() as u32, |b| b.0)
+        })
+        .max();
+    let n = entries(panel).count();
+    widest.map_or(0, |w| {
+        let columns = n.div_ceil(legend_rows(h)) as u32;
+        columns * (w + LEGEND_GLYPH + 16) + 8
+    })
+}
+
+/// Writes `figure` as the PNG `png` and the SVG `svg`: the panels stacked, each with its legend
+/// to the right of its plot area, outside the data.
+pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), AppError> {
     register_font();
-    let size = (
-        PANEL_SIZE.0,
-        PANEL_SIZE.1 * figure.panels.len().max(1) as u32,
-    );
-    let err = |what: &str, e: String| OutputError(format!("{what} {}: {e}", figure.stem));
+    let h = if figure.panels.len() > 2 {
+        PANEL_SIZE.1 * 4 / 5
+    } else {
+        PANEL_SIZE.1
+    };
+    let legend = figure
+        .panels
+        .iter()
+        .map(|p| legend_width(p, h))
+        .max()
+        .unwrap_or(0);
+    let size = (PANEL_SIZE.0 + legend, h * figure.panels.len().max(1) as u32);
+    let err = |what: &str, e: String| AppError::Output {
+        file: figure.stem.clone(),
+        message: format!("{what}: {e}"),
+    };
     {
         let root = BitMapBackend::new(png, size).into_drawing_area();
         draw(&root, figure).map_err(|e| err("drawing PNG", e))?;
@@ -106,84 +528,128 @@ pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), OutputError
         root.present()
             .map_err(|e| err("writing SVG", e.to_string()))?;
     }
-    std::fs::write(svg, text).map_err(|e| err("writing SVG", e.to_string()))
+    std::fs::write(svg, text).map_err(|e| AppError::io("write", svg, e))
 }
 
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, figure: &Figure) -> Result<(), String> {
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let areas = root.split_evenly((figure.panels.len().max(1), 1));
     for (area, panel) in areas.iter().zip(&figure.panels) {
-        draw_panel(area, panel)?;
+        let (plot, legend) = area.split_horizontally(PANEL_SIZE.0);
+        draw_panel(&plot, panel)?;
+        draw_legend(&legend, panel)?;
     }
     Ok(())
-}
-
-fn bounds(panel: &Panel) -> ((f64, f64), (f64, f64)) {
-    let pts = panel.series.iter().flat_map(|s| s.points.iter());
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for &(x, y) in pts {
-        if x.is_finite() && y.is_finite() {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-    }
-    if !x0.is_finite() {
-        return ((0.0, 1.0), (0.0, 1.0));
-    }
-    let pad = |a: f64, b: f64, f: f64| {
-        let w = (b - a).abs().max(1e-9);
-        (a - f * w, b + f * w)
-    };
-    let x = pad(x0, x1, 0.02);
-    let y = panel.y_range.unwrap_or_else(|| pad(y0, y1, 0.05));
-    (x, y)
 }
 
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
 ) -> Result<(), String> {
-    let ((x0, x1), (y0, y1)) = bounds(panel);
-    let mut chart = ChartBuilder::on(area)
+    let Frame {
+        x: (x0, x1),
+        y: (y0, y1),
+        ..
+    } = panel.frame();
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let mut builder = ChartBuilder::on(area);
+    builder
         .caption(&panel.title, ("sans-serif", 22))
         .margin(14)
         .x_label_area_size(48)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| e.to_string())?;
-    chart
-        .configure_mesh()
-        .x_desc(panel.x_label.as_str())
+        .y_label_area_size(78);
+    match panel.scale {
+        Scale::Linear => {
+            let mut chart: ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>> =
+                builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
+            // A tick at 0 computed as y0 + k·step may come out as −1.4e-17: written 0.
+            let span = (y1 - y0).abs();
+            let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
+            mesh(&mut chart, panel, None, Some(&tick))?;
+            draw_series(&mut chart, panel, y0, y1)
+        }
+        Scale::LogLog => {
+            let mut chart = builder
+                .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+                .map_err(e)?;
+            mesh(&mut chart, panel, Some(&decade), Some(&decade))?;
+            draw_series(&mut chart, panel, y0, y1)
+        }
+        Scale::LogY => {
+            let mut chart = builder
+                .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
+                .map_err(e)?;
+            mesh(&mut chart, panel, None, Some(&decade))?;
+            draw_series(&mut chart, panel, y0, y1)
+        }
+    }
+}
+
+/// A tick label on a log axis: powers of ten only (`1e-3`), other ticks unlabelled so that the
+/// labels never run into each other.
+fn decade(v: &f64) -> String {
+    let exponent = v.log10().round();
+    if (v / 10f64.powf(exponent) - 1.0).abs() < 1e-6 {
+        format!("1e{exponent}")
+    } else {
+        String::new()
+    }
+}
+
+/// The grid, the tick labels (x in `x_format`, y in `y_format` if given) and the axis labels of
+/// `panel`.
+fn mesh<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    panel: &Panel,
+    x_format: Option<&dyn Fn(&f64) -> String>,
+    y_format: Option<&dyn Fn(&f64) -> String>,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    let mut m = chart.configure_mesh();
+    m.x_desc(panel.x_label.as_str())
         .y_desc(panel.y_label.as_str())
         .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 18))
-        .light_line_style(RGBColor(235, 235, 235))
+        .axis_desc_style(("sans-serif", 18));
+    if let Some(f) = x_format {
+        m.x_label_formatter(f);
+    }
+    if let Some(f) = y_format {
+        m.y_label_formatter(f);
+    }
+    m.light_line_style(RGBColor(235, 235, 235))
         .draw()
-        .map_err(|e| e.to_string())?;
+        .map_err(|x| x.to_string())
+}
+
+/// The series of `panel`, on any axes.
+fn draw_series<'a, DB, X, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    panel: &Panel,
+    y0: f64,
+    y1: f64,
+) -> Result<(), String>
+where
+    DB: DrawingBackend + 'a,
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     for s in &panel.series {
-        let c = PALETTE[s.colour % PALETTE.len()];
+        let c = colour(s.colour);
         let style = c.stroke_width(2);
-        let runs = if s.stroke == Stroke::Markers {
-            // Markers outside the frame are dropped, not moved onto its edge.
-            vec![s
-                .points
-                .iter()
-                .copied()
-                .filter(|&(x, y)| x.is_finite() && y >= y0 && y <= y1)
-                .collect()]
-        } else {
-            clip(&s.points, y0, y1)
-        };
-        let stroke = s.stroke;
-        for (i, pts) in runs.into_iter().enumerate() {
-            let a = match s.stroke {
+        for pts in runs(s, y0, y1) {
+            if let Some(text) = &s.annotation {
+                chart
+                    .draw_series(pts.iter().map(|&p| {
+                        EmptyElement::at(p) + Text::new(text.clone(), (8, -18), ("sans-serif", 14))
+                    }))
+                    .map_err(e)?;
+            }
+            match s.stroke {
                 Stroke::Solid => chart.draw_series(LineSeries::new(pts, style)),
                 Stroke::Dashed => chart.draw_series(DashedLineSeries::new(pts, 9, 6, style)),
                 Stroke::Dotted => chart.draw_series(DottedLineSeries::new(pts, 0, 7, move |p| {
@@ -193,37 +659,72 @@ fn draw_panel<DB: DrawingBackend>(
                     pts.into_iter()
                         .map(|p| Circle::new(p, 4, c.stroke_width(2))),
                 ),
+                Stroke::Filled => {
+                    chart.draw_series(pts.into_iter().map(|p| Circle::new(p, 5, c.filled())))
+                }
             }
-            .map_err(|e| e.to_string())?;
-            // Only the first run carries the legend entry; an empty label has none.
-            if i > 0 || s.label.is_empty() {
-                continue;
-            }
-            a.label(s.label.as_str())
-                .legend(move |(x, y)| match stroke {
-                    Stroke::Markers => Circle::new((x + 10, y), 4, c.stroke_width(2)).into_dyn(),
-                    Stroke::Solid => {
-                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)).into_dyn()
-                    }
-                    // Composed legend glyphs would need a 'static backend: a short segment
-                    // stands for a dashed line and a small dot for a dotted one.
-                    Stroke::Dashed => {
-                        PathElement::new(vec![(x + 5, y), (x + 14, y)], c.stroke_width(2))
-                            .into_dyn()
-                    }
-                    Stroke::Dotted => Circle::new((x + 10, y), 2, c.filled()).into_dyn(),
-                });
+            .map_err(e)?;
         }
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font(("sans-serif", 15))
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(180, 180, 180))
-        .draw()
-        .map_err(|e| e.to_string())?;
     Ok(())
+}
+
+/// The legend of `panel` in `area` (right of the plot): one row per labelled series, its glyph
+/// (line, dashes, dots or circle in its colour) and its label, in columns of at most
+/// [`legend_rows`] rows.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    panel: &Panel,
+) -> Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    let (_, h) = area.dim_in_pixel();
+    let rows = legend_rows(h);
+    let width = legend_width(panel, h);
+    let n = entries(panel).count();
+    if n == 0 {
+        return Ok(());
+    }
+    let column = ((width - 8) / n.div_ceil(rows) as u32) as i32;
+    let font = ("sans-serif", LEGEND_FONT).into_font().color(&BLACK);
+    for (k, s) in entries(panel).enumerate() {
+        let x = 4 + (k / rows) as i32 * column;
+        let y = 52 + (k % rows) as i32 * LEGEND_ROW as i32;
+        let c = colour(s.colour);
+        let line =
+            |a: i32, b: i32| PathElement::new(vec![(x + a, y), (x + b, y)], c.stroke_width(2));
+        match s.stroke {
+            Stroke::Solid => area.draw(&line(0, 26)),
+            Stroke::Dashed => area.draw(&line(0, 9)).and(area.draw(&line(15, 26))),
+            Stroke::Dotted => [2, 11, 20]
+                .iter()
+                .try_for_each(|&a| area.draw(&Circle::new((x + a + 2, y), 2, c.filled()))),
+            Stroke::Markers => area.draw(&Circle::new((x + 13, y), 4, c.stroke_width(2))),
+            Stroke::Filled => area.draw(&Circle::new((x + 13, y), 5, c.filled())),
+        }
+        .map_err(e)?;
+        area.draw_text(
+            &s.label,
+            &font.pos(Pos::new(HPos::Left, VPos::Center)),
+            (x + LEGEND_GLYPH as i32, y),
+        )
+        .map_err(e)?;
+    }
+    Ok(())
+}
+
+/// The point runs of a series inside y ∈ [y0, y1]: a line is clipped into runs; markers outside
+/// the frame are dropped, not moved onto its edge.
+fn runs(s: &Series, y0: f64, y1: f64) -> Vec<Vec<(f64, f64)>> {
+    if matches!(s.stroke, Stroke::Markers | Stroke::Filled) {
+        vec![s
+            .points
+            .iter()
+            .copied()
+            .filter(|&(x, y)| x.is_finite() && y >= y0 && y <= y1)
+            .collect()]
+    } else {
+        clip(&s.points, y0, y1)
+    }
 }
 
 /// Splits a polyline into the runs that lie within y ∈ [lo, hi], with the crossing points
@@ -260,4 +761,34 @@ fn clip(points: &[(f64, f64)], lo: f64, hi: f64) -> Vec<Vec<(f64, f64)>> {
         runs.push(cur);
     }
     runs
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn short_numbers_have_four_significant_digits_whole_below_1e5_and_no_trailing_zeros() {
+        for (x, text) in [
+            (0.1, "0.1"),
+            (-2.5, "-2.5"),
+            (73.52, "73.52"),
+            (0.62430001, "0.6243"),
+            (15134.2, "15134"),
+            (162754.79, "1.628e5"),
+            (2e-12, "2e-12"),
+            (-1.3878e-17, "-1.388e-17"),
+            (0.0, "0"),
+            (-0.0, "0"),
+        ] {
+            assert_eq!(short(x), text, "{x}");
+        }
+    }
+
+    #[test]
+    fn axis_labels_give_their_unit_and_symbol() {
+        assert_eq!(axis_unit("nominal stress P [kPa]"), " kPa");
+        assert_eq!(axis_unit("stretch λ [-]"), "");
+        assert_eq!(axis_symbol("stretch λ [-]"), "λ");
+    }
 }

@@ -1,12 +1,16 @@
 //! `report.html`: one self-contained page (figures embedded as base64 PNG) with the run's
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
-use super::atomic::OutputError;
 use super::base64;
-use super::csv::{checked, COLUMNS};
-use super::plot::Figure;
-use crate::scene::run::Results;
-use crate::scene::Scene;
+use super::csv::{correlations, COLUMNS};
+use super::plot::{short, Rendered};
+use crate::app_error::{finite, AppError};
+use crate::energy::Parametric;
+use crate::models::{CouplingKind, LawKind, ModelChoice};
+use crate::scene::{Results, Scene};
+use crate::studies::cylinder::{bases_name, SweepPoint};
+use crate::studies::uniaxial::CurveModel;
+use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
 
@@ -23,6 +27,8 @@ pub struct RunInfo {
     pub rustc: Option<String>,
     /// Other files written (relative names).
     pub files: Vec<String>,
+    /// Rows of `curves.csv`.
+    pub rows: usize,
 }
 
 /// Escapes text for HTML.
@@ -38,9 +44,9 @@ pub fn escape(s: &str) -> String {
 pub fn html(
     scene: &Scene,
     results: &Results,
-    figures: &[(Figure, Vec<u8>)],
+    figures: &[Rendered],
     info: &RunInfo,
-) -> Result<String, OutputError> {
+) -> Result<String, AppError> {
     let mut h = String::new();
     let e = escape;
     let _ = write!(
@@ -64,13 +70,35 @@ pub fn html(
         e(&info.command)
     );
 
+    studies_table(&mut h, results);
+    failures(&mut h, results);
+    models_table(&mut h, scene, results);
+    fe_table(&mut h, results);
+    centre_note(&mut h, scene, results);
+    fits_table(&mut h, results)?;
+    stability_table(&mut h, results)?;
+
+    figures_and_data(&mut h, figures, info);
+    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
+    h.push_str(&e(&scene
+        .resolved_toml()
+        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
+    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
+    h.push_str(&e(&scene.source));
+    h.push_str("</pre>\n</body></html>\n");
+    Ok(h)
+}
+
+/// The studies with their summaries.
+fn studies_table(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Studies</h2>\n<table><tr><th>study</th><th>kind</th><th>models</th><th>points</th><th>time [s]</th><th>details</th></tr>\n");
     for s in &results.studies {
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}/{}</td><td>{:.2}</td><td>{}</td></tr>",
             e(&s.name),
-            s.kind,
+            s.kind.name(),
             s.models,
             s.points,
             s.requested,
@@ -83,52 +111,326 @@ pub fn html(
         );
     }
     h.push_str("</table>\n");
+}
 
+/// What could not be computed, and why.
+fn failures(h: &mut String, results: &Results) {
+    let e = escape;
     h.push_str("<h2>Where a model stopped</h2>\n");
-    if results.notes.is_empty() {
+    if results.failures().next().is_none() {
         h.push_str("<p>Every requested point was computed.</p>\n");
     }
-    for n in &results.notes {
+    for (study, n) in results.failures() {
         let _ = writeln!(
             h,
             "<div class=\"note\"><b>{}</b> — {}:<br>{}</div>",
-            e(&n.study),
+            e(study),
             e(&n.model),
             e(&n.message)
         );
     }
+}
 
-    if !results.fe_vs_0d.is_empty() {
-        h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>max |P_FE − P_0D| [kPa]</th><th>at λ</th></tr>\n");
-        for c in &results.fe_vs_0d {
-            let worst = c
+/// What the chapter calls the shipped energies: (name, what, where in the chapter).
+const ENERGIES: &[(&str, &str, &str)] = &[
+    (
+        "giantesio-musesti",
+        "the chapter's passive energy, W = μ/4 {[e^{α(I_p−1)} − 1]/α + K_p − 1}, I_p = (w0/3) tr C + (1−w0) C:M, K_p = (w0/3) tr C⁻¹ + (1−w0) C⁻¹:M",
+        "eq. (1); parameters Table 1",
+    ),
+    (
+        "ehret-bol-itskov",
+        "the Ehret–Böl–Itskov energy: the K_p − 1 term becomes [e^{β(K_p−1)} − 1]/β",
+        "eq. (4)",
+    ),
+    ("neo-hookean", "neo-Hookean reference, W = μ/2 (tr C − 3)", "not in the chapter"),
+];
+
+/// What a run used: the energies (the material's first), the active models, whether constant γ.
+struct Used {
+    energies: Vec<String>,
+    chosen: Vec<ModelChoice>,
+    constant: bool,
+}
+
+/// What `results` used (the scene gives the material).
+fn used(scene: &Scene, results: &Results) -> Used {
+    let m = &scene.models;
+    let mut energies = vec![m.energy.name().to_string()];
+    let mut chosen: Vec<ModelChoice> = Vec::new();
+    let mut constant = false;
+    for (_, u) in results.uniaxial() {
+        for c in &u.curves {
+            if !energies.contains(&c.energy) {
+                energies.push(c.energy.clone());
+            }
+            match c.model {
+                CurveModel::Active(x) => chosen.push(x),
+                CurveModel::Constant(_) => constant = true,
+                CurveModel::Passive => {}
+            }
+        }
+    }
+    for (_, c) in results.cylinders() {
+        chosen.extend(c.sweeps.iter().map(|s| s.model));
+    }
+    for (_, curves) in results.stability() {
+        chosen.extend(curves.iter().filter_map(|c| c.model));
+    }
+    Used {
+        energies,
+        chosen,
+        constant,
+    }
+}
+
+/// The models the run used, in the words of the figures and `curves.csv`, with their equations
+/// and where the chapter has them.
+fn models_table(h: &mut String, scene: &Scene, results: &Results) {
+    let used = used(scene, results);
+    let mut rows = energy_rows(scene, &used.energies);
+    rows.extend(model_rows(scene, &used));
+    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
+    for (name, what, chapter) in rows {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(&name),
+            escape(&what),
+            escape(&chapter)
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// A row of the models table: (name, what it is, where the chapter has it).
+type ModelRow = (String, String, String);
+
+/// A row per energy; the material's with its parameter values.
+fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let mut rows = Vec::new();
+    for name in energies {
+        let (what, chapter) = ENERGIES
+            .iter()
+            .find(|(n, _, _)| n == name)
+            .map_or(("a shipped energy", "not in the chapter"), |(_, w, c)| {
+                (*w, *c)
+            });
+        let mut what = what.to_string();
+        if *name == m.energy.name() {
+            let values: Vec<String> = m
+                .energy
+                .parameters()
+                .iter()
+                .zip(m.energy.parameter_values())
+                .map(|(p, v)| format!("{} = {v}", p.symbol))
+                .collect();
+            what.push_str(&format!("; the material, with {}", values.join(", ")));
+        }
+        rows.push((format!("{name} (energy)"), what, chapter.into()));
+    }
+    rows
+}
+
+/// The rows of the activation, the active curve, damage, laws and couplings the run used.
+fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
+    let m = &scene.models;
+    let (chosen, constant) = (&used.chosen, used.constant);
+    let mut rows: Vec<ModelRow> = Vec::new();
+    let active = !chosen.is_empty() || constant;
+    if active {
+        rows.push((
+            "γ, activation".into(),
+            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
+            "eqs. (5)–(6)".into(),
+        ));
+        rows.push((
+            "λ_f, fibre stretch".into(),
+            "λ_f = √(C:M), the argument of the activation laws".into(),
+            "–".into(),
+        ));
+        rows.push((
+            "P_tot, P_pas".into(),
+            "nominal stress in uniaxial tension along the fibres, P_tot(λ, γ) = ∂Ŵ/∂λ; P_pas(λ) = P_tot(λ, 0)".into(),
+            "eqs. (10), (11)".into(),
+        ));
+    }
+    if !chosen.is_empty() {
+        let c = &m.curve;
+        rows.push((
+            "P_act, active curve".into(),
+            format!(
+                "P_act(λ) = P_opt exp(−k (λ² − λ_opt²)²/(λ − λ_min)) for λ > λ_min, else 0; here λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa",
+                c.lambda_min(),
+                c.lambda_opt(),
+                c.k(),
+                c.p_opt()
+            ),
+            "eq. (8); parameters Table 2".into(),
+        ));
+        rows.push((
+            "d, damage".into(),
+            "loss of activation: the active stress becomes (1 − d) P_act".into(),
+            "the chapter's loss of activation (Fig. 9)".into(),
+        ));
+    }
+    let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
+    if constant {
+        rows.push(("constant γ".into(), "γ held fixed".into(), "Fig. 5".into()));
+    }
+    if used(LawKind::Implicit) {
+        rows.push((
+            "implicit law".into(),
+            "γ(λ) solves P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (γ = 0 for λ ≤ λ_min)".into(),
+            "eqs. (12)–(13)".into(),
+        ));
+    }
+    if used(LawKind::Explicit) {
+        rows.push((
+            "explicit law".into(),
+            format!(
+                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min)",
+                m.explicit.0, m.explicit.1
+            ),
+            "eq. (14)".into(),
+        ));
+    }
+    if used(LawKind::Energy) {
+        rows.push((
+            "energy law".into(),
+            "γ(λ) solves Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫_{λ_min}^{λ} P_act: its consistent model reproduces P_pas + (1 − d) P_act".into(),
+            "not in the chapter (Giantesio & Musesti 2017, strain-dependent internal parameters)".into(),
+        ));
+    }
+    if chosen.iter().any(|x| x.coupling == CouplingKind::Frozen) {
+        rows.push((
+            "frozen coupling".into(),
+            "P = ∂Ŵ/∂F − p F⁻ᵀ at γ = g(λ_f) held: the chapter's model (not a gradient)".into(),
+            "eq. (7)".into(),
+        ));
+    }
+    if chosen
+        .iter()
+        .any(|x| x.coupling == CouplingKind::Consistent)
+    {
+        rows.push((
+            "consistent coupling".into(),
+            "the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))), differentiated through the law".into(),
+            "not in the chapter".into(),
+        ));
+    }
+    rows
+}
+
+/// The largest |P_FE − P_0D| over the points `keep` accepts, as (difference, λ, P_0D).
+fn largest(points: &[SweepPoint], keep: impl Fn(&SweepPoint) -> bool) -> Option<(f64, f64, f64)> {
+    points
+        .iter()
+        .filter(|p| keep(p))
+        .filter_map(|p| p.stress_0d.map(|z| ((p.stress - z).abs(), p.lambda, z)))
+        .filter(|d| d.0.is_finite())
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// Where the activation shows: the target active stress exceeds the passive one,
+/// (1 − d) P_act(λ) > max(P_pas(λ), 0).
+fn active(p: &SweepPoint) -> bool {
+    p.passive_0d.is_some_and(|pas| p.active_0d > pas.max(0.0))
+}
+
+/// `2.95 kPa at λ = 1.3 (3.6 % of P_0D)`.
+fn difference(d: Option<(f64, f64, f64)>) -> String {
+    d.map_or("–".into(), |(d, l, z)| {
+        format!(
+            "{} kPa at λ = {l} ({} % of P_0D)",
+            short(d),
+            short(100.0 * d / z.abs().max(1e-300))
+        )
+    })
+}
+
+/// Each FE sweep against the homogeneous (0D) curve of the same model: the largest difference
+/// where the activation shows (the active range) and over every stretch.
+fn fe_table(h: &mut String, results: &Results) {
+    let e = escape;
+    let sweeps: Vec<_> = results
+        .cylinders()
+        .flat_map(|(_, c)| c.sweeps.iter().map(move |s| (c.bases, s)))
+        .collect();
+    if sweeps.is_empty() {
+        return;
+    }
+    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive exponential takes over, and with it the end effect of clamped bases.</p>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
+    for (bases, s) in sweeps {
+        let range: Vec<f64> = s
+            .points
+            .iter()
+            .filter(|p| active(p))
+            .map(|p| p.lambda)
+            .collect();
+        let range = match (range.first(), range.last()) {
+            (Some(a), Some(b)) => format!("λ = {a} … {b} ({} stretches)", range.len()),
+            _ => "none".into(),
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{range}</td><td>{}</td><td>{}</td></tr>",
+            bases_name(bases),
+            e(&s.label),
+            s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
+            difference(largest(&s.points, active)),
+            difference(largest(&s.points, |_| true)),
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// Why γ at the centre of a cylinder is 0 at some stretches: the fibre stretch there is at or
+/// below λ_min (the laws' γ = 0 region), shown with the numbers of every such stretch.
+fn centre_note(h: &mut String, scene: &Scene, results: &Results) {
+    let lmin = scene.models.curve.lambda_min();
+    let mut rows = String::new();
+    for (study, c) in results.cylinders() {
+        for s in &c.sweeps {
+            let below: Vec<&SweepPoint> = s
                 .points
                 .iter()
-                .map(|p| ((p.1 - p.2).abs(), p.0))
-                .fold((0.0f64, f64::NAN), |a, b| if b.0 > a.0 { b } else { a });
+                .filter(|p| p.fibre_stretch_centre <= lmin)
+                .collect();
+            if below.is_empty() {
+                continue;
+            }
             let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{:.3e}</td><td>{}</td></tr>",
-                c.bases,
-                e(&c.label),
-                c.points.len(),
-                checked(worst.0, "max |P_FE − P_0D|", || format!(
-                    "report: {}",
-                    c.label
-                ))?,
-                checked(
-                    worst.1,
-                    "lambda of the largest FE − 0D difference",
-                    || format!("report: {}", c.label)
-                )?
+                rows,
+                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(study),
+                escape(&s.label),
+                below
+                    .iter()
+                    .map(|p| format!(
+                        "λ = {}: λ_f = {}, γ = {}",
+                        p.lambda,
+                        short(p.fibre_stretch_centre),
+                        short(p.gamma_centre)
+                    ))
+                    .collect::<Vec<_>>()
+                    .join("<br>")
             );
         }
-        h.push_str("</table>\n");
     }
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(
+        h,
+        "<h2>γ at the centre of the cylinder</h2>\n<p>At these applied stretches the fibre stretch λ_f at the centre of the cylinder is at or below λ_min = {lmin}, where the active curve vanishes (P_act = 0 for λ ≤ λ_min, eq. (8)): the implicit and explicit laws give γ = 0 there, for every d. In compression a cylinder with clamped bases cannot widen at its ends, so the ends shorten less and the middle more than the applied stretch; with sliding bases the deformation is homogeneous and λ_f = λ. The energy law continued below λ_min on its zero-work branch (<code>below_minimum = \"zero-work\"</code>) keeps γ &gt; 0 there. The middle panel of each cylinder figure shows λ_f at the centre against λ_min.</p>\n<table><tr><th>study</th><th>model</th><th>stretches with λ_f ≤ λ_min at the centre</th></tr>\n{rows}</table>"
+    );
+}
 
-    fits_table(&mut h, results)?;
-    stability_table(&mut h, results)?;
-
+/// The figures (embedded) and the list of data files.
+fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
+    let e = escape;
     h.push_str("<h2>Figures</h2>\n");
     for (f, png) in figures {
         let _ = writeln!(
@@ -154,7 +456,7 @@ pub fn html(
     let _ = writeln!(
         h,
         ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {} rows.</p>",
-        results.rows.len()
+        info.rows
     );
     h.push_str("<p>Other files: ");
     h.push_str(
@@ -166,46 +468,38 @@ pub fn html(
             .join(", "),
     );
     h.push_str("</p>\n");
-
-    h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
-    h.push_str(&e(&toml::to_string_pretty(&scene.resolved)
-        .unwrap_or_else(|err| format!("(cannot print: {err})"))));
-    h.push_str("</pre>\n<h2>Scene as given</h2>\n<pre>");
-    h.push_str(&e(&scene.source));
-    h.push_str("</pre>\n</body></html>\n");
-    Ok(h)
 }
 
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
-fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
-    if results.fits.is_empty() {
+fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let studies = results.fits();
+    if studies.iter().all(|(_, f)| f.is_empty()) {
         return Ok(());
     }
     let e = escape;
-    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
-    for f in &results.fits {
-        let origin = || format!("report: fit {:?}, {}", f.study_name, f.case);
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    for (study, f) in studies
+        .iter()
+        .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
+    {
+        let origin = || format!("report: fit {study:?}, {}", f.case);
         let n = f.names.len();
         for j in 0..n {
-            let value = checked(f.values[j], "fitted value", origin)?;
+            let value = finite(f.values[j], "fitted value", origin)?;
             let se = match f.standard_errors.get(j).copied().flatten() {
-                Some(s) => format!(" ± {:.3e}", checked(s, "standard error", origin)?),
+                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
                 None => " ± (n/a)".into(),
             };
             let reference = match f.reference.get(j).copied().flatten() {
-                Some(r) => checked(r, "reference value", origin)?.to_string(),
+                Some(r) => finite(r, "reference value", origin)?.to_string(),
                 None => String::new(),
             };
-            let corr = f
-                .correlation
-                .get(j)
-                .map(|row| {
-                    row.iter()
-                        .map(|c| c.map_or("n/a".to_string(), |c| format!("{c:.4}")))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                })
-                .unwrap_or_default();
+            let corr = match f.correlation.get(j) {
+                Some(row) => correlations(row, &f.names, j, |c| {
+                    finite(c, "correlation", origin).map(|c| format!("{c:.4}"))
+                })?,
+                None => String::new(),
+            };
             if j == 0 {
                 let mut status = if f.converged {
                     "converged".to_string()
@@ -218,23 +512,25 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
                 let _ = write!(
                     h,
                     "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
-                    e(&f.study_name),
+                    e(study),
                     e(&f.case),
                     f.points
                 );
                 let _ = writeln!(
                     h,
-                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
+                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
                     e(&f.names[j]),
-                    checked(f.rms, "RMS error", origin)?,
+                    e(&corr),
+                    finite(f.rms, "RMS error", origin)?,
                     f.unit,
                     f.iterations,
                 );
             } else {
                 let _ = writeln!(
                     h,
-                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>[{corr}]</td></tr>",
+                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td></tr>",
                     e(&f.names[j]),
+                    e(&corr),
                 );
             }
         }
@@ -244,8 +540,9 @@ fn fits_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
 }
 
 /// Intervals of softening and of lost strong ellipticity, per model.
-fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError> {
-    if results.stability.is_empty() {
+fn stability_table(h: &mut String, results: &Results) -> Result<(), AppError> {
+    let studies = results.stability();
+    if studies.iter().all(|(_, c)| c.is_empty()) {
         return Ok(());
     }
     let e = escape;
@@ -260,11 +557,10 @@ fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError>
         }
     };
     h.push_str("<h2>Material stability along the fibres</h2>\n<p>Uniaxial path along the fibres: intervals of the stretch grid where dP/dλ &lt; 0 and where strong ellipticity (incompressible, a ⊥ F⁻ᵀN) is lost; per-point values in <code>stability.csv</code>.</p>\n<table><tr><th>study</th><th>model</th><th>d</th><th>stretches</th><th>dP/dλ &lt; 0 on</th><th>not strongly elliptic on</th><th>least relative a·Q(N)a</th></tr>\n");
-    for c in &results.stability {
-        let name = results
-            .studies
-            .get(c.study)
-            .map_or(String::new(), |s| s.name.clone());
+    for (name, c) in studies
+        .iter()
+        .flat_map(|&(s, cs)| cs.iter().map(move |c| (s, c)))
+    {
         let least = c
             .points
             .iter()
@@ -273,17 +569,17 @@ fn stability_table(h: &mut String, results: &Results) -> Result<(), OutputError>
         let least = if c.points.is_empty() {
             "n/a".to_string()
         } else {
-            let least = checked(least, "relative ellipticity", || {
-                format!("report: {name}, {}, d = {:?}", c.label(), c.d)
+            let least = finite(least, "relative ellipticity", || {
+                format!("report: {name}, {}, d = {:?}", c.label(), c.damage())
             })?;
             format!("{least:.3e}")
         };
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{least}</td></tr>",
-            e(&name),
+            e(name),
             e(&c.label()),
-            c.d.map_or(String::new(), |d| d.to_string()),
+            c.damage().map_or(String::new(), |d| d.to_string()),
             c.points.len(),
             fmt(c.intervals(|p| p.slope < 0.0)),
             fmt(c.intervals(|p| !p.elliptic)),

@@ -1,29 +1,32 @@
 //! Scene files: what to compute, written in TOML.
 //!
-//! A scene names a material (`[material]`), the activation (`[activation]`) and a list of studies
-//! (`[[study]]`, kind `uniaxial`, `cylinder`, `fit`, `stability` or `tradeoff`). Every key is optional unless a study cannot do
-//! without it; defaults are the chapter's values (Tables D:parpass, D:paratt; a = 1.0133,
-//! b = 0.2050). Unknown keys, wrong types and values that break a rule are errors that name the
-//! file, the key path, the value and the rule ([`SceneError`]). `scenes/paper.toml` is the
-//! chapter's study and documents every key; it is embedded in the binary as [`PAPER_SCENE`].
+//! A scene names a material (`[material]`: a shipped energy and its parameters, the fibre
+//! direction), the activation (`[activation]`) and a list of studies (`[[study]]`, kind
+//! `uniaxial`, `cylinder`, `fit`, `stability` or `tradeoff`, see [`crate::studies`]). Every key
+//! is optional unless a study cannot do without it; defaults are the chapter's values. Unknown
+//! keys, wrong types and values that break a rule are errors that name the file, the line, the
+//! key path, the value and the rule ([`SceneError`]). `scenes/paper.toml` is the chapter's study
+//! and documents every key; it is embedded in the binary as [`PAPER_SCENE`].
 //!
-//! [`Scene::parse`] validates and resolves a file into a [`Scene`]; [`run`] computes its studies.
+//! From a file or a string to results, without a terminal:
+//! [`Scene::load`] or [`Scene::parse`] → [`Scene`] (validated, every default resolved) →
+//! [`Scene::run`] → [`Results`] (typed, one [`crate::studies::Outcome`] per study).
 
-pub mod fit;
 mod keypath;
+mod parse;
 mod resolve;
-pub mod run;
-pub mod schema;
-pub mod stability;
-pub mod tradeoff;
+mod run;
 
-pub use fit::{FitCase, FitOutcome, FitStudy};
+pub use crate::app_error::SceneError;
 pub use keypath::{key_path, line_of};
-pub use resolve::{CylinderStudy, ModelChoice, Scene, Study, UniaxialStudy};
-pub use stability::{StabilityCurve, StabilityPoint, StabilityStudy};
-pub use tradeoff::TradeoffStudy;
+pub use run::{Printing, Results, RunOptions};
 
-use std::fmt;
+use crate::app_error::AppError;
+pub use crate::models::{ActivationSpec, ExplicitSpec};
+use crate::models::{MaterialSpec, Models};
+use crate::studies::tradeoff::{Fallback, TradeoffOptions};
+use crate::studies::{Study, StudySpec};
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 /// The chapter's whole study (`scenes/paper.toml`), compiled into the binary.
@@ -32,36 +35,39 @@ pub const PAPER_SCENE: &str = include_str!("../../scenes/paper.toml");
 /// Name under which the embedded scene is reported.
 pub const PAPER_SCENE_NAME: &str = "<embedded scenes/paper.toml>";
 
-/// A scene that cannot be used: which file, which key, which value, which rule.
+/// The scene file as written (and, resolved, as printed by `check`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// Free text shown in the report.
+    pub title: Option<String>,
+    /// The passive material and the fibre direction.
+    #[serde(default)]
+    pub material: MaterialSpec,
+    /// Active curve, activation law, coupling and damage values shared by the studies.
+    #[serde(default)]
+    pub activation: ActivationSpec,
+    /// The studies, in order (`[[study]]`).
+    #[serde(default, rename = "study")]
+    pub studies: Vec<StudySpec>,
+}
+
+/// A validated scene with every default resolved.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SceneError {
-    /// The scene file (path as given, or the embedded scene's name).
+pub struct Scene {
+    /// File name (or the embedded scene's name).
     pub file: String,
-    /// Dotted key path (`study[1].nr`), or `(file)` for errors about the file as a whole.
-    pub key: String,
-    /// The offending value as written (or as resolved).
-    pub value: String,
-    /// The rule it breaks.
-    pub rule: String,
-    /// Line in the file (1-based), when known.
-    pub line: Option<usize>,
+    /// The scene text as read.
+    pub source: String,
+    /// Title.
+    pub title: String,
+    /// The material and activation every model shares.
+    pub models: Models,
+    /// Studies in file order.
+    pub studies: Vec<Study>,
+    /// The resolved scene: every default written out (what `check` prints).
+    pub resolved: SceneSpec,
 }
-
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file)?;
-        if let Some(l) = self.line {
-            write!(f, ":{l}")?;
-        }
-        write!(f, ": {}", self.key)?;
-        if !self.value.is_empty() {
-            write!(f, " = {}", self.value)?;
-        }
-        write!(f, ": {}", self.rule)
-    }
-}
-
-impl std::error::Error for SceneError {}
 
 impl Scene {
     /// Reads, validates and resolves the scene file at `path`.
@@ -82,44 +88,38 @@ impl Scene {
         Self::parse(PAPER_SCENE, PAPER_SCENE_NAME)
     }
 
-    /// Validates and resolves scene `text`; `file` names it in error messages.
+    /// Validates and resolves scene `text`; `file` names it in error messages, and data files
+    /// are read relative to its directory.
     pub fn parse(text: &str, file: &str) -> Result<Self, SceneError> {
-        let raw: schema::SceneFile = toml::from_str(text).map_err(|e| {
-            let span = e.span();
-            let (key, value, line) = match &span {
-                Some(s) => {
-                    let v = text.get(s.clone()).unwrap_or("").trim();
-                    let v = if v.chars().count() > 60 {
-                        format!("{}…", v.chars().take(60).collect::<String>())
-                    } else {
-                        v.to_string()
-                    };
-                    let line = text[..s.start.min(text.len())].matches('\n').count() + 1;
-                    (key_path(text, s.start), v, Some(line))
-                }
-                None => ("(file)".to_string(), String::new(), None),
-            };
-            // An unknown key inside an inline table gets the table's span: name the key itself.
-            let key = match e
-                .message()
-                .strip_prefix("unknown field `")
-                .and_then(|m| m.split('`').next())
-            {
-                Some(field) if !key.ends_with(field) => format!("{key}.{field}"),
-                _ => key,
-            };
-            SceneError {
-                file: file.to_string(),
-                key,
-                value,
-                rule: e.message().trim().to_string(),
-                line,
-            }
-        })?;
-        // Validation knows the key; the line is where the text writes it (or what encloses it).
-        resolve::resolve(raw, text, file).map_err(|e| SceneError {
-            line: e.line.or_else(|| keypath::line_of(text, &e.key)),
-            ..e
+        let spec = parse::parse(text, file)?;
+        resolve::resolve(spec, text, file)
+    }
+
+    /// The resolved scene as TOML, every default written out.
+    pub fn resolved_toml(&self) -> Result<String, AppError> {
+        toml::to_string_pretty(&self.resolved).map_err(|e| AppError::Output {
+            file: "resolved scene".into(),
+            message: e.to_string(),
         })
+    }
+
+    /// What a trade-off takes from this scene's other studies.
+    pub fn fallback(&self) -> Fallback {
+        crate::studies::fallback(&self.studies)
+    }
+
+    /// The options of the scene's trade-off study, if it has one.
+    pub fn tradeoff_options(&self) -> Option<&TradeoffOptions> {
+        self.studies.iter().find_map(|s| match s {
+            Study::Tradeoff(t) => Some(&t.options),
+            _ => None,
+        })
+    }
+
+    /// Runs every study, in order. A study that stops with an error does not stop the run: the
+    /// error is that study's failure ([`crate::studies::Outcome::nothing`]); see
+    /// [`Results::complete`].
+    pub fn run(&self, options: &RunOptions) -> Results {
+        run::run(self, options)
     }
 }

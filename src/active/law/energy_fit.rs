@@ -40,8 +40,10 @@ pub struct EnergyLaw<E> {
     below_minimum: BelowMinimum,
 }
 
-/// What the energy-consistent law does at fibre stretches λ ≤ λ_min.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// What the energy-consistent law does at fibre stretches λ ≤ λ_min (in a scene:
+/// `below_minimum = "zero-work" | "inactive"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum BelowMinimum {
     /// γ = 0: no activation below λ_min; γ and Ψ jump at λ_min. A clamped cylinder whose fibres
     /// reach λ_min cannot be followed past that point (measured: it stops at λ ≈ 0.729).

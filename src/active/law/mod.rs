@@ -266,20 +266,23 @@ pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
 
 /// The smallest root γ ∈ (0, 1) of `residual` with residual(0) < 0, found by stepping up in
 /// steps of 0.05 until the sign changes (a non-finite value — exp overflow — counts as "past the
-/// root" and halves the step), then safeguarded Newton to 1e-15 in γ.
+/// root" and halves the step; at most 400 evaluations, ≈ 100 when the overflow is monotone),
+/// then safeguarded Newton to 1e-15 in γ.
 pub(crate) fn first_activation_root(
     equation: impl Fn() -> String,
     residual: impl Fn(f64) -> (f64, f64),
 ) -> Result<f64> {
     let (mut lo, mut hi) = (0.0, f64::NAN);
     let mut step = 0.05;
-    while step > 1e-12 {
+    let mut evaluations = 0;
+    while step > 1e-12 && evaluations < 400 {
         let trial = lo + step;
         if trial >= 1.0 {
             step *= 0.5;
             continue;
         }
         let (f, _) = residual(trial);
+        evaluations += 1;
         if !f.is_finite() {
             step *= 0.5;
         } else if f > 0.0 {
@@ -292,7 +295,7 @@ pub(crate) fn first_activation_root(
     if hi.is_nan() {
         return Err(Error::NoSolution {
             equation: equation(),
-            reason: format!("no sign change of the residual for gamma in [0, {lo}] before exp overflow or gamma -> 1"),
+            reason: format!("no sign change of the residual for gamma in [0, {lo}] before exp overflow or gamma -> 1 ({evaluations} evaluations, last step {step:e})"),
         });
     }
     newton_bisection(&residual, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {

@@ -14,202 +14,37 @@
 //! Times are wall times \[s\]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
 //! or one material-point call.
 
-use super::measure::{curve_error, finalise, time_median, CurveError, Measurement};
+use super::measure::{curve_error, time_median, time_runs, CurveError, Measurement, Timing};
 use super::routes::{FiniteDifferenceTangent, OracleRoute};
+use super::Geometry;
 use crate::active::{Coupling, FrozenTangent};
+use crate::app_error::AppError;
 use crate::energy::Energy;
 use crate::fem::{
     AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions,
 };
-use crate::scene::schema::{DirectionKind, LawKind};
-use crate::scene::{Scene, Study};
+use crate::models::{LawKind, Models};
+use crate::studies::Progress;
 use crate::uniaxial::along_fibres;
 use crate::Muscle;
-use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
-/// A failure of the trade-off run: which option and variant, and why.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{0}")]
-pub struct TradeoffError(pub String);
-
-impl From<crate::Error> for TradeoffError {
-    fn from(e: crate::Error) -> Self {
-        Self(e.to_string())
-    }
-}
-
-impl From<crate::fem::FemError> for TradeoffError {
-    fn from(e: crate::fem::FemError) -> Self {
-        Self(e.to_string())
-    }
-}
-
-/// The options a user trades, in run order; a scene names them in `options = [...]`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum OptionGroup {
-    /// Activation law, 0D along the fibres.
-    ActivationLaw,
-    /// Activation law in the clamped cylinder (FE).
-    ActivationLawFe,
-    /// Derivative route, at one material point and in the FE.
-    DerivativeRoute,
-    /// Exact versus symmetric frozen tangent (FE).
-    FrozenTangent,
-    /// Mesh refinement of the clamped cylinder.
-    Mesh,
-    /// Element (Q2/Q1 or Q1/P0) in the clamped cylinder.
-    Element,
-    /// Newton tolerance (FE).
-    NewtonTolerance,
-    /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
-    ZeroDVsFe,
-}
-
-impl OptionGroup {
-    /// Every group, in run order.
-    pub const ALL: [Self; 8] = [
-        Self::ActivationLaw,
-        Self::ActivationLawFe,
-        Self::DerivativeRoute,
-        Self::FrozenTangent,
-        Self::Mesh,
-        Self::Element,
-        Self::NewtonTolerance,
-        Self::ZeroDVsFe,
-    ];
-
-    /// The name a scene uses (`activation-law-fe`).
-    pub fn key(self) -> &'static str {
-        match self {
-            Self::ActivationLaw => "activation-law",
-            Self::ActivationLawFe => "activation-law-fe",
-            Self::DerivativeRoute => "derivative-route",
-            Self::FrozenTangent => "frozen-tangent",
-            Self::Mesh => "mesh",
-            Self::Element => "element",
-            Self::NewtonTolerance => "newton-tolerance",
-            Self::ZeroDVsFe => "zero-d-vs-fe",
-        }
-    }
-}
-
-/// What to run.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TradeoffOptions {
-    /// The option groups to measure (run in the order of [`OptionGroup::ALL`]).
-    pub groups: Vec<OptionGroup>,
-    /// The cylinder of every FE variant; `None`: the scene's first cylinder study's (R, L,
-    /// grading), or R = 1, L = 4, grading 3 without one.
-    pub geometry: Option<Geometry>,
-    /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
-    pub meshes: Vec<(usize, usize)>,
-    /// Mesh of the FE derivative-route, frozen-tangent, tolerance and sliding (0D vs FE)
-    /// options; `None`: the scene's first cylinder study's (nr, nz), or (4, 16) without one.
-    pub fe_mesh: Option<(usize, usize)>,
-    /// Stretches of every FE sweep.
-    pub fe_stretches: Vec<f64>,
-    /// Stretches of the 0D activation-law curves; `None`: the scene's first uniaxial study along
-    /// the fibres, or 0.65:0.01:1.60.
-    pub curve_stretches: Option<Vec<f64>>,
-    /// Newton tolerances, loose to tight; the last is the reference.
-    pub tolerances: Vec<f64>,
-    /// Relative step of the central-difference tangent.
-    pub fd_step: f64,
-    /// Print one line per measured variant.
-    pub verbose: bool,
-}
-
-impl Default for TradeoffOptions {
-    fn default() -> Self {
-        Self {
-            groups: OptionGroup::ALL.to_vec(),
-            geometry: None,
-            meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
-            fe_mesh: None,
-            fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
-            curve_stretches: None,
-            tolerances: vec![1e-6, 1e-8, 1e-10, 1e-12],
-            fd_step: 1e-6,
-            verbose: false,
-        }
-    }
-}
-
 /// Options with the geometry, FE mesh and stretches resolved.
-struct Resolved {
-    geom: Geometry,
-    meshes: Vec<(usize, usize)>,
-    fe_mesh: (usize, usize),
-    fe_stretches: Vec<f64>,
-    curve_stretches: Vec<f64>,
-    tolerances: Vec<f64>,
-    fd_step: f64,
-}
-
-/// Everything measured.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TradeoffResults {
-    /// One row per variant, options in run order (speed-up, error ratio and Pareto filled in).
-    pub rows: Vec<Measurement>,
-    /// Conclusions with their numbers, one line each.
-    pub findings: Vec<String>,
-}
-
-/// The cylinder every FE variant runs on.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Geometry {
-    /// Radius R.
-    pub radius: f64,
-    /// Length L.
-    pub length: f64,
-    /// Middle/base cell-height ratio in z (≥ 1).
-    pub grading: f64,
-}
-
-/// The cylinder of the first cylinder study among `studies` (R, L, grading) and its mesh
-/// (nr, nz), or R = 1, L = 4, grading 3 on 4 × 16 cells without one.
-pub fn scene_cylinder(studies: &[Study]) -> (Geometry, (usize, usize)) {
-    studies
-        .iter()
-        .find_map(|s| match s {
-            Study::Cylinder(c) => Some((
-                Geometry {
-                    radius: c.radius,
-                    length: c.length,
-                    grading: c.grading,
-                },
-                (c.nr, c.nz),
-            )),
-            _ => None,
-        })
-        .unwrap_or((
-            Geometry {
-                radius: 1.0,
-                length: 4.0,
-                grading: 3.0,
-            },
-            (4, 16),
-        ))
-}
-
-/// Stretches of the first uniaxial study along the fibres among `studies`, or 0.65:0.01:1.60.
-pub fn scene_curve_stretches(studies: &[Study]) -> Vec<f64> {
-    studies
-        .iter()
-        .find_map(|s| match s {
-            Study::Uniaxial(u) if u.direction == DirectionKind::Along => Some(u.stretches.clone()),
-            _ => None,
-        })
-        .unwrap_or_else(|| (0..=95).map(|i| 0.65 + 0.01 * i as f64).collect())
+pub(super) struct Resolved {
+    pub geom: Geometry,
+    pub meshes: Vec<(usize, usize)>,
+    pub fe_mesh: (usize, usize),
+    pub fe_stretches: Vec<f64>,
+    pub curve_stretches: Vec<f64>,
+    pub tolerances: Vec<f64>,
+    pub fd_step: f64,
 }
 
 /// One FE sweep, timed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeRun {
-    /// Wall time of mesh, set-up and sweep \[s\] (median of repeats if under 1 s).
-    pub time_s: f64,
+    /// Wall times of mesh, set-up and sweep \[s\] (a failed sweep runs once).
+    pub time: Timing,
     /// Nominal axial stress P \[kPa\] at each requested stretch (NaN where not reached).
     pub stress: Vec<f64>,
     /// γ at the quadrature point nearest the centre [-] at each stretch.
@@ -232,8 +67,8 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     bases: Bases,
     stretches: &[f64],
     options: &SolverOptions,
-) -> Result<FeRun, TradeoffError> {
-    let once = || -> Result<FeRun, TradeoffError> {
+) -> Result<FeRun, AppError> {
+    let once = || -> Result<FeRun, AppError> {
         let mesh = Mesh::structured(geom.radius, geom.length, cells.0, cells.1, geom.grading)?;
         let mut solver = AxisymmetricSolver::new(mesh, bases, material, options.clone())?;
         let sweep = solver.sweep(stretches)?;
@@ -249,7 +84,7 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
             }
         }
         Ok(FeRun {
-            time_s: 0.0,
+            time: Timing::once(0.0),
             stress,
             gamma_centre,
             iterations,
@@ -258,8 +93,8 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
             failures: sweep.failures.iter().map(|e| e.to_string()).collect(),
         })
     };
-    let (time_s, mut run) = time_median(once)?;
-    run.time_s = time_s;
+    let (time, mut run) = time_runs(once, |r| r.failures.is_empty())?;
+    run.time = time;
     Ok(run)
 }
 
@@ -275,7 +110,7 @@ pub fn fe_row(
         option,
         variant,
         reference,
-        run.time_s,
+        run.time,
         "P(λ) at the FE stretches [kPa]",
         curve_error(&reference_run.stress, &run.stress),
     );
@@ -289,39 +124,34 @@ pub fn fe_row(
     m
 }
 
-struct Runner {
-    verbose: bool,
-    rows: Vec<Measurement>,
-    started: Instant,
+pub(super) struct Runner<'a> {
+    pub progress: &'a dyn Progress,
+    pub rows: Vec<Measurement>,
+    pub started: Instant,
 }
 
-impl Runner {
+impl Runner<'_> {
     fn push(&mut self, m: Measurement) {
-        if self.verbose {
-            println!(
-                "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s  error {:>9.2e} (rel {:>9.2e}){}",
-                self.started.elapsed().as_secs_f64(),
-                m.option,
-                m.variant,
-                m.time_s,
-                m.error.max_abs,
-                m.error.max_rel,
-                m.iterations
-                    .map_or(String::new(), |i| format!("  {i} Newton its"))
-            );
-        }
+        self.progress.log(&format!(
+            "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s ({} runs)  error {:>9.2e} (rel {:>9.2e}){}",
+            self.started.elapsed().as_secs_f64(),
+            m.option,
+            m.variant,
+            m.time.median,
+            m.time.runs,
+            m.error.max_abs,
+            m.error.max_rel,
+            m.iterations
+                .map_or(String::new(), |i| format!("  {i} Newton its"))
+        ));
         self.rows.push(m);
     }
 }
 
-fn muscle(
-    scene: &Scene,
-    law: LawKind,
-    coupling: Coupling,
-) -> Result<Muscle<Energy>, TradeoffError> {
+fn muscle(models: &Models, law: LawKind, coupling: Coupling) -> Result<Muscle<Energy>, AppError> {
     Ok(Muscle::new(
-        scene.material.clone(),
-        scene.law(law)?,
+        models.energy.clone(),
+        models.law(law)?,
         0.0,
         coupling,
     )?)
@@ -347,7 +177,7 @@ impl Resolved {
         &self,
         material: &M,
         options: &SolverOptions,
-    ) -> Result<FeRun, TradeoffError> {
+    ) -> Result<FeRun, AppError> {
         fe_run(
             material,
             self.geom,
@@ -362,17 +192,39 @@ impl Resolved {
 /// P(λ) \[kPa\] and γ(λ) [-] along a 0D sweep.
 type Curves = (Vec<f64>, Vec<f64>);
 
+/// Where the stress error of curves `(p, g)` against `(p_ref, g_ref)` is largest, and how big
+/// γ's error is there, in words.
+fn largest_error(stretches: &[f64], (p, g): Curves2, (p_ref, g_ref): Curves2) -> String {
+    let (i, _) = p
+        .iter()
+        .zip(p_ref)
+        .map(|(a, b)| (a - b).abs())
+        .enumerate()
+        .fold((0, 0.0), |acc, (i, d)| if d > acc.1 { (i, d) } else { acc });
+    let dg = (g[i] - g_ref[i]).abs();
+    format!(
+        "largest P error at λ = {:.2}: |Δγ| = {:.2e} there gives |ΔP| = {:.2} kPa ({:.1} kPa per 0.01 of γ)",
+        stretches[i],
+        dg,
+        (p[i] - p_ref[i]).abs(),
+        (p[i] - p_ref[i]).abs() / dg.max(1e-300) * 0.01
+    )
+}
+
+/// P(λ) and γ(λ) of a 0D sweep, borrowed.
+type Curves2<'a> = (&'a [f64], &'a [f64]);
+
 /// Activation law, 0D along the fibres.
-fn activation_law(
-    scene: &Scene,
+pub(super) fn activation_law(
+    models: &Models,
     o: &Resolved,
-    run: &mut Runner,
+    run: &mut Runner<'_>,
     findings: &mut Vec<String>,
-) -> Result<(), TradeoffError> {
+) -> Result<(), AppError> {
     const OPTION: &str = "activation law (0D)";
     let stretches = &o.curve_stretches;
-    let curve = |m: &Muscle<Energy>| -> Result<(f64, Curves), TradeoffError> {
-        time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
+    let curve = |m: &Muscle<Energy>| -> Result<(Timing, Curves), AppError> {
+        time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
             for &l in stretches {
@@ -383,13 +235,13 @@ fn activation_law(
             Ok((p, g))
         })
     };
-    let implicit = muscle(scene, LawKind::Implicit, EXACT)?;
+    let implicit = muscle(models, LawKind::Implicit, EXACT)?;
     let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
     // The reference reproduces the target P_pas + P_act.
-    let passive = Muscle::passive(scene.material.clone());
+    let passive = Muscle::passive(models.energy.clone());
     let mut target = Vec::with_capacity(stretches.len());
     for &l in stretches {
-        target.push(along_fibres(&passive, l)?.stress + scene.curve.value(l));
+        target.push(along_fibres(&passive, l)?.stress + models.curve.value(l));
     }
     let check = curve_error(&target, &p_ref);
     let quantity = "P(λ) over the 0D sweep [kPa]";
@@ -413,34 +265,18 @@ fn activation_law(
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ];
     for (name, law, coupling) in variants {
-        let m = muscle(scene, law, coupling)?;
+        let m = muscle(models, law, coupling)?;
         let (t, (p, g)) = curve(&m)?;
         let e = curve_error(&p_ref, &p);
         let mut r = Measurement::new(OPTION, name, false, t, quantity, e);
         let ge = curve_error(&g_ref, &g).max_abs;
         r.gamma_error = Some(ge);
         if law == LawKind::Explicit {
-            // Where is the stress error largest, and how big is γ's error there?
-            let (i, _) = p
-                .iter()
-                .zip(&p_ref)
-                .map(|(a, b)| (a - b).abs())
-                .enumerate()
-                .fold((0, 0.0), |acc, (i, d)| if d > acc.1 { (i, d) } else { acc });
-            let dg = (g[i] - g_ref[i]).abs();
-            r.note = format!(
-                "largest P error at λ = {:.2}: |Δγ| = {:.2e} there gives |ΔP| = {:.2} kPa ({:.1} kPa per 0.01 of γ)",
-                stretches[i],
-                dg,
-                (p[i] - p_ref[i]).abs(),
-                (p[i] - p_ref[i]).abs() / dg.max(1e-300) * 0.01
-            );
+            r.note = largest_error(stretches, (&p, &g), (&p_ref, &g_ref));
             findings.push(format!(
-                "Explicit law (0D, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
+                "Explicit law (0D, {} stretches): {}; stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
                 stretches.len(),
-                t_ref / t,
-                t,
-                t_ref,
+                t.against(&t_ref, "the implicit law"),
                 e.max_abs,
                 100.0 * e.max_rel,
                 ge
@@ -455,16 +291,16 @@ fn activation_law(
 /// `stretches` with the implicit law (frozen, exact tangent: the reference), the explicit law
 /// (frozen) and the energy law (consistent), each timed. Rows in that order, named `option`.
 pub fn activation_law_fe_rows(
-    scene: &Scene,
+    models: &Models,
     option: &str,
     geom: Geometry,
     cells: (usize, usize),
     bases: Bases,
     stretches: &[f64],
-) -> Result<Vec<Measurement>, TradeoffError> {
-    let sweep = |law: LawKind, coupling: Coupling| -> Result<FeRun, TradeoffError> {
+) -> Result<Vec<Measurement>, AppError> {
+    let sweep = |law: LawKind, coupling: Coupling| -> Result<FeRun, AppError> {
         fe_run(
-            &muscle(scene, law, coupling)?,
+            &muscle(models, law, coupling)?,
             geom,
             cells,
             bases,
@@ -509,14 +345,14 @@ pub fn activation_law_fe_rows(
 }
 
 /// Activation law in the clamped cylinder.
-fn activation_law_fe(
-    scene: &Scene,
+pub(super) fn activation_law_fe(
+    models: &Models,
     o: &Resolved,
-    run: &mut Runner,
+    run: &mut Runner<'_>,
     findings: &mut Vec<String>,
-) -> Result<(), TradeoffError> {
+) -> Result<(), AppError> {
     let rows = activation_law_fe_rows(
-        scene,
+        models,
         "activation law (FE)",
         o.geom,
         o.fe_mesh,
@@ -525,13 +361,11 @@ fn activation_law_fe(
     )?;
     if let [reference, explicit, ..] = rows.as_slice() {
         findings.push(format!(
-            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {:.1}× faster than the implicit law ({:.3e} s vs {:.3e} s); nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
+            "Explicit law in the clamped cylinder ({} × {} cells, {} stretches): {}; nominal stress error max {:.3} kPa ({:.2} % rel.), centre γ error max {:.2e}.",
             o.fe_mesh.0,
             o.fe_mesh.1,
             o.fe_stretches.len(),
-            reference.time_s / explicit.time_s,
-            explicit.time_s,
-            reference.time_s,
+            explicit.time.against(&reference.time, "the implicit law"),
             explicit.error.max_abs,
             100.0 * explicit.error.max_rel,
             explicit.gamma_error.unwrap_or(f64::NAN)
@@ -554,22 +388,27 @@ fn max_rel(a: &nalgebra::SMatrix<f64, 5, 5>, b: &nalgebra::SMatrix<f64, 5, 5>) -
 }
 
 /// Derivative routes at one material point and in the FE.
-fn derivative_route(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
-    let fast = muscle(scene, LawKind::Explicit, EXACT)?;
+pub(super) fn derivative_route(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+) -> Result<(), AppError> {
+    let fast = muscle(models, LawKind::Explicit, EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
     let f = representative_point();
     const BATCH: usize = 200;
-    let per_point = |m: &dyn AxisymmetricMaterial| -> Result<(f64, nalgebra::SMatrix<f64, 5, 5>), TradeoffError> {
-        let (t, k) = time_median(|| -> Result<_, TradeoffError> {
-            let mut last = None;
-            for _ in 0..BATCH {
-                last = Some(m.stress_tangent(std::hint::black_box(&f))?);
-            }
-            Ok(last.map(|v| v.1).unwrap_or_default())
-        })?;
-        Ok((t / BATCH as f64, k))
-    };
+    let per_point =
+        |m: &dyn AxisymmetricMaterial| -> Result<(Timing, nalgebra::SMatrix<f64, 5, 5>), AppError> {
+            let (t, k) = time_median(|| -> Result<_, AppError> {
+                let mut last = None;
+                for _ in 0..BATCH {
+                    last = Some(m.stress_tangent(std::hint::black_box(&f))?);
+                }
+                Ok(last.map(|v| v.1).unwrap_or_default())
+            })?;
+            Ok((t.per(BATCH), k))
+        };
     const POINT: &str = "derivative route (point)";
     let quantity = "∂P/∂F at one point [kPa] (explicit law, frozen exact)";
     let (t_fast, k_fast) = per_point(&fast)?;
@@ -610,11 +449,15 @@ fn derivative_route(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(),
 }
 
 /// Exact versus symmetric frozen tangent in the FE.
-fn frozen_tangent(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
+pub(super) fn frozen_tangent(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+) -> Result<(), AppError> {
     const OPTION: &str = "frozen tangent (FE)";
-    let exact = muscle(scene, LawKind::Explicit, EXACT)?;
+    let exact = muscle(models, LawKind::Explicit, EXACT)?;
     let symmetric = muscle(
-        scene,
+        models,
         LawKind::Explicit,
         Coupling::Frozen(FrozenTangent::Symmetric),
     )?;
@@ -651,14 +494,14 @@ fn frozen_tangent(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), T
 }
 
 /// Mesh refinement of the clamped cylinder.
-fn mesh(
-    scene: &Scene,
+pub(super) fn mesh(
+    models: &Models,
     o: &Resolved,
-    run: &mut Runner,
+    run: &mut Runner<'_>,
     findings: &mut Vec<String>,
-) -> Result<(), TradeoffError> {
+) -> Result<(), AppError> {
     const OPTION: &str = "mesh (clamped)";
-    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let m = muscle(models, LawKind::Explicit, EXACT)?;
     let mut runs = Vec::new();
     for &cells in &o.meshes {
         runs.push((
@@ -709,14 +552,14 @@ fn mesh(
 
 /// Element: Q2/Q1 and the cheaper Q1/P0 (on the FE mesh and on cells halved once and twice)
 /// against Q2/Q1 on cells halved once (the accurate end), clamped cylinder, explicit law.
-fn element(
-    scene: &Scene,
+pub(super) fn element(
+    models: &Models,
     o: &Resolved,
-    run: &mut Runner,
+    run: &mut Runner<'_>,
     findings: &mut Vec<String>,
-) -> Result<(), TradeoffError> {
+) -> Result<(), AppError> {
     const OPTION: &str = "element (clamped)";
-    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let m = muscle(models, LawKind::Explicit, EXACT)?;
     let (nr, nz) = o.fe_mesh;
     let with = |element| SolverOptions { element, ..tight() };
     let reference = fe_run(
@@ -751,7 +594,7 @@ fn element(
             &reference,
         );
         if element == Element::Q1P0 && row.error.max_rel.is_finite() {
-            best = Some((cells, row.error.max_rel, r.time_s));
+            best = Some((cells, row.error.max_rel, r.time));
         }
         run.push(row);
     }
@@ -764,17 +607,27 @@ fn element(
     ));
     if let Some((cells, rel, time)) = best {
         findings.push(format!(
-            "Element: Q1/P0 on {} × {} cells misses Q2/Q1 on {} × {} by {:.1e} (relative) in {:.2} s against {:.2} s.",
-            cells.0, cells.1, 2 * nr, 2 * nz, rel, time, reference.time_s
+            "Element: Q1/P0 on {} × {} cells misses Q2/Q1 on {} × {} by {:.1e} (relative), {}.",
+            cells.0,
+            cells.1,
+            2 * nr,
+            2 * nz,
+            rel,
+            time.against(&reference.time, "the reference")
         ));
     }
     Ok(())
 }
 
 /// Newton tolerance in the FE.
-fn tolerance(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
+pub(super) fn tolerance(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
+) -> Result<(), AppError> {
     const OPTION: &str = "Newton tolerance (FE)";
-    let m = muscle(scene, LawKind::Explicit, EXACT)?;
+    let m = muscle(models, LawKind::Explicit, EXACT)?;
     let mut runs = Vec::new();
     for &tol in &o.tolerances {
         runs.push((tol, o.clamped(&m, &with_tolerance(tol))?));
@@ -782,23 +635,42 @@ fn tolerance(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), Tradeo
     let Some((_, reference)) = runs.last().cloned() else {
         return Ok(());
     };
+    let mut words = Vec::new();
     for (k, (tol, r)) in runs.iter().enumerate() {
-        run.push(fe_row(
+        let row = fe_row(
             OPTION,
             &format!("tol {tol:.0e}"),
             k + 1 == runs.len(),
             r,
             &reference,
+        );
+        if !row.reference {
+            words.push(format!(
+                "{tol:.0e}: P within {:.1e} kPa, {}",
+                row.error.max_abs,
+                r.time.against(&reference.time, "the reference")
+            ));
+        }
+        run.push(row);
+    }
+    if let Some((tightest, _)) = runs.last() {
+        findings.push(format!(
+            "Newton tolerance against {tightest:.0e}: {}.",
+            words.join("; ")
         ));
     }
     Ok(())
 }
 
 /// 0D versus FE on the sliding cylinder, whose exact solution is homogeneous.
-fn zero_d_vs_fe(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), TradeoffError> {
+pub(super) fn zero_d_vs_fe(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+) -> Result<(), AppError> {
     const OPTION: &str = "0D vs FE (sliding)";
-    let m = muscle(scene, LawKind::Explicit, EXACT)?;
-    let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), TradeoffError> {
+    let m = muscle(models, LawKind::Explicit, EXACT)?;
+    let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
         let mut p = Vec::new();
         let mut g = Vec::new();
         for &l in &o.fe_stretches {
@@ -839,54 +711,4 @@ fn zero_d_vs_fe(scene: &Scene, o: &Resolved, run: &mut Runner) -> Result<(), Tra
         }
     }
     Ok(())
-}
-
-/// Runs the chosen option groups for `scene` (its material and activation; the geometry and
-/// stretches of `o`, or of the scene's studies where `o` leaves them out).
-pub fn run(scene: &Scene, o: &TradeoffOptions) -> Result<TradeoffResults, TradeoffError> {
-    let verbose = o.verbose;
-    if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
-        return Err(TradeoffError(
-            "need at least one mesh, tolerance and FE stretch".into(),
-        ));
-    }
-    let (scene_geom, scene_cells) = scene_cylinder(&scene.studies);
-    let o_groups = &o.groups;
-    let o = &Resolved {
-        geom: o.geometry.unwrap_or(scene_geom),
-        fe_mesh: o.fe_mesh.unwrap_or(scene_cells),
-        meshes: o.meshes.clone(),
-        fe_stretches: o.fe_stretches.clone(),
-        curve_stretches: o
-            .curve_stretches
-            .clone()
-            .unwrap_or_else(|| scene_curve_stretches(&scene.studies)),
-        tolerances: o.tolerances.clone(),
-        fd_step: o.fd_step,
-    };
-    let mut runner = Runner {
-        verbose,
-        rows: Vec::new(),
-        started: Instant::now(),
-    };
-    let mut findings = Vec::new();
-    for group in OptionGroup::ALL {
-        if !o_groups.contains(&group) {
-            continue;
-        }
-        let (run, findings) = (&mut runner, &mut findings);
-        match group {
-            OptionGroup::ActivationLaw => activation_law(scene, o, run, findings)?,
-            OptionGroup::ActivationLawFe => activation_law_fe(scene, o, run, findings)?,
-            OptionGroup::DerivativeRoute => derivative_route(scene, o, run)?,
-            OptionGroup::FrozenTangent => frozen_tangent(scene, o, run)?,
-            OptionGroup::Mesh => mesh(scene, o, run, findings)?,
-            OptionGroup::Element => element(scene, o, run, findings)?,
-            OptionGroup::NewtonTolerance => tolerance(scene, o, run)?,
-            OptionGroup::ZeroDVsFe => zero_d_vs_fe(scene, o, run)?,
-        }
-    }
-    let mut rows = runner.rows;
-    finalise(&mut rows);
-    Ok(TradeoffResults { rows, findings })
 }

@@ -1,0 +1,686 @@
+//! Load stepping (continuation in the load λ) with Newton's method, for any [`NonlinearSystem`].
+//!
+//! Load path: from λ = 1 outwards in both directions (each direction starts from the λ = 1
+//! state), landing exactly on every requested load. Each load step uses a tangent predictor
+//! (x ← x_k + Δλ dx/dλ, with dx/dλ from [`NonlinearSystem::load_rate`] at the last converged
+//! state), then Newton with backtracking line search on the system's scaled residual norm. A
+//! rejected step (no convergence, material error at a trial state, failed line search, singular
+//! tangent) is halved; after two easy steps in a row the step doubles again. Below the minimum
+//! step the direction stops with [`FemError::TargetNotReached`]; after [`Stepping::max_steps`]
+//! load steps with [`FemError::StepLimit`]. Every loop is capped: Newton by
+//! [`Stepping::max_iterations`], the line search by [`Stepping::max_backtracks`], the step
+//! cutting by [`Stepping::min_step`], the load steps of a direction by [`Stepping::max_steps`].
+//!
+//! Convergence of a Newton solve (both required): the system's scaled residual norm and the
+//! scaled norm of the last Newton increment are at most [`Stepping::tolerance`].
+//!
+//! A [`Cancel`] flag is read before every load step and every Newton iteration: once it is set,
+//! the sweep stops and reports [`FemError::Cancelled`]; the loads solved before are kept.
+
+use super::error::{FemError, FemResult, StepFailure};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// A discretised nonlinear problem R(x) = 0 whose prescribed unknowns follow a load λ.
+///
+/// The unknowns x = (x_f, x_c): the first [`Self::free`] entries are solved for, the others are
+/// set by [`Self::apply_load`]. The norms and solves refer to the last [`Self::evaluate`].
+pub trait NonlinearSystem {
+    /// Number of unknowns (free and prescribed).
+    fn unknowns(&self) -> usize;
+    /// Number of free unknowns (the first entries of x).
+    fn free(&self) -> usize;
+    /// Sets the prescribed unknowns of `x` for the load λ.
+    fn apply_load(&self, x: &mut [f64], load: f64);
+    /// Evaluates the residual R(x) and, if `tangent`, the tangent K = ∂R_f/∂x_f and ∂R_f/∂λ.
+    fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()>;
+    /// The scale of the last evaluation (e.g. its largest stress) that makes the norms below
+    /// dimensionless; the driver holds it fixed over a line search.
+    fn scale(&self) -> f64;
+    /// Scaled norm of the residual of the last evaluation.
+    fn residual_norm(&self, scale: f64) -> f64;
+    /// Scaled norm of the increment `step` · `dx` (free unknowns).
+    fn increment_norm(&self, dx: &[f64], step: f64, scale: f64) -> f64;
+    /// The Newton direction dx = −K⁻¹ R on the free unknowns, with the tangent of the last
+    /// evaluation.
+    fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure>;
+    /// dx/dλ at the last evaluated (converged) state, all unknowns: K v_f = −∂R_f/∂λ and the
+    /// prescribed part from the load.
+    fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure>;
+}
+
+/// A discrete solution: all unknowns at a load (the stretch of the cylinder).
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Applied stretch λ.
+    pub stretch: f64,
+    /// Unknowns (dof values).
+    pub x: Vec<f64>,
+}
+
+/// One Newton iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IterationRecord {
+    /// Scaled residual norm after the iteration.
+    pub residual: f64,
+    /// Scaled increment norm of the iteration (step length included).
+    pub increment: f64,
+    /// Line-search step length.
+    pub step_length: f64,
+}
+
+/// One attempted load step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// Load the step started from.
+    pub from: f64,
+    /// Load the step aimed at.
+    pub to: f64,
+    /// Scaled residual of the predictor.
+    pub initial_residual: f64,
+    /// Newton iterations.
+    pub iterations: Vec<IterationRecord>,
+    /// `None` if converged, else why it was rejected.
+    pub failure: Option<StepFailure>,
+}
+
+/// A flag that stops a running sweep (from another thread, a signal handler or a progress
+/// observer). Clones share the flag.
+#[derive(Debug, Clone, Default)]
+pub struct Cancel(Arc<AtomicBool>);
+
+impl Cancel {
+    /// A new, unset flag.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Asks every sweep holding this flag to stop.
+    pub fn cancel(&self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether the flag is set.
+    pub fn is_cancelled(&self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
+
+    /// The shared atomic (e.g. for `signal_hook::flag::register`).
+    pub fn flag(&self) -> Arc<AtomicBool> {
+        Arc::clone(&self.0)
+    }
+}
+
+impl From<Arc<AtomicBool>> for Cancel {
+    fn from(flag: Arc<AtomicBool>) -> Self {
+        Self(flag)
+    }
+}
+
+/// Two flags are equal when they are the same flag.
+impl PartialEq for Cancel {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+/// Tolerance, load-stepping and Newton controls of the driver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stepping {
+    /// Tolerance on the scaled residual and increment norms.
+    pub tolerance: f64,
+    /// Newton iterations per load step before the step is cut.
+    pub max_iterations: usize,
+    /// First load step |Δλ|.
+    pub initial_step: f64,
+    /// Largest load step |Δλ|.
+    pub max_step: f64,
+    /// Smallest load step |Δλ| before giving up.
+    pub min_step: f64,
+    /// A step that converged in at most this many iterations is easy; two in a row double the step.
+    pub easy_iterations: usize,
+    /// Backtracking halvings in the line search (0: full Newton steps only).
+    pub max_backtracks: usize,
+    /// Load steps (accepted and rejected) allowed in one direction of a sweep.
+    pub max_steps: usize,
+}
+
+/// What the driver reports to its caller while it runs.
+pub trait Observer<S: ?Sized> {
+    /// A target load was reached; `x` is the converged state, and the system still holds its
+    /// evaluation. `steps`: the load steps since the previous target.
+    fn reached(
+        &mut self,
+        system: &mut S,
+        load: f64,
+        x: &[f64],
+        steps: Vec<StepRecord>,
+    ) -> FemResult<()>;
+    /// A load step converged.
+    fn step_accepted(&mut self, _record: &StepRecord) {}
+}
+
+/// A failure of one direction of a sweep, with the last rejected trial state for diagnostics.
+pub type DirectionFailure = (FemError, Option<State>);
+
+/// A converged state with its rate dx/dλ: where a load step starts.
+#[derive(Debug, Clone)]
+struct Converged {
+    load: f64,
+    x: Vec<f64>,
+    rate: Vec<f64>,
+}
+
+/// The load-stepping Newton driver, with its work vectors (allocated once).
+#[derive(Debug, Clone)]
+pub struct Continuation {
+    stepping: Stepping,
+    cancel: Option<Cancel>,
+    trial: Vec<f64>,
+    delta: Vec<f64>,
+    newton_iterations: usize,
+    failed_trial: Option<State>,
+}
+
+impl Continuation {
+    /// A driver for systems with `unknowns` unknowns.
+    pub fn new(unknowns: usize, stepping: Stepping, cancel: Option<Cancel>) -> Self {
+        Self {
+            stepping,
+            cancel,
+            trial: vec![0.0; unknowns],
+            delta: vec![0.0; unknowns],
+            newton_iterations: 0,
+            failed_trial: None,
+        }
+    }
+
+    /// Newton iterations performed so far.
+    pub fn newton_iterations(&self) -> usize {
+        self.newton_iterations
+    }
+
+    /// Resets the Newton iteration count.
+    pub fn reset_count(&mut self) {
+        self.newton_iterations = 0;
+    }
+
+    /// The trial state at which the last rejected Newton step failed, kept for diagnostics.
+    pub fn failed_trial(&self) -> Option<&State> {
+        self.failed_trial.as_ref()
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.as_ref().is_some_and(Cancel::is_cancelled)
+    }
+
+    /// Runs the load path through every target (λ = 1 outwards in both directions, upwards
+    /// first), reporting each reached target to `observer`. Targets must be finite and > 0
+    /// (checked by the caller). Returns the failure of each direction that stopped; an error
+    /// only if the observer fails at λ = 1.
+    pub fn sweep<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+        targets: &[f64],
+        observer: &mut dyn Observer<S>,
+    ) -> FemResult<Vec<DirectionFailure>> {
+        let mut up: Vec<f64> = targets.iter().copied().filter(|&t| t > 1.0).collect();
+        let mut down: Vec<f64> = targets.iter().copied().filter(|&t| t < 1.0).collect();
+        up.sort_by(f64::total_cmp);
+        up.dedup();
+        down.sort_by(|a, b| b.total_cmp(a));
+        down.dedup();
+        let (reference, record) = match self.reference(system) {
+            Ok(v) => v,
+            Err(StepFailure::Cancelled) => {
+                return Ok(vec![(FemError::Cancelled { target: 1.0 }, None)]);
+            }
+            Err(cause) => return Ok(vec![(FemError::ReferenceState { cause }, None)]),
+        };
+        if targets.contains(&1.0) {
+            observer.reached(system, 1.0, &reference.x, vec![record])?;
+        }
+        let mut failures = Vec::new();
+        for list in [&up, &down] {
+            if list.is_empty() {
+                continue;
+            }
+            if let Err(e) = self.path(system, reference.clone(), list, observer) {
+                let cancelled = matches!(e, FemError::Cancelled { .. });
+                failures.push((e, self.failed_trial.clone()));
+                if cancelled {
+                    break;
+                }
+            }
+        }
+        Ok(failures)
+    }
+
+    /// Solves the reference state λ = 1 from x = 0 and its rate.
+    fn reference<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+    ) -> Result<(Converged, StepRecord), StepFailure> {
+        let mut x = vec![0.0; system.unknowns()];
+        system.apply_load(&mut x, 1.0);
+        let mut record = StepRecord {
+            from: 1.0,
+            to: 1.0,
+            initial_residual: 0.0,
+            iterations: Vec::new(),
+            failure: None,
+        };
+        self.newton(system, &mut x, &mut record)?;
+        let rate = rate(system)?;
+        Ok((Converged { load: 1.0, x, rate }, record))
+    }
+
+    /// Steps from `cur` through `targets` (sorted away from λ = 1), reporting each.
+    fn path<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+        mut cur: Converged,
+        targets: &[f64],
+        observer: &mut dyn Observer<S>,
+    ) -> FemResult<()> {
+        let o = self.stepping;
+        let mut h = o.initial_step.min(o.max_step);
+        let mut easy = 0usize;
+        let mut taken = 0usize;
+        let mut x = vec![0.0; system.unknowns()];
+        for &target in targets {
+            let mut steps = Vec::new();
+            while cur.load != target {
+                if self.cancelled() {
+                    return Err(FemError::Cancelled { target });
+                }
+                if taken == o.max_steps {
+                    return Err(FemError::StepLimit {
+                        target,
+                        reached: cur.load,
+                        steps: taken,
+                    });
+                }
+                taken += 1;
+                let remaining = target - cur.load;
+                let next = if remaining.abs() <= h * (1.0 + 1e-9) {
+                    target
+                } else {
+                    cur.load + h * remaining.signum()
+                };
+                let dl = next - cur.load;
+                let (record, outcome) = self.step(system, &cur, next, &mut x);
+                match outcome {
+                    Ok(rate) => {
+                        observer.step_accepted(&record);
+                        let n_it = record.iterations.len();
+                        steps.push(record);
+                        cur = Converged {
+                            load: next,
+                            x: x.clone(),
+                            rate,
+                        };
+                        if n_it <= o.easy_iterations {
+                            easy += 1;
+                            if easy >= 2 {
+                                h = (2.0 * h).min(o.max_step);
+                                easy = 0;
+                            }
+                        } else {
+                            easy = 0;
+                        }
+                    }
+                    Err(StepFailure::Cancelled) => return Err(FemError::Cancelled { target }),
+                    Err(cause) => {
+                        steps.push(record);
+                        easy = 0;
+                        h = 0.5 * dl.abs();
+                        if h < o.min_step {
+                            return Err(FemError::TargetNotReached {
+                                target,
+                                reached: cur.load,
+                                attempted: next,
+                                step: dl.abs(),
+                                cause,
+                            });
+                        }
+                    }
+                }
+            }
+            // The system holds the converged state's evaluation (see `newton`).
+            observer.reached(system, target, &cur.x, steps)?;
+        }
+        Ok(())
+    }
+
+    /// One load step from `cur` to the load `next`: tangent predictor, Newton, rate. On success
+    /// `x` holds the converged state.
+    fn step<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+        cur: &Converged,
+        next: f64,
+        x: &mut Vec<f64>,
+    ) -> (StepRecord, Result<Vec<f64>, StepFailure>) {
+        let dl = next - cur.load;
+        for ((xi, c), v) in x.iter_mut().zip(&cur.x).zip(&cur.rate) {
+            *xi = c + dl * v;
+        }
+        system.apply_load(x, next);
+        let mut record = StepRecord {
+            from: cur.load,
+            to: next,
+            initial_residual: f64::NAN,
+            iterations: Vec::new(),
+            failure: None,
+        };
+        let outcome = self
+            .newton(system, x, &mut record)
+            .and_then(|_| rate(system));
+        if let Err(cause) = &outcome {
+            record.failure = Some(cause.clone());
+        }
+        (record, outcome)
+    }
+
+    fn keep_failed_trial(&mut self, load: f64, x: &[f64]) {
+        self.failed_trial = Some(State {
+            stretch: load,
+            x: x.to_vec(),
+        });
+    }
+
+    /// Newton's method at the load already set in `x` (prescribed unknowns included).
+    ///
+    /// Each iteration solves K Δx = −R on the free unknowns, then backtracks
+    /// ([`Self::line_search`]). On success `x` holds the converged state and the system holds
+    /// its evaluation with the tangent.
+    fn newton<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+        x: &mut Vec<f64>,
+        record: &mut StepRecord,
+    ) -> Result<(), StepFailure> {
+        let tol = self.stepping.tolerance;
+        let nf = system.free();
+        if let Err(e) = system.evaluate(x, true) {
+            self.keep_failed_trial(record.to, x);
+            return Err(StepFailure::Material(e));
+        }
+        let mut have_tangent = true;
+        let mut phi = system.residual_norm(system.scale());
+        let mut last_increment = f64::INFINITY;
+        record.initial_residual = phi;
+        for _ in 0..self.stepping.max_iterations {
+            if self.cancelled() {
+                return Err(StepFailure::Cancelled);
+            }
+            self.newton_iterations += 1;
+            if !have_tangent {
+                if let Err(e) = system.evaluate(x, true) {
+                    self.keep_failed_trial(record.to, x);
+                    return Err(StepFailure::Material(e));
+                }
+            }
+            system.newton_direction(&mut self.delta[..nf])?;
+            let alpha = self.line_search(system, x, phi, record.to)?;
+            have_tangent = alpha == 1.0;
+            std::mem::swap(x, &mut self.trial);
+            let scale = system.scale();
+            let increment = system.increment_norm(&self.delta[..nf], alpha, scale);
+            let residual = system.residual_norm(scale);
+            record.iterations.push(IterationRecord {
+                residual,
+                increment,
+                step_length: alpha,
+            });
+            (phi, last_increment) = (residual, increment);
+            if residual <= tol && increment <= tol {
+                if !have_tangent {
+                    // Leave the system evaluated at the converged state, tangent included.
+                    system.evaluate(x, true).map_err(StepFailure::Material)?;
+                }
+                return Ok(());
+            }
+        }
+        self.keep_failed_trial(record.to, x);
+        Err(StepFailure::MaxIterations {
+            iterations: self.stepping.max_iterations,
+            residual: phi,
+            increment: last_increment,
+        })
+    }
+
+    /// Backtracking line search from `x` along the direction held in `delta`: the trial
+    /// x + α Δx (α = 1, ½, …, at most [`Stepping::max_backtracks`] halvings) is accepted when
+    /// the scaled residual (scale frozen at `x`) decreases, φ(α) ≤ (1 − 10⁻⁴ α) φ(0) (Armijo),
+    /// or at α = 1 when φ(0) is already at the tolerance (round-off floor). The full step is
+    /// evaluated with its tangent. Returns α; the trial is left in `trial`.
+    fn line_search<S: NonlinearSystem>(
+        &mut self,
+        system: &mut S,
+        x: &[f64],
+        phi: f64,
+        load: f64,
+    ) -> Result<f64, StepFailure> {
+        let nf = system.free();
+        let scale = system.scale();
+        let mut alpha = 1.0;
+        let mut last_error = None;
+        for k in 0..=self.stepping.max_backtracks {
+            let full = k == 0;
+            self.trial.copy_from_slice(x);
+            for (t, d) in self.trial[..nf].iter_mut().zip(&self.delta[..nf]) {
+                *t += alpha * d;
+            }
+            match system.evaluate(&self.trial, full) {
+                Ok(()) => {
+                    let phi_trial = system.residual_norm(scale);
+                    if phi_trial <= (1.0 - 1e-4 * alpha) * phi
+                        || (full && phi <= self.stepping.tolerance)
+                    {
+                        return Ok(alpha);
+                    }
+                    last_error = None;
+                }
+                Err(e) => last_error = Some(e),
+            }
+            alpha *= 0.5;
+        }
+        self.failed_trial = Some(State {
+            stretch: load,
+            x: self.trial.clone(),
+        });
+        Err(match last_error {
+            Some(e) => StepFailure::Material(e),
+            None => StepFailure::LineSearch { residual: phi },
+        })
+    }
+}
+
+/// dx/dλ at the state the system holds.
+fn rate<S: NonlinearSystem>(system: &mut S) -> Result<Vec<f64>, StepFailure> {
+    let mut v = vec![0.0; system.unknowns()];
+    system.load_rate(&mut v)?;
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// R(y; λ) = sinh(y) − (λ − 1) on one free unknown y, with x = (y, c), c = λ − 1
+    /// prescribed: the solution is y = asinh(λ − 1). Trial states with y above `limit` are
+    /// refused, as a material would refuse an overflowing state.
+    struct Sinh {
+        residual: f64,
+        tangent: f64,
+        rate_force: f64,
+        limit: f64,
+    }
+
+    impl NonlinearSystem for Sinh {
+        fn unknowns(&self) -> usize {
+            2
+        }
+        fn free(&self) -> usize {
+            1
+        }
+        fn apply_load(&self, x: &mut [f64], load: f64) {
+            x[1] = load - 1.0;
+        }
+        fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
+            if x[0] > self.limit {
+                return Err(crate::Error::NonFinite {
+                    quantity: "test residual",
+                    value: f64::INFINITY,
+                    context: format!("y = {}", x[0]),
+                });
+            }
+            self.residual = x[0].sinh() - x[1];
+            if tangent {
+                self.tangent = x[0].cosh();
+                self.rate_force = -1.0;
+            }
+            Ok(())
+        }
+        fn scale(&self) -> f64 {
+            1.0
+        }
+        fn residual_norm(&self, scale: f64) -> f64 {
+            self.residual.abs() / scale
+        }
+        fn increment_norm(&self, dx: &[f64], step: f64, _scale: f64) -> f64 {
+            (dx[0] * step).abs()
+        }
+        fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
+            dx[0] = -self.residual / self.tangent;
+            Ok(())
+        }
+        fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure> {
+            rate[0] = -self.rate_force / self.tangent;
+            rate[1] = 1.0;
+            Ok(())
+        }
+    }
+
+    #[derive(Default)]
+    struct Collect {
+        reached: Vec<(f64, f64, Vec<StepRecord>)>,
+        accepted: usize,
+    }
+
+    impl Observer<Sinh> for Collect {
+        fn reached(
+            &mut self,
+            _system: &mut Sinh,
+            load: f64,
+            x: &[f64],
+            steps: Vec<StepRecord>,
+        ) -> FemResult<()> {
+            self.reached.push((load, x[0], steps));
+            Ok(())
+        }
+        fn step_accepted(&mut self, _record: &StepRecord) {
+            self.accepted += 1;
+        }
+    }
+
+    fn stepping() -> Stepping {
+        Stepping {
+            tolerance: 1e-13,
+            max_iterations: 25,
+            initial_step: 0.05,
+            max_step: 0.5,
+            min_step: 1e-4,
+            easy_iterations: 5,
+            max_backtracks: 8,
+            max_steps: 1000,
+        }
+    }
+
+    fn system(limit: f64) -> Sinh {
+        Sinh {
+            residual: 0.0,
+            tangent: 1.0,
+            rate_force: 0.0,
+            limit,
+        }
+    }
+
+    #[test]
+    fn the_driver_follows_the_closed_form_path_in_both_directions() {
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let failures = driver
+            .sweep(
+                &mut system(f64::INFINITY),
+                &[0.2, 1.0, 3.0, 6.0],
+                &mut observer,
+            )
+            .unwrap();
+        assert!(failures.is_empty());
+        let loads: Vec<f64> = observer.reached.iter().map(|r| r.0).collect();
+        assert_eq!(loads, [1.0, 3.0, 6.0, 0.2]);
+        for (load, y, steps) in &observer.reached {
+            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
+            assert!(steps.iter().all(|s| s.failure.is_none()));
+        }
+        let accepted: usize = observer.reached.iter().map(|r| r.2.len()).sum();
+        // λ = 1 is its own (reference) record, not a load step.
+        assert_eq!(observer.accepted, accepted - 1);
+        // Steps grow from 0.05 to max_step along the easy path.
+        let up = &observer.reached[2].2;
+        assert!((up.last().unwrap().to - up.last().unwrap().from - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_refused_trial_cuts_the_step_down_to_the_last_admissible_load() {
+        let limit = 1.0;
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let failures = driver
+            .sweep(&mut system(limit), &[1.5, 3.0], &mut observer)
+            .unwrap();
+        match failures.as_slice() {
+            [(
+                FemError::TargetNotReached {
+                    target,
+                    reached,
+                    attempted,
+                    cause: StepFailure::Material(_),
+                    ..
+                },
+                Some(trial),
+            )] => {
+                // y ≤ 1 holds up to λ = 1 + sinh(1): the path stops within one minimum step.
+                let edge = 1.0 + limit.sinh();
+                assert_eq!(*target, 3.0);
+                assert!(*reached <= edge && *reached > edge - 2e-4, "{reached}");
+                assert!(*attempted > edge);
+                assert!(trial.x[0] > limit);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(observer.reached.len(), 1);
+    }
+
+    #[test]
+    fn the_load_steps_of_a_direction_are_capped() {
+        let mut driver = Continuation::new(
+            2,
+            Stepping {
+                max_steps: 4,
+                ..stepping()
+            },
+            None,
+        );
+        let failures = driver
+            .sweep(&mut system(f64::INFINITY), &[6.0], &mut Collect::default())
+            .unwrap();
+        assert!(matches!(
+            failures.as_slice(),
+            [(FemError::StepLimit { steps: 4, .. }, _)]
+        ));
+    }
+}

@@ -1,0 +1,235 @@
+//! The axisymmetric mixed u–p problem as a [`NonlinearSystem`]: assembly, scaled norms and the
+//! Newton linear solve, with the time spent in each.
+//!
+//! Norms, with σ the largest stress magnitude at the quadrature points plus a small floor,
+//! A = πR², V = πR²L, L the length:
+//!
+//! ‖R_u‖₂ / (σ A) and ‖R_p‖₂ / V   (residual; the larger of the two),
+//! ‖Δu‖_∞ / L and ‖Δp‖_∞ / σ       (increment; the larger of the two).
+
+use super::assembly::Assembler;
+use super::continuation::NonlinearSystem;
+use super::dofs::DofMap;
+use super::error::StepFailure;
+use super::material::AxisymmetricMaterial;
+use super::mesh::Mesh;
+use super::tangent_solver::TangentSolver;
+use std::f64::consts::PI;
+use std::time::{Duration, Instant};
+
+/// Accumulated wall-clock time of the solver phases.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Full assemblies (residual + tangent).
+    pub assembly: Duration,
+    /// Number of full assemblies.
+    pub assemblies: usize,
+    /// Residual-only assemblies (line search).
+    pub residual_assembly: Duration,
+    /// Number of residual-only assemblies.
+    pub residual_assemblies: usize,
+    /// Newton iterations (each: one full assembly, one tangent update, one solve).
+    pub newton_iterations: usize,
+    /// Numeric factorisations (LDLᵀ or LU).
+    pub factorisation: Duration,
+    /// Number of factorisations.
+    pub factorisations: usize,
+    /// Linear solves (GMRES and triangular solves, factorisations excluded).
+    pub solve: Duration,
+    /// Number of solves.
+    pub solves: usize,
+    /// GMRES iterations in all solves.
+    pub krylov_iterations: usize,
+    /// Solves that fell back to the sparse LU.
+    pub lu_fallbacks: usize,
+    /// Factorisations by the LU on the LDLᵀ's pattern (non-symmetric tangents).
+    pub pattern_lu_factorisations: usize,
+}
+
+impl Timings {
+    /// Wall-clock seconds per Newton iteration: all assemblies, factorisations and solves
+    /// divided by the Newton iterations.
+    pub fn per_newton_iteration(&self) -> f64 {
+        let total = self.assembly + self.residual_assembly + self.factorisation + self.solve;
+        total.as_secs_f64() / self.newton_iterations.max(1) as f64
+    }
+}
+
+/// Euclidean norm, scaled by the largest entry so that squares of huge residuals (stresses near
+/// the exp-overflow limit) do not overflow.
+fn norm2(v: &[f64]) -> f64 {
+    let scale = norm_inf(v);
+    if scale == 0.0 || !scale.is_finite() {
+        return scale;
+    }
+    scale
+        * v.iter()
+            .map(|a| (a / scale) * (a / scale))
+            .sum::<f64>()
+            .sqrt()
+}
+
+fn norm_inf(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, a| m.max(a.abs()))
+}
+
+/// The discrete u–p problem on one mesh with one material: what the continuation driver solves.
+pub struct MixedProblem<'m, M: AxisymmetricMaterial + ?Sized> {
+    /// The mesh (cells of the element in use).
+    pub mesh: Mesh,
+    /// The dof numbering.
+    pub dofs: DofMap,
+    /// Residual, tangent and their pattern.
+    pub asm: Assembler,
+    /// The material.
+    pub material: &'m M,
+    linear: TangentSolver,
+    stress_floor: f64,
+    /// Right-hand side on the free dofs, and the system's (condensed) right-hand side.
+    rhs: Vec<f64>,
+    system_rhs: Vec<f64>,
+    /// Time spent per phase (Newton iterations are counted by the driver).
+    pub timings: Timings,
+}
+
+impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
+    /// The problem with its assembler and linear solver; `stress_floor` \[kPa\] is added to σ.
+    pub fn new(
+        mesh: Mesh,
+        dofs: DofMap,
+        asm: Assembler,
+        linear: TangentSolver,
+        material: &'m M,
+        stress_floor: f64,
+    ) -> Self {
+        Self {
+            rhs: vec![0.0; dofs.n_free],
+            system_rhs: vec![0.0; asm.pattern.n],
+            mesh,
+            dofs,
+            asm,
+            material,
+            linear,
+            stress_floor,
+            timings: Timings::default(),
+        }
+    }
+
+    /// Axial reaction on z = L from the residual of the last evaluation at the prescribed u_z
+    /// dofs.
+    pub fn reaction(&self) -> f64 {
+        self.dofs
+            .top_axial
+            .iter()
+            .map(|&g| self.asm.residual[g as usize])
+            .sum()
+    }
+
+    /// x = K⁻¹ f on the free dofs for f in `rhs`: the condensed system solved, then expanded
+    /// ([`Assembler::condense`], [`Assembler::expand`]).
+    fn solve_free(&mut self, x: &mut [f64]) -> Result<(), StepFailure> {
+        let mut y = std::mem::take(&mut self.system_rhs);
+        self.asm.condense(&self.rhs, &mut y);
+        let solved = self.solve(&mut y);
+        if solved.is_ok() {
+            self.asm.expand(&self.rhs, &y, x);
+        }
+        self.system_rhs = y;
+        solved
+    }
+
+    /// Solves K y = rhs in place for the system matrix, exactly to round-off (see
+    /// [`TangentSolver`]).
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
+        let t = Instant::now();
+        let factorising = self.timings.factorisation;
+        let r = self
+            .linear
+            .solve(&self.asm.pattern, &self.asm.values, rhs, &mut self.timings)
+            .map_err(|detail| StepFailure::SingularTangent { detail });
+        // Factorisations triggered inside the solve are counted as factorisation only.
+        self.timings.solve += t.elapsed() - (self.timings.factorisation - factorising);
+        self.timings.solves += 1;
+        r
+    }
+}
+
+impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
+    fn unknowns(&self) -> usize {
+        self.dofs.n_total
+    }
+
+    fn free(&self) -> usize {
+        self.dofs.n_free
+    }
+
+    /// x_c = (λ − 1) d_c on the prescribed dofs.
+    fn apply_load(&self, x: &mut [f64], load: f64) {
+        self.dofs.apply_stretch(x, load);
+    }
+
+    fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
+        let t = Instant::now();
+        let r = self.asm.assemble(x, self.material, tangent);
+        if tangent {
+            self.timings.assembly += t.elapsed();
+            self.timings.assemblies += 1;
+        } else {
+            self.timings.residual_assembly += t.elapsed();
+            self.timings.residual_assemblies += 1;
+        }
+        r
+    }
+
+    /// σ: the largest stress magnitude of the last assembly plus the floor \[kPa\].
+    fn scale(&self) -> f64 {
+        self.asm.stress_scale + self.stress_floor
+    }
+
+    /// max(‖R_u‖₂ / (σ A), ‖R_p‖₂ / V).
+    fn residual_norm(&self, scale: f64) -> f64 {
+        let (nu, nf) = (self.dofs.n_free_u, self.dofs.n_free);
+        let r2 = self.mesh.radius.powi(2);
+        let ru = norm2(&self.asm.residual[..nu]) / (scale * PI * r2);
+        let rp = norm2(&self.asm.residual[nu..nf]) / (PI * r2 * self.mesh.length);
+        ru.max(rp)
+    }
+
+    /// max(‖Δu‖_∞ / L, ‖Δp‖_∞ / σ).
+    fn increment_norm(&self, dx: &[f64], step: f64, scale: f64) -> f64 {
+        let nu = self.dofs.n_free_u;
+        let du = norm_inf(&dx[..nu]) * step / self.mesh.length;
+        let dp = norm_inf(&dx[nu..]) * step / scale;
+        du.max(dp)
+    }
+
+    /// Factorises the tangent just assembled and solves K Δx = −R.
+    fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
+        if let Some(k) = self.asm.values.iter().position(|v| !v.is_finite()) {
+            return Err(StepFailure::Material(crate::Error::NonFinite {
+                quantity: "assembled tangent",
+                value: self.asm.values[k],
+                context: format!("at nonzero {k}"),
+            }));
+        }
+        self.linear
+            .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
+            .map_err(|detail| StepFailure::SingularTangent { detail })?;
+        for (f, r) in self.rhs.iter_mut().zip(&self.asm.residual) {
+            *f = -r;
+        }
+        self.solve_free(dx)
+    }
+
+    /// K_ff v_f = −K_fc d_c, v_c = d_c, with the last factorisation (the tangent at the previous
+    /// iterate, within tolerance) preconditioning GMRES on the current tangent.
+    fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure> {
+        let nf = self.dofs.n_free;
+        for (f, g) in self.rhs.iter_mut().zip(&self.asm.rate_force) {
+            *f = -g;
+        }
+        self.solve_free(&mut rate[..nf])?;
+        rate[nf..].copy_from_slice(&self.dofs.prescribed_rate);
+        Ok(())
+    }
+}

@@ -1,0 +1,487 @@
+//! Models from choices: the scene's material and activation ([`Models`]) build the activation
+//! law, the coupling and the muscle of a [`ModelChoice`] (law × coupling × damage); an
+//! [`EnergySpec`] (a shipped energy by name, parameters by name) builds an [`Energy`] from the
+//! registry [`crate::energy::SHIPPED`]. The scene and every study build their models here.
+
+use crate::active::{
+    ActiveCurve, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
+    ImplicitLaw, Law,
+};
+use crate::app_error::SpecError;
+use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
+use crate::{Muscle, StrainEnergy};
+use serde::de::{MapAccess, Visitor};
+use serde::ser::SerializeMap;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use std::fmt;
+
+/// An activation law by name (`law = "implicit"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawKind {
+    /// The chapter's exact fit, eq. (13) solved numerically ([`ImplicitLaw`]).
+    #[default]
+    Implicit,
+    /// The chapter's closed form, eq. (14) ([`ExplicitLaw`]).
+    Explicit,
+    /// The energy-consistent fit ([`EnergyLaw`]).
+    Energy,
+}
+
+impl LawKind {
+    /// Name in scene files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::Implicit => "implicit",
+            LawKind::Explicit => "explicit",
+            LawKind::Energy => "energy",
+        }
+    }
+}
+
+/// A coupling by name (`coupling = "frozen"`); the frozen model's tangent is the scene's
+/// `frozen_tangent`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CouplingKind {
+    /// The chapter's model: γ held in the stress ([`Coupling::Frozen`]).
+    #[default]
+    Frozen,
+    /// Truly hyperelastic: Ψ(F) = Ŵ(F, g(λ_f(F))) ([`Coupling::Consistent`]).
+    Consistent,
+}
+
+impl CouplingKind {
+    /// Name in scene files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            CouplingKind::Frozen => "frozen",
+            CouplingKind::Consistent => "consistent",
+        }
+    }
+}
+
+/// One activation model: law, coupling, damage.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelChoice {
+    /// Activation law.
+    pub law: LawKind,
+    /// Coupling.
+    pub coupling: CouplingKind,
+    /// Damage d ∈ [0, 1].
+    pub damage: f64,
+}
+
+/// Every law × coupling × damage, in that order of nesting.
+pub fn product(laws: &[LawKind], couplings: &[CouplingKind], damages: &[f64]) -> Vec<ModelChoice> {
+    let mut models = Vec::with_capacity(laws.len() * couplings.len() * damages.len());
+    for &law in laws {
+        for &coupling in couplings {
+            for &damage in damages {
+                models.push(ModelChoice {
+                    law,
+                    coupling,
+                    damage,
+                });
+            }
+        }
+    }
+    models
+}
+
+/// The material and the activation every model of a scene shares.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Models {
+    /// The passive energy.
+    pub energy: Energy,
+    /// Fibre direction (unit). The tests are defined relative to it, so any direction gives the
+    /// same curves; the cylinder's axis is aligned with it.
+    pub fibre: [f64; 3],
+    /// Active curve.
+    pub curve: ActiveCurve,
+    /// Explicit-law coefficients (a, b).
+    pub explicit: (f64, f64),
+    /// Tangent used by the frozen model.
+    pub frozen_tangent: FrozenTangent,
+    /// What the energy law does below λ_min.
+    pub below_minimum: BelowMinimum,
+}
+
+impl Models {
+    /// The chapter's: its energy, active curve and explicit law, fibres along e₁, exact frozen
+    /// tangent, the zero-work energy law below λ_min.
+    pub fn paper() -> Self {
+        Self {
+            energy: Energy::GiantesioMusesti(GiantesioMusesti::paper()),
+            fibre: [1.0, 0.0, 0.0],
+            curve: ActiveCurve::paper(),
+            explicit: ExplicitLaw::paper().coefficients(),
+            frozen_tangent: FrozenTangent::default(),
+            below_minimum: BelowMinimum::default(),
+        }
+    }
+
+    /// Whether `law` can be built on this material: the explicit law (eq. (14)) is derived
+    /// for the chapter's energy only; the error is the rule, in words.
+    pub fn supports(&self, law: LawKind) -> Result<(), String> {
+        match (law, &self.energy) {
+            (LawKind::Explicit, Energy::GiantesioMusesti(_)) | (LawKind::Implicit, _) => Ok(()),
+            (LawKind::Energy, _) => Ok(()),
+            (LawKind::Explicit, other) => Err(format!(
+                "the explicit law (eq. (14)) is derived for the giantesio-musesti energy; material.energy is {}",
+                other.name()
+            )),
+        }
+    }
+
+    /// The chapter's energy with this material's parameters, or the chapter's own if the material
+    /// is another energy: what the explicit law is built on.
+    pub fn explicit_energy(&self) -> GiantesioMusesti {
+        match &self.energy {
+            Energy::GiantesioMusesti(gm) => *gm,
+            _ => GiantesioMusesti::paper(),
+        }
+    }
+
+    /// The activation law `kind` on this material and curve.
+    pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
+        Ok(match kind {
+            LawKind::Implicit => Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve)),
+            LawKind::Energy => Law::Energy(
+                EnergyLaw::new(self.energy.clone(), self.curve).below_minimum(self.below_minimum),
+            ),
+            LawKind::Explicit => Law::Explicit(ExplicitLaw::new(
+                self.explicit.0,
+                self.explicit.1,
+                self.explicit_energy(),
+                self.curve,
+            )?),
+        })
+    }
+
+    /// The coupling `kind`, with this material's frozen tangent.
+    pub fn coupling(&self, kind: CouplingKind) -> Coupling {
+        match kind {
+            CouplingKind::Consistent => Coupling::Consistent,
+            CouplingKind::Frozen => Coupling::Frozen(self.frozen_tangent),
+        }
+    }
+
+    /// The active muscle of `model`.
+    pub fn muscle(&self, model: ModelChoice) -> crate::Result<Muscle<Energy>> {
+        Muscle::new(
+            self.energy.clone(),
+            self.law(model.law)?,
+            model.damage,
+            self.coupling(model.coupling),
+        )
+    }
+
+    /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
+    pub fn constant(&self, gamma: f64) -> crate::Result<Muscle<Energy>> {
+        Muscle::new(
+            self.energy.clone(),
+            Law::Constant(ConstantLaw::new(gamma)?),
+            0.0,
+            Coupling::Consistent,
+        )
+    }
+
+    /// The passive material.
+    pub fn passive(&self) -> Muscle<Energy> {
+        Muscle::passive(self.energy.clone())
+    }
+
+    /// `giantesio-musesti, explicit law, frozen coupling, d = 0`.
+    pub fn label(&self, m: &ModelChoice) -> String {
+        format!(
+            "{}, {} law, {} coupling, d = {}",
+            self.energy.name(),
+            m.law.name(),
+            m.coupling.name(),
+            m.damage
+        )
+    }
+}
+
+/// A shipped energy by name with its parameters by name (`{ energy = "ehret-bol-itskov",
+/// alpha = 10.0 }`); a parameter left out takes the chapter's value of that energy
+/// ([`crate::energy::Parameter::default`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct EnergySpec {
+    /// Name of a shipped energy (default: the first, the chapter's).
+    pub energy: String,
+    /// Parameters as given, in the order written.
+    pub parameters: Vec<(String, f64)>,
+}
+
+impl Default for EnergySpec {
+    fn default() -> Self {
+        Self {
+            energy: SHIPPED[0].name.to_string(),
+            parameters: Vec::new(),
+        }
+    }
+}
+
+fn parameter_list(shipped: &ShippedEnergy) -> String {
+    let v: Vec<String> = shipped
+        .parameters
+        .iter()
+        .map(|p| format!("{} [{}]", p.name, p.unit))
+        .collect();
+    v.join(", ")
+}
+
+impl EnergySpec {
+    /// The value of parameter `name` as given.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.parameters
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| *v)
+    }
+
+    /// The energy it describes, validated; errors name the key relative to the spec (`energy`,
+    /// `mu`).
+    pub fn build(&self) -> Result<Energy, SpecError> {
+        let Some(shipped) = ShippedEnergy::find(&self.energy) else {
+            let names: Vec<&str> = SHIPPED.iter().map(|e| e.name).collect();
+            return Err(SpecError::new(
+                "energy",
+                format!("{:?}", self.energy),
+                format!("unknown energy; the shipped ones are {}", names.join(", ")),
+            ));
+        };
+        if let Some((name, value)) = self
+            .parameters
+            .iter()
+            .find(|(n, _)| !shipped.parameters.iter().any(|p| p.name == n))
+        {
+            return Err(SpecError::new(
+                name.as_str(),
+                value,
+                format!(
+                    "unknown field: the {} energy has no parameter {name}; its parameters are {}",
+                    shipped.name,
+                    parameter_list(shipped)
+                ),
+            ));
+        }
+        let mut values = Vec::with_capacity(shipped.parameters.len());
+        for p in shipped.parameters {
+            match self.get(p.name).or(p.default) {
+                Some(v) => values.push(v),
+                None => {
+                    return Err(SpecError::new(
+                        p.name,
+                        "(missing)",
+                        format!(
+                            "the {} energy has no chapter value: give {} [{}]",
+                            shipped.name, p.name, p.unit
+                        ),
+                    ))
+                }
+            }
+        }
+        shipped.build(&values).map_err(|e| SpecError::model("", e))
+    }
+
+    /// The spec of a built energy: its name and every parameter it holds, given or default (what
+    /// a printed scene shows, so that it is the energy that runs).
+    pub fn written(e: &Energy) -> Self {
+        Self {
+            energy: e.name().to_string(),
+            parameters: e
+                .parameters()
+                .iter()
+                .zip(e.parameter_values())
+                .map(|(p, v)| (p.name.to_string(), v))
+                .collect(),
+        }
+    }
+}
+
+impl Serialize for EnergySpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(1 + self.parameters.len()))?;
+        map.serialize_entry("energy", &self.energy)?;
+        for (name, value) in &self.parameters {
+            map.serialize_entry(name, value)?;
+        }
+        map.end()
+    }
+}
+
+/// Reads `energy = "..."` and numeric parameters by name from a table, keeping each value's
+/// position (a wrong type is reported where it is written); `fibre` is read too if `fibre`
+/// is given a place.
+fn visit_energy<'de, A: MapAccess<'de>>(
+    mut map: A,
+    mut fibre: Option<&mut Option<[f64; 3]>>,
+) -> Result<EnergySpec, A::Error> {
+    let mut spec = EnergySpec::default();
+    while let Some(key) = map.next_key::<String>()? {
+        match (key.as_str(), fibre.as_deref_mut()) {
+            ("energy", _) => spec.energy = map.next_value()?,
+            ("fibre", Some(slot)) => *slot = Some(map.next_value()?),
+            _ => {
+                let value = map.next_value::<f64>()?;
+                spec.parameters.push((key, value));
+            }
+        }
+    }
+    Ok(spec)
+}
+
+impl<'de> Deserialize<'de> for EnergySpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = EnergySpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a table { energy = \"name\", parameter = value, ... }")
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<EnergySpec, A::Error> {
+                visit_energy(map, None)
+            }
+        }
+        deserializer.deserialize_map(V)
+    }
+}
+
+/// `[material]`: an energy with its parameters, and the fibre direction.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MaterialSpec {
+    /// The energy.
+    pub energy: EnergySpec,
+    /// Fibre direction m in the reference configuration (normalised; default e₁).
+    pub fibre: Option<[f64; 3]>,
+}
+
+impl Serialize for MaterialSpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let e = &self.energy;
+        let mut map = serializer.serialize_map(Some(2 + e.parameters.len()))?;
+        map.serialize_entry("energy", &e.energy)?;
+        for (name, value) in &e.parameters {
+            map.serialize_entry(name, value)?;
+        }
+        if let Some(f) = &self.fibre {
+            map.serialize_entry("fibre", f)?;
+        }
+        map.end()
+    }
+}
+
+impl<'de> Deserialize<'de> for MaterialSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = MaterialSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str(
+                    "a table { energy = \"name\", parameter = value, ..., fibre = [x, y, z] }",
+                )
+            }
+            fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<MaterialSpec, A::Error> {
+                let mut fibre = None;
+                let energy = visit_energy(map, Some(&mut fibre))?;
+                Ok(MaterialSpec { energy, fibre })
+            }
+        }
+        deserializer.deserialize_map(V)
+    }
+}
+
+impl MaterialSpec {
+    /// The energy and the unit fibre direction; errors name keys relative to `[material]`.
+    pub fn build(&self) -> Result<(Energy, [f64; 3]), SpecError> {
+        let energy = self.energy.build()?;
+        let fibre = self.fibre.unwrap_or([1.0, 0.0, 0.0]);
+        let norm = fibre.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(norm.is_finite() && norm > 1e-12) {
+            let shown: Vec<String> = fibre.iter().map(|x| x.to_string()).collect();
+            return Err(SpecError::new(
+                "fibre",
+                format!("[{}]", shown.join(", ")),
+                "the fibre direction must be a finite, non-zero vector",
+            ));
+        }
+        Ok((energy, fibre.map(|x| x / norm)))
+    }
+}
+
+/// `[activation]`: the active curve, the explicit law's coefficients and the options every model
+/// shares ([`Models::from_spec`]), and the studies' default law, coupling and damage values.
+/// `None` is the chapter's value.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ActivationSpec {
+    /// λ_min [-] (Table 2).
+    pub lambda_min: Option<f64>,
+    /// λ_opt [-].
+    pub lambda_opt: Option<f64>,
+    /// k [-].
+    pub k: Option<f64>,
+    /// P_opt \[kPa\].
+    pub p_opt: Option<f64>,
+    /// Default law of the studies.
+    pub law: Option<LawKind>,
+    /// Default coupling of the studies.
+    pub coupling: Option<CouplingKind>,
+    /// Tangent of the frozen model.
+    pub frozen_tangent: Option<FrozenTangent>,
+    /// What the energy law does below λ_min.
+    pub below_minimum: Option<BelowMinimum>,
+    /// Default damage values d ∈ [0, 1].
+    pub damage: Option<Vec<f64>>,
+    /// Coefficients of the explicit law (eq. (14)).
+    pub explicit: Option<ExplicitSpec>,
+}
+
+/// `explicit = { a = 1.0133, b = 0.2050 }`.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExplicitSpec {
+    /// a [-].
+    pub a: Option<f64>,
+    /// b [-].
+    pub b: Option<f64>,
+}
+
+impl Models {
+    /// The models of a `[material]` and an `[activation]` as written: every value left out is the
+    /// chapter's, every number is validated by the core constructor that owns it, and errors name
+    /// the key as a scene writes it (`material.mu`, `activation.explicit.a`). The activation's
+    /// law, coupling and damage values are the studies' defaults, not read here. The scene
+    /// resolves its tables here, and so does the Python package's `Material`.
+    pub fn from_spec(
+        material: &MaterialSpec,
+        activation: &ActivationSpec,
+    ) -> Result<Self, SpecError> {
+        let (energy, fibre) = material.build().map_err(|e| e.within("material"))?;
+        let act = activation;
+        let p = ActiveCurve::paper();
+        let curve = ActiveCurve::new(
+            act.lambda_min.unwrap_or(p.lambda_min()),
+            act.lambda_opt.unwrap_or(p.lambda_opt()),
+            act.k.unwrap_or(p.k()),
+            act.p_opt.unwrap_or(p.p_opt()),
+        )
+        .map_err(|e| SpecError::model("activation", e))?;
+        let (a, b) = ExplicitLaw::paper().coefficients();
+        let ex = act.explicit.clone().unwrap_or_default();
+        let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
+        ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
+            .map_err(|e| SpecError::model("activation.explicit", e))?;
+        Ok(Self {
+            energy,
+            fibre,
+            curve,
+            explicit,
+            frozen_tangent: act.frozen_tangent.unwrap_or_default(),
+            below_minimum: act.below_minimum.unwrap_or_default(),
+        })
+    }
+}

@@ -1,0 +1,495 @@
+//! Cylinder studies (`kind = "cylinder"`): the axisymmetric FE cylinder of the chapter's
+//! numerical validation ([`crate::fem`]), one load sweep per damage value (in parallel), each
+//! next to the homogeneous (0D) curve of the same model.
+
+use super::spec::StretchSpec;
+use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
+use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::app_error::{AppError, SpecError};
+use crate::fem::solver::MIN_TOLERANCE;
+use crate::fem::{
+    AxisymmetricSolver, Bases, Element, FemError, Mesh, Progress as FemProgress, SolverOptions,
+    VtkOutput,
+};
+use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
+use crate::stability::diagnose_axisymmetric;
+use crate::uniaxial::along_fibres;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// Scene names of [`Bases`] (serde's remote definition: the FE solver's own type).
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Bases", rename_all = "kebab-case")]
+enum BasesDef {
+    /// u_r free on the bases (homogeneous solution).
+    Sliding,
+    /// u_r = 0 on the bases.
+    Clamped,
+}
+
+/// Scene names of [`Element`] (serde's remote definition: the FE solver's own type).
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Element")]
+enum ElementDef {
+    /// Taylor–Hood: biquadratic displacement, continuous bilinear pressure.
+    #[serde(rename = "Q2/Q1")]
+    Q2Q1,
+    /// Bilinear displacement, one pressure per cell.
+    #[serde(rename = "Q1/P0")]
+    Q1P0,
+}
+
+fn clamped() -> Bases {
+    Bases::Clamped
+}
+
+/// `[[study]] kind = "cylinder"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CylinderSpec {
+    /// Label (default: `cylinder <bases> <law> <coupling>`).
+    pub name: Option<String>,
+    /// Target stretches (required).
+    pub stretch: Option<StretchSpec>,
+    /// Damage values, one FE sweep each (default: `activation.damage`).
+    pub damage: Option<Vec<f64>>,
+    /// Radius R (default 1).
+    pub radius: Option<f64>,
+    /// Length L (default 4).
+    pub length: Option<f64>,
+    /// Cells in r (default 6).
+    pub nr: Option<i64>,
+    /// Cells in z (default 24).
+    pub nz: Option<i64>,
+    /// Middle/base cell-height ratio ≥ 1 (default 1: uniform).
+    pub grading: Option<f64>,
+    /// `clamped` (default) or `sliding`.
+    #[serde(default = "clamped", with = "BasesDef")]
+    pub bases: Bases,
+    /// `"Q2/Q1"` (default) or `"Q1/P0"`.
+    #[serde(default, with = "ElementDef")]
+    pub element: Element,
+    /// Activation law (default `activation.law`).
+    pub law: Option<LawKind>,
+    /// Coupling (default `activation.coupling`).
+    pub coupling: Option<CouplingKind>,
+    /// Stretches at which VTK fields are written (must be among the stretches; default none).
+    pub vtk: Option<Vec<f64>>,
+    /// Newton tolerance (default 1e-10).
+    pub tolerance: Option<f64>,
+}
+
+/// Keys a cylinder study does not take, and what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    ("laws", "a cylinder study takes one law: law = \"...\""),
+    (
+        "couplings",
+        "a cylinder study takes one coupling: coupling = \"...\"",
+    ),
+];
+
+/// A validated cylinder study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CylinderStudy {
+    /// Label.
+    pub name: String,
+    /// Radius R.
+    pub radius: f64,
+    /// Length L.
+    pub length: f64,
+    /// Cells in r.
+    pub nr: usize,
+    /// Cells in z.
+    pub nz: usize,
+    /// Middle/base cell-height ratio.
+    pub grading: f64,
+    /// Base conditions.
+    pub bases: Bases,
+    /// Finite element.
+    pub element: Element,
+    /// Target stretches, ascending.
+    pub stretches: Vec<f64>,
+    /// Activation law.
+    pub law: LawKind,
+    /// Coupling.
+    pub coupling: CouplingKind,
+    /// Damage values, one FE sweep each.
+    pub damages: Vec<f64>,
+    /// Stretches with VTK output.
+    pub vtk: Vec<f64>,
+    /// Newton tolerance.
+    pub tolerance: f64,
+}
+
+/// `clamped` or `sliding`.
+pub fn bases_name(b: Bases) -> &'static str {
+    match b {
+        Bases::Clamped => "clamped",
+        Bases::Sliding => "sliding",
+    }
+}
+
+/// Validates `spec` against the scene's defaults; returns the study and the spec with every
+/// default written out.
+pub fn resolve(
+    spec: &CylinderSpec,
+    d: &Defaults,
+) -> Result<(CylinderStudy, CylinderSpec), SpecError> {
+    let stretches = required_stretches(&spec.stretch)?;
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
+    let length = positive("length", spec.length.unwrap_or(4.0))?;
+    let nr = cell_count("nr", spec.nr.unwrap_or(6))?;
+    let nz = cell_count("nz", spec.nz.unwrap_or(24))?;
+    let grading = grading("grading", spec.grading.unwrap_or(1.0))?;
+    let tolerance = positive("tolerance", spec.tolerance.unwrap_or(1e-10))?;
+    if tolerance < MIN_TOLERANCE {
+        return Err(SpecError::new(
+            "tolerance",
+            format!("{tolerance:e}"),
+            format!(
+                "must be at least 4 ε = {MIN_TOLERANCE:.1e}: a scaled residual of f64 numbers does not go below its round-off"
+            ),
+        ));
+    }
+    let law = spec.law.unwrap_or(d.law);
+    d.models
+        .supports(law)
+        .map_err(|rule| SpecError::new("law", "\"explicit\"", rule))?;
+    let coupling = spec.coupling.unwrap_or(d.coupling);
+    let vtk = spec.vtk.clone().unwrap_or_default();
+    for (j, v) in vtk.iter().enumerate() {
+        if !stretches.iter().any(|l| (l - v).abs() < 1e-12) {
+            return Err(SpecError::new(
+                format!("vtk[{j}]"),
+                v,
+                "VTK output is written only at computed stretches: add it to stretch",
+            ));
+        }
+    }
+    let name = spec.name.clone().unwrap_or_else(|| {
+        format!(
+            "cylinder {} {} {}",
+            bases_name(spec.bases),
+            law.name(),
+            coupling.name()
+        )
+    });
+    let resolved = CylinderSpec {
+        name: Some(name.clone()),
+        stretch: spec.stretch.clone(),
+        damage: Some(damage.clone()),
+        radius: Some(radius),
+        length: Some(length),
+        nr: Some(nr as i64),
+        nz: Some(nz as i64),
+        grading: Some(grading),
+        bases: spec.bases,
+        element: spec.element,
+        law: Some(law),
+        coupling: Some(coupling),
+        vtk: Some(vtk.clone()),
+        tolerance: Some(tolerance),
+    };
+    Ok((
+        CylinderStudy {
+            name,
+            radius,
+            length,
+            nr,
+            nz,
+            grading,
+            bases: spec.bases,
+            element: spec.element,
+            stretches,
+            law,
+            coupling,
+            damages: damage,
+            vtk,
+            tolerance,
+        },
+        resolved,
+    ))
+}
+
+/// One converged stretch of a sweep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SweepPoint {
+    /// Stretch λ [-].
+    pub lambda: f64,
+    /// γ at the quadrature point nearest the centre of the cylinder [-].
+    pub gamma_centre: f64,
+    /// Fibre stretch λ_f at the same point [-] (the law's argument there: γ = 0 where
+    /// λ_f ≤ λ_min for the implicit and explicit laws).
+    pub fibre_stretch_centre: f64,
+    /// Nominal axial stress: axial reaction / (π R²) \[kPa\].
+    pub stress: f64,
+    /// Newton iterations to reach this stretch from the previous one.
+    pub newton_iterations: usize,
+    /// The homogeneous (0D) stress of the same model at λ \[kPa\], if it could be computed.
+    pub stress_0d: Option<f64>,
+    /// The homogeneous passive stress P_pas(λ) \[kPa\], if it could be computed.
+    pub passive_0d: Option<f64>,
+    /// The target active stress (1 − d) P_act(λ) \[kPa\].
+    pub active_0d: f64,
+}
+
+/// The sweep of one model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sweep {
+    /// The model.
+    pub model: ModelChoice,
+    /// The model in words (energy, law, coupling, d).
+    pub label: String,
+    /// Free dofs.
+    pub dofs: usize,
+    /// Converged stretches in sweep order.
+    pub points: Vec<SweepPoint>,
+    /// VTK files written, relative to the run's VTK directory.
+    pub vtk_files: Vec<PathBuf>,
+}
+
+impl Sweep {
+    /// max |P_FE − P_0D| / max(|P_0D|, 1 kPa) over the stretches with a 0D value.
+    pub fn max_relative_to_0d(&self) -> f64 {
+        self.points
+            .iter()
+            .filter_map(|p| {
+                p.stress_0d
+                    .map(|zero| (p.stress - zero).abs() / zero.abs().max(1.0))
+            })
+            .fold(0.0f64, f64::max)
+    }
+
+    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs; `None` when no stretch has
+    /// a 0D value (e.g. a sweep that reached no stretch).
+    pub fn worst_against_0d(&self) -> Option<(f64, f64)> {
+        self.points
+            .iter()
+            .filter_map(|p| p.stress_0d.map(|zero| ((p.stress - zero).abs(), p.lambda)))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+    }
+}
+
+/// The sweeps of a cylinder study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CylinderResult {
+    /// The energy's name.
+    pub energy: String,
+    /// Base conditions.
+    pub bases: Bases,
+    /// Finite element.
+    pub element: Element,
+    /// One sweep per damage value, in the study's order.
+    pub sweeps: Vec<Sweep>,
+}
+
+/// A sweep that stopped, in words: how far it got and why.
+fn describe_failure(f: &FemError) -> String {
+    match f {
+        FemError::TargetNotReached {
+            target,
+            reached,
+            attempted,
+            cause,
+            ..
+        } => format!(
+            "stopped before target lambda = {target}: converged up to lambda = {reached}; \
+             the step to {attempted:.5} failed even at the smallest load step ({cause})"
+        ),
+        other => other.to_string(),
+    }
+}
+
+impl CylinderStudy {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: {} × {} cells, {} stretches, {} FE sweep(s)",
+            self.name,
+            self.nr,
+            self.nz,
+            self.stretches.len(),
+            self.damages.len()
+        )
+    }
+
+    /// Runs one FE sweep per damage value (in parallel). A sweep that stops early (the material
+    /// or the solver gives up) is a failure with a diagnosis of the failed state; a model or
+    /// mesh that cannot be built is an error.
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        let bases = bases_name(self.bases);
+        let choices: Vec<ModelChoice> = self
+            .damages
+            .iter()
+            .map(|&d| ModelChoice {
+                law: self.law,
+                coupling: self.coupling,
+                damage: d,
+            })
+            .collect();
+        for m in &choices {
+            ctx.progress.log(&format!(
+                "{}: {} bases, {}, R = {}, L = {}, {} × {} {} cells (grading {})",
+                self.name,
+                bases,
+                models.label(m),
+                self.radius,
+                self.length,
+                self.nr,
+                self.nz,
+                self.element,
+                self.grading
+            ));
+        }
+        ctx.progress
+            .start(&self.name, choices.len() * self.stretches.len());
+        let sweeps: Vec<Result<(Sweep, Vec<Failure>), AppError>> = choices
+            .par_iter()
+            .map(|m| self.sweep(models, m, ctx))
+            .collect();
+        ctx.progress.finish();
+        let mut result = CylinderResult {
+            energy: crate::StrainEnergy::name(&models.energy).to_string(),
+            bases: self.bases,
+            element: self.element,
+            sweeps: Vec::with_capacity(sweeps.len()),
+        };
+        let mut failures = Vec::new();
+        let mut details = vec![format!(
+            "R = {}, L = {}, {} × {} {} cells (grading {}), {bases} bases, {} stretches",
+            self.radius,
+            self.length,
+            self.nr,
+            self.nz,
+            self.element,
+            self.grading,
+            self.stretches.len()
+        )];
+        for (s, m) in sweeps.into_iter().zip(&choices) {
+            // A sweep that cannot start (model, mesh, memory) costs only its own model.
+            let (sweep, stops) = match s {
+                Ok(s) => s,
+                Err(e) => {
+                    details.push(format!("d = {}: not run (see notes)", m.damage));
+                    failures.push(Failure {
+                        model: models.label(m),
+                        message: e.to_string(),
+                    });
+                    continue;
+                }
+            };
+            details.push(format!(
+                "d = {}: {}/{} stretches, {} dofs, max |P_FE − P_0D| / max(|P_0D|, 1 kPa) = {:.2e}{}",
+                sweep.model.damage,
+                sweep.points.len(),
+                self.stretches.len(),
+                sweep.dofs,
+                sweep.max_relative_to_0d(),
+                if stops.is_empty() { "" } else { " (stopped: see notes)" }
+            ));
+            failures.extend(stops);
+            result.sweeps.push(sweep);
+        }
+        let points = result.sweeps.iter().map(|s| s.points.len()).sum();
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::Cylinder,
+            models: choices.len(),
+            points,
+            requested: choices.len() * self.stretches.len(),
+            elapsed: Default::default(),
+            details,
+            failures,
+            result: StudyResult::Cylinder(result),
+        })
+    }
+
+    /// The sweep of model `m`, with the failures of the directions that stopped.
+    fn sweep(
+        &self,
+        models: &Models,
+        m: &ModelChoice,
+        ctx: &RunContext,
+    ) -> Result<(Sweep, Vec<Failure>), AppError> {
+        let muscle = models.muscle(*m)?;
+        let mesh = Mesh::structured(self.radius, self.length, self.nr, self.nz, self.grading)?;
+        let sub = PathBuf::from(format!("{}_d{}", slug(&self.name), m.damage));
+        let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
+            (Some(dir), false) => Some(VtkOutput {
+                directory: dir.join(&sub),
+                stretches: self.vtk.clone(),
+            }),
+            _ => None,
+        };
+        let options = SolverOptions {
+            tolerance: self.tolerance,
+            element: self.element,
+            vtk,
+            cancel: ctx.stop.map(|s| s.flag().clone()),
+            ..SolverOptions::default()
+        };
+        let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
+        let dofs = solver.n_free_dofs();
+        let label = models.label(m);
+        let sweep = solver.sweep_with(&self.stretches, &mut |p| {
+            if let FemProgress::Stretch(r) = p {
+                ctx.progress.point(&format!(
+                    "{}: {label}: lambda = {} solved, P = {:.4} kPa",
+                    self.name, r.stretch, r.nominal_stress
+                ));
+            }
+        })?;
+        let passive = models.passive();
+        let mut points = Vec::with_capacity(sweep.results.len());
+        let mut vtk_files = Vec::new();
+        for r in &sweep.results {
+            points.push(SweepPoint {
+                lambda: r.stretch,
+                gamma_centre: r.gamma_centre,
+                fibre_stretch_centre: r.fibre_stretch_centre,
+                stress: r.nominal_stress,
+                newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
+                stress_0d: along_fibres(&muscle, r.stretch).ok().map(|p| p.stress),
+                passive_0d: along_fibres(&passive, r.stretch).ok().map(|p| p.stress),
+                active_0d: (1.0 - m.damage) * models.curve.value(r.stretch),
+            });
+            if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
+                vtk_files.push(sub.join(file));
+            }
+        }
+        let failures = sweep
+            .failures
+            .iter()
+            .zip(&sweep.failed_trials)
+            .map(|(f, trial)| {
+                let mut message = describe_failure(f);
+                if let (FemError::Cancelled { .. }, Some(reason)) =
+                    (f, ctx.stop.and_then(|s| s.reason()))
+                {
+                    message = format!("{reason}: {message}; the stretches solved before are kept");
+                }
+                if let Some(points) = trial {
+                    let f: Vec<_> = points.iter().map(|q| q.f).collect();
+                    let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);
+                    message.push_str(&format!("; material diagnosis: {diagnosis}"));
+                }
+                Failure {
+                    model: label.clone(),
+                    message,
+                }
+            })
+            .collect();
+        Ok((
+            Sweep {
+                model: *m,
+                label,
+                dofs,
+                points,
+                vtk_files,
+            },
+            failures,
+        ))
+    }
+}

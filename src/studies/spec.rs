@@ -1,0 +1,264 @@
+//! What every study spec shares: stretch lists, the rules of common values (damages, lengths,
+//! cell counts), and the scene-level defaults a study resolves against. Keys in errors are
+//! relative to the study (`stretch.step`, `damage[1]`).
+
+use crate::app_error::SpecError;
+use crate::models::{CouplingKind, LawKind, Models};
+use serde::de::{self, MapAccess, SeqAccess, Visitor};
+use serde::{Deserialize, Deserializer, Serialize};
+use std::fmt;
+use std::path::Path;
+
+/// What a study takes from the scene when it leaves a key out.
+#[derive(Debug, Clone, Copy)]
+pub struct Defaults<'a> {
+    /// The material and activation.
+    pub models: &'a Models,
+    /// `activation.law`.
+    pub law: LawKind,
+    /// `activation.coupling`.
+    pub coupling: CouplingKind,
+    /// `activation.damage`.
+    pub damage: &'a [f64],
+    /// The directory data files are named relative to (the scene file's).
+    pub base: &'a Path,
+}
+
+/// Stretches: `[0.8, 1.0, 1.2]` or `{ from = 0.7, to = 1.6, step = 0.05, extra = [1.17] }`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum StretchSpec {
+    /// Explicit list.
+    List(Vec<f64>),
+    /// Evenly spaced, plus extra points.
+    Range {
+        /// First stretch.
+        from: f64,
+        /// Last stretch (must be reached by whole steps).
+        to: f64,
+        /// Step > 0.
+        step: f64,
+        /// Extra stretches merged in.
+        #[serde(default, skip_serializing_if = "Vec::is_empty")]
+        extra: Vec<f64>,
+    },
+}
+
+// Hand-written so that errors inside keep their position in the file (an untagged derive
+// buffers the value and loses it).
+impl<'de> Deserialize<'de> for StretchSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = StretchSpec;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a list of stretches or a table { from, to, step, extra }")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Self::Value, A::Error> {
+                let mut v = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    v.push(x);
+                }
+                Ok(StretchSpec::List(v))
+            }
+            fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+                const FIELDS: &[&str] = &["from", "to", "step", "extra"];
+                let (mut from, mut to, mut step, mut extra) = (None, None, None, Vec::new());
+                while let Some(key) = map.next_key::<String>()? {
+                    match key.as_str() {
+                        "from" => from = Some(map.next_value::<f64>()?),
+                        "to" => to = Some(map.next_value::<f64>()?),
+                        "step" => step = Some(map.next_value::<f64>()?),
+                        "extra" => extra = map.next_value::<Vec<f64>>()?,
+                        other => return Err(de::Error::unknown_field(other, FIELDS)),
+                    }
+                }
+                Ok(StretchSpec::Range {
+                    from: from.ok_or_else(|| de::Error::missing_field("from"))?,
+                    to: to.ok_or_else(|| de::Error::missing_field("to"))?,
+                    step: step.ok_or_else(|| de::Error::missing_field("step"))?,
+                    extra,
+                })
+            }
+        }
+        deserializer.deserialize_any(V)
+    }
+}
+
+/// `[a, b, c]`.
+pub fn fmt_list(v: &[f64]) -> String {
+    let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+    format!("[{}]", items.join(", "))
+}
+
+impl StretchSpec {
+    /// The stretches: finite, > 0, ascending without duplicates, at most 100 000; errors name
+    /// `key` (`stretch`, `stretch.step`).
+    pub fn resolve(&self, key: &str) -> Result<Vec<f64>, SpecError> {
+        const MAX: usize = 100_000;
+        let mut v = match self {
+            StretchSpec::List(v) => v.clone(),
+            StretchSpec::Range {
+                from,
+                to,
+                step,
+                extra,
+            } => {
+                if !(step.is_finite() && *step > 0.0) {
+                    return Err(SpecError::new(
+                        format!("{key}.step"),
+                        step,
+                        "must be finite and > 0",
+                    ));
+                }
+                if !(from.is_finite() && to.is_finite() && to >= from) {
+                    return Err(SpecError::new(
+                        format!("{key}.to"),
+                        to,
+                        format!("must be finite and ≥ from = {from}"),
+                    ));
+                }
+                let n = ((to - from) / step).round();
+                if ((from + n * step) - to).abs() > 1e-9 * step.max(1.0) {
+                    return Err(SpecError::new(
+                        format!("{key}.step"),
+                        step,
+                        format!("from = {from} must reach to = {to} in whole steps"),
+                    ));
+                }
+                if n >= MAX as f64 {
+                    return Err(SpecError::new(
+                        format!("{key}.step"),
+                        step,
+                        format!("gives more than {MAX} stretches"),
+                    ));
+                }
+                // Rounded to 10 decimals so that 0.65 + 0.01 i prints as the decimal it means.
+                let mut v: Vec<f64> = (0..=n as usize)
+                    .map(|i| ((from + i as f64 * step) * 1e10).round() / 1e10)
+                    .collect();
+                v.extend_from_slice(extra);
+                v
+            }
+        };
+        non_empty(
+            key,
+            &v,
+            "the stretch list is empty: give at least one stretch",
+        )?;
+        if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+            return Err(SpecError::new(
+                key,
+                bad,
+                "every stretch must be finite and > 0",
+            ));
+        }
+        v.sort_by(f64::total_cmp);
+        v.dedup();
+        Ok(v)
+    }
+}
+
+/// The stretches of an optional `stretch` key; errors name `stretch`.
+pub fn optional_stretches(spec: &Option<StretchSpec>) -> Result<Option<Vec<f64>>, SpecError> {
+    spec.as_ref().map(|s| s.resolve("stretch")).transpose()
+}
+
+/// The stretches of a required `stretch` key.
+pub fn required_stretches(spec: &Option<StretchSpec>) -> Result<Vec<f64>, SpecError> {
+    optional_stretches(spec)?
+        .ok_or_else(|| SpecError::new("stretch", "(missing)", "every study needs its stretches"))
+}
+
+/// Damage values: at least one, each in [0, 1].
+pub fn damages(key: &str, v: &[f64]) -> Result<Vec<f64>, SpecError> {
+    non_empty(
+        key,
+        v,
+        "the damage list is empty: give at least one d ∈ [0, 1]",
+    )?;
+    for (i, d) in v.iter().enumerate() {
+        if !(0.0..=1.0).contains(d) {
+            return Err(SpecError::new(
+                format!("{key}[{i}]"),
+                d,
+                "damage d must lie in [0, 1]",
+            ));
+        }
+        if let Some(j) = v[..i].iter().position(|e| e == d) {
+            return Err(SpecError::new(
+                format!("{key}[{i}]"),
+                d,
+                format!("{key}[{j}] is the same damage: each value is one model and one set of outputs, give it once"),
+            ));
+        }
+    }
+    Ok(v.to_vec())
+}
+
+/// A list that must not be empty; `rule` says what to give.
+pub fn non_empty<T>(key: &str, v: &[T], rule: &str) -> Result<(), SpecError> {
+    if v.is_empty() {
+        Err(SpecError::new(key, "[]", rule))
+    } else {
+        Ok(())
+    }
+}
+
+/// A length or tolerance: finite and > 0.
+pub fn positive(key: &str, v: f64) -> Result<f64, SpecError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(SpecError::new(key, v, "must be finite and > 0"))
+    }
+}
+
+/// A number of cells along one direction: an integer in [1, 10000].
+pub fn cell_count(key: &str, v: i64) -> Result<usize, SpecError> {
+    if (1..=10_000).contains(&v) {
+        Ok(v as usize)
+    } else {
+        Err(SpecError::new(
+            key,
+            v,
+            "the number of cells must be an integer in [1, 10000]",
+        ))
+    }
+}
+
+/// The middle/base cell-height ratio of a cylinder mesh: finite and ≥ 1.
+pub fn grading(key: &str, v: f64) -> Result<f64, SpecError> {
+    if v.is_finite() && v >= 1.0 {
+        Ok(v)
+    } else {
+        Err(SpecError::new(
+            key,
+            v,
+            "must be finite and ≥ 1 (1 = uniform)",
+        ))
+    }
+}
+
+/// Laws that must all be buildable on the material (`laws[j]` in errors).
+pub fn supported_laws(key: &str, laws: &[LawKind], models: &Models) -> Result<(), SpecError> {
+    for (j, l) in laws.iter().enumerate() {
+        models
+            .supports(*l)
+            .map_err(|rule| SpecError::new(format!("{key}[{j}]"), "\"explicit\"", rule))?;
+    }
+    Ok(())
+}
+
+/// Active laws need at least one coupling.
+pub fn couplings_for(laws: &[LawKind], couplings: &[CouplingKind]) -> Result<(), SpecError> {
+    if !laws.is_empty() && couplings.is_empty() {
+        Err(SpecError::new(
+            "couplings",
+            "[]",
+            "active laws need at least one coupling",
+        ))
+    } else {
+        Ok(())
+    }
+}

@@ -1,0 +1,288 @@
+//! Stability studies (`kind = "stability"`): along the uniaxial path along the fibres, for each
+//! law × coupling × d, where the curve softens (dP/dλ < 0) and where strong ellipticity is lost
+//! ([`crate::stability::along_fibres_stability`]).
+
+use super::spec::StretchSpec;
+use super::spec::{couplings_for, damages, optional_stretches, supported_laws, Defaults};
+use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::app_error::{AppError, SpecError};
+use crate::energy::Energy;
+use crate::models::{product, CouplingKind, LawKind, ModelChoice, Models};
+use crate::stability::along_fibres_stability;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// `[[study]] kind = "stability"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StabilitySpec {
+    /// Label (default `stability along fibres`).
+    pub name: Option<String>,
+    /// Stretches along the fibres (default 0.65:0.005:1.60).
+    pub stretch: Option<StretchSpec>,
+    /// Damage values (default 0 and 0.5).
+    pub damage: Option<Vec<f64>>,
+    /// Include the passive material (default true).
+    pub passive: Option<bool>,
+    /// Laws (default all three; without the explicit law for energies it is not derived for).
+    pub laws: Option<Vec<LawKind>>,
+    /// Couplings (default both).
+    pub couplings: Option<Vec<CouplingKind>>,
+    /// Sampled reference normals of the strong-ellipticity check (default 300).
+    pub normals: Option<i64>,
+}
+
+/// Keys a stability study does not take, and what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    ("law", "it takes a list: laws = [...]"),
+    ("coupling", "it takes a list: couplings = [...]"),
+];
+
+/// A validated stability study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityStudy {
+    /// Label.
+    pub name: String,
+    /// Stretches along the fibres, ascending.
+    pub stretches: Vec<f64>,
+    /// Whether to include the passive material.
+    pub passive: bool,
+    /// Active models: laws × couplings × damages.
+    pub models: Vec<ModelChoice>,
+    /// Sampled reference normals of the ellipticity check.
+    pub normals: usize,
+}
+
+/// Validates `spec`; returns the study and the spec with every default written out.
+pub fn resolve(
+    spec: &StabilitySpec,
+    d: &Defaults,
+) -> Result<(StabilityStudy, StabilitySpec), SpecError> {
+    let stretch = spec.stretch.clone().unwrap_or(StretchSpec::Range {
+        from: 0.65,
+        to: 1.6,
+        step: 0.005,
+        extra: vec![],
+    });
+    let stretches = match optional_stretches(&spec.stretch)? {
+        Some(l) => l,
+        None => stretch.resolve("stretch")?,
+    };
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(&[0.0, 0.5]))?;
+    let laws = match &spec.laws {
+        Some(l) => l.clone(),
+        None => [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
+            .into_iter()
+            .filter(|l| d.models.supports(*l).is_ok())
+            .collect(),
+    };
+    supported_laws("laws", &laws, d.models)?;
+    let couplings = spec
+        .couplings
+        .clone()
+        .unwrap_or_else(|| vec![CouplingKind::Frozen, CouplingKind::Consistent]);
+    couplings_for(&laws, &couplings)?;
+    let normals = spec.normals.unwrap_or(300);
+    if !(1..=100_000).contains(&normals) {
+        return Err(SpecError::new(
+            "normals",
+            normals,
+            "the number of sampled normals must be an integer in [1, 100000]",
+        ));
+    }
+    let passive = spec.passive.unwrap_or(true);
+    let models = product(&laws, &couplings, &damage);
+    if !passive && models.is_empty() {
+        return Err(SpecError::new(
+            "",
+            "(nothing to compute)",
+            "a stability study needs passive = true or laws",
+        ));
+    }
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| "stability along fibres".into());
+    let resolved = StabilitySpec {
+        name: Some(name.clone()),
+        stretch: Some(stretch),
+        damage: Some(damage),
+        passive: Some(passive),
+        laws: Some(laws),
+        couplings: Some(couplings),
+        normals: Some(normals),
+    };
+    Ok((
+        StabilityStudy {
+            name,
+            stretches,
+            passive,
+            models,
+            normals: normals as usize,
+        },
+        resolved,
+    ))
+}
+
+/// One point of a stability curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StabilityPoint {
+    /// Stretch λ [-].
+    pub lambda: f64,
+    /// Nominal stress P \[kPa\].
+    pub stress: f64,
+    /// dP/dλ \[kPa\].
+    pub slope: f64,
+    /// min a·Q(N)a over the sampled normals \[kPa\].
+    pub least: f64,
+    /// The same relative to the tangent's norm [-].
+    pub relative: f64,
+    /// Strongly elliptic (relative > −1e-12).
+    pub elliptic: bool,
+}
+
+/// The stability of one model along the fibres.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityCurve {
+    /// The activation model; `None`: the passive material.
+    pub model: Option<ModelChoice>,
+    /// Points that could be computed.
+    pub points: Vec<StabilityPoint>,
+}
+
+impl StabilityCurve {
+    /// `implicit, frozen` or `passive`.
+    pub fn label(&self) -> String {
+        match self.model {
+            Some(m) => format!("{}, {}", m.law.name(), m.coupling.name()),
+            None => "passive".to_string(),
+        }
+    }
+
+    /// The damage of the model (none for the passive material).
+    pub fn damage(&self) -> Option<f64> {
+        self.model.map(|m| m.damage)
+    }
+
+    /// Maximal runs of consecutive grid points where `flag` holds, as (first λ, last λ).
+    pub fn intervals(&self, flag: impl Fn(&StabilityPoint) -> bool) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        let mut start: Option<f64> = None;
+        let mut last = f64::NAN;
+        for p in &self.points {
+            match (flag(p), start) {
+                (true, None) => start = Some(p.lambda),
+                (false, Some(s)) => {
+                    out.push((s, last));
+                    start = None;
+                }
+                _ => {}
+            }
+            last = p.lambda;
+        }
+        if let Some(s) = start {
+            out.push((s, last));
+        }
+        out
+    }
+}
+
+impl StabilityStudy {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: {} model(s) × {} stretches, {} normals",
+            self.name,
+            self.models.len() + usize::from(self.passive),
+            self.stretches.len(),
+            self.normals
+        )
+    }
+
+    /// Computes every curve (models in parallel); points that cannot be computed are counted in
+    /// a failure, not silently dropped.
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        ctx.progress.log(&self.describe());
+        let mut choices: Vec<Option<ModelChoice>> = Vec::new();
+        if self.passive {
+            choices.push(None);
+        }
+        choices.extend(self.models.iter().copied().map(Some));
+        let computed: Vec<Result<(StabilityCurve, Option<Failure>), AppError>> = choices
+            .par_iter()
+            .map(|m| {
+                let muscle = match m {
+                    None => models.passive(),
+                    Some(m) => models.muscle(*m)?,
+                };
+                Ok(self.curve(&muscle, *m))
+            })
+            .collect();
+        let mut curves = Vec::with_capacity(computed.len());
+        let mut failures = Vec::new();
+        for c in computed {
+            let (curve, failure) = c.map_err(|e| e.within(&self.name))?;
+            curves.push(curve);
+            failures.extend(failure);
+        }
+        let points = curves.iter().map(|c| c.points.len()).sum();
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::Stability,
+            models: curves.len(),
+            points,
+            requested: choices.len() * self.stretches.len(),
+            elapsed: Default::default(),
+            details: vec![format!(
+                "{} stretches in [{}, {}] along the fibres, {} sampled normals",
+                self.stretches.len(),
+                self.stretches.first().copied().unwrap_or(f64::NAN),
+                self.stretches.last().copied().unwrap_or(f64::NAN),
+                self.normals
+            )],
+            failures,
+            result: StudyResult::Stability(curves),
+        })
+    }
+
+    fn curve(
+        &self,
+        muscle: &crate::Muscle<Energy>,
+        model: Option<ModelChoice>,
+    ) -> (StabilityCurve, Option<Failure>) {
+        let mut curve = StabilityCurve {
+            model,
+            points: Vec::with_capacity(self.stretches.len()),
+        };
+        let mut failed = 0;
+        let mut first = None;
+        for &l in &self.stretches {
+            match along_fibres_stability(muscle, l, self.normals) {
+                Ok(p) => curve.points.push(StabilityPoint {
+                    lambda: l,
+                    stress: p.stress,
+                    slope: p.slope,
+                    least: p.ellipticity.least,
+                    relative: p.ellipticity.relative,
+                    elliptic: p.ellipticity.holds(),
+                }),
+                Err(e) => {
+                    failed += 1;
+                    first.get_or_insert((l, e.to_string()));
+                }
+            }
+        }
+        let failure = first.map(|(l, e)| Failure {
+            model: "stability".into(),
+            message: format!(
+                "{}{}: {failed} of {} stretches failed; first at lambda = {l}: {e}",
+                curve.label(),
+                curve
+                    .damage()
+                    .map_or(String::new(), |d| format!(", d = {d}")),
+                self.stretches.len()
+            ),
+        });
+        (curve, failure)
+    }
+}

@@ -1,0 +1,495 @@
+//! Trade-off studies (`kind = "tradeoff"`): speed versus accuracy, measured on both axes at once.
+//!
+//! Every option a user can turn to trade accuracy for speed (activation law, derivative route,
+//! frozen tangent, mesh, element, Newton tolerance, 0D versus FE) is run at each of its variants,
+//! timed (wall time \[s\]: the median and the spread of at least three runs, see
+//! [`measure::time_median`])
+//! and compared with a reference computed at the accurate end of the same option, on what a user
+//! reads off a run: the nominal stress P(λ) over the sweep \[kPa\] (max abs and max rel error), the
+//! activation γ [-] (0D) or the centre γ (FE). The error machinery ([`measure`]) is independent
+//! of the options and is tested on cases with a known answer.
+//!
+//! - [`measure`]: timing, curve errors, speed-up and error ratio, the Pareto front.
+//! - [`routes`]: derivative routes as [`crate::fem::AxisymmetricMaterial`] wrappers (the 9-entry
+//!   oracle route and a central-difference tangent).
+//! - [`groups`]: the options and their variants.
+//!
+//! A scene holds at most one trade-off study: its outputs are `tradeoff.csv`, `tradeoff.md`,
+//! `tradeoff.html` and one `tradeoff_*.png`/`.svg` per option (written by the output layer).
+//!
+//! | key | meaning | default |
+//! |---|---|---|
+//! | `options` | option groups: `activation-law`, `activation-law-fe`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe` | all |
+//! | `stretch` | stretches of every sweep (FE and 0D) | FE: 0.8, 1, 1.17, 1.3; 0D: the first uniaxial study along the fibres, or 0.65:0.01:1.60 |
+//! | `meshes` | `[[nr, nz], ...]` of the mesh option, coarse to fine (the last is the reference) | 2 × 8, 4 × 16, 8 × 32, 16 × 64 |
+//! | `nr`, `nz` | mesh of the other FE options | the first cylinder study's, or 4 × 16 |
+//! | `radius`, `length`, `grading` | the cylinder | the first cylinder study's, or 1, 4, 3 |
+//! | `tolerances` | Newton tolerances, loose to tight (the last is the reference) | 1e-6, 1e-8, 1e-10, 1e-12 |
+
+pub mod groups;
+pub mod measure;
+pub mod routes;
+
+pub use groups::{activation_law_fe_rows, fe_row, fe_run, FeRun};
+pub use measure::{
+    curve_error, pareto_front, time_median, time_runs, CurveError, Measurement, Timing,
+};
+pub use routes::{FiniteDifferenceTangent, OracleRoute};
+
+use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
+use super::{Outcome, RunContext, StudyKind, StudyResult};
+use crate::app_error::{AppError, SpecError};
+use crate::models::Models;
+use groups::{Resolved, Runner};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// The options a user trades, in run order; a scene names them in `options = [...]`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum OptionGroup {
+    /// Activation law, 0D along the fibres.
+    ActivationLaw,
+    /// Activation law in the clamped cylinder (FE).
+    ActivationLawFe,
+    /// Derivative route, at one material point and in the FE.
+    DerivativeRoute,
+    /// Exact versus symmetric frozen tangent (FE).
+    FrozenTangent,
+    /// Mesh refinement of the clamped cylinder.
+    Mesh,
+    /// Element (Q2/Q1 or Q1/P0) in the clamped cylinder.
+    Element,
+    /// Newton tolerance (FE).
+    NewtonTolerance,
+    /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
+    ZeroDVsFe,
+}
+
+impl OptionGroup {
+    /// Every group, in run order.
+    pub const ALL: [Self; 8] = [
+        Self::ActivationLaw,
+        Self::ActivationLawFe,
+        Self::DerivativeRoute,
+        Self::FrozenTangent,
+        Self::Mesh,
+        Self::Element,
+        Self::NewtonTolerance,
+        Self::ZeroDVsFe,
+    ];
+
+    /// The name a scene uses (`activation-law-fe`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::ActivationLaw => "activation-law",
+            Self::ActivationLawFe => "activation-law-fe",
+            Self::DerivativeRoute => "derivative-route",
+            Self::FrozenTangent => "frozen-tangent",
+            Self::Mesh => "mesh",
+            Self::Element => "element",
+            Self::NewtonTolerance => "newton-tolerance",
+            Self::ZeroDVsFe => "zero-d-vs-fe",
+        }
+    }
+}
+
+/// The cylinder every FE variant runs on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry {
+    /// Radius R.
+    pub radius: f64,
+    /// Length L.
+    pub length: f64,
+    /// Middle/base cell-height ratio in z (≥ 1).
+    pub grading: f64,
+}
+
+/// What to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeoffOptions {
+    /// The option groups to measure (run in the order of [`OptionGroup::ALL`]).
+    pub groups: Vec<OptionGroup>,
+    /// The cylinder of every FE variant; `None`: the [`Fallback`]'s.
+    pub geometry: Option<Geometry>,
+    /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
+    pub meshes: Vec<(usize, usize)>,
+    /// Mesh of the FE derivative-route, frozen-tangent, tolerance and sliding (0D vs FE)
+    /// options; `None`: the [`Fallback`]'s.
+    pub fe_mesh: Option<(usize, usize)>,
+    /// Stretches of every FE sweep.
+    pub fe_stretches: Vec<f64>,
+    /// Stretches of the 0D activation-law curves; `None`: the [`Fallback`]'s.
+    pub curve_stretches: Option<Vec<f64>>,
+    /// Newton tolerances, loose to tight; the last is the reference.
+    pub tolerances: Vec<f64>,
+    /// Relative step of the central-difference tangent.
+    pub fd_step: f64,
+}
+
+impl Default for TradeoffOptions {
+    fn default() -> Self {
+        Self {
+            groups: OptionGroup::ALL.to_vec(),
+            geometry: None,
+            meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
+            fe_mesh: None,
+            fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
+            curve_stretches: None,
+            tolerances: vec![1e-6, 1e-8, 1e-10, 1e-12],
+            fd_step: 1e-6,
+        }
+    }
+}
+
+/// What the options leave out, taken from the scene: the first cylinder study's cylinder and mesh
+/// and the first uniaxial study along the fibres' stretches.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fallback {
+    /// The cylinder.
+    pub geometry: Geometry,
+    /// Its mesh (nr, nz).
+    pub cells: (usize, usize),
+    /// Stretches of the 0D curves.
+    pub curve_stretches: Vec<f64>,
+}
+
+impl Default for Fallback {
+    /// R = 1, L = 4, grading 3 on 4 × 16 cells; 0D curves on 0.65:0.01:1.60.
+    fn default() -> Self {
+        Self {
+            geometry: Geometry {
+                radius: 1.0,
+                length: 4.0,
+                grading: 3.0,
+            },
+            cells: (4, 16),
+            curve_stretches: (0..=95).map(|i| 0.65 + 0.01 * i as f64).collect(),
+        }
+    }
+}
+
+/// Everything measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeoffResults {
+    /// One row per variant, options in run order (speed-up, error ratio and Pareto filled in).
+    pub rows: Vec<Measurement>,
+    /// Conclusions with their numbers, one line each.
+    pub findings: Vec<String>,
+}
+
+/// Runs the chosen option groups on `models`, with the geometry and stretches of `o`, or of
+/// `fallback` where `o` leaves them out; one line per measured variant goes to `progress`.
+pub fn run(
+    models: &Models,
+    o: &TradeoffOptions,
+    fallback: &Fallback,
+    progress: &dyn super::Progress,
+) -> Result<TradeoffResults, AppError> {
+    if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
+        return Err(AppError::Invalid(
+            "need at least one mesh, tolerance and FE stretch".into(),
+        ));
+    }
+    let plan = &Resolved {
+        geom: o.geometry.unwrap_or(fallback.geometry),
+        fe_mesh: o.fe_mesh.unwrap_or(fallback.cells),
+        meshes: o.meshes.clone(),
+        fe_stretches: o.fe_stretches.clone(),
+        curve_stretches: o
+            .curve_stretches
+            .clone()
+            .unwrap_or_else(|| fallback.curve_stretches.clone()),
+        tolerances: o.tolerances.clone(),
+        fd_step: o.fd_step,
+    };
+    check_memory(plan, &o.groups)?;
+    let mut runner = Runner {
+        progress,
+        rows: Vec::new(),
+        started: Instant::now(),
+    };
+    let mut findings = Vec::new();
+    for group in OptionGroup::ALL {
+        if !o.groups.contains(&group) {
+            continue;
+        }
+        let (run, findings) = (&mut runner, &mut findings);
+        match group {
+            OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings)?,
+            OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings)?,
+            OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run)?,
+            OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run)?,
+            OptionGroup::Mesh => groups::mesh(models, plan, run, findings)?,
+            OptionGroup::Element => groups::element(models, plan, run, findings)?,
+            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings)?,
+            OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run)?,
+        }
+    }
+    let mut rows = runner.rows;
+    measure::finalise(&mut rows);
+    Ok(TradeoffResults { rows, findings })
+}
+
+/// Checks every mesh the chosen groups solve against the memory limit
+/// ([`crate::fem::memory::default_limit`]) before anything is computed: the FE mesh, the mesh
+/// option's meshes, and the element option's Q2/Q1 reference on twice the FE mesh's cells and
+/// its finest Q1/P0 mesh on four times.
+fn check_memory(plan: &Resolved, groups: &[OptionGroup]) -> Result<(), AppError> {
+    use crate::fem::{Element, MemoryEstimate, SolverOptions};
+    let (nr, nz) = plan.fe_mesh;
+    let mut meshes = vec![(nr, nz, Element::Q2Q1)];
+    if groups.contains(&OptionGroup::Mesh) {
+        meshes.extend(plan.meshes.iter().map(|&(r, z)| (r, z, Element::Q2Q1)));
+    }
+    if groups.contains(&OptionGroup::Element) {
+        meshes.push((2 * nr, 2 * nz, Element::Q2Q1));
+        meshes.push((4 * nr, 4 * nz, Element::Q1P0));
+    }
+    let limit = crate::fem::memory::default_limit();
+    let linear = SolverOptions::default().linear_solver;
+    for (r, z, element) in meshes {
+        MemoryEstimate::structured(r, z, element, linear)
+            .check(limit)
+            .map_err(|e| AppError::from(e).within("before computing"))?;
+    }
+    Ok(())
+}
+
+/// `[[study]] kind = "tradeoff"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TradeoffSpec {
+    /// Label (default `speed versus accuracy`).
+    pub name: Option<String>,
+    /// Stretches of every sweep, FE and 0D.
+    pub stretch: Option<StretchSpec>,
+    /// Radius R of the cylinder.
+    pub radius: Option<f64>,
+    /// Length L of the cylinder.
+    pub length: Option<f64>,
+    /// Cells in r of the FE mesh.
+    pub nr: Option<i64>,
+    /// Cells in z of the FE mesh.
+    pub nz: Option<i64>,
+    /// Middle/base cell-height ratio of the cylinder's mesh.
+    pub grading: Option<f64>,
+    /// Option groups to measure (default all).
+    pub options: Option<Vec<OptionGroup>>,
+    /// Meshes `[nr, nz]` of the mesh option, coarse to fine (the last is the reference).
+    pub meshes: Option<Vec<[i64; 2]>>,
+    /// Newton tolerances of the tolerance option, loose to tight (the last is the reference).
+    pub tolerances: Option<Vec<f64>>,
+}
+
+/// Keys a trade-off study does not take, and why.
+pub const HINTS: &[(&str, &str)] = &[("damage", "every variant runs at d = 0")];
+
+/// A validated trade-off study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TradeoffStudy {
+    /// Label.
+    pub name: String,
+    /// What to run (geometry and FE mesh resolved).
+    pub options: TradeoffOptions,
+}
+
+/// Validates `spec`; returns the study and the spec with every default written out, except the
+/// cylinder and mesh, which [`complete`] fills from the scene's first cylinder study.
+pub fn resolve(spec: &TradeoffSpec) -> Result<(TradeoffStudy, TradeoffSpec), SpecError> {
+    let stretches = optional_stretches(&spec.stretch)?;
+    let defaults = TradeoffOptions::default();
+    let groups = spec
+        .options
+        .clone()
+        .unwrap_or_else(|| defaults.groups.clone());
+    non_empty(
+        "options",
+        &groups,
+        &format!(
+            "name at least one option group of {:?}",
+            OptionGroup::ALL.map(OptionGroup::key)
+        ),
+    )?;
+    for (j, g) in groups.iter().enumerate() {
+        if groups[..j].contains(g) {
+            return Err(SpecError::new(
+                format!("options[{j}]"),
+                format!("{:?}", g.key()),
+                "named twice",
+            ));
+        }
+    }
+    let meshes = match &spec.meshes {
+        None => defaults.meshes.clone(),
+        Some(v) => meshes(v)?,
+    };
+    let tolerances = match &spec.tolerances {
+        None => defaults.tolerances.clone(),
+        Some(v) => tolerances(v)?,
+    };
+    // Checked here; filled in by `complete`.
+    spec.radius.map(|v| positive("radius", v)).transpose()?;
+    spec.length.map(|v| positive("length", v)).transpose()?;
+    spec.grading.map(|g| grading("grading", g)).transpose()?;
+    spec.nr.map(|v| cell_count("nr", v)).transpose()?;
+    spec.nz.map(|v| cell_count("nz", v)).transpose()?;
+
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| "speed versus accuracy".into());
+    let options = TradeoffOptions {
+        groups: groups.clone(),
+        meshes: meshes.clone(),
+        fe_stretches: stretches.clone().unwrap_or(defaults.fe_stretches.clone()),
+        curve_stretches: stretches,
+        tolerances: tolerances.clone(),
+        ..defaults
+    };
+    // Without `stretch` the FE and 0D sweeps take different defaults; the printed scene leaves
+    // it out so that it runs as this one does.
+    let resolved = TradeoffSpec {
+        name: Some(name.clone()),
+        options: Some(groups),
+        meshes: Some(meshes.iter().map(|&(a, b)| [a as i64, b as i64]).collect()),
+        tolerances: Some(tolerances),
+        ..spec.clone()
+    };
+    Ok((TradeoffStudy { name, options }, resolved))
+}
+
+fn meshes(v: &[[i64; 2]]) -> Result<Vec<(usize, usize)>, SpecError> {
+    non_empty(
+        "meshes",
+        v,
+        "give at least one mesh [nr, nz] (the last is the reference)",
+    )?;
+    let mut meshes: Vec<(usize, usize)> = Vec::with_capacity(v.len());
+    for (j, [nr, nz]) in v.iter().enumerate() {
+        let at = format!("meshes[{j}]");
+        let cells = (cell_count(&at, *nr)?, cell_count(&at, *nz)?);
+        if let Some(&(pr, pz)) = meshes.last() {
+            if cells.0 * cells.1 <= pr * pz {
+                return Err(SpecError::new(
+                    at,
+                    format!("[{nr}, {nz}]"),
+                    format!(
+                        "meshes go from coarse to fine (the last is the reference): \
+                         {nr} × {nz} cells is not finer than the {pr} × {pz} before it"
+                    ),
+                ));
+            }
+        }
+        meshes.push(cells);
+    }
+    Ok(meshes)
+}
+
+fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
+    non_empty(
+        "tolerances",
+        v,
+        "give at least one Newton tolerance (the last is the reference)",
+    )?;
+    for (j, t) in v.iter().enumerate() {
+        let at = format!("tolerances[{j}]");
+        if !(t.is_finite() && *t > 0.0 && *t < 1.0) {
+            return Err(SpecError::new(
+                at,
+                t,
+                "a Newton tolerance must lie in (0, 1)",
+            ));
+        }
+        if j > 0 && *t >= v[j - 1] {
+            return Err(SpecError::new(
+                at,
+                t,
+                format!(
+                    "tolerances go from loose to tight (the last is the reference): \
+                     not below the {} before it",
+                    v[j - 1]
+                ),
+            ));
+        }
+    }
+    Ok(v.to_vec())
+}
+
+/// Fills what `spec` left out from the scene's first cylinder study (`fallback`), in the study
+/// and in its resolved spec.
+pub fn complete(
+    study: &mut TradeoffStudy,
+    spec: &TradeoffSpec,
+    resolved: &mut TradeoffSpec,
+    fallback: &Fallback,
+) {
+    let g = Geometry {
+        radius: spec.radius.unwrap_or(fallback.geometry.radius),
+        length: spec.length.unwrap_or(fallback.geometry.length),
+        grading: spec.grading.unwrap_or(fallback.geometry.grading),
+    };
+    // Validated by `resolve`: in [1, 10000].
+    let cells = |v: Option<i64>, fallback: usize| v.map_or(fallback, |v| v as usize);
+    let fe_mesh = (
+        cells(spec.nr, fallback.cells.0),
+        cells(spec.nz, fallback.cells.1),
+    );
+    study.options.geometry = Some(g);
+    study.options.fe_mesh = Some(fe_mesh);
+    resolved.radius = Some(g.radius);
+    resolved.length = Some(g.length);
+    resolved.grading = Some(g.grading);
+    resolved.nr = Some(fe_mesh.0 as i64);
+    resolved.nz = Some(fe_mesh.1 as i64);
+}
+
+impl TradeoffStudy {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: option groups {}",
+            self.name,
+            self.options
+                .groups
+                .iter()
+                .map(|g| g.key())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+
+    /// Measures the study's option groups on `models`.
+    pub fn run(
+        &self,
+        models: &Models,
+        fallback: &Fallback,
+        ctx: &RunContext,
+    ) -> Result<Outcome, AppError> {
+        ctx.progress.log(&format!(
+            "{}: {} option group(s)",
+            self.name,
+            self.options.groups.len()
+        ));
+        let results =
+            run(models, &self.options, fallback, ctx.progress).map_err(|e| e.within(&self.name))?;
+        let measured = results
+            .rows
+            .iter()
+            .filter(|r| r.error.max_rel.is_finite())
+            .count();
+        let mut details = results.findings.clone();
+        details.extend(results.rows.iter().map(Measurement::line));
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::Tradeoff,
+            models: results.rows.len(),
+            points: measured,
+            requested: results.rows.len(),
+            elapsed: Default::default(),
+            details,
+            failures: Vec::new(),
+            result: StudyResult::Tradeoff(results),
+        })
+    }
+}

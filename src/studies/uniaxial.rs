@@ -1,0 +1,342 @@
+//! Uniaxial studies (`kind = "uniaxial"`): homogeneous tension along or across the fibres
+//! ([`crate::uniaxial`]) of the material's passive curve, other passive energies, constant
+//! activations and every law × coupling × damage, the curves in parallel.
+
+use super::spec::{
+    couplings_for, damages, required_stretches, supported_laws, Defaults, StretchSpec,
+};
+use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::app_error::{AppError, SpecError};
+use crate::energy::Energy;
+use crate::models::{product, CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
+use crate::uniaxial::Direction;
+use crate::{Muscle, StrainEnergy};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// `[[study]] kind = "uniaxial"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UniaxialSpec {
+    /// Label in logs and the report (default: `uniaxial along fibres` or `… across …`).
+    pub name: Option<String>,
+    /// Stretches λ (required).
+    pub stretch: Option<StretchSpec>,
+    /// Damage values of the active models (default: `activation.damage`).
+    pub damage: Option<Vec<f64>>,
+    /// `along` (default) or `across` the fibres.
+    pub direction: Option<Direction>,
+    /// Include the passive curve of the material (default true).
+    pub passive: Option<bool>,
+    /// Extra passive energies (default none).
+    pub compare: Option<Vec<EnergySpec>>,
+    /// Activation laws (default `[activation.law]`; `[]` for none).
+    pub laws: Option<Vec<LawKind>>,
+    /// Couplings (default `[activation.coupling]`).
+    pub couplings: Option<Vec<CouplingKind>>,
+    /// Constant activations γ ∈ [0, 1) (default none).
+    pub constant_gamma: Option<Vec<f64>>,
+}
+
+/// Keys a uniaxial study does not take, and what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    ("law", "it takes a list: laws = [...]"),
+    ("coupling", "it takes a list: couplings = [...]"),
+];
+
+/// A validated uniaxial study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UniaxialStudy {
+    /// Label.
+    pub name: String,
+    /// Loading direction relative to the fibres.
+    pub direction: Direction,
+    /// Stretches, ascending, without duplicates.
+    pub stretches: Vec<f64>,
+    /// Whether to include the material's passive curve.
+    pub passive: bool,
+    /// Extra passive energies.
+    pub compare: Vec<Energy>,
+    /// Active models: laws × couplings × damages.
+    pub models: Vec<ModelChoice>,
+    /// Constant activations.
+    pub constant_gamma: Vec<f64>,
+}
+
+/// Validates `spec` against the scene's defaults; returns the study and the spec with every
+/// default written out.
+pub fn resolve(
+    spec: &UniaxialSpec,
+    d: &Defaults,
+) -> Result<(UniaxialStudy, UniaxialSpec), SpecError> {
+    let stretches = required_stretches(&spec.stretch)?;
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let direction = spec.direction.unwrap_or_default();
+    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
+    supported_laws("laws", &laws, d.models)?;
+    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
+    couplings_for(&laws, &couplings)?;
+    let mut compare = Vec::new();
+    for (j, c) in spec.compare.iter().flatten().enumerate() {
+        compare.push(c.build().map_err(|e| e.within(&format!("compare[{j}]")))?);
+    }
+    let constant_gamma = spec.constant_gamma.clone().unwrap_or_default();
+    for (j, g) in constant_gamma.iter().enumerate() {
+        if crate::active::ConstantLaw::new(*g).is_err() {
+            return Err(SpecError::new(
+                format!("constant_gamma[{j}]"),
+                g,
+                "activation gamma must lie in [0, 1) (γ = 1 is infinite contraction)",
+            ));
+        }
+    }
+    let models = product(&laws, &couplings, &damage);
+    let passive = spec.passive.unwrap_or(true);
+    if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty() {
+        return Err(SpecError::new(
+            "",
+            "(nothing to compute)",
+            "a uniaxial study needs passive = true, compare, laws or constant_gamma",
+        ));
+    }
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| format!("uniaxial {} fibres", direction.name()));
+    let resolved = UniaxialSpec {
+        name: Some(name.clone()),
+        stretch: spec.stretch.clone(),
+        damage: Some(damage),
+        direction: Some(direction),
+        passive: Some(passive),
+        compare: Some(compare.iter().map(EnergySpec::written).collect()),
+        laws: Some(laws),
+        couplings: Some(couplings),
+        constant_gamma: Some(constant_gamma.clone()),
+    };
+    Ok((
+        UniaxialStudy {
+            name,
+            direction,
+            stretches,
+            passive,
+            compare,
+            models,
+            constant_gamma,
+        },
+        resolved,
+    ))
+}
+
+/// What a curve shows.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CurveModel {
+    /// A passive energy (γ ≡ 0).
+    Passive,
+    /// The material with constant activation γ.
+    Constant(f64),
+    /// An activation model.
+    Active(ModelChoice),
+}
+
+/// One point of a uniaxial curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurvePoint {
+    /// Stretch λ [-].
+    pub lambda: f64,
+    /// Activation γ [-].
+    pub gamma: f64,
+    /// Nominal stress along the stretch \[kPa\].
+    pub stress: f64,
+    /// Passive stress of the material P_pas(λ) \[kPa\] (active curves along the fibres).
+    pub passive: Option<f64>,
+    /// Target active stress (1 − d) P_act(λ) \[kPa\] (the same curves).
+    pub active_target: Option<f64>,
+}
+
+/// One computed curve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Curve {
+    /// What it shows.
+    pub model: CurveModel,
+    /// The energy's name.
+    pub energy: String,
+    /// The points that could be computed, in stretch order.
+    pub points: Vec<CurvePoint>,
+}
+
+/// The curves of a uniaxial study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UniaxialResult {
+    /// Loading direction relative to the fibres.
+    pub direction: Direction,
+    /// Curves: passive material, compared energies, constant γ, active models, in that order.
+    pub curves: Vec<Curve>,
+}
+
+impl UniaxialStudy {
+    /// The points of `muscle` at the study's stretches, with the (P_pas, (1 − d) P_act) of
+    /// `target` where it has them; stretches that cannot be computed are counted in a message.
+    fn points(
+        &self,
+        muscle: &Muscle<Energy>,
+        target: impl Fn(f64) -> crate::Result<Option<(f64, f64)>>,
+        ctx: &RunContext,
+    ) -> (Vec<CurvePoint>, Option<String>) {
+        let mut points = Vec::with_capacity(self.stretches.len());
+        let mut failed = 0usize;
+        let mut first: Option<(f64, String)> = None;
+        for &lambda in &self.stretches {
+            ctx.progress.advance(1);
+            let point = self.direction.point(muscle, lambda).and_then(|p| {
+                let extra = target(lambda)?;
+                Ok(CurvePoint {
+                    lambda,
+                    gamma: p.gamma,
+                    stress: p.stress,
+                    passive: extra.map(|e| e.0),
+                    active_target: extra.map(|e| e.1),
+                })
+            });
+            match point {
+                Ok(p) => points.push(p),
+                Err(e) => {
+                    failed += 1;
+                    first.get_or_insert((lambda, e.to_string()));
+                }
+            }
+        }
+        let message = first.map(|(lambda, why)| {
+            format!(
+                "{failed} of {} stretches failed; first at lambda = {lambda}: {why}",
+                self.stretches.len()
+            )
+        });
+        (points, message)
+    }
+
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: {} stretches, {} passive curve(s), {} constant-γ curve(s), {} active model(s)",
+            self.name,
+            self.stretches.len(),
+            usize::from(self.passive) + self.compare.len(),
+            self.constant_gamma.len(),
+            self.models.len()
+        )
+    }
+
+    /// Computes every curve (in parallel). A stretch that cannot be computed is counted in a
+    /// failure, not dropped silently; a model that cannot be built is an error.
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        let mut curves: Vec<(CurveModel, &Energy)> = Vec::new();
+        if self.passive {
+            curves.push((CurveModel::Passive, &models.energy));
+        }
+        curves.extend(self.compare.iter().map(|e| (CurveModel::Passive, e)));
+        curves.extend(
+            self.constant_gamma
+                .iter()
+                .map(|&g| (CurveModel::Constant(g), &models.energy)),
+        );
+        curves.extend(
+            self.models
+                .iter()
+                .map(|&m| (CurveModel::Active(m), &models.energy)),
+        );
+        for (model, e) in &curves {
+            ctx.progress
+                .log(&format!("{}: {}", self.name, label(models, model, e)));
+        }
+        ctx.progress
+            .start(&self.name, curves.len() * self.stretches.len());
+        let computed: Vec<Result<(Curve, Option<Failure>), AppError>> = curves
+            .par_iter()
+            .map(|&(model, energy)| self.curve(models, model, energy, ctx))
+            .collect();
+        ctx.progress.finish();
+        let mut result = UniaxialResult {
+            direction: self.direction,
+            curves: Vec::with_capacity(computed.len()),
+        };
+        let mut failures = Vec::new();
+        for c in computed {
+            let (curve, failure) = c?;
+            result.curves.push(curve);
+            failures.extend(failure);
+        }
+        let points = result.curves.iter().map(|c| c.points.len()).sum();
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::Uniaxial,
+            models: curves.len(),
+            points,
+            requested: curves.len() * self.stretches.len(),
+            elapsed: Default::default(),
+            details: vec![format!(
+                "{} curves × {} stretches in [{}, {}], {} the fibres",
+                curves.len(),
+                self.stretches.len(),
+                self.stretches.first().copied().unwrap_or(f64::NAN),
+                self.stretches.last().copied().unwrap_or(f64::NAN),
+                self.direction.name()
+            )],
+            failures,
+            result: StudyResult::Uniaxial(result),
+        })
+    }
+
+    /// The curve of `model` on `energy`, and the failure of the stretches it could not compute.
+    fn curve(
+        &self,
+        models: &Models,
+        model: CurveModel,
+        energy: &Energy,
+        ctx: &RunContext,
+    ) -> Result<(Curve, Option<Failure>), AppError> {
+        let muscle = match model {
+            CurveModel::Passive => Muscle::passive(energy.clone()),
+            CurveModel::Constant(g) => models
+                .constant(g)
+                .map_err(|e| AppError::from(e).within(&self.name))?,
+            CurveModel::Active(m) => models.muscle(m).map_err(|e| {
+                AppError::from(e).within(format!("{}: {}", self.name, models.label(&m)))
+            })?,
+        };
+        let passive = models.passive();
+        // Along the fibres an active curve is shown with its target P_pas + (1 − d) P_act.
+        let target = |lambda: f64| -> crate::Result<Option<(f64, f64)>> {
+            Ok(match (model, self.direction) {
+                (CurveModel::Active(m), Direction::Along) => Some((
+                    self.direction.point(&passive, lambda)?.stress,
+                    (1.0 - m.damage) * models.curve.value(lambda),
+                )),
+                _ => None,
+            })
+        };
+        let (points, failure) = self.points(&muscle, target, ctx);
+        let failure = failure.map(|message| Failure {
+            model: match model {
+                CurveModel::Constant(g) => format!("constant gamma = {g}"),
+                _ => label(models, &model, energy),
+            },
+            message,
+        });
+        let curve = Curve {
+            model,
+            energy: energy.name().to_string(),
+            points,
+        };
+        Ok((curve, failure))
+    }
+}
+
+/// A curve in words: `giantesio-musesti, passive`, `…, constant gamma = 0.2`, or the model.
+fn label(models: &Models, model: &CurveModel, energy: &Energy) -> String {
+    match model {
+        CurveModel::Passive => format!("{}, passive", energy.name()),
+        CurveModel::Constant(g) => format!("{}, constant gamma = {g}", models.energy.name()),
+        CurveModel::Active(m) => models.label(m),
+    }
+}

@@ -1,0 +1,36 @@
+//! Running the binary as a user does, for the tests that check what it writes.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// `activemuscle run [SCENE] --out OUT --quiet` (the embedded paper scene without `scene`);
+/// asserts that it succeeds and returns its output.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn run_quiet(scene: Option<&Path>, out: &Path) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_activemuscle"));
+    command.arg("run");
+    if let Some(scene) = scene {
+        command.arg(scene);
+    }
+    let output = command
+        .arg("--out")
+        .arg(out)
+        .arg("--quiet")
+        .output()
+        .expect("run binary");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    output
+}
+
+/// `activemuscle ARGS…` without any assertion: its output, status included.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn run_args<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_activemuscle"))
+        .args(args)
+        .output()
+        .expect("run binary")
+}

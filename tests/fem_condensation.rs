@@ -1,0 +1,75 @@
+//! Static condensation of the Q2/Q1 centre nodes changes the linear system, not the Newton step:
+//! the direction and the load rate computed on the condensed system equal the solutions of the
+//! full free–free system, whose matrix is built here independently, by central differences of
+//! the residual.
+
+use activemuscle::fem::assembly::Assembler;
+use activemuscle::fem::dofs::DofMap;
+use activemuscle::fem::ldlt::SymmetricPartLdlt;
+use activemuscle::fem::problem::MixedProblem;
+use activemuscle::fem::tangent_solver::TangentSolver;
+use activemuscle::fem::{Bases, Mesh, NonlinearSystem};
+use nalgebra::{DMatrix, DVector};
+
+mod common;
+use common::NonSymmetric;
+
+/// The residual on the free dofs at `x`.
+fn residual(problem: &mut MixedProblem<'_, NonSymmetric>, x: &[f64]) -> DVector<f64> {
+    problem.evaluate(x, false).unwrap();
+    DVector::from_column_slice(&problem.asm.residual[..problem.free()])
+}
+
+#[test]
+fn the_condensed_newton_step_and_load_rate_solve_the_full_system() {
+    let material = NonSymmetric {
+        mu: 10.0,
+        c: 1.5,
+        approximate: false,
+    };
+    let mesh = Mesh::structured(1.0, 2.0, 2, 3, 1.0).unwrap();
+    let cells = mesh.n_elements();
+    let dofs = DofMap::new(&mesh, Bases::Clamped);
+    let asm = Assembler::new(&mesh, &dofs).unwrap();
+    assert!(asm.is_condensed());
+    assert_eq!(asm.pattern.n, dofs.n_free - 2 * cells);
+    let ldlt = SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs, asm.system_index()).unwrap();
+    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt));
+    let mut problem = MixedProblem::new(mesh, dofs, asm, linear, &material, 1e-6);
+    let (n, nf) = (problem.unknowns(), problem.free());
+    // A state off equilibrium: λ = 1.1 with a smooth perturbation of every free dof.
+    let lambda = 1.1;
+    let mut x: Vec<f64> = (0..n).map(|i| 0.01 * ((i as f64) * 0.7).sin()).collect();
+    problem.apply_load(&mut x, lambda);
+    // The full free–free tangent and ∂R_f/∂λ by central differences.
+    let h = 1e-6;
+    let mut k = DMatrix::<f64>::zeros(nf, nf);
+    for j in 0..nf {
+        let (mut plus, mut minus) = (x.clone(), x.clone());
+        plus[j] += h;
+        minus[j] -= h;
+        let column = (residual(&mut problem, &plus) - residual(&mut problem, &minus)) / (2.0 * h);
+        k.set_column(j, &column);
+    }
+    let (mut plus, mut minus) = (x.clone(), x.clone());
+    problem.apply_load(&mut plus, lambda + h);
+    problem.apply_load(&mut minus, lambda - h);
+    let dr_dlambda = (residual(&mut problem, &plus) - residual(&mut problem, &minus)) / (2.0 * h);
+    let lu = k.lu();
+    // Newton direction: K dx = −R.
+    let r = residual(&mut problem, &x);
+    let expected = lu.solve(&(-&r)).unwrap();
+    problem.evaluate(&x, true).unwrap();
+    let mut dx = vec![0.0; nf];
+    problem.newton_direction(&mut dx).unwrap();
+    let error = (DVector::from_column_slice(&dx) - &expected).amax() / expected.amax();
+    println!("Newton direction: relative difference {error:.2e}");
+    assert!(error < 1e-7, "{error}");
+    // Load rate: K v_f = −∂R_f/∂λ.
+    let expected = lu.solve(&(-dr_dlambda)).unwrap();
+    let mut rate = vec![0.0; n];
+    problem.load_rate(&mut rate).unwrap();
+    let error = (DVector::from_column_slice(&rate[..nf]) - &expected).amax() / expected.amax();
+    println!("load rate: relative difference {error:.2e}");
+    assert!(error < 1e-7, "{error}");
+}

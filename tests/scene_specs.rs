@@ -1,0 +1,158 @@
+//! Each study kind has its own spec: a key of another kind is refused with its line, a study
+//! without a known `kind` is named, and the resolved scene that `check` prints reads back to the
+//! same scene. The energies a scene may name are the registry's.
+
+use activemuscle::energy::{EhretBolItskov, Energy, GiantesioMusesti, Parametric, SHIPPED};
+use activemuscle::models::Models;
+use activemuscle::scene::{Scene, SceneError, PAPER_SCENE};
+use activemuscle::StrainEnergy;
+
+const FILE: &str = "specs.toml";
+
+fn rejected(text: &str) -> SceneError {
+    match Scene::parse(text, FILE) {
+        Ok(_) => panic!("accepted a bad scene:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+/// The error names the line, the key and (a word of) the rule.
+fn names(e: &SceneError, line: usize, key: &str, rule: &str) {
+    let shown = e.to_string();
+    assert!(
+        shown.starts_with(&format!("{FILE}:{line}: {key}")),
+        "expected {FILE}:{line}: {key} …, got: {shown}"
+    );
+    assert!(shown.contains(rule), "rule {rule:?} missing: {shown}");
+}
+
+#[test]
+fn each_kind_refuses_the_keys_of_the_others_with_their_line() {
+    for (kind, extra, key) in [
+        ("uniaxial", "nr = 4", "nr"),
+        ("cylinder", "constant_gamma = [0.1]", "constant_gamma"),
+        ("stability", "tolerance = 1e-8", "tolerance"),
+        ("fit", "normals = 10", "normals"),
+        ("tradeoff", "direction = \"along\"", "direction"),
+    ] {
+        let e = rejected(&format!(
+            "title = \"t\"\n\n[[study]]\nkind = \"{kind}\"\nstretch = [1.0, 1.1]\n{extra}\n"
+        ));
+        names(
+            &e,
+            6,
+            &format!("study[0].{key}"),
+            &format!("not a key of a {kind} study"),
+        );
+        assert_eq!(e.value, "(given)");
+    }
+    // Inside a table of a study, the table's own keys are named (not the study's).
+    let e =
+        rejected("[[study]]\nkind = \"uniaxial\"\nstretch = { from = 1, to = 2, stepp = 0.5 }\n");
+    names(&e, 3, "study[0].stretch.stepp", "unknown field `stepp`");
+}
+
+#[test]
+fn a_study_without_a_known_kind_is_named() {
+    let e = rejected("[[study]]\nstretch = [1.0]\n");
+    names(&e, 1, "study[0].kind", "every study needs kind");
+    let e = rejected(
+        "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n\n[[study]]\nkind = \"sphere\"\n",
+    );
+    names(&e, 6, "study[1].kind", "unknown variant `sphere`");
+    let e = rejected("study = 3\n");
+    names(&e, 1, "study", "array of tables");
+}
+
+#[test]
+fn the_printed_scene_reads_back_to_the_same_scene() {
+    let scene = Scene::paper().expect("paper scene");
+    let printed = scene.resolved_toml().expect("printable");
+    let again = Scene::parse(&printed, FILE).expect("the printed scene is valid");
+    assert_eq!(again.models, scene.models);
+    assert_eq!(again.studies, scene.studies);
+    // Printing is a fixed point: every default is already written out.
+    assert_eq!(again.resolved_toml().expect("printable"), printed);
+}
+
+#[test]
+fn the_embedded_paper_scene_is_the_chapter_s_models() {
+    // The chapter's values (Tables 1 and 2, the explicit law's a and b) as the library states them.
+    let scene = Scene::parse(PAPER_SCENE, FILE).expect("paper scene");
+    assert_eq!(scene.models, Models::paper());
+    assert_eq!(scene.models.explicit, (1.0133, 0.2050));
+}
+
+#[test]
+fn the_shipped_energies_are_the_registry_s_with_their_chapter_values() {
+    // Chapter values typed from the chapter (Table 1; the values quoted after the EBI energy).
+    let chapter: [(&str, &[(&str, f64)]); 2] = [
+        (
+            "giantesio-musesti",
+            &[("mu", 0.1599), ("alpha", 19.35), ("w0", 0.7335)],
+        ),
+        (
+            "ehret-bol-itskov",
+            &[
+                ("mu", 0.1599),
+                ("alpha", 19.69),
+                ("beta", 1.190),
+                ("w0", 0.7388),
+            ],
+        ),
+    ];
+    for (name, values) in chapter {
+        let shipped = SHIPPED.iter().find(|e| e.name == name).expect("shipped");
+        let defaults: Vec<(&str, f64)> = shipped
+            .parameters
+            .iter()
+            .map(|p| (p.name, p.default.expect("a chapter value")))
+            .collect();
+        assert_eq!(defaults, values, "{name}");
+    }
+    assert_eq!(
+        Energy::GiantesioMusesti(GiantesioMusesti::paper()).parameter_values(),
+        vec![0.1599, 19.35, 0.7335]
+    );
+    assert_eq!(
+        Energy::EhretBolItskov(EhretBolItskov::paper()).parameter_values(),
+        vec![0.1599, 19.69, 1.190, 0.7388]
+    );
+    // Every shipped energy is a scene's material by its name, with its parameters by name; one
+    // without a chapter value for a parameter needs it given.
+    for shipped in SHIPPED {
+        let given: Vec<String> = shipped
+            .parameters
+            .iter()
+            .filter(|p| p.default.is_none())
+            .map(|p| format!("{} = 2.5\n", p.name))
+            .collect();
+        let text = format!(
+            "[material]\nenergy = \"{}\"\n{}[[study]]\nkind = \"uniaxial\"\nstretch = [1.1]\nlaws = []\n",
+            shipped.name,
+            given.concat()
+        );
+        let scene = Scene::parse(&text, FILE).unwrap_or_else(|e| panic!("{}: {e}", shipped.name));
+        assert_eq!(scene.models.energy.name(), shipped.name);
+        for (p, v) in shipped
+            .parameters
+            .iter()
+            .zip(scene.models.energy.parameter_values())
+        {
+            assert_eq!(v, p.default.unwrap_or(2.5), "{} {}", shipped.name, p.name);
+        }
+        if !given.is_empty() {
+            let e = rejected(&text.replace(&given.concat(), ""));
+            assert!(e.rule.contains("no chapter value"), "{e}");
+        }
+    }
+    let e = rejected(
+        "[material]\nenergy = \"mooney\"\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n",
+    );
+    names(
+        &e,
+        2,
+        "material.energy",
+        "giantesio-musesti, ehret-bol-itskov, neo-hookean",
+    );
+}
