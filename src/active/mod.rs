@@ -11,6 +11,7 @@ pub use coupling::{Coupling, FrozenTangent};
 pub use curve::ActiveCurve;
 pub use law::{
     effective_damage, ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw,
-    ImplicitLaw, Law, LawValue,
+    ImplicitLaw, Law, LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport,
+    TableSpec, TabulatedLaw,
 };
 pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};
