@@ -156,3 +156,57 @@ fn the_shipped_energies_are_the_registry_s_with_their_chapter_values() {
         "giantesio-musesti, ehret-bol-itskov, neo-hookean",
     );
 }
+
+#[test]
+fn bad_schedules_and_motor_units_are_named_with_their_line() {
+    let head = "[[study]]\nkind = \"activation-in-time\"\ntime = [0.0, 1.0]\n";
+    let e = rejected(&format!("{head}schedule = [[0.0, 1.0], [0.0, 0.5]]\n"));
+    names(&e, 4, "study[0].schedule[1]", "increase strictly");
+    let e = rejected(&format!("{head}schedule = [[0.0, 1.0], [0.5, -0.5]]\n"));
+    names(&e, 4, "study[0].schedule[1]", "[0, 1]");
+    assert_eq!(e.value, "-0.5");
+    let e = rejected(&format!(
+        "{head}motor_units = [\n  {{ fraction = 0.5, twitch_force = 0.3, contraction_time = 0.1, interstimulus = 0.02 }},\n  {{ fraction = 0.4, twitch_force = 0.3, contraction_time = 0.05, interstimulus = 0.01 }},\n]\n"
+    ));
+    names(&e, 4, "study[0].motor_units", "sum to 1");
+    let e = rejected(&format!(
+        "{head}motor_units = [{{ fraction = 1.0, twitch_force = 0.3, contraction_time = -0.1, interstimulus = 0.02 }}]\n"
+    ));
+    names(&e, 4, "study[0].motor_units[0].contraction_time", "> 0");
+    // F = 1 overshoots: a fused tetanus tends to e F G ≈ 2.7.
+    let e = rejected(&format!(
+        "{head}motor_units = [{{ fraction = 1.0, twitch_force = 1.0, contraction_time = 0.1, interstimulus = 0.01 }}]\n"
+    ));
+    names(&e, 4, "study[0].motor_units", "must stay in [0, 1]");
+    let e = rejected(&format!("{head}stretch = [[0.0, 1.0], [1.0, 0.0]]\n"));
+    names(&e, 4, "study[0].stretch[1]", "> 0");
+    let e = rejected(&format!("{head}stretch = \"loose\"\n"));
+    names(&e, 4, "study[0].stretch", "free");
+    let e = rejected("[[study]]\nkind = \"activation-in-time\"\ntime = [-1.0, 1.0]\n");
+    names(&e, 3, "study[0].time", "≥ 0");
+    let e = rejected("[[study]]\nkind = \"activation-in-time\"\nschedule = [[0.0, 1.0]]\n");
+    names(&e, 1, "study[0].time", "time steps");
+    let e = rejected(&format!("{head}laws = [\"implicit\"]\n"));
+    names(&e, 4, "study[0].laws", "one law");
+}
+
+#[test]
+fn the_printed_scene_reads_back_to_the_same_study() {
+    let scene = Scene::parse(
+        r#"
+[[study]]
+kind = "activation-in-time"
+time = { from = 0.0, to = 0.1, step = 0.05 }
+schedule = [[0.0, 0.5], [0.05, 1.0]]
+interpolation = "linear"
+stretch = "free"
+motor_units = [{ fraction = 1.0, twitch_force = 0.3, contraction_time = 0.04, interstimulus = 0.02 }]
+"#,
+        FILE,
+    )
+    .unwrap();
+    let printed = scene.resolved_toml().unwrap();
+    let again = Scene::parse(&printed, FILE).unwrap_or_else(|e| panic!("{e}\n{printed}"));
+    assert_eq!(again.studies, scene.studies);
+    assert_eq!(again.resolved_toml().unwrap(), printed);
+}
