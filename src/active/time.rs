@@ -378,29 +378,4 @@ mod tests {
         let c = MotorUnit::new(0.1, 1.0, 0.1, 0.01).unwrap();
         assert!(MotorUnits::new(vec![a, b, c]).is_ok());
     }
-
-    #[test]
-    fn one_stimulus_is_one_twitch() {
-        // Interval longer than the history: only the stimulus at t0 = 0.2 s has fired.
-        let (t_c, i) = (0.08, 10.0);
-        let act = ActivationInTime::new(
-            Schedule::new(vec![(0.2, 0.6)], Interpolation::Constant).unwrap(),
-            Some(MotorUnits::new(vec![unit(t_c, i)]).unwrap()),
-        );
-        let x: f64 = t_c / i;
-        let gain = (1.0 - (-2.0 * x * x * x).exp()) / x;
-        for t in [0.1, 0.2, 0.25, 0.28, 0.5] {
-            let s: f64 = t - 0.2;
-            let expected = if s > 0.0 {
-                0.6 * gain * (s / t_c) * (1.0 - s / t_c).exp()
-            } else {
-                0.0
-            };
-            assert!(
-                (act.level(t) - expected).abs() <= 1e-15 * expected.max(1.0),
-                "t = {t}: {} vs {expected}",
-                act.level(t)
-            );
-        }
-    }
 }
