@@ -7,6 +7,7 @@
 
 pub use super::kinematics::{deformation, jacobian, jacobian_gradient, jacobian_hessian};
 use super::material::AxisymmetricMaterial;
+use crate::volumetric::Volumetric;
 use nalgebra::{SMatrix, SVector};
 use std::ops::AddAssign;
 
@@ -381,6 +382,17 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     /// For Q1/P0 the only M is 1 on the cell, so R_p = −∫_e (J − 1) dV: incompressibility in
     /// the mean per cell. `x` holds the cell's nodal coordinates (validated by the caller: see
     /// [`Self::geometry`]).
+    ///
+    /// Nearly incompressible (`volumetric` = U(J), κ₀ = U″(1)): the perturbed Lagrangian
+    ///
+    /// Π(u, p) = ∫ [Ψ(F) + U_r(J) − p (J − 1) − p²/(2κ₀)] dV,   U_r(J) = U(J) − (κ₀/2)(J − 1)²,
+    ///
+    /// whose stationarity in p, p = −κ₀ (J − 1), gives back ∫ [Ψ + U] dV: the quadratic part of U
+    /// is carried by the pressure (no locking as κ₀ grows; κ₀ = ∞ is the exact constraint), the
+    /// remainder U_r, O((J − 1)³), by the displacement. For U = (κ/2)(J − 1)², U_r = 0. Then
+    ///
+    /// R_u(δu) = ∫ (P + (U_r′(J) − p) ∂J/∂F) : δF dV,   R_p(q) = −∫ q [(J − 1) + p/κ₀] dV,
+    /// K_uu = ∫ Bᵀ (A + U_r″ ∂J/∂F ⊗ ∂J/∂F + (U_r′ − p) H) B dV,   K_pp = −∫ M Mᵀ/κ₀ dV.
     #[allow(clippy::too_many_arguments)]
     pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
         &self,
@@ -388,9 +400,21 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         u: &SVector<f64, NU>,
         p: &SVector<f64, NP>,
         material: &M,
+        volumetric: Option<&Volumetric>,
         residual: &mut ElementVector<ND>,
         tangent: Option<&mut ElementMatrix<ND>>,
     ) -> crate::Result<ElementScale> {
+        // (U_r′, U_r″, 1/κ₀) at J; zero without a volumetric energy.
+        let split = |j: f64| -> crate::Result<[f64; 3]> {
+            match volumetric {
+                None => Ok([0.0; 3]),
+                Some(v) => {
+                    let k0 = v.bulk_modulus();
+                    let [_, du, ddu] = v.derivatives(j)?;
+                    Ok([du - k0 * (j - 1.0), ddu - k0, 1.0 / k0])
+                }
+            }
+        };
         residual.as_mut_slice().fill(0.0);
         let mut scale = ElementScale::default();
         match tangent {
@@ -402,11 +426,18 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let pq = m.dot(p);
                     let pk = material.stress(&f)?;
                     let dj = jacobian_gradient(&f);
-                    let s = pk - dj * pq;
+                    let jf = jacobian(&f);
+                    let s = match volumetric {
+                        None => pk - dj * pq,
+                        Some(_) => pk + dj * (split(jf)?[0] - pq),
+                    };
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
+                    let rp = match volumetric {
+                        None => m * (-(jf - 1.0) * g.dv),
+                        Some(_) => m * (-((jf - 1.0) + pq * split(jf)?[2]) * g.dv),
+                    };
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
                 }
             }
@@ -421,15 +452,32 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let pq = m.dot(p);
                     let (pk, a) = material.stress_tangent(&f)?;
                     let dj = jacobian_gradient(&f);
-                    let s = pk - dj * pq;
+                    let jf = jacobian(&f);
+                    let [dur, ddur, inv_k0] = split(jf)?;
+                    let (s, rp, d) = match volumetric {
+                        None => (
+                            pk - dj * pq,
+                            m * (-(jf - 1.0) * g.dv),
+                            (a - jacobian_hessian(&f) * pq) * g.dv,
+                        ),
+                        Some(_) => (
+                            pk + dj * (dur - pq),
+                            m * (-((jf - 1.0) + pq * inv_k0) * g.dv),
+                            (a + dj * dj.transpose() * ddur + jacobian_hessian(&f) * (dur - pq))
+                                * g.dv,
+                        ),
+                    };
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
-                    // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
-                    // material) only the node blocks below the diagonal, mirrored at the end.
-                    let d = (a - jacobian_hessian(&f) * pq) * g.dv;
+                    if volumetric.is_some() {
+                        k.fixed_view_mut::<NP, NP>(NU, NU)
+                            .add_assign(&(m * m.transpose() * (-inv_k0 * g.dv)));
+                    }
+                    // K_uu += Bᵀ D B with D = (A − p H) dV (plus the volumetric remainder); for
+                    // a symmetric D (a hyperelastic material) only the node blocks below the
+                    // diagonal, mirrored at the end.
                     if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
                         add_btdb(&mut kuu_lower, &g.b, &d, true);
                     } else {
