@@ -159,9 +159,54 @@ impl Volumetric {
         Ok(out)
     }
 
-    /// The bulk modulus U″(1) \[kPa\]: the penalty of the mixed FE form ([`crate::fem`]).
+    /// The bulk modulus U″(1) \[kPa\].
     pub fn bulk_modulus(&self) -> f64 {
         self.form.derivatives(1.0)[2]
+    }
+
+    /// The volume ratio J̃(p) = (U′)⁻¹(−p) at which U′(J̃) = −p, and the compliance 1/U″(J̃)
+    /// \[1/kPa\], for the pressure p \[kPa\]: the Legendre transform behind the mixed FE form
+    /// (Φ(p) = sup_J [−p (J − 1) − U(J)], Φ′(p) = 1 − J̃(p), Φ″(p) = 1/U″(J̃)). Closed forms:
+    /// quadratic J̃ = 1 + a/κ; logarithmic J̃ = a/κ + √((a/κ)² + 1); 4C's
+    /// J̃ = (−2a/μ)^(−1/(2κ+1)), with a = −p − c. A pressure outside the range of U′ on J > 0
+    /// has no J̃ (an error naming p): 4C's U′ = −(μ/2) J^(−2κ−1) + c stays below c (a hydrostatic
+    /// tension −p ≥ c), the quadratic U′ above −κ (p ≥ κ).
+    pub fn dilatation(&self, pressure: f64) -> Result<(f64, f64)> {
+        let a = -pressure - self.shift;
+        let j = match self.form {
+            VolumetricForm::Quadratic { kappa } => 1.0 + a / kappa,
+            VolumetricForm::Logarithmic { kappa } => {
+                let x = a / kappa;
+                let root = x.hypot(1.0);
+                // x + √(x² + 1), written without cancellation for x < 0.
+                if x >= 0.0 {
+                    x + root
+                } else {
+                    1.0 / (root - x)
+                }
+            }
+            VolumetricForm::Giantesio4C { kappa, mu } => {
+                if a < 0.0 {
+                    (-2.0 * a / mu).powf(-1.0 / (2.0 * kappa + 1.0))
+                } else {
+                    f64::NAN
+                }
+            }
+        };
+        if !(j > 0.0 && j.is_finite()) {
+            return Err(Error::NoSolution {
+                equation: format!(
+                    "U'(J) = -p at p = {pressure} kPa ({} volumetric energy)",
+                    self.form.name()
+                ),
+                reason: format!(
+                    "no J > 0 has this volumetric stress (got J = {j}; the quadratic form's U' is above -kappa on J > 0, 4C's below its linear coefficient {} kPa)",
+                    self.shift
+                ),
+            });
+        }
+        let [_, _, ddu] = self.derivatives(j)?;
+        Ok((j, 1.0 / ddu))
     }
 }
 
@@ -200,6 +245,48 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// J̃(p) inverts U′: U′(J̃(p)) = −p, and the compliance is 1/U″ (central differences of J̃).
+    #[test]
+    fn dilatation_inverts_the_volumetric_stress() {
+        let forms = [
+            VolumetricForm::Quadratic { kappa: 7.0 },
+            VolumetricForm::Logarithmic { kappa: 7.0 },
+            VolumetricForm::Giantesio4C {
+                kappa: 3.0,
+                mu: 0.16,
+            },
+        ];
+        for form in forms {
+            let v = Volumetric::new(form, 0.0).unwrap();
+            for p in [-0.07, -0.01, 0.0, 0.5, 5.0] {
+                let (j, compliance) = v.dilatation(p).unwrap();
+                let du = v.derivatives(j).unwrap()[1];
+                assert!(
+                    (du + p).abs() < 1e-12 * (1.0 + p.abs()),
+                    "{form:?} p = {p}: {du}"
+                );
+                let h = 1e-6 * (1.0 + p.abs());
+                let fd =
+                    -(v.dilatation(p + h).unwrap().0 - v.dilatation(p - h).unwrap().0) / (2.0 * h);
+                assert!(
+                    (fd - compliance).abs() < 1e-6 * compliance,
+                    "{form:?} p = {p}"
+                );
+            }
+        }
+        // 4C's form with the chapter's energy: U′ < μ/2, so no J̃ for a tension −p ≥ μ/2.
+        let v = Volumetric::new(
+            VolumetricForm::Giantesio4C {
+                kappa: 3.0,
+                mu: 0.16,
+            },
+            0.0,
+        )
+        .unwrap();
+        assert!(v.dilatation(-0.08).is_err());
+        assert!(v.dilatation(-0.0799).is_ok());
     }
 
     /// 4C's form with 4C's reference stress μ/2 is 4C's S_vol unchanged: no linear term.

@@ -383,16 +383,21 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     /// the mean per cell. `x` holds the cell's nodal coordinates (validated by the caller: see
     /// [`Self::geometry`]).
     ///
-    /// Nearly incompressible (`volumetric` = U(J), κ₀ = U″(1)): the perturbed Lagrangian
+    /// Nearly incompressible (`volumetric` = U(J), strictly convex): the perturbed Lagrangian
+    /// with the Legendre transform Φ(p) = sup_J [−p (J − 1) − U(J)] of U,
     ///
-    /// Π(u, p) = ∫ [Ψ(F) + U_r(J) − p (J − 1) − p²/(2κ₀)] dV,   U_r(J) = U(J) − (κ₀/2)(J − 1)²,
+    /// Π(u, p) = ∫ [Ψ(F) − p (J − 1) − Φ(p)] dV,
     ///
-    /// whose stationarity in p, p = −κ₀ (J − 1), gives back ∫ [Ψ + U] dV: the quadratic part of U
-    /// is carried by the pressure (no locking as κ₀ grows; κ₀ = ∞ is the exact constraint), the
-    /// remainder U_r, O((J − 1)³), by the displacement. For U = (κ/2)(J − 1)², U_r = 0. Then
+    /// whose stationarity in p, J = J̃(p) := (U′)⁻¹(−p), gives back ∫ [Ψ + U(J)] dV. The
+    /// displacement equations are those of the exact constraint; the pressure equation and block
+    /// become ([`crate::volumetric::Volumetric::dilatation`]: Φ′ = 1 − J̃, Φ″ = 1/U″(J̃))
     ///
-    /// R_u(δu) = ∫ (P + (U_r′(J) − p) ∂J/∂F) : δF dV,   R_p(q) = −∫ q [(J − 1) + p/κ₀] dV,
-    /// K_uu = ∫ Bᵀ (A + U_r″ ∂J/∂F ⊗ ∂J/∂F + (U_r′ − p) H) B dV,   K_pp = −∫ M Mᵀ/κ₀ dV.
+    /// R_p(q) = −∫ q [J − J̃(p)] dV,   K_pp = −∫ M Mᵀ / U″(J̃(p)) dV,
+    ///
+    /// for U = (κ/2)(J − 1)²: R_p = −∫ q [(J − 1) + p/κ] dV, K_pp = −∫ M Mᵀ/κ dV, and κ = ∞ is the
+    /// exact constraint. U is evaluated at the interpolated pressure, never at the pointwise J of
+    /// the displacement (which the mixed element keeps close to J̃ only weakly): a stiff,
+    /// non-quadratic U (4C's J^(−2κ)) then stays as well conditioned as the quadratic one.
     #[allow(clippy::too_many_arguments)]
     pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
         &self,
@@ -404,14 +409,13 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         residual: &mut ElementVector<ND>,
         tangent: Option<&mut ElementMatrix<ND>>,
     ) -> crate::Result<ElementScale> {
-        // (U_r′, U_r″, 1/κ₀) at J; zero without a volumetric energy.
-        let split = |j: f64| -> crate::Result<[f64; 3]> {
+        // (J − J̃(p), 1/U″(J̃)) at J and the pressure p: (J − 1, 0) for the exact constraint.
+        let constraint = |j: f64, p: f64| -> crate::Result<(f64, f64)> {
             match volumetric {
-                None => Ok([0.0; 3]),
+                None => Ok((j - 1.0, 0.0)),
                 Some(v) => {
-                    let k0 = v.bulk_modulus();
-                    let [_, du, ddu] = v.derivatives(j)?;
-                    Ok([du - k0 * (j - 1.0), ddu - k0, 1.0 / k0])
+                    let (jt, compliance) = v.dilatation(p)?;
+                    Ok((j - jt, compliance))
                 }
             }
         };
@@ -426,18 +430,11 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let pq = m.dot(p);
                     let pk = material.stress(&f)?;
                     let dj = jacobian_gradient(&f);
-                    let jf = jacobian(&f);
-                    let s = match volumetric {
-                        None => pk - dj * pq,
-                        Some(_) => pk + dj * (split(jf)?[0] - pq),
-                    };
+                    let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = match volumetric {
-                        None => m * (-(jf - 1.0) * g.dv),
-                        Some(_) => m * (-((jf - 1.0) + pq * split(jf)?[2]) * g.dv),
-                    };
+                    let rp = m * (-constraint(jacobian(&f), pq)?.0 * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
                 }
             }
@@ -452,32 +449,20 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let pq = m.dot(p);
                     let (pk, a) = material.stress_tangent(&f)?;
                     let dj = jacobian_gradient(&f);
-                    let jf = jacobian(&f);
-                    let [dur, ddur, inv_k0] = split(jf)?;
-                    let (s, rp, d) = match volumetric {
-                        None => (
-                            pk - dj * pq,
-                            m * (-(jf - 1.0) * g.dv),
-                            (a - jacobian_hessian(&f) * pq) * g.dv,
-                        ),
-                        Some(_) => (
-                            pk + dj * (dur - pq),
-                            m * (-((jf - 1.0) + pq * inv_k0) * g.dv),
-                            (a + dj * dj.transpose() * ddur + jacobian_hessian(&f) * (dur - pq))
-                                * g.dv,
-                        ),
-                    };
+                    let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+                    let (c, compliance) = constraint(jacobian(&f), pq)?;
+                    let rp = m * (-c * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
                     if volumetric.is_some() {
                         k.fixed_view_mut::<NP, NP>(NU, NU)
-                            .add_assign(&(m * m.transpose() * (-inv_k0 * g.dv)));
+                            .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
                     }
-                    // K_uu += Bᵀ D B with D = (A − p H) dV (plus the volumetric remainder); for
-                    // a symmetric D (a hyperelastic material) only the node blocks below the
-                    // diagonal, mirrored at the end.
+                    // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
+                    // material) only the node blocks below the diagonal, mirrored at the end.
+                    let d = (a - jacobian_hessian(&f) * pq) * g.dv;
                     if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
                         add_btdb(&mut kuu_lower, &g.b, &d, true);
                     } else {
