@@ -13,7 +13,7 @@ use crate::fem::{
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
-use crate::uniaxial::along_fibres;
+use crate::uniaxial::Direction;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
@@ -428,6 +428,7 @@ impl CylinderStudy {
             element: self.element,
             vtk,
             cancel: ctx.stop.map(|s| s.flag().clone()),
+            volumetric: models.volumetric,
             ..SolverOptions::default()
         };
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
@@ -451,8 +452,14 @@ impl CylinderStudy {
                 fibre_stretch_centre: r.fibre_stretch_centre,
                 stress: r.nominal_stress,
                 newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
-                stress_0d: along_fibres(&muscle, r.stretch).ok().map(|p| p.stress),
-                passive_0d: along_fibres(&passive, r.stretch).ok().map(|p| p.stress),
+                stress_0d: models
+                    .uniaxial(&muscle, Direction::Along, r.stretch)
+                    .ok()
+                    .map(|p| p.stress),
+                passive_0d: models
+                    .uniaxial(&passive, Direction::Along, r.stretch)
+                    .ok()
+                    .map(|p| p.stress),
                 active_0d: (1.0 - m.damage) * models.curve.value(r.stretch),
             });
             if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
