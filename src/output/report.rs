@@ -74,6 +74,7 @@ pub fn html(
     failures(&mut h, results);
     models_table(&mut h, scene, results);
     fe_table(&mut h, results);
+    points_table(&mut h, results);
     centre_note(&mut h, scene, results);
     fits_table(&mut h, results)?;
     stability_table(&mut h, results)?;
@@ -348,6 +349,41 @@ fn difference(d: Option<(f64, f64, f64)>) -> String {
             short(100.0 * d / z.abs().max(1e-300))
         )
     })
+}
+
+/// The displacements of the named boundary points of each cylinder study (`[study.points]`),
+/// one row per point, model and stretch (also in `points_<study>.csv`).
+fn points_table(h: &mut String, results: &Results) {
+    let e = escape;
+    let studies: Vec<_> = results
+        .cylinders()
+        .filter(|(_, c)| !c.points.is_empty())
+        .collect();
+    if studies.is_empty() {
+        return;
+    }
+    h.push_str("<h2>Named points</h2>\n<p>Nodal displacements of the boundary points named in the scene (reference coordinates r, z; lengths in the mesh's unit), per model and stretch (<code>points_&lt;study&gt;.csv</code>).</p>\n<table><tr><th>study</th><th>point</th><th>(r, z)</th><th>model</th><th>λ</th><th>u_r</th><th>u_z</th></tr>\n");
+    for (study, c) in studies {
+        for sweep in &c.sweeps {
+            for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
+                for ((name, at), u) in c.points.iter().zip(u) {
+                    let _ = writeln!(
+                        h,
+                        "<tr><td>{}</td><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{:.6e}</td><td>{:.6e}</td></tr>",
+                        e(study),
+                        e(name),
+                        at[0],
+                        at[1],
+                        e(&sweep.label),
+                        p.lambda,
+                        u[0],
+                        u[1]
+                    );
+                }
+            }
+        }
+    }
+    h.push_str("</table>\n");
 }
 
 /// Each FE sweep against the homogeneous (0D) curve of the same model: the largest difference
