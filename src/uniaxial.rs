@@ -205,8 +205,8 @@ pub fn reference_stress<E: StrainEnergy + Clone>(energy: &E) -> Result<f64> {
 ///
 /// P_ii = ∂Ŵ/∂F_ii + U′(J) J/F_ii = 0 (both lateral i; cof F = J F⁻ᵀ),
 ///
-/// by Newton with the exact 2 × 2 tangent (∂²Ŵ/∂F_ii∂F_jj from the dual-number route,
-/// + U″ (J/F_ii)(J/F_jj) + U′ J/(F_ii F_jj) for i ≠ j), backtracking on |r|, from the
+/// by Newton with the exact 2 × 2 tangent (∂²Ŵ/∂F_ii∂F_jj from the dual-number route, plus
+/// U″ (J/F_ii)(J/F_jj) and, for i ≠ j, U′ J/(F_ii F_jj)), backtracking on |r|, from the
 /// incompressible solution, at most [`MAX_LATERAL_ITERATIONS`] iterations (an error saying so
 /// otherwise). The nominal stress is P_kk = ∂Ŵ/∂F_kk + U′(J) J/F_kk; `lateral` holds the two
 /// lateral stretches (along: e₂, e₃; across: e₁ (the fibre), e₃).
@@ -229,37 +229,37 @@ pub fn nearly_incompressible<E: StrainEnergy>(
         d[lat[1]] = x[1];
         d
     };
-    // Residual (P_ii of both lateral axes), its Jacobian, and the loaded axis' P_kk.
-    let evaluate =
-        |x: [f64; 2], tangent: bool| -> Result<([f64; 2], [[f64; 2]; 2], f64, f64, f64)> {
-            let d = diagonal(x);
-            let kin = Kinematics::new(&Matrix3::from_diagonal(&d), &fibre())?;
-            let order = if tangent {
-                Order::Tangent
-            } else {
-                Order::Stress
-            };
-            let r = muscle.respond(&kin, order, &FULL)?;
-            let p = r.stress.unwrap_or_default();
-            let j = d[0] * d[1] * d[2];
-            let [_, du, ddu] = volumetric.derivatives(j)?;
-            let cof = |i: usize| j / d[i];
-            let res = [
-                p[4 * lat[0]] + du * cof(lat[0]),
-                p[4 * lat[1]] + du * cof(lat[1]),
-            ];
-            let mut jac = [[0.0; 2]; 2];
-            if let Some(k) = r.tangent {
-                for (a, &i) in lat.iter().enumerate() {
-                    for (b, &m) in lat.iter().enumerate() {
-                        let cross = if i == m { 0.0 } else { du * j / (d[i] * d[m]) };
-                        jac[a][b] = k[(4 * i, 4 * m)] + ddu * cof(i) * cof(m) + cross;
-                    }
+    // Residual (P_ii of both lateral axes), its Jacobian, the loaded axis' P_kk, γ and λ_f.
+    type Lateral = ([f64; 2], [[f64; 2]; 2], f64, f64, f64);
+    let evaluate = |x: [f64; 2], tangent: bool| -> Result<Lateral> {
+        let d = diagonal(x);
+        let kin = Kinematics::new(&Matrix3::from_diagonal(&d), &fibre())?;
+        let order = if tangent {
+            Order::Tangent
+        } else {
+            Order::Stress
+        };
+        let r = muscle.respond(&kin, order, &FULL)?;
+        let p = r.stress.unwrap_or_default();
+        let j = d[0] * d[1] * d[2];
+        let [_, du, ddu] = volumetric.derivatives(j)?;
+        let cof = |i: usize| j / d[i];
+        let res = [
+            p[4 * lat[0]] + du * cof(lat[0]),
+            p[4 * lat[1]] + du * cof(lat[1]),
+        ];
+        let mut jac = [[0.0; 2]; 2];
+        if let Some(k) = r.tangent {
+            for (a, &i) in lat.iter().enumerate() {
+                for (b, &m) in lat.iter().enumerate() {
+                    let cross = if i == m { 0.0 } else { du * j / (d[i] * d[m]) };
+                    jac[a][b] = k[(4 * i, 4 * m)] + ddu * cof(i) * cof(m) + cross;
                 }
             }
-            let nominal = p[4 * axis] + du * cof(axis);
-            Ok((res, jac, nominal, r.gamma, r.fibre_stretch))
-        };
+        }
+        let nominal = p[4 * axis] + du * cof(axis);
+        Ok((res, jac, nominal, r.gamma, r.fibre_stretch))
+    };
     let failure = |reason: String| {
         Error::NoSolution {
         equation: format!(
