@@ -2,6 +2,7 @@
 //! time with file, line, key and rule; a nearly incompressible scene runs its uniaxial curves
 //! and its sliding cylinder on Ŵ + U(J), and they agree (sliding cylinder = 0D).
 
+use activemuscle::output::report::{html, RunInfo};
 use activemuscle::scene::{RunOptions, Scene, SceneError};
 use activemuscle::studies::StudyResult;
 use activemuscle::uniaxial::{nearly_incompressible, Direction};
@@ -157,6 +158,20 @@ coupling = "frozen"
             );
         }
     }
+    let info = RunInfo {
+        command: "test".into(),
+        wall: std::time::Duration::ZERO,
+        version: "0".into(),
+        rustc: None,
+        files: vec![],
+        rows: 0,
+    };
+    let report = html(&scene, &results, &[], &info).unwrap();
+    assert!(
+        report.contains("incompressibility: quadratic"),
+        "the report names the option"
+    );
+    assert!(report.contains("κ = 2000 kPa"));
     let StudyResult::Cylinder(c) = &results.studies[1].result else {
         panic!("a cylinder result");
     };

@@ -191,6 +191,28 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
+    if let Some(v) = &scene.models.volumetric {
+        let form = match v.form() {
+            crate::volumetric::VolumetricForm::Quadratic { kappa } => {
+                format!("(κ/2)(J − 1)², κ = {kappa} kPa")
+            }
+            crate::volumetric::VolumetricForm::Logarithmic { kappa } => {
+                format!("(κ/4)(J² − 1 − 2 ln J), κ = {kappa} kPa")
+            }
+            crate::volumetric::VolumetricForm::Giantesio4C { kappa, mu } => {
+                format!("μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio), κ = {kappa}, μ = {mu} kPa")
+            }
+        };
+        rows.push((
+            format!("incompressibility: {}", v.form().name()),
+            format!(
+                "nearly incompressible: Ŵ + U(J), U = {form} + {} (J − 1) (stress-free reference), bulk modulus U″(1) = {} kPa; uniaxial and cylinder studies (fit and stability: exact)",
+                v.shift(),
+                v.bulk_modulus()
+            ),
+            "not in the chapter (eq. (2) is exact: det C = 1)".to_string(),
+        ));
+    }
     h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
     for (name, what, chapter) in rows {
         let _ = writeln!(
