@@ -6,10 +6,12 @@
 //! See BENCHMARKS.md for the figures and the ratios to the hand-derived closed form.
 
 mod closed_form;
+mod point;
 
 use activemuscle::active::active_energy;
 use activemuscle::active::{
     ActivationLaw, ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
+    LawRepresentation, TableSpec,
 };
 use activemuscle::energy::{GiantesioMusesti, Invariants, StrainEnergy};
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
@@ -18,28 +20,11 @@ use activemuscle::response::{active_response, invariant_derivatives, Order};
 use activemuscle::Muscle;
 use closed_form::ClosedForm;
 use criterion::{criterion_group, criterion_main, Criterion};
-use nalgebra::{Matrix3, SVector};
+use nalgebra::SVector;
 use num_dual::{gradient, hessian, Dual2SVec64, DualSVec64};
+use point::{axi_entries, full_f, GAMMA};
 use std::hint::black_box;
 use std::time::Duration;
-
-const GAMMA: f64 = 0.15;
-
-/// Axisymmetric entries [F_rr, F_rz, F_zr, F_zz, F_θθ]: axial stretch 1.1, lateral contraction
-/// 1/√1.1, shear 0.05 / 0.02 (det F ≈ 1).
-fn axi_entries() -> SVector<f64, 5> {
-    let l = 1.0 / 1.1_f64.sqrt();
-    SVector::from([l, 0.05, 0.02, 1.1, l])
-}
-
-/// 3D F: the axisymmetric point plus an out-of-plane shear, so that no entry is structurally zero.
-fn full_f() -> Matrix3<f64> {
-    let mut f = axisymmetric_f(&axi_entries());
-    f[(0, 1)] = 0.03;
-    f[(1, 2)] = -0.02;
-    f[(2, 1)] = 0.01;
-    f
-}
 
 fn group_config<'a>(
     c: &'a mut Criterion,
@@ -219,32 +204,41 @@ fn constitutive(c: &mut Criterion) {
     });
     g.finish();
 
-    // Muscle::respond (law + coupling + response), axisymmetric, from the five entries.
+    // Muscle::respond (law + coupling + response), axisymmetric, from the five entries. The
+    // tabulated laws: the default table (λ ∈ [0.5, 1.6]) for d = 0, built once here.
     let curve = ActiveCurve::paper();
-    let implicit = ImplicitLaw::new(energy, curve);
-    let explicit = ExplicitLaw::paper();
-    let energy_law = EnergyLaw::new(energy, curve);
+    let implicit = Law::Implicit(ImplicitLaw::new(energy, curve));
+    let energy_law = Law::Energy(EnergyLaw::new(energy, curve));
+    let tabulated = |law: &Law<GiantesioMusesti>| {
+        law.clone()
+            .represented(LawRepresentation::Tabulated(TableSpec::default()), &[0.0])
+            .unwrap()
+    };
     let exact = Coupling::Frozen(FrozenTangent::Exact);
     let muscles = [
+        ("implicit_frozen_exact_axi", implicit.clone(), exact),
         (
-            "implicit_frozen_exact_axi",
-            Muscle::new(energy, Law::Implicit(implicit.clone()), 0.0, exact).unwrap(),
+            "implicit_tabulated_frozen_exact_axi",
+            tabulated(&implicit),
+            exact,
         ),
         (
             "explicit_frozen_exact_axi",
-            Muscle::new(energy, Law::Explicit(explicit), 0.0, exact).unwrap(),
+            Law::Explicit(ExplicitLaw::paper()),
+            exact,
         ),
         (
             "energy_consistent_axi",
-            Muscle::new(
-                energy,
-                Law::Energy(energy_law.clone()),
-                0.0,
-                Coupling::Consistent,
-            )
-            .unwrap(),
+            energy_law.clone(),
+            Coupling::Consistent,
         ),
-    ];
+        (
+            "energy_tabulated_consistent_axi",
+            tabulated(&energy_law),
+            Coupling::Consistent,
+        ),
+    ]
+    .map(|(name, law, coupling)| (name, Muscle::new(energy, law, 0.0, coupling).unwrap()));
     let mut g = group_config(c, "muscle");
     for (name, muscle) in &muscles {
         g.bench_function(*name, |b| {
@@ -258,27 +252,24 @@ fn constitutive(c: &mut Criterion) {
 
     let lambda = 1.1;
     let mut g = group_config(c, "law");
-    g.bench_function("implicit", |b| {
-        b.iter(|| {
-            implicit
-                .evaluate(black_box(lambda), black_box(0.0))
-                .unwrap()
-        })
-    });
-    g.bench_function("explicit", |b| {
-        b.iter(|| {
-            explicit
-                .evaluate(black_box(lambda), black_box(0.0))
-                .unwrap()
-        })
-    });
-    g.bench_function("energy", |b| {
-        b.iter(|| {
-            energy_law
-                .evaluate(black_box(lambda), black_box(0.0))
-                .unwrap()
-        })
-    });
+    for (_, muscle) in &muscles {
+        let law = muscle.law();
+        g.bench_function(law.name(), |b| {
+            b.iter(|| law.evaluate(black_box(lambda), black_box(0.0)).unwrap())
+        });
+    }
+    g.finish();
+
+    // Building one table (d = 0, default spec): the cost a scene pays once.
+    let mut g = c.benchmark_group("table");
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(200));
+    g.measurement_time(Duration::from_secs(2));
+    for law in [&implicit, &energy_law] {
+        g.bench_function(format!("build_{}", law.name()), |b| {
+            b.iter(|| tabulated(black_box(law)))
+        });
+    }
     g.finish();
 }
 

@@ -72,6 +72,8 @@ pub struct Kinematics {
     g_identity: Matrix3<f64>,
     /// [tr C, C:M, tr C⁻¹, C⁻¹:M, det C].
     pub invariants: [f64; 5],
+    /// F and m do not couple θ with (r, z) (see [`Kinematics::new`]).
+    axisymmetric: bool,
 }
 
 /// X Y for 3×3 matrices, by its nine dot products (no zero fill, fully unrolled).
@@ -80,40 +82,101 @@ fn product(x: &Matrix3<f64>, y: &Matrix3<f64>) -> Matrix3<f64> {
     Matrix3::from_fn(|i, j| x[(i, 0)] * y[(0, j)] + x[(i, 1)] * y[(1, j)] + x[(i, 2)] * y[(2, j)])
 }
 
+/// X Y for block-diagonal 3×3 matrices (a (0, 2) block and the (1, 1) entry).
+#[inline(always)]
+fn block_product(x: &Matrix3<f64>, y: &Matrix3<f64>) -> Matrix3<f64> {
+    let e = |i: usize, j: usize| x[(i, 0)] * y[(0, j)] + x[(i, 2)] * y[(2, j)];
+    Matrix3::new(
+        e(0, 0),
+        0.0,
+        e(0, 2),
+        0.0,
+        x[(1, 1)] * y[(1, 1)],
+        0.0,
+        e(2, 0),
+        0.0,
+        e(2, 2),
+    )
+}
+
+/// X v for a block-diagonal 3×3 X and v in the (0, 2) plane.
+#[inline(always)]
+fn block_apply(x: &Matrix3<f64>, v: &Vector3<f64>) -> Vector3<f64> {
+    Vector3::new(
+        x[(0, 0)] * v[0] + x[(0, 2)] * v[2],
+        0.0,
+        x[(2, 0)] * v[0] + x[(2, 2)] * v[2],
+    )
+}
+
+/// F and m leave θ = index 1 uncoupled from (r, z) = (0, 2): F_rθ = F_θr = F_zθ = F_θz = 0
+/// and m_θ = 0, so that B, C⁻¹, g and Q are block diagonal.
+#[inline(always)]
+fn uncouples_theta(f: &Matrix3<f64>, m: &Vector3<f64>) -> bool {
+    f[(0, 1)] == 0.0 && f[(1, 0)] == 0.0 && f[(1, 2)] == 0.0 && f[(2, 1)] == 0.0 && m[1] == 0.0
+}
+
 impl Kinematics {
     /// Prepares F for differentiation. Rejects det F ≤ 0 (and non-finite F).
     /// `m` must be a unit vector (the caller validates it once, not per point).
     ///
-    /// B = F⁻¹ = adj F / J by cofactors, with J = det F expanded along the first row of F.
+    /// B = F⁻¹ = adj F / J by cofactors, with J = det F expanded along the first row of F. When F
+    /// and m do not couple θ = index 1 with (r, z) = (0, 2) (the axisymmetric problem), every
+    /// tensor is block diagonal and only the 2×2 (r, z) block and the θθ entry are computed:
+    /// B_θθ = 1/F_θθ, the block of B by the 2×2 inverse.
     #[inline(always)]
     pub fn new(f: &Matrix3<f64>, m: &Vector3<f64>) -> Result<Self> {
-        let x = |i: usize, j: usize| f[(i, j)];
-        // adj F (the transposed cofactor matrix), row-major.
-        let adj = Matrix3::new(
-            x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1),
-            x(0, 2) * x(2, 1) - x(0, 1) * x(2, 2),
-            x(0, 1) * x(1, 2) - x(0, 2) * x(1, 1),
-            x(1, 2) * x(2, 0) - x(1, 0) * x(2, 2),
-            x(0, 0) * x(2, 2) - x(0, 2) * x(2, 0),
-            x(0, 2) * x(1, 0) - x(0, 0) * x(1, 2),
-            x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0),
-            x(0, 1) * x(2, 0) - x(0, 0) * x(2, 1),
-            x(0, 0) * x(1, 1) - x(0, 1) * x(1, 0),
-        );
-        let det_f = x(0, 0) * adj[(0, 0)] + x(0, 1) * adj[(1, 0)] + x(0, 2) * adj[(2, 0)];
+        let axisymmetric = uncouples_theta(f, m);
+        let (det_f, b) = if axisymmetric {
+            let (a, c, d, e, t) = (f[(0, 0)], f[(0, 2)], f[(2, 0)], f[(2, 2)], f[(1, 1)]);
+            let det2 = a * e - c * d;
+            let det_f = det2 * t;
+            let k = 1.0 / det2;
+            let b = Matrix3::new(e * k, 0.0, -c * k, 0.0, 1.0 / t, 0.0, -d * k, 0.0, a * k);
+            (det_f, b)
+        } else {
+            let x = |i: usize, j: usize| f[(i, j)];
+            // adj F (the transposed cofactor matrix), row-major.
+            let adj = Matrix3::new(
+                x(1, 1) * x(2, 2) - x(1, 2) * x(2, 1),
+                x(0, 2) * x(2, 1) - x(0, 1) * x(2, 2),
+                x(0, 1) * x(1, 2) - x(0, 2) * x(1, 1),
+                x(1, 2) * x(2, 0) - x(1, 0) * x(2, 2),
+                x(0, 0) * x(2, 2) - x(0, 2) * x(2, 0),
+                x(0, 2) * x(1, 0) - x(0, 0) * x(1, 2),
+                x(1, 0) * x(2, 1) - x(1, 1) * x(2, 0),
+                x(0, 1) * x(2, 0) - x(0, 0) * x(2, 1),
+                x(0, 0) * x(1, 1) - x(0, 1) * x(1, 0),
+            );
+            let det_f = x(0, 0) * adj[(0, 0)] + x(0, 1) * adj[(1, 0)] + x(0, 2) * adj[(2, 0)];
+            (det_f, adj * (1.0 / det_f))
+        };
         if det_f.is_nan() || det_f <= 0.0 || !f.iter().all(|x| x.is_finite()) {
             return Err(Error::NonPositiveJacobian {
                 det: det_f,
                 f: f.transpose().into(),
             });
         }
-        let b = adj * (1.0 / det_f);
+        let product = |x: &Matrix3<f64>, y: &Matrix3<f64>| {
+            if axisymmetric {
+                block_product(x, y)
+            } else {
+                product(x, y)
+            }
+        };
         let b_t = b.transpose();
         let c_inv = product(&b, &b_t);
         let b_t_b = product(&b_t, &b);
-        let f_m = f * m;
-        let b_t_m = b_t * m;
-        let c_inv_m = b * b_t_m;
+        let apply = |x: &Matrix3<f64>, v: &Vector3<f64>| {
+            if axisymmetric {
+                block_apply(x, v)
+            } else {
+                x * v
+            }
+        };
+        let f_m = apply(f, m);
+        let b_t_m = apply(&b_t, m);
+        let c_inv_m = apply(&b, &b_t_m);
         let invariants = [
             f.norm_squared(),
             f_m.norm_squared(),
@@ -133,6 +196,7 @@ impl Kinematics {
             c_inv_m,
             g_identity: product(&b_t_b, &b_t),
             invariants,
+            axisymmetric,
         })
     }
 
@@ -173,31 +237,38 @@ impl Kinematics {
         w: &SVector<f64, 5>,
         entries: &Entries<N>,
     ) -> SMatrix<f64, N, N> {
+        let mut t = SMatrix::zeros();
+        self.curvature_into(w, entries, &mut t);
+        t
+    }
+
+    /// [`curvature`](Self::curvature) written into `t` (every entry is overwritten): the
+    /// routes build their tangent in place, without copying it.
+    #[inline(always)]
+    pub fn curvature_into<const N: usize>(
+        &self,
+        w: &SVector<f64, 5>,
+        entries: &Entries<N>,
+        t: &mut SMatrix<f64, N, N>,
+    ) {
         if entries.index[..] == FULL.index[..] {
-            let mut t = [[0.0; 9]; 9];
-            self.weighted(w, [0, 1, 2]).fill(&mut t);
-            SMatrix::from_fn(|x, y| t[x][y])
+            self.weighted(w, [0, 1, 2]).fill(t);
         } else if entries.index[..] == AXISYMMETRIC.index[..] && self.is_axisymmetric() {
-            let t = self.axisymmetric_curvature(w);
-            SMatrix::from_fn(|x, y| t[x][y])
+            self.axisymmetric_curvature(w, t);
         } else {
             let c = self.weighted(w, [0, 1, 2]);
-            SMatrix::from_fn(|x, y| {
-                let (a, b) = (entries.index[x], entries.index[y]);
-                c.entry(a, b) + c.det_entry(a, b)
-            })
+            for x in 0..N {
+                for y in 0..N {
+                    let (a, b) = (entries.index[x], entries.index[y]);
+                    t[(x, y)] = c.entry(a, b) + c.det_entry(a, b);
+                }
+            }
         }
     }
 
-    /// F and m leave θ = index 1 uncoupled from (r, z) = (0, 2): F_rθ = F_θr = F_zθ = F_θz = 0
-    /// and m_θ = 0, so that B, C⁻¹, g and Q are block diagonal.
+    /// F and m do not couple θ with (r, z): B, C⁻¹, g and Q are block diagonal.
     fn is_axisymmetric(&self) -> bool {
-        let f = &self.f;
-        f[(0, 1)] == 0.0
-            && f[(1, 0)] == 0.0
-            && f[(1, 2)] == 0.0
-            && f[(2, 1)] == 0.0
-            && self.m[1] == 0.0
+        self.axisymmetric
     }
 
     /// The curvature over [F_rr, F_rz, F_zr, F_zz, F_θθ] for block-diagonal F and m in the
@@ -205,23 +276,25 @@ impl Kinematics {
     /// formula splits into the (r, z) block, its coupling with θθ through the det C term
     /// alone, T_kL,θθ = 4 w₅ J² β B_Lk, and T_θθ,θθ = 6 w₃ β⁴ + 2 w₁ + 2 w₅ J² β².
     #[inline(always)]
-    fn axisymmetric_curvature(&self, w: &SVector<f64, 5>) -> [[f64; 5]; 5] {
+    fn axisymmetric_curvature<const N: usize>(
+        &self,
+        w: &SVector<f64, 5>,
+        t: &mut SMatrix<f64, N, N>,
+    ) {
         let c = self.weighted(w, [0, 2]);
         let beta = self.b[(1, 1)];
         let beta2 = beta * beta;
         // Entry order of AXISYMMETRIC: (k, L) = 2 k + L in (r, z) block indices r = 0, z = 1,
         // then θθ.
-        let mut t = [[0.0; 5]; 5];
-        c.fill(&mut t);
+        c.fill(t);
         for k in 0..2 {
             for l in 0..2 {
                 let v = 4.0 * c.j2w * beta * c.b[l][k];
-                t[2 * k + l][4] = v;
-                t[4][2 * k + l] = v;
+                t[(2 * k + l, 4)] = v;
+                t[(4, 2 * k + l)] = v;
             }
         }
-        t[4][4] = 6.0 * w[2] * beta2 * beta2 + 2.0 * w[0] + 2.0 * c.j2w * beta2;
-        t
+        t[(4, 4)] = 6.0 * w[2] * beta2 * beta2 + 2.0 * w[0] + 2.0 * c.j2w * beta2;
     }
 
     /// The ingredients of the curvature restricted to the rows and columns `idx` of the 3×3
@@ -269,27 +342,31 @@ impl<const D: usize> Weighted<D> {
         self.j2w * (4.0 * b[jj][i] * b[l][k] - 2.0 * b[l][i] * b[jj][k])
     }
 
-    /// Rows and columns (k, L) = D k + L < D² of `t`: every entry of the block by constant-bound
-    /// loops (unrolled by the compiler: no index arithmetic at run time); the det C term in a
-    /// second pass, skipped when w₅ = 0.
+    /// Rows and columns (k, L) = D k + L < D² of `t`. The formula is symmetric under
+    /// (k, L) ↔ (i, J), so only the upper triangle is evaluated and mirrored: entry by entry
+    /// for the 2×2 block (16 entries, all loops unrolled), by the D×D sub-blocks (k, i) with
+    /// i ≥ k for all nine entries (81 entries: the loops over (k, i) stay loops, those over
+    /// (L, J) are unrolled). The det C term in the same pass, its weight 0 for energies that
+    /// ignore det C.
     #[inline(always)]
-    fn fill<const M: usize>(&self, t: &mut [[f64; M]; M]) {
+    fn fill<const N: usize>(&self, t: &mut SMatrix<f64, N, N>) {
         for k in 0..D {
-            for l in 0..D {
-                for i in 0..D {
-                    for jj in 0..D {
-                        t[D * k + l][D * i + jj] = self.entry((k, l), (i, jj));
-                    }
+            for i in 0..D {
+                if D == 3 && i < k {
+                    continue;
                 }
-            }
-        }
-        if self.j2w != 0.0 {
-            for k in 0..D {
                 for l in 0..D {
-                    for i in 0..D {
-                        for jj in 0..D {
-                            t[D * k + l][D * i + jj] += self.det_entry((k, l), (i, jj));
+                    for jj in 0..D {
+                        let (a, b) = (D * k + l, D * i + jj);
+                        if D == 2 && b < a {
+                            continue;
                         }
+                        let mut v = self.entry((k, l), (i, jj));
+                        if self.j2w != 0.0 {
+                            v += self.det_entry((k, l), (i, jj));
+                        }
+                        t[(a, b)] = v;
+                        t[(b, a)] = v;
                     }
                 }
             }

@@ -1,10 +1,10 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
-use crate::active::coupling::{couple, Coupling, FrozenTangent};
+use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
-use crate::response::{invariant_derivatives, Order};
+use crate::response::{check_returned, in_f_space, unchecked_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
@@ -103,7 +103,7 @@ impl<E: StrainEnergy> Muscle<E> {
             }
         };
         let j = SVector::from(kinematics.invariants);
-        let d = invariant_derivatives(&self.energy, &j, law.gamma, order)?;
+        let d = unchecked_derivatives(&self.energy, &j, law.gamma, order)?;
         let mut out = MuscleResponse {
             gamma: law.gamma,
             fibre_stretch,
@@ -115,12 +115,39 @@ impl<E: StrainEnergy> Muscle<E> {
         if order == Order::Energy {
             return Ok(out);
         }
-        let (gradient, hessian) = couple(self.coupling, &d, &law, fibre_stretch);
-        let dj = kinematics.gradients(entries);
-        out.stress = Some(dj.transpose() * gradient);
-        out.tangent =
-            hessian.map(|k| dj.transpose() * k * dj + kinematics.curvature(&gradient, entries));
-        out.dstress_dgamma = d.second.map(|s| dj.tr_mul(&s.d_jgamma));
+        // The coupling (see crate::active::coupling): Ŵ's stress and tangent with ∂Ŵ/∂j₂ and
+        // ∂²Ŵ/∂j₂² raised for the consistent model, then the rank-one terms in dP/dγ ⊗ G′D₂.
+        let (g1, g2) = invariant_slopes(&law, fibre_stretch);
+        let (a, b) = match (self.coupling, &d.second) {
+            (Coupling::Consistent, Some(s)) => {
+                (d.d_gamma * g1, s.d_gammagamma * g1 * g1 + d.d_gamma * g2)
+            }
+            (Coupling::Consistent, None) => (d.d_gamma * g1, 0.0),
+            _ => (0.0, 0.0),
+        };
+        out.tangent = d.second.map(|_| SMatrix::zeros());
+        let f = in_f_space(kinematics, entries, &d, (a, b), out.tangent.as_mut());
+        if let (Some(t), Some(q)) = (out.tangent.as_mut(), &f.dstress_dgamma) {
+            let r = f.fibre_gradient * g1;
+            let (frozen, consistent) = match self.coupling {
+                Coupling::Frozen(FrozenTangent::Symmetric) => (false, false),
+                Coupling::Frozen(FrozenTangent::Exact) => (true, false),
+                Coupling::Consistent => (true, true),
+            };
+            for x in 0..N {
+                for y in 0..N {
+                    if frozen {
+                        t[(x, y)] += q[x] * r[y];
+                    }
+                    if consistent {
+                        t[(x, y)] += r[x] * q[y];
+                    }
+                }
+            }
+        }
+        check_returned(&d, &f, out.tangent.as_ref(), &kinematics.invariants)?;
+        out.stress = Some(f.stress);
+        out.dstress_dgamma = f.dstress_dgamma;
         Ok(out)
     }
 }

@@ -228,6 +228,9 @@ fn the_energy_law_continues_continuously_below_lambda_min() {
         jumping.evaluate(lmin + 0.01, 0.0).unwrap().gamma > 0.2,
         "the inactive variant jumps"
     );
+    // At λ_min itself, not where ∫P_act leaves 0 in f64 (≈ 6e-4 above it).
+    assert!(jumping.evaluate(lmin + 1e-6, 0.0).unwrap().gamma > 0.2);
+    assert_eq!(jumping.evaluate(lmin, 0.0).unwrap().gamma, 0.0);
     // Zero active work below λ_min: Ŵ(λ, γ) = W_pas(λ), and the consistent stress is P_pas.
     for l in [0.5, 0.55, 0.6, 0.62] {
         let g = continuous.evaluate(l, 0.3).unwrap().gamma;
@@ -247,4 +250,31 @@ fn the_energy_law_continues_continuously_below_lambda_min() {
     }
     // Full damage: no activation at all.
     assert_eq!(continuous.evaluate(0.6, 1.0).unwrap().gamma, 0.0);
+}
+
+/// ∫_{λ_min}^{λ} P_act against composite Simpson on 200 000 intervals (a different rule, step
+/// ≤ 6e-6): to 2e-15 kPa + 1e-13 relative (equal 0.05 panels were 4e-15 kPa off at λ = 0.674,
+/// where the integral is 2.4e-4 kPa and the integrand flat to all orders at λ_min).
+#[test]
+fn active_work_integral_matches_a_fine_simpson_rule() {
+    let curve = ActiveCurve::paper();
+    let lmin = curve.lambda_min();
+    let simpson = |l: f64| {
+        let n = 200_000;
+        let h = (l - lmin) / n as f64;
+        let inner: f64 = (1..n)
+            .map(|i| curve.value(lmin + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 })
+            .sum();
+        (inner + curve.value(l)) * h / 3.0
+    };
+    for i in 1..=60 {
+        let l = lmin + 1.1 * i as f64 / 60.0 - 0.004;
+        let (quadrature, reference) = (curve.integral(l), simpson(l));
+        let allowed = 2e-15 + 1e-13 * reference;
+        assert!(
+            (quadrature - reference).abs() <= allowed,
+            "lambda {l}: {quadrature:e} vs {reference:e}"
+        );
+    }
+    assert_eq!(curve.integral(lmin), 0.0);
 }

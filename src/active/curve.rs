@@ -109,33 +109,41 @@ impl ActiveCurve {
     }
 
     /// ∫_{λ_min}^{λ} P_act(s) ds \[kPa\] (0 for λ ≤ λ_min), by composite 16-point Gauss–Legendre on
-    /// panels of width ≤ 0.05: the integrand is C^∞ (flat to all orders at λ_min), so this is
-    /// exact to rounding. Past λ_opt the exponent k (λ² − λ_opt²)²/(λ − λ_min) grows with λ, so
+    /// equal panels of width ≤ 0.1, the first of which (where the integrand is flat to all orders,
+    /// e^{−c/(s − λ_min)}) is split into its quarters [0, ¼], [¼, ½] and [½, 1]. Measured against
+    /// 1 200 panels: ≤ 6e-16 kPa below λ = 0.75 (equal panels of 0.05 without the split: 4e-15,
+    /// which the energy law turned into a γ error of ≈ 1e-14 near λ = 0.67), rounding (≈ 1e-16
+    /// relative) above. Past λ_opt the exponent k (λ² − λ_opt²)²/(λ − λ_min) grows with λ, so
     /// once a panel there adds exactly 0 (P_act underflowed) so do all later ones and the sum
-    /// stops: at most min(λ, λ₀)/0.05 panels whatever λ, λ₀ ≈ (700/k)^⅓ (≈ 12.6 for the chapter).
+    /// stops: at most min(λ, λ₀)/0.1 + 3 panels whatever λ, λ₀ ≈ (700/k)^⅓ (≈ 12.6 for the chapter).
     pub fn integral(&self, lambda: f64) -> f64 {
         if lambda <= self.lambda_min {
             return 0.0;
         }
         let width = lambda - self.lambda_min;
-        let panels = (width / 0.05).ceil().max(1.0);
-        let h = width / panels;
-        let mut sum = 0.0;
-        let mut p = 0.0;
-        while p < panels {
-            let mid = self.lambda_min + (p + 0.5) * h;
-            // Each term into `sum` in turn (summing a panel first would change the last bits).
-            let mut zero = true;
-            for &(x, w) in &GAUSS_16 {
-                let term = w * (self.value(mid - 0.5 * h * x) + self.value(mid + 0.5 * h * x));
-                zero &= term == 0.0;
-                sum += term;
-            }
-            if zero && mid > self.lambda_opt {
+        let panels = (width / 0.1).ceil().max(1.0) as usize;
+        let h = width / panels as f64;
+        let panel = |a: f64, b: f64| {
+            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+            let sum: f64 = GAUSS_16
+                .iter()
+                .map(|&(x, w)| w * (self.value(mid - half * x) + self.value(mid + half * x)))
+                .sum();
+            sum * half
+        };
+        let first = [0.0, 0.25, 0.5, 1.0].map(|t| self.lambda_min + t * h);
+        let mut sum: f64 = first.windows(2).map(|w| panel(w[0], w[1])).sum();
+        for p in 1..panels {
+            let (a, b) = (
+                self.lambda_min + p as f64 * h,
+                self.lambda_min + (p + 1) as f64 * h,
+            );
+            let added = panel(a, b);
+            if added == 0.0 && a > self.lambda_opt {
                 break;
             }
-            p += 1.0;
+            sum += added;
         }
-        sum * 0.5 * h
+        sum
     }
 }

@@ -9,6 +9,7 @@ pub mod strain;
 pub use coupling::{Coupling, FrozenTangent};
 pub use curve::ActiveCurve;
 pub use law::{
-    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawValue,
+    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law,
+    LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw,
 };
 pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};

@@ -108,6 +108,19 @@ impl StrainMap {
         ])
     }
 
+    /// (A X)_rk for the rows r of X (one per invariant): the gradients of the elastic
+    /// invariants from those of the invariants of C.
+    #[inline(always)]
+    pub fn row<const N: usize>(&self, r: usize, x: &SMatrix<f64, 5, N>, k: usize) -> f64 {
+        match r {
+            0 => x[(0, k)] + (self.s2 - 1.0) * x[(1, k)],
+            1 => self.s2 * x[(1, k)],
+            2 => x[(2, k)] + (self.c2 - 1.0) * x[(3, k)],
+            3 => self.c2 * x[(3, k)],
+            _ => self.s2 * x[(4, k)],
+        }
+    }
+
     /// Aᵀ y.
     #[inline]
     pub fn transpose_apply(&self, y: &SVector<f64, 5>) -> SVector<f64, 5> {

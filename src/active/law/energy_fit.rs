@@ -23,7 +23,7 @@ use num_dual::{first_derivative, second_derivative};
 /// have Ψ = W_pas there); off it, Ψ(F) = Ŵ(F, γ(λ_f)) is discontinuous across λ_f = λ_min, so a
 /// body whose fibres cross λ_min is not described by a continuous energy there.
 ///
-/// Cost: a quadrature of P_act (≤ 20 panels of 16 points) plus the bracketed Newton solve
+/// Cost: a quadrature of P_act (⌈(λ − λ_min)/0.1⌉ + 2 panels of 16 points) plus the bracketed Newton solve
 /// (one dual number per step) and three hyper-hyper-duals for exact derivatives.
 ///
 /// Below λ_min two choices are offered ([`BelowMinimum`]): γ = 0 (the chapter's "no activation
@@ -61,6 +61,11 @@ impl<E> EnergyLaw<E> {
         &self.curve
     }
 
+    /// The energy the law is fitted for.
+    pub fn energy(&self) -> &E {
+        &self.energy
+    }
+
     /// What the law does below λ_min.
     pub fn below_minimum_choice(&self) -> BelowMinimum {
         self.below_minimum
@@ -94,14 +99,17 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 }
 
 impl<E: StrainEnergy> EnergyLaw<E> {
-    /// (1 − d) ∫ P_act, and whether γ is 0 there (no work and no zero-work branch).
+    /// (1 − d) ∫ P_act, and whether γ is 0 there: no activation at all (d = 1), or λ ≤ λ_min
+    /// for [`BelowMinimum::Inactive`] (the jump is at λ_min itself, not where ∫P_act leaves 0
+    /// in f64, ≈ 6e-4 above it).
     fn work(&self, lambda: f64, damage: f64) -> Result<(f64, bool)> {
         check_damage(damage)?;
         positive("fibre stretch", lambda)?;
         let scale = 1.0 - damage;
         let work = scale * self.curve.integral(lambda);
-        let zero_work = self.below_minimum == BelowMinimum::ZeroWork && scale > 0.0;
-        Ok((work, work <= 0.0 && !zero_work))
+        let inactive = scale <= 0.0
+            || (self.below_minimum == BelowMinimum::Inactive && lambda <= self.curve.lambda_min());
+        Ok((work, inactive))
     }
 }
 

@@ -36,6 +36,11 @@ impl<E: StrainEnergy> ImplicitLaw<E> {
         &self.curve
     }
 
+    /// The energy the law is fitted for.
+    pub fn energy(&self) -> &E {
+        &self.energy
+    }
+
     /// Residual of eq. D:eqgammaesplicita in kPa: P_tot(λ, γ) − P_pas(λ) − (1 − d) P_act(λ).
     pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
         let (p_tot, _) = fibre_stress_and_slope(&self.energy, lambda, gamma);

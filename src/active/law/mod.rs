@@ -8,16 +8,23 @@
 //! | [`ImplicitLaw`] | P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (eq. D:eqgammaesplicita) | a bracketed Newton solve |
 //! | [`ExplicitLaw`] | the chapter's closed form (eq. D:gamma) | a formula |
 //! | [`EnergyLaw`] | Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫ P_act (truly hyperelastic fit) | a quadrature and a bracketed Newton solve |
+//! | [`TabulatedLaw`] | the implicit or energy law as a checked piecewise Chebyshev table per damage | a table lookup |
+//!
+//! [`Law::represented`] turns a law into its tabulated (or back into its exact) representation.
 
 mod constant;
 mod energy_fit;
 mod explicit;
 mod implicit;
+mod tabulated;
 
 pub use constant::ConstantLaw;
 pub use energy_fit::{BelowMinimum, EnergyLaw};
 pub use explicit::ExplicitLaw;
 pub use implicit::ImplicitLaw;
+pub use tabulated::{
+    LawRepresentation, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw, MIN_WIDTH,
+};
 
 use crate::active::strain::fibre_path_energy;
 use crate::energy::StrainEnergy;
@@ -76,6 +83,8 @@ pub enum Law<E> {
     Explicit(ExplicitLaw),
     /// The energy-consistent (truly hyperelastic) fit.
     Energy(EnergyLaw<E>),
+    /// The implicit or the energy law, tabulated (see [`TabulatedLaw`]).
+    Tabulated(TabulatedLaw<E>),
 }
 
 impl<E> Law<E> {
@@ -83,14 +92,19 @@ impl<E> Law<E> {
     /// from 0 to the root of Ŵ(λ_min, γ) = W_pas(λ_min) (see [`EnergyLaw`]).
     pub fn jump(&self) -> Option<f64> {
         match self {
-            Law::Energy(l) if l.below_minimum_choice() == BelowMinimum::Inactive => {
+            Law::Energy(l)
+            | Law::Tabulated(TabulatedLaw {
+                exact: SolvedLaw::Energy(l),
+                ..
+            }) if l.below_minimum_choice() == BelowMinimum::Inactive => {
                 Some(l.curve().lambda_min())
             }
             _ => None,
         }
     }
 
-    /// Name used in logs and output files: passive, constant, implicit, explicit, energy.
+    /// Name used in logs and output files: passive, constant, implicit, explicit, energy,
+    /// implicit-tabulated, energy-tabulated.
     pub fn name(&self) -> &'static str {
         match self {
             Law::Passive => "passive",
@@ -98,7 +112,36 @@ impl<E> Law<E> {
             Law::Implicit(_) => "implicit",
             Law::Explicit(_) => "explicit",
             Law::Energy(_) => "energy",
+            Law::Tabulated(l) => match &l.exact {
+                SolvedLaw::Implicit(_) => "implicit-tabulated",
+                SolvedLaw::Energy(_) => "energy-tabulated",
+            },
         }
+    }
+}
+
+impl<E: StrainEnergy> Law<E> {
+    /// The same law in the representation asked for: [`LawRepresentation::Tabulated`] builds a
+    /// table per damage in `damages` for the implicit and the energy law (an already tabulated
+    /// law is rebuilt from its exact law); [`LawRepresentation::Exact`] returns a tabulated
+    /// law's exact law. The closed-form laws (passive, constant, explicit) are returned as
+    /// they are in both representations. Errors as [`TabulatedLaw::new`].
+    pub fn represented(self, representation: LawRepresentation, damages: &[f64]) -> Result<Self> {
+        let exact = match self {
+            Law::Implicit(l) => SolvedLaw::Implicit(l),
+            Law::Energy(l) => SolvedLaw::Energy(l),
+            Law::Tabulated(l) => l.exact,
+            closed_form => return Ok(closed_form),
+        };
+        Ok(match representation {
+            LawRepresentation::Exact => match exact {
+                SolvedLaw::Implicit(l) => Law::Implicit(l),
+                SolvedLaw::Energy(l) => Law::Energy(l),
+            },
+            LawRepresentation::Tabulated(spec) => {
+                Law::Tabulated(TabulatedLaw::new(exact, damages, spec)?)
+            }
+        })
     }
 }
 
@@ -110,6 +153,7 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
             Law::Implicit(l) => l.evaluate(lambda, damage),
             Law::Explicit(l) => l.evaluate(lambda, damage),
             Law::Energy(l) => l.evaluate(lambda, damage),
+            Law::Tabulated(l) => l.evaluate(lambda, damage),
         }
     }
 
@@ -120,6 +164,7 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
             Law::Implicit(l) => l.activation(lambda, damage),
             Law::Explicit(l) => l.activation(lambda, damage),
             Law::Energy(l) => l.activation(lambda, damage),
+            Law::Tabulated(l) => l.activation(lambda, damage),
         }
     }
 
