@@ -40,6 +40,7 @@ pub mod stability;
 pub mod studies;
 pub mod testing;
 pub mod uniaxial;
+pub mod volumetric;
 
 pub use app_error::AppError;
 pub use energy::{Energy, StrainEnergy};

@@ -9,6 +9,8 @@ use crate::active::{
 };
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
+use crate::uniaxial::{Direction, UniaxialPoint};
+use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::{Muscle, StrainEnergy};
 use serde::de::{MapAccess, Visitor};
 use serde::ser::SerializeMap;
@@ -120,6 +122,9 @@ pub struct Models {
     pub below_minimum: BelowMinimum,
     /// How the implicit and energy laws of [`Models::muscle`] are evaluated.
     pub representation: LawRepresentation,
+    /// Near incompressibility: Ŵ + U(J) without constraint; `None`: exact, J = 1 (the
+    /// chapter's). Studies along and across the fibres and cylinders follow it.
+    pub volumetric: Option<Volumetric>,
 }
 
 impl Models {
@@ -134,6 +139,7 @@ impl Models {
             frozen_tangent: FrozenTangent::default(),
             below_minimum: BelowMinimum::default(),
             representation: LawRepresentation::Exact,
+            volumetric: None,
         }
     }
 
@@ -203,6 +209,21 @@ impl Models {
             0.0,
             Coupling::Consistent,
         )
+    }
+
+    /// The uniaxial test of `muscle` at stretch `lambda` in `direction`, exactly incompressible
+    /// ([`Direction::point`]) or, with [`Self::volumetric`], nearly incompressible
+    /// ([`crate::uniaxial::nearly_incompressible`]).
+    pub fn uniaxial(
+        &self,
+        muscle: &Muscle<Energy>,
+        direction: Direction,
+        lambda: f64,
+    ) -> crate::Result<UniaxialPoint> {
+        match &self.volumetric {
+            None => direction.point(muscle, lambda),
+            Some(v) => crate::uniaxial::nearly_incompressible(muscle, v, direction, lambda),
+        }
     }
 
     /// The passive material.
@@ -477,6 +498,110 @@ pub struct ExplicitSpec {
     pub b: Option<f64>,
 }
 
+/// How incompressibility is imposed (`[incompressibility]`): `kind = "exact"` (default, the
+/// chapter's J = 1 by a Lagrange multiplier), or a volumetric energy U(J) added to the material
+/// ([`crate::volumetric`]): `"quadratic"` (κ/2)(J − 1)², `"logarithmic"` (κ/4)(J² − 1 − 2 ln J)
+/// with `kappa` in kPa, or `"4c-giantesio"` μ/(4κ) J^(−2κ) (4C's `MAT_Muscle_Giantesio`) with
+/// `kappa` a dimensionless exponent and `mu` in kPa (default: the energy's μ).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IncompressibilitySpec {
+    /// `exact`, `quadratic`, `logarithmic` or `4c-giantesio`.
+    pub kind: Option<String>,
+    /// κ: bulk modulus \[kPa\] (quadratic, logarithmic) or exponent [-] (4c-giantesio).
+    pub kappa: Option<f64>,
+    /// μ \[kPa\] of the 4c-giantesio form.
+    pub mu: Option<f64>,
+}
+
+impl IncompressibilitySpec {
+    /// The volumetric energy (`None`: exact) for `energy`, its linear term chosen so that the
+    /// passive reference is stress free ([`crate::uniaxial::reference_stress`]); errors name the
+    /// keys relative to `[incompressibility]`.
+    pub fn build(&self, energy: &Energy) -> Result<Option<Volumetric>, SpecError> {
+        let kind = self.kind.as_deref().unwrap_or("exact");
+        let kappa = || {
+            self.kappa.ok_or_else(|| {
+                SpecError::new(
+                    "kappa",
+                    "(missing)",
+                    format!("kind = \"{kind}\" needs kappa (finite, > 0)"),
+                )
+            })
+        };
+        let form =
+            match kind {
+                "exact" => {
+                    for (key, v) in [("kappa", self.kappa), ("mu", self.mu)] {
+                        if let Some(v) = v {
+                            return Err(SpecError::new(
+                                key,
+                                v,
+                                "kind = \"exact\" (J = 1) takes no volumetric parameter",
+                            ));
+                        }
+                    }
+                    return Ok(None);
+                }
+                "quadratic" => VolumetricForm::Quadratic { kappa: kappa()? },
+                "logarithmic" => VolumetricForm::Logarithmic { kappa: kappa()? },
+                "4c-giantesio" => VolumetricForm::Giantesio4C {
+                    kappa: kappa()?,
+                    mu: match self.mu.or_else(|| EnergySpec::written(energy).get("mu")) {
+                        Some(mu) => mu,
+                        None => return Err(SpecError::new(
+                            "mu",
+                            "(missing)",
+                            "the energy has no parameter mu: give the 4c-giantesio form's mu [kPa]",
+                        )),
+                    },
+                },
+                other => {
+                    return Err(SpecError::new(
+                        "kind",
+                        format!("\"{other}\""),
+                        "expected \"exact\", \"quadratic\", \"logarithmic\" or \"4c-giantesio\"",
+                    ))
+                }
+            };
+        if self.mu.is_some() && !matches!(form, VolumetricForm::Giantesio4C { .. }) {
+            return Err(SpecError::new(
+                "mu",
+                self.mu.unwrap_or_default(),
+                "only the 4c-giantesio form takes mu",
+            ));
+        }
+        let s0 =
+            crate::uniaxial::reference_stress(energy).map_err(|e| SpecError::model("kind", e))?;
+        Volumetric::new(form, s0)
+            .map(Some)
+            .map_err(|e| SpecError::model("", e))
+    }
+
+    /// The spec as resolved: every value written out.
+    pub fn written(volumetric: Option<&Volumetric>) -> Self {
+        match volumetric.map(Volumetric::form) {
+            None => Self {
+                kind: Some("exact".into()),
+                ..Self::default()
+            },
+            Some(form) => {
+                let (kappa, mu) = match form {
+                    VolumetricForm::Quadratic { kappa } | VolumetricForm::Logarithmic { kappa } => {
+                        (kappa, None)
+                    }
+                    VolumetricForm::Giantesio4C { kappa, mu } => (kappa, Some(mu)),
+                };
+                Self {
+                    kind: Some(form.name().into()),
+                    kappa: Some(kappa),
+                    mu,
+                }
+            }
+        }
+    }
+}
+
 impl Models {
     /// The models of a `[material]` and an `[activation]` as written: every value left out is the
     /// chapter's, every number is validated by the core constructor that owns it, and errors name
@@ -510,6 +635,7 @@ impl Models {
             frozen_tangent: act.frozen_tangent.unwrap_or_default(),
             below_minimum: act.below_minimum.unwrap_or_default(),
             representation: representation(act)?,
+            volumetric: None,
         })
     }
 

@@ -13,6 +13,7 @@ use crate::invariants::{Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
 use crate::roots::newton_bisection;
+use crate::volumetric::Volumetric;
 use crate::{Error, Result};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
@@ -252,4 +253,151 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
         fibre_stretch: r.fibre_stretch,
         lateral: [a, f33],
     })
+}
+
+/// Newton iterations allowed for the lateral equilibrium of the nearly incompressible test.
+pub const MAX_LATERAL_ITERATIONS: usize = 60;
+
+/// The passive stress s₀ at F = I of `energy`, which must be hydrostatic (s₀ I, fibres along
+/// e₁) \[kPa\]: what a volumetric energy must cancel for a stress-free reference
+/// ([`crate::volumetric::Volumetric::new`]). 0 for the chapter's energies, μ for the
+/// neo-Hookean μ/2 (tr C − 3).
+pub fn reference_stress<E: StrainEnergy + Clone>(energy: &E) -> Result<f64> {
+    let muscle = Muscle::passive(energy.clone());
+    let kin = Kinematics::new(&Matrix3::identity(), &fibre())?;
+    let p = muscle
+        .respond(&kin, Order::Stress, &FULL)?
+        .stress
+        .unwrap_or_default();
+    let s0 = p[0];
+    let off = [1, 2, 3, 5, 6, 7]
+        .iter()
+        .map(|&i| p[i].abs())
+        .fold(0.0, f64::max);
+    let spread = (p[4] - s0).abs().max((p[8] - s0).abs());
+    if off.max(spread) > 1e-12 * (1.0 + s0.abs()) {
+        return Err(Error::NoSolution {
+            equation: "stress-free reference of the nearly incompressible material".into(),
+            reason: format!(
+                "the passive stress at F = I is not hydrostatic (diagonal {}, {}, {} kPa), so no U(J) cancels it",
+                p[0], p[4], p[8]
+            ),
+        });
+    }
+    Ok(s0)
+}
+
+/// Uniaxial tension of the nearly incompressible muscle, energy Ŵ(F, γ) + U(J), in `direction`
+/// (fibres along e₁, stretch along e₁ or e₂): F = diag(F₁₁, F₂₂, F₃₃) with the applied stretch λ
+/// on the loaded axis k and the two lateral stretches unknown, solved from zero lateral traction
+///
+/// P_ii = ∂Ŵ/∂F_ii + U′(J) J/F_ii = 0 (both lateral i; cof F = J F⁻ᵀ),
+///
+/// by Newton with the exact 2 × 2 tangent (∂²Ŵ/∂F_ii∂F_jj from the dual-number route, plus
+/// U″ (J/F_ii)(J/F_jj) and, for i ≠ j, U′ J/(F_ii F_jj)), backtracking on |r|, from the
+/// incompressible solution, at most [`MAX_LATERAL_ITERATIONS`] iterations (an error saying so
+/// otherwise). The nominal stress is P_kk = ∂Ŵ/∂F_kk + U′(J) J/F_kk; `lateral` holds the two
+/// lateral stretches (along: e₂, e₃; across: e₁ (the fibre), e₃).
+pub fn nearly_incompressible<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    volumetric: &Volumetric,
+    direction: Direction,
+    lambda: f64,
+) -> Result<UniaxialPoint> {
+    positive("lambda", lambda)?;
+    let start = direction.point(muscle, lambda)?;
+    let (axis, lat) = match direction {
+        Direction::Along => (0usize, [1usize, 2usize]),
+        Direction::Across => (1, [0, 2]),
+    };
+    let diagonal = |x: [f64; 2]| {
+        let mut d = Vector3::zeros();
+        d[axis] = lambda;
+        d[lat[0]] = x[0];
+        d[lat[1]] = x[1];
+        d
+    };
+    // Residual (P_ii of both lateral axes), its Jacobian, the loaded axis' P_kk, γ and λ_f.
+    type Lateral = ([f64; 2], [[f64; 2]; 2], f64, f64, f64);
+    let evaluate = |x: [f64; 2], tangent: bool| -> Result<Lateral> {
+        let d = diagonal(x);
+        let kin = Kinematics::new(&Matrix3::from_diagonal(&d), &fibre())?;
+        let order = if tangent {
+            Order::Tangent
+        } else {
+            Order::Stress
+        };
+        let r = muscle.respond(&kin, order, &FULL)?;
+        let p = r.stress.unwrap_or_default();
+        let j = d[0] * d[1] * d[2];
+        let [_, du, ddu] = volumetric.derivatives(j)?;
+        let cof = |i: usize| j / d[i];
+        let res = [
+            p[4 * lat[0]] + du * cof(lat[0]),
+            p[4 * lat[1]] + du * cof(lat[1]),
+        ];
+        let mut jac = [[0.0; 2]; 2];
+        if let Some(k) = r.tangent {
+            for (a, &i) in lat.iter().enumerate() {
+                for (b, &m) in lat.iter().enumerate() {
+                    let cross = if i == m { 0.0 } else { du * j / (d[i] * d[m]) };
+                    jac[a][b] = k[(4 * i, 4 * m)] + ddu * cof(i) * cof(m) + cross;
+                }
+            }
+        }
+        let nominal = p[4 * axis] + du * cof(axis);
+        Ok((res, jac, nominal, r.gamma, r.fibre_stretch))
+    };
+    let failure = |reason: String| {
+        Error::NoSolution {
+        equation: format!(
+            "lateral equilibrium of the nearly incompressible test {} the fibres at lambda = {lambda}",
+            direction.name()
+        ),
+        reason,
+    }
+    };
+    let norm = |r: [f64; 2]| r[0].abs().max(r[1].abs());
+    let mut x = start.lateral;
+    for iteration in 0..MAX_LATERAL_ITERATIONS {
+        let (r, jac, _, _, _) = evaluate(x, true)?;
+        let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+        if !(det.is_finite() && det != 0.0) {
+            return Err(failure(format!(
+                "singular lateral tangent (det = {det}) at lateral stretches {x:?}, iteration {iteration}"
+            )));
+        }
+        let dx = [
+            -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
+            -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
+        ];
+        // Backtracking: stay at positive stretches and do not increase |r| (beyond rounding).
+        let mut step = 1.0;
+        let mut next = [x[0] + dx[0], x[1] + dx[1]];
+        for _ in 0..30 {
+            let ok = next[0] > 0.0
+                && next[1] > 0.0
+                && evaluate(next, false).is_ok_and(|(rn, ..)| norm(rn) <= norm(r) * (1.0 + 1e-12));
+            if ok {
+                break;
+            }
+            step *= 0.5;
+            next = [x[0] + step * dx[0], x[1] + step * dx[1]];
+        }
+        let moved = (next[0] - x[0]).abs().max((next[1] - x[1]).abs());
+        x = next;
+        if moved <= 4.0 * f64::EPSILON * x[0].abs().max(x[1].abs()) {
+            let (_, _, stress, gamma, fibre_stretch) = evaluate(x, false)?;
+            return Ok(UniaxialPoint {
+                lambda,
+                stress,
+                gamma,
+                fibre_stretch,
+                lateral: x,
+            });
+        }
+    }
+    Err(failure(format!(
+        "no convergence in {MAX_LATERAL_ITERATIONS} Newton iterations (last lateral stretches {x:?})"
+    )))
 }

@@ -15,6 +15,7 @@ use super::element::{
 use super::error::{FemError, FemResult};
 use super::material::{AxiF, AxisymmetricMaterial};
 use super::mesh::Mesh;
+use crate::volumetric::Volumetric;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -61,6 +62,7 @@ struct Buffers<'a> {
     /// Per-cell data of the static condensation (one unused value per cell without it).
     cdata: &'a mut [f64],
     condensation: Option<&'a Condensation>,
+    volumetric: Option<&'a Volumetric>,
     rates: &'a [f64],
     n_free: usize,
 }
@@ -120,6 +122,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     ) -> crate::Result<()> {
         let re = &self.re;
         let (rates, n_free, condensation) = (buf.rates, buf.n_free, buf.condensation);
+        let volumetric = buf.volumetric;
         let n_k = buf.kbuf.len() / self.coords.len().max(1);
         let n_c = buf.cdata.len() / self.coords.len().max(1);
         buf.rbuf
@@ -135,7 +138,15 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                 let mut r = zeroed::<ND, 1>();
                 let scale = if tangent {
                     let mut k = zeroed::<ND, ND>();
-                    let s = re.residual_tangent(xe, &u, &p, material, &mut r, Some(&mut k))?;
+                    let s = re.residual_tangent(
+                        xe,
+                        &u,
+                        &p,
+                        material,
+                        volumetric,
+                        &mut r,
+                        Some(&mut k),
+                    )?;
                     match condensation {
                         Some(c) => c.condense_cell(k.as_slice(), ND, kb, cd)?,
                         None => kb.copy_from_slice(k.as_slice()),
@@ -155,7 +166,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     }
                     s
                 } else {
-                    re.residual_tangent(xe, &u, &p, material, &mut r, None)?
+                    re.residual_tangent(xe, &u, &p, material, volumetric, &mut r, None)?
                 };
                 rb.copy_from_slice(r.as_slice());
                 *sc = scale.stress;
@@ -225,6 +236,7 @@ pub struct Assembler {
     scale_buf: Vec<f64>,
     cdata: Vec<f64>,
     condensation: Option<Condensation>,
+    volumetric: Option<Volumetric>,
     index: Vec<u32>,
     rates: Vec<f64>,
 }
@@ -383,8 +395,20 @@ fn system_numbering(n_free: usize, condensation: Option<&Condensation>) -> (Vec<
 }
 
 impl Assembler {
-    /// Validates the element geometry and builds the pattern and the gather lists.
+    /// Validates the element geometry and builds the pattern and the gather lists (exact
+    /// incompressibility).
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> FemResult<Self> {
+        Self::with_volumetric(mesh, dofs, None)
+    }
+
+    /// [`Self::new`] for the nearly incompressible material Ψ + U(J) when `volumetric` is given
+    /// (the perturbed Lagrangian of [`super::element::ReferenceElement::residual_tangent`]: the
+    /// pressure–pressure block −∫ M Mᵀ/κ₀ dV enters the pattern).
+    pub fn with_volumetric(
+        mesh: &Mesh,
+        dofs: &DofMap,
+        volumetric: Option<Volumetric>,
+    ) -> FemResult<Self> {
         let n_el = mesh.n_elements();
         if mesh.element != dofs.element || dofs.element_dofs.len() != n_el * dofs.dofs_per_element()
         {
@@ -435,7 +459,8 @@ impl Assembler {
             })
             .collect();
         let condensed = condensation.is_some();
-        let couples = move |i: usize, j: usize| condensed || !(i >= nu && j >= nu);
+        let penalised = volumetric.is_some();
+        let couples = move |i: usize, j: usize| condensed || penalised || !(i >= nu && j >= nu);
         let pattern = system_pattern(&system, m, n_system, &couples, mesh)?;
         let nnz = pattern.row_idx.len();
         let pos = value_positions(&system, m, &pattern, &couples);
@@ -464,6 +489,7 @@ impl Assembler {
             scale_buf: vec![0.0; n_el],
             cdata: vec![0.0; n_el * n_c],
             condensation,
+            volumetric,
             index,
             rates,
         })
@@ -530,6 +556,7 @@ impl Assembler {
             scale_buf: &mut self.scale_buf,
             cdata: &mut self.cdata,
             condensation: self.condensation.as_ref(),
+            volumetric: self.volumetric.as_ref(),
             rates: &self.rates,
             n_free: self.n_free,
         };

@@ -7,6 +7,7 @@
 
 pub use super::kinematics::{deformation, jacobian, jacobian_gradient, jacobian_hessian};
 use super::material::AxisymmetricMaterial;
+use crate::volumetric::Volumetric;
 use nalgebra::{SMatrix, SVector};
 use std::ops::AddAssign;
 
@@ -381,6 +382,22 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     /// For Q1/P0 the only M is 1 on the cell, so R_p = −∫_e (J − 1) dV: incompressibility in
     /// the mean per cell. `x` holds the cell's nodal coordinates (validated by the caller: see
     /// [`Self::geometry`]).
+    ///
+    /// Nearly incompressible (`volumetric` = U(J), strictly convex): the perturbed Lagrangian
+    /// with the Legendre transform Φ(p) = sup_J [−p (J − 1) − U(J)] of U,
+    ///
+    /// Π(u, p) = ∫ [Ψ(F) − p (J − 1) − Φ(p)] dV,
+    ///
+    /// whose stationarity in p, J = J̃(p) := (U′)⁻¹(−p), gives back ∫ [Ψ + U(J)] dV. The
+    /// displacement equations are those of the exact constraint; the pressure equation and block
+    /// become ([`crate::volumetric::Volumetric::dilatation`]: Φ′ = 1 − J̃, Φ″ = 1/U″(J̃))
+    ///
+    /// R_p(q) = −∫ q [J − J̃(p)] dV,   K_pp = −∫ M Mᵀ / U″(J̃(p)) dV,
+    ///
+    /// for U = (κ/2)(J − 1)²: R_p = −∫ q [(J − 1) + p/κ] dV, K_pp = −∫ M Mᵀ/κ dV, and κ = ∞ is the
+    /// exact constraint. U is evaluated at the interpolated pressure, never at the pointwise J of
+    /// the displacement (which the mixed element keeps close to J̃ only weakly): a stiff,
+    /// non-quadratic U (4C's J^(−2κ)) then stays as well conditioned as the quadratic one.
     #[allow(clippy::too_many_arguments)]
     pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
         &self,
@@ -388,9 +405,20 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         u: &SVector<f64, NU>,
         p: &SVector<f64, NP>,
         material: &M,
+        volumetric: Option<&Volumetric>,
         residual: &mut ElementVector<ND>,
         tangent: Option<&mut ElementMatrix<ND>>,
     ) -> crate::Result<ElementScale> {
+        // (J − J̃(p), 1/U″(J̃)) at J and the pressure p: (J − 1, 0) for the exact constraint.
+        let constraint = |j: f64, p: f64| -> crate::Result<(f64, f64)> {
+            match volumetric {
+                None => Ok((j - 1.0, 0.0)),
+                Some(v) => {
+                    let (jt, compliance) = v.dilatation(p)?;
+                    Ok((j - jt, compliance))
+                }
+            }
+        };
         residual.as_mut_slice().fill(0.0);
         let mut scale = ElementScale::default();
         match tangent {
@@ -406,7 +434,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
+                    let rp = m * (-constraint(jacobian(&f), pq)?.0 * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
                 }
             }
@@ -425,8 +453,13 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
                     let ru = g.b.tr_mul(&s) * g.dv;
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = m * (-(jacobian(&f) - 1.0) * g.dv);
+                    let (c, compliance) = constraint(jacobian(&f), pq)?;
+                    let rp = m * (-c * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+                    if volumetric.is_some() {
+                        k.fixed_view_mut::<NP, NP>(NU, NU)
+                            .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
+                    }
                     // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
                     // material) only the node blocks below the diagonal, mirrored at the end.
                     let d = (a - jacobian_hessian(&f) * pq) * g.dv;

@@ -77,6 +77,9 @@ pub struct SolverOptions {
     pub element: Element,
     /// Optional VTK output.
     pub vtk: Option<VtkOutput>,
+    /// Near incompressibility: Ψ + U(J) by the perturbed Lagrangian of
+    /// [`super::element::ReferenceElement::residual_tangent`]; `None`: exact, J = 1.
+    pub volumetric: Option<crate::volumetric::Volumetric>,
     /// Largest memory estimate accepted \[bytes\]; `None`: [`super::memory::default_limit`]
     /// (half the memory available when the solver is built).
     pub memory_limit: Option<u64>,
@@ -100,6 +103,7 @@ impl Default for SolverOptions {
             linear_solver: LinearSolver::SymmetricPartGmres,
             element: Element::Q2Q1,
             vtk: None,
+            volumetric: None,
             memory_limit: None,
             cancel: None,
         }
@@ -266,7 +270,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let estimate = MemoryEstimate::of_mesh(&mesh, options.linear_solver);
         estimate.check(limit)?;
         let dofs = DofMap::new(&mesh, bases);
-        let asm = Assembler::new(&mesh, &dofs)?;
+        let asm = Assembler::with_volumetric(&mesh, &dofs, options.volumetric)?;
         let ldlt = match options.linear_solver {
             LinearSolver::Lu => None,
             LinearSolver::SymmetricPartGmres => Some(

@@ -452,20 +452,70 @@ pub fn history_csv(studies: &[(&str, &HistoryResult)]) -> Result<Vec<u8>, AppErr
     finish(w, "history.csv")
 }
 
-/// The tables a run has data for: `fits.csv`, `stability.csv`, `history.csv`.
-pub fn tables(results: &Results) -> Result<Vec<(&'static str, Vec<u8>)>, AppError> {
+/// Columns of a cylinder study's `points_<study>.csv`.
+pub const POINT_COLUMNS: [&str; 10] = [
+    "study", "point", "r", "z", "law", "coupling", "d", "lambda", "u_r", "u_z",
+];
+
+/// `points_<study>.csv` of a cylinder study with named points: the displacement (u_r, u_z) of
+/// each point (reference r, z; the mesh's length unit, e.g. mm) per stretch per model.
+pub fn points_csv(study: &str, c: &CylinderResult) -> Result<Vec<u8>, AppError> {
+    let file = format!("points_{}.csv", crate::studies::slug(study));
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let fail = csv_error(&file);
+    w.write_record(POINT_COLUMNS).map_err(&fail)?;
+    for sweep in &c.sweeps {
+        for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
+            for ((name, at), u) in c.points.iter().zip(u) {
+                let origin = || {
+                    format!(
+                        "{file}: {}, point {name}, lambda = {}",
+                        sweep.label, p.lambda
+                    )
+                };
+                w.write_record([
+                    study.to_string(),
+                    name.clone(),
+                    text(at[0], "r", origin)?,
+                    text(at[1], "z", origin)?,
+                    sweep.model.law.name().to_string(),
+                    sweep.model.coupling.name().to_string(),
+                    text(sweep.model.damage, "d", origin)?,
+                    text(p.lambda, "lambda", origin)?,
+                    text(u[0], "u_r", origin)?,
+                    text(u[1], "u_z", origin)?,
+                ])
+                .map_err(&fail)?;
+            }
+        }
+    }
+    finish(w, &file)
+}
+
+/// The tables of `results` beside `curves.csv`, with their file names: each cylinder study's
+/// named points, `fits.csv`, `stability.csv`, `history.csv` (each only if there is something to
+/// write).
+pub fn tables(results: &Results) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let mut out = Vec::new();
+    for (study, c) in results.cylinders() {
+        if !c.points.is_empty() {
+            out.push((
+                format!("points_{}.csv", crate::studies::slug(study)),
+                points_csv(study, c)?,
+            ));
+        }
+    }
     let fits = results.fits();
     if fits.iter().any(|(_, f)| !f.is_empty()) {
-        out.push(("fits.csv", fits_csv(&fits)?));
+        out.push(("fits.csv".into(), fits_csv(&fits)?));
     }
     let stability = results.stability();
     if stability.iter().any(|(_, c)| !c.is_empty()) {
-        out.push(("stability.csv", stability_csv(&stability)?));
+        out.push(("stability.csv".into(), stability_csv(&stability)?));
     }
     let histories = results.histories();
     if histories.iter().any(|(_, h)| !h.histories.is_empty()) {
-        out.push(("history.csv", history_csv(&histories)?));
+        out.push(("history.csv".into(), history_csv(&histories)?));
     }
     Ok(out)
 }

@@ -44,8 +44,8 @@ pub fn write_run(
     staging.write("curves.csv", &csv::to_csv(&rows)?)?;
     files.push("curves.csv".to_string());
     for (name, bytes) in csv::tables(results)? {
-        staging.write(name, &bytes)?;
-        files.push(name.to_string());
+        staging.write(&name, &bytes)?;
+        files.push(name);
     }
     staging.write("scene.toml", scene.source.as_bytes())?;
     files.push("scene.toml".to_string());

@@ -74,6 +74,7 @@ pub fn html(
     failures(&mut h, results);
     models_table(&mut h, scene, results);
     fe_table(&mut h, results);
+    points_table(&mut h, results);
     centre_note(&mut h, scene, results);
     fits_table(&mut h, results)?;
     stability_table(&mut h, results)?;
@@ -193,6 +194,28 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
+    if let Some(v) = &scene.models.volumetric {
+        let form = match v.form() {
+            crate::volumetric::VolumetricForm::Quadratic { kappa } => {
+                format!("(κ/2)(J − 1)², κ = {kappa} kPa")
+            }
+            crate::volumetric::VolumetricForm::Logarithmic { kappa } => {
+                format!("(κ/4)(J² − 1 − 2 ln J), κ = {kappa} kPa")
+            }
+            crate::volumetric::VolumetricForm::Giantesio4C { kappa, mu } => {
+                format!("μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio), κ = {kappa}, μ = {mu} kPa")
+            }
+        };
+        rows.push((
+            format!("incompressibility: {}", v.form().name()),
+            format!(
+                "nearly incompressible: Ŵ + U(J), U = {form} + {} (J − 1) (stress-free reference), bulk modulus U″(1) = {} kPa; uniaxial and cylinder studies (fit and stability: exact)",
+                v.shift(),
+                v.bulk_modulus()
+            ),
+            "not in the chapter (eq. (2) is exact: det C = 1)".to_string(),
+        ));
+    }
     h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
     for (name, what, chapter) in rows {
         let _ = writeln!(
@@ -351,6 +374,41 @@ fn difference(d: Option<(f64, f64, f64)>) -> String {
             short(100.0 * d / z.abs().max(1e-300))
         )
     })
+}
+
+/// The displacements of the named boundary points of each cylinder study (`[study.points]`),
+/// one row per point, model and stretch (also in `points_<study>.csv`).
+fn points_table(h: &mut String, results: &Results) {
+    let e = escape;
+    let studies: Vec<_> = results
+        .cylinders()
+        .filter(|(_, c)| !c.points.is_empty())
+        .collect();
+    if studies.is_empty() {
+        return;
+    }
+    h.push_str("<h2>Named points</h2>\n<p>Nodal displacements of the boundary points named in the scene (reference coordinates r, z; lengths in the mesh's unit), per model and stretch (<code>points_&lt;study&gt;.csv</code>).</p>\n<table><tr><th>study</th><th>point</th><th>(r, z)</th><th>model</th><th>λ</th><th>u_r</th><th>u_z</th></tr>\n");
+    for (study, c) in studies {
+        for sweep in &c.sweeps {
+            for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
+                for ((name, at), u) in c.points.iter().zip(u) {
+                    let _ = writeln!(
+                        h,
+                        "<tr><td>{}</td><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{:.6e}</td><td>{:.6e}</td></tr>",
+                        e(study),
+                        e(name),
+                        at[0],
+                        at[1],
+                        e(&sweep.label),
+                        p.lambda,
+                        u[0],
+                        u[1]
+                    );
+                }
+            }
+        }
+    }
+    h.push_str("</table>\n");
 }
 
 /// Each FE sweep against the homogeneous (0D) curve of the same model: the largest difference

@@ -31,7 +31,15 @@ pub fn key_path(text: &str, offset: usize) -> String {
             header = format!("{name}[{i}]");
             last_key_line = None;
         } else if let Some(name) = body.strip_prefix('[').and_then(|s| s.split(']').next()) {
-            header = name.trim().to_string();
+            // `[study.points]` after the i-th `[[study]]` is a table of that element: study[i].points.
+            let name = name.trim();
+            header = name
+                .split_once('.')
+                .and_then(|(first, rest)| {
+                    let (_, c) = counts.iter().find(|(n, _)| n == first.trim())?;
+                    Some(format!("{}[{}].{}", first.trim(), c - 1, rest.trim()))
+                })
+                .unwrap_or_else(|| name.to_string());
             last_key_line = None;
         } else if body.contains('=') && !starts_inside_value(body) {
             last_key_line = Some((line_start, line));

@@ -23,7 +23,7 @@ pub use run::{Printing, Results, RunOptions};
 
 use crate::app_error::AppError;
 pub use crate::models::{ActivationSpec, ExplicitSpec};
-use crate::models::{MaterialSpec, Models};
+use crate::models::{IncompressibilitySpec, MaterialSpec, Models};
 use crate::studies::tradeoff::{Fallback, TradeoffOptions};
 use crate::studies::{Study, StudySpec};
 use serde::{Deserialize, Serialize};
@@ -47,6 +47,9 @@ pub struct SceneSpec {
     /// Active curve, activation law, coupling and damage values shared by the studies.
     #[serde(default)]
     pub activation: ActivationSpec,
+    /// Exact or near incompressibility (`[incompressibility]`; default exact).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub incompressibility: Option<IncompressibilitySpec>,
     /// The studies, in order (`[[study]]`).
     #[serde(default, rename = "study")]
     pub studies: Vec<StudySpec>,

@@ -5,7 +5,7 @@
 use super::keypath::line_of;
 use super::{ActivationSpec, ExplicitSpec, Scene, SceneSpec};
 use crate::app_error::{SceneError, SpecError};
-use crate::models::{EnergySpec, MaterialSpec, Models};
+use crate::models::{EnergySpec, IncompressibilitySpec, MaterialSpec, Models};
 use crate::studies::spec::{damages, Defaults};
 use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec};
 use std::path::Path;
@@ -52,6 +52,10 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
             representation: Some(models.representation_spec().0),
             table_stretches: models.representation_spec().1,
         },
+        incompressibility: spec
+            .incompressibility
+            .as_ref()
+            .map(|_| IncompressibilitySpec::written(models.volumetric.as_ref())),
         studies: resolved,
     };
     Ok(Scene {
@@ -66,7 +70,12 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
 
 /// The material and activation of the scene, and its default damage values.
 fn models(spec: &SceneSpec) -> Result<(Models, Vec<f64>), SpecError> {
-    let models = Models::from_spec(&spec.material, &spec.activation)?;
+    let mut models = Models::from_spec(&spec.material, &spec.activation)?;
+    if let Some(inc) = &spec.incompressibility {
+        models.volumetric = inc
+            .build(&models.energy)
+            .map_err(|e| e.within("incompressibility"))?;
+    }
     let damage = spec.activation.damage.as_deref().unwrap_or(&[0.0]);
     Ok((models, damages("activation.damage", damage)?))
 }

@@ -13,9 +13,10 @@ use crate::fem::{
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
-use crate::uniaxial::along_fibres;
+use crate::uniaxial::Direction;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Scene names of [`Bases`] (serde's remote definition: the FE solver's own type).
@@ -78,6 +79,75 @@ pub struct CylinderSpec {
     pub vtk: Option<Vec<f64>>,
     /// Newton tolerance (default 1e-10).
     pub tolerance: Option<f64>,
+    /// Named boundary points `name = [r, z]` (reference coordinates, the mesh's length unit,
+    /// e.g. mm) whose nodal displacements are reported (`[study.points]`; default none). Each
+    /// must be a node of the mesh on the boundary of the meridian section (axis, lateral
+    /// surface or a base).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub points: Option<BTreeMap<String, [f64; 2]>>,
+}
+
+/// A named boundary node of a cylinder study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedPoint {
+    /// Name as given in the scene.
+    pub name: String,
+    /// Reference coordinates (r, z).
+    pub at: [f64; 2],
+    /// Node index in the solver's mesh (the cells of the study's element).
+    pub node: usize,
+}
+
+/// The nodes of `mesh` named by `points`, each a boundary node (within 1e-9 max(R, L));
+/// otherwise an error naming the nearest boundary node and its distance.
+fn named_points(
+    points: &BTreeMap<String, [f64; 2]>,
+    mesh: &Mesh,
+    cells: &str,
+) -> Result<Vec<NamedPoint>, SpecError> {
+    let (radius, length) = (mesh.radius, mesh.length);
+    let tol = 1e-9 * radius.max(length);
+    let on_boundary = |x: &[f64; 2]| {
+        x[0].abs() <= tol
+            || (x[0] - radius).abs() <= tol
+            || x[1].abs() <= tol
+            || (x[1] - length).abs() <= tol
+    };
+    let mut out = Vec::with_capacity(points.len());
+    for (name, at) in points {
+        let key = format!("points.{name}");
+        let shown = format!("[{}, {}]", at[0], at[1]);
+        if !(at[0].is_finite() && at[1].is_finite()) {
+            return Err(SpecError::new(key, shown, "coordinates must be finite"));
+        }
+        let nearest = mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| on_boundary(x))
+            .map(|(k, x)| (k, (x[0] - at[0]).hypot(x[1] - at[1])))
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        match nearest {
+            Some((node, d)) if d <= tol => out.push(NamedPoint {
+                name: name.clone(),
+                at: *at,
+                node,
+            }),
+            Some((node, d)) => {
+                let x = mesh.nodes[node];
+                return Err(SpecError::new(
+                    key,
+                    shown,
+                    format!(
+                        "a named point must be a mesh node on the boundary (r = 0, r = R, z = 0 or z = L) of the {cells} mesh: the nearest is node {node} at [{}, {}], {d:.3e} away",
+                        x[0], x[1]
+                    ),
+                ));
+            }
+            None => return Err(SpecError::new(key, shown, "the mesh has no boundary node")),
+        }
+    }
+    Ok(out)
 }
 
 /// Keys a cylinder study does not take, and what to write instead.
@@ -120,6 +190,8 @@ pub struct CylinderStudy {
     pub vtk: Vec<f64>,
     /// Newton tolerance.
     pub tolerance: f64,
+    /// Named boundary points whose displacements are reported.
+    pub points: Vec<NamedPoint>,
 }
 
 /// `clamped` or `sliding`.
@@ -191,6 +263,16 @@ pub fn resolve(
         coupling: Some(coupling),
         vtk: Some(vtk.clone()),
         tolerance: Some(tolerance),
+        points: spec.points.clone(),
+    };
+    let points = match &spec.points {
+        Some(p) if !p.is_empty() => {
+            let mesh = Mesh::structured(radius, length, nr, nz, grading)
+                .map_err(|e| SpecError::new("nr", nr, e.to_string()))?
+                .with_element(spec.element);
+            named_points(p, &mesh, &format!("{nr} × {nz} {}", spec.element))?
+        }
+        _ => Vec::new(),
     };
     Ok((
         CylinderStudy {
@@ -208,6 +290,7 @@ pub fn resolve(
             damages: damage,
             vtk,
             tolerance,
+            points,
         },
         resolved,
     ))
@@ -248,6 +331,9 @@ pub struct Sweep {
     pub points: Vec<SweepPoint>,
     /// VTK files written, relative to the run's VTK directory.
     pub vtk_files: Vec<PathBuf>,
+    /// Per converged stretch (aligned with `points`), the displacement (u_r, u_z) of each named
+    /// point of the study ([`CylinderResult::points`]), in the mesh's length unit.
+    pub displacements: Vec<Vec<[f64; 2]>>,
 }
 
 impl Sweep {
@@ -283,6 +369,8 @@ pub struct CylinderResult {
     pub element: Element,
     /// One sweep per damage value, in the study's order.
     pub sweeps: Vec<Sweep>,
+    /// The named boundary points, name and reference (r, z).
+    pub points: Vec<(String, [f64; 2])>,
 }
 
 /// A sweep that stopped, in words: how far it got and why.
@@ -355,6 +443,7 @@ impl CylinderStudy {
             bases: self.bases,
             element: self.element,
             sweeps: Vec::with_capacity(sweeps.len()),
+            points: self.points.iter().map(|p| (p.name.clone(), p.at)).collect(),
         };
         let mut failures = Vec::new();
         let mut details = vec![format!(
@@ -428,6 +517,7 @@ impl CylinderStudy {
             element: self.element,
             vtk,
             cancel: ctx.stop.map(|s| s.flag().clone()),
+            volumetric: models.volumetric,
             ..SolverOptions::default()
         };
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
@@ -444,6 +534,17 @@ impl CylinderStudy {
         let passive = models.passive();
         let mut points = Vec::with_capacity(sweep.results.len());
         let mut vtk_files = Vec::new();
+        let node_u = &solver.dofs().node_u;
+        let displacements: Vec<Vec<[f64; 2]>> = sweep
+            .results
+            .iter()
+            .map(|r| {
+                self.points
+                    .iter()
+                    .map(|p| node_u[p.node].map(|g| r.state.x[g as usize]))
+                    .collect()
+            })
+            .collect();
         for r in &sweep.results {
             points.push(SweepPoint {
                 lambda: r.stretch,
@@ -451,8 +552,14 @@ impl CylinderStudy {
                 fibre_stretch_centre: r.fibre_stretch_centre,
                 stress: r.nominal_stress,
                 newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
-                stress_0d: along_fibres(&muscle, r.stretch).ok().map(|p| p.stress),
-                passive_0d: along_fibres(&passive, r.stretch).ok().map(|p| p.stress),
+                stress_0d: models
+                    .uniaxial(&muscle, Direction::Along, r.stretch)
+                    .ok()
+                    .map(|p| p.stress),
+                passive_0d: models
+                    .uniaxial(&passive, Direction::Along, r.stretch)
+                    .ok()
+                    .map(|p| p.stress),
                 active_0d: (1.0 - m.damage) * models.curve.value(r.stretch),
             });
             if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
@@ -488,6 +595,7 @@ impl CylinderStudy {
                 dofs,
                 points,
                 vtk_files,
+                displacements,
             },
             failures,
         ))

@@ -179,6 +179,7 @@ impl UniaxialStudy {
     /// `target` where it has them; stretches that cannot be computed are counted in a message.
     fn points(
         &self,
+        models: &Models,
         muscle: &Muscle<Energy>,
         target: impl Fn(f64) -> crate::Result<Option<(f64, f64)>>,
         ctx: &RunContext,
@@ -188,16 +189,18 @@ impl UniaxialStudy {
         let mut first: Option<(f64, String)> = None;
         for &lambda in &self.stretches {
             ctx.progress.advance(1);
-            let point = self.direction.point(muscle, lambda).and_then(|p| {
-                let extra = target(lambda)?;
-                Ok(CurvePoint {
-                    lambda,
-                    gamma: p.gamma,
-                    stress: p.stress,
-                    passive: extra.map(|e| e.0),
-                    active_target: extra.map(|e| e.1),
-                })
-            });
+            let point = models
+                .uniaxial(muscle, self.direction, lambda)
+                .and_then(|p| {
+                    let extra = target(lambda)?;
+                    Ok(CurvePoint {
+                        lambda,
+                        gamma: p.gamma,
+                        stress: p.stress,
+                        passive: extra.map(|e| e.0),
+                        active_target: extra.map(|e| e.1),
+                    })
+                });
             match point {
                 Ok(p) => points.push(p),
                 Err(e) => {
@@ -309,13 +312,13 @@ impl UniaxialStudy {
         let target = |lambda: f64| -> crate::Result<Option<(f64, f64)>> {
             Ok(match (model, self.direction) {
                 (CurveModel::Active(m), Direction::Along) => Some((
-                    self.direction.point(&passive, lambda)?.stress,
+                    models.uniaxial(&passive, self.direction, lambda)?.stress,
                     (1.0 - m.damage) * models.curve.value(lambda),
                 )),
                 _ => None,
             })
         };
-        let (points, failure) = self.points(&muscle, target, ctx);
+        let (points, failure) = self.points(models, &muscle, target, ctx);
         let failure = failure.map(|message| Failure {
             model: match model {
                 CurveModel::Constant(g) => format!("constant gamma = {g}"),

@@ -1,7 +1,7 @@
 //! Trade-off studies (`kind = "tradeoff"`): speed versus accuracy, measured on both axes at once.
 //!
 //! Every option a user can turn to trade accuracy for speed (activation law, derivative route,
-//! frozen tangent, mesh, element, Newton tolerance, 0D versus FE) is run at each of its variants,
+//! frozen tangent, mesh, element, Newton tolerance, 0D versus FE, incompressibility) is run at each of its variants,
 //! timed (wall time \[s\]: the median and the spread of at least three runs, see
 //! [`measure::time_median`])
 //! and compared with a reference computed at the accurate end of the same option, on what a user
@@ -19,7 +19,7 @@
 //!
 //! | key | meaning | default |
 //! |---|---|---|
-//! | `options` | option groups: `activation-law`, `activation-law-fe`, `law-representation`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe` | all |
+//! | `options` | option groups: `activation-law`, `activation-law-fe`, `law-representation`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe`, `incompressibility` | all |
 //! | `stretch` | stretches of every sweep (FE and 0D) | FE: 0.8, 1, 1.17, 1.3; 0D: the first uniaxial study along the fibres, or 0.65:0.01:1.60 |
 //! | `meshes` | `[[nr, nz], ...]` of the mesh option, coarse to fine (the last is the reference) | 2 × 8, 4 × 16, 8 × 32, 16 × 64 |
 //! | `nr`, `nz` | mesh of the other FE options | the first cylinder study's, or 4 × 16 |
@@ -66,11 +66,13 @@ pub enum OptionGroup {
     NewtonTolerance,
     /// 0D versus FE on the sliding cylinder (homogeneous exact solution).
     ZeroDVsFe,
+    /// Exact incompressibility versus a quadratic volumetric energy of growing κ (0D and FE).
+    Incompressibility,
 }
 
 impl OptionGroup {
     /// Every group, in run order.
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; 10] = [
         Self::ActivationLaw,
         Self::ActivationLawFe,
         Self::LawRepresentation,
@@ -80,6 +82,7 @@ impl OptionGroup {
         Self::Element,
         Self::NewtonTolerance,
         Self::ZeroDVsFe,
+        Self::Incompressibility,
     ];
 
     /// The name a scene uses (`activation-law-fe`).
@@ -94,6 +97,7 @@ impl OptionGroup {
             Self::Element => "element",
             Self::NewtonTolerance => "newton-tolerance",
             Self::ZeroDVsFe => "zero-d-vs-fe",
+            Self::Incompressibility => "incompressibility",
         }
     }
 }
@@ -231,6 +235,9 @@ pub fn run(
             OptionGroup::Element => groups::element(models, plan, run, findings)?,
             OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings)?,
             OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run)?,
+            OptionGroup::Incompressibility => {
+                groups::incompressibility(models, plan, run, findings)?
+            }
         }
     }
     let mut rows = runner.rows;
