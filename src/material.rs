@@ -2,20 +2,23 @@
 
 use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
 use crate::response::{check_returned, in_f_space, unchecked_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
-/// Active skeletal muscle: Ŵ(F, γ) = (1 − γ) W(C_e) with γ = g(λ_f, d), coupled frozen or
-/// consistently (see [`crate::active::coupling`]).
+/// Active skeletal muscle: Ŵ(F, γ) = det F_a · W(C_e) with γ = g(λ_f, d) and the active-strain
+/// map F_a(γ) of [`ActiveStrainMap`], coupled frozen or consistently (see
+/// [`crate::active::coupling`]).
 #[derive(Debug, Clone)]
 pub struct Muscle<E> {
     energy: E,
     law: Law<E>,
     damage: f64,
     coupling: Coupling,
+    map: ActiveStrainMap,
 }
 
 /// A muscle's answer at one point over the entries of F in use.
@@ -37,14 +40,29 @@ pub struct MuscleResponse<const N: usize> {
 }
 
 impl<E: StrainEnergy> Muscle<E> {
-    /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling.
+    /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling; its active-strain
+    /// map is the law's (see [`Law::map`]), the chapter's for a law that has none.
     pub fn new(energy: E, law: Law<E>, damage: f64, coupling: Coupling) -> Result<Self> {
         Ok(Self {
+            map: law.map().unwrap_or_default(),
             energy,
             law,
             damage: check_damage(damage)?,
             coupling,
         })
+    }
+
+    /// The same muscle with the active-strain map `map`. Rejects a map other than the one the
+    /// law is solved with (the law's γ would not reproduce its target with this map).
+    pub fn with_map(self, map: ActiveStrainMap) -> Result<Self> {
+        match self.law.map() {
+            Some(own) if own != map => Err(crate::Error::MapMismatch {
+                law: self.law.name(),
+                law_map: own.name(),
+                map: map.name(),
+            }),
+            _ => Ok(Self { map, ..self }),
+        }
     }
 
     /// The passive material (γ ≡ 0).
@@ -54,6 +72,7 @@ impl<E: StrainEnergy> Muscle<E> {
             law: Law::Passive,
             damage: 0.0,
             coupling: Coupling::Consistent,
+            map: ActiveStrainMap::Chapter,
         }
     }
 
@@ -72,6 +91,10 @@ impl<E: StrainEnergy> Muscle<E> {
     /// The coupling.
     pub fn coupling(&self) -> Coupling {
         self.coupling
+    }
+    /// The active-strain map.
+    pub fn map(&self) -> ActiveStrainMap {
+        self.map
     }
 
     /// γ with its λ-derivatives at fibre stretch `lambda`.
@@ -103,7 +126,7 @@ impl<E: StrainEnergy> Muscle<E> {
             }
         };
         let j = SVector::from(kinematics.invariants);
-        let d = unchecked_derivatives(&self.energy, &j, law.gamma, order)?;
+        let d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
         let mut out = MuscleResponse {
             gamma: law.gamma,
             fibre_stretch,

@@ -2,8 +2,8 @@
 //! of the frozen model's exact tangent, and the fast axisymmetric route against the 9-entry route.
 
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
-    ImplicitLaw, Law,
+    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, StrainEnergy};
 use activemuscle::invariants::{
@@ -200,7 +200,7 @@ fn consistent_by_full_ad<E: StrainEnergy>(
             }
             let lambda = (fm[0] * fm[0] + fm[1] * fm[1] + fm[2] * fm[2]).sqrt();
             let gamma = law.gamma(lambda, 0.2).unwrap();
-            active_energy_by_matrices(energy, &f, m, gamma)
+            active_energy_by_matrices(energy, ActiveStrainMap::Chapter, &f, m, gamma)
         },
         &x,
     );

@@ -12,4 +12,6 @@ pub use law::{
     ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law,
     LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw,
 };
-pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};
+pub use strain::{
+    active_energy, check_activation, fibre_path_energy, fibre_path_invariants, ActiveStrainMap,
+};
