@@ -358,3 +358,62 @@ fn a_muscle_refuses_a_map_other_than_its_laws() {
         other => panic!("expected a map mismatch, got {other:?}"),
     }
 }
+
+const FILE: &str = "map_scene.toml";
+
+fn rejected(text: &str) -> String {
+    match activemuscle::scene::Scene::parse(text, FILE) {
+        Ok(_) => panic!("accepted a bad scene:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn scenes_choose_the_active_strain_map() {
+    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
+    use activemuscle::scene::Scene;
+    let study = "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"implicit\"]\n";
+    let text = format!("[activation]\nmap = \"volume-preserving\"\n{study}");
+    let scene = Scene::parse(&text, FILE).unwrap();
+    assert_eq!(scene.models.map, volume_preserving());
+    let muscle = scene
+        .models
+        .muscle(ModelChoice {
+            law: LawKind::Implicit,
+            coupling: CouplingKind::Frozen,
+            damage: 0.0,
+        })
+        .unwrap();
+    assert_eq!(muscle.map(), volume_preserving());
+    assert_eq!(
+        muscle.activation(1.0).unwrap().gamma,
+        ImplicitLaw::new(gm(), ActiveCurve::paper())
+            .with_map(volume_preserving())
+            .activation(1.0, 0.0)
+            .unwrap()
+    );
+    // A constant activation follows the scene's map too.
+    assert_eq!(
+        scene.models.constant(0.2).unwrap().map(),
+        volume_preserving()
+    );
+    // The default is the chapter's, and the printed scene says which map runs.
+    let default = Scene::parse(study, FILE).unwrap();
+    assert_eq!(default.models.map, ActiveStrainMap::Chapter);
+    let printed = toml::to_string_pretty(&default.resolved).unwrap();
+    assert!(printed.contains("map = \"chapter\""), "{printed}");
+
+    let e = rejected(&format!("[activation]\nmap = \"isochoric\"\n{study}"));
+    assert!(
+        e.starts_with(&format!("{FILE}:2: activation.map")) && e.contains("\"isochoric\""),
+        "{e}"
+    );
+    // The explicit law is fitted for the chapter's map.
+    let e = rejected(&format!(
+        "[activation]\nmap = \"volume-preserving\"\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"explicit\"]\n"
+    ));
+    assert!(
+        e.contains("explicit law") && e.contains("volume-preserving"),
+        "{e}"
+    );
+}
