@@ -15,7 +15,7 @@ use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
 
 /// The header of `curves.csv`.
-pub const COLUMNS: [&str; 14] = [
+pub const COLUMNS: [&str; 15] = [
     "study",
     "model",
     "direction",
@@ -30,6 +30,7 @@ pub const COLUMNS: [&str; 14] = [
     "P_pas",
     "P_act",
     "newton_iterations",
+    "cauchy",
 ];
 
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
@@ -63,6 +64,8 @@ pub struct Row<'a> {
     pub p_act: Option<f64>,
     /// Newton iterations to reach this stretch from the previous one (cylinder).
     pub newton_iterations: Option<usize>,
+    /// Cauchy stress along the stretch σ = J⁻¹ P Fᵀ \[kPa\] (uniaxial).
+    pub cauchy: Option<f64>,
 }
 
 /// What tells one curve of `curves.csv` from the others: every column but the point's values,
@@ -119,6 +122,7 @@ fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &Curv
         p_pas: p.passive,
         p_act: p.active_target,
         newton_iterations: None,
+        cauchy: Some(p.cauchy),
     }
 }
 
@@ -140,6 +144,7 @@ fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &Sweep
         p_pas: None,
         p_act: None,
         newton_iterations: Some(p.newton_iterations),
+        cauchy: None,
     }
 }
 
@@ -152,6 +157,7 @@ pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
             _ => 0.0,
         },
         stress: 0.0,
+        cauchy: 0.0,
         passive: None,
         active_target: None,
     });
@@ -250,6 +256,7 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
             r.newton_iterations
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
+            optional(r.cauchy, "cauchy", r)?,
         ];
         w.write_record(&record).map_err(&fail)?;
     }
