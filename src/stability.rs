@@ -122,6 +122,8 @@ pub struct UniaxialStability {
     pub lambda: f64,
     /// Nominal stress \[kPa\].
     pub stress: f64,
+    /// Cauchy stress along the fibres σ₁₁ = J⁻¹ (P Fᵀ)₁₁ \[kPa\] (= λ P).
+    pub cauchy: f64,
     /// dP/dλ \[kPa\] along the homogeneous path (exact, from the tangent).
     pub slope: f64,
     /// Strong ellipticity at the point.
@@ -146,6 +148,7 @@ pub fn along_fibres_stability<E: StrainEnergy>(
     Ok(UniaxialStability {
         lambda,
         stress: nominal_along(&p, lambda),
+        cauchy: crate::uniaxial::cauchy_stress(&p, p[4] * t, &f)?[(0, 0)],
         slope,
         ellipticity: strong_ellipticity(&k, &f, samples)?,
     })

@@ -114,3 +114,15 @@ fn curves_csv_has_a_cauchy_column() {
     }
     assert_eq!(n, 3 * 2 + 1, "{csv}");
 }
+
+#[test]
+fn stability_points_carry_the_cauchy_stress() {
+    for muscle in muscles() {
+        for lambda in [0.8, 1.0, 1.25] {
+            let s = activemuscle::stability::along_fibres_stability(&muscle, lambda, 8).unwrap();
+            let p = along_fibres(&muscle, lambda).unwrap();
+            assert!((s.cauchy - lambda * s.stress).abs() <= 1e-12 * s.cauchy.abs().max(1.0));
+            assert!((s.cauchy - p.cauchy).abs() <= 1e-12 * s.cauchy.abs().max(1.0));
+        }
+    }
+}

@@ -282,7 +282,7 @@ pub const FIT_COLUMNS: [&str; 14] = [
 ];
 
 /// The header of `stability.csv`: one row per model and stretch.
-pub const STABILITY_COLUMNS: [&str; 11] = [
+pub const STABILITY_COLUMNS: [&str; 12] = [
     "study",
     "law",
     "coupling",
@@ -294,6 +294,7 @@ pub const STABILITY_COLUMNS: [&str; 11] = [
     "ellipticity_relative",
     "strongly_elliptic",
     "softening",
+    "cauchy",
 ];
 
 /// `x` as text if finite, else an error naming the quantity and where it came from.
@@ -392,6 +393,7 @@ pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, A
                     text(p.relative, "relative ellipticity", origin)?,
                     p.elliptic.to_string(),
                     (p.slope < 0.0).to_string(),
+                    text(p.cauchy, "cauchy", origin)?,
                 ])
                 .map_err(&fail)?;
             }
