@@ -10,8 +10,8 @@ mod point;
 
 use activemuscle::active::active_energy;
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
-    LawRepresentation, TableSpec,
+    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    FrozenTangent, ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use activemuscle::energy::{GiantesioMusesti, Invariants, StrainEnergy};
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
