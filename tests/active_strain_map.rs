@@ -409,9 +409,9 @@ fn scenes_choose_the_active_strain_map() {
         "{e}"
     );
     // The explicit law is fitted for the chapter's map.
-    let e = rejected(&format!(
-        "[activation]\nmap = \"volume-preserving\"\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"explicit\"]\n"
-    ));
+    let e = rejected(
+        "[activation]\nmap = \"volume-preserving\"\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"explicit\"]\n",
+    );
     assert!(
         e.contains("explicit law") && e.contains("volume-preserving"),
         "{e}"
