@@ -11,12 +11,11 @@ use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, NeoHookean, StrainE
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
 use activemuscle::oracle::full_response_with;
 use activemuscle::response::{invariant_derivatives_with, Order};
+use activemuscle::testing::Sampler;
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::{Error, Muscle};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use num_dual::{hessian, Dual2SVec64, HyperDual64};
-use rand::rngs::StdRng;
-use rand::{Rng, SeedableRng};
 
 const MAPS: [ActiveStrainMap; 2] = [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving];
 const GAMMAS: [f64; 4] = [0.0, 0.1, 0.3, 0.5];
@@ -24,28 +23,6 @@ const TOL: f64 = 1e-12;
 
 fn rel<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, R, C>) -> f64 {
     (a - b).amax() / b.amax()
-}
-
-fn random_f(rng: &mut StdRng) -> Matrix3<f64> {
-    loop {
-        let f = Matrix3::from_fn(|i, j| {
-            let one = if i == j { 1.0 } else { 0.0 };
-            one + rng.random_range(-0.25..=0.25)
-        });
-        if f.determinant() > 0.2 {
-            return f;
-        }
-    }
-}
-
-fn random_unit(rng: &mut StdRng) -> Vector3<f64> {
-    loop {
-        let v = Vector3::from_fn(|_, _| rng.random_range(-1.0..=1.0));
-        let n = v.norm();
-        if n > 0.2 && n <= 1.0 {
-            return v / n;
-        }
-    }
 }
 
 /// A muscle at constant γ with the map: its stress, tangent and dP/dγ are those of Ŵ at γ held.
@@ -65,13 +42,13 @@ fn held<E: StrainEnergy>(energy: E, map: ActiveStrainMap, gamma: f64) -> Muscle<
 /// over F's nine entries and γ, F_a a 3×3 matrix) for one energy: energy, stress, tangent and
 /// dP/dγ in 3D and over the five axisymmetric entries, both maps, several γ.
 fn fast_route_matches_oracle<E: StrainEnergy + Copy>(energy: E, seed: u64) {
-    let mut rng = StdRng::seed_from_u64(seed);
+    let mut rng = Sampler::new(seed);
     let mut worst = [0.0f64; 4];
     for map in MAPS {
         for gamma in GAMMAS {
             let muscle = held(energy, map, gamma);
             for n in 0..10 {
-                let (f, m) = (random_f(&mut rng), random_unit(&mut rng));
+                let (f, m) = (rng.deformation(0.25), rng.unit_vector());
                 let kin = Kinematics::new(&f, &m).unwrap();
                 let fast = muscle.respond(&kin, Order::Tangent, &FULL).unwrap();
                 let or = full_response_with(&energy, map, &f, &m, gamma).unwrap();
@@ -97,7 +74,7 @@ fn fast_route_matches_oracle<E: StrainEnergy + Copy>(energy: E, seed: u64) {
                 // Axisymmetric: fibres along the axis, F from five entries.
                 let f5 = SVector::<f64, 5>::from_fn(|i, _| {
                     let one = if matches!(i, 0 | 3 | 4) { 1.0 } else { 0.0 };
-                    one + rng.random_range(-0.2..=0.2)
+                    one + rng.range(-0.2, 0.2)
                 });
                 let (fa, ma) = (axisymmetric_f(&f5), axial_fibre());
                 let kin = Kinematics::new(&fa, &ma).unwrap();
@@ -149,10 +126,10 @@ fn gamma_derivatives_of_the_map_match_dual_numbers() {
                 + c.det_c.ln().powi(2) * 0.5
         }
     }
-    let mut rng = StdRng::seed_from_u64(0x3a9_0004);
+    let mut rng = Sampler::new(0x3a9_0004);
     for map in MAPS {
         for gamma in [0.05, 0.2, 0.45] {
-            let kin = Kinematics::new(&random_f(&mut rng), &random_unit(&mut rng)).unwrap();
+            let kin = Kinematics::new(&rng.deformation(0.25), &rng.unit_vector()).unwrap();
             let j = SVector::from(kin.invariants);
             let d = invariant_derivatives_with(&AllFive, map, &j, gamma, Order::Tangent).unwrap();
             let s = d.second.unwrap();

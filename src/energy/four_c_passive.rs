@@ -1,4 +1,4 @@
-use super::{open_unit, positive, Invariants, Parameter, ScalarWith, Shipped, StrainEnergy};
+use super::{EhretBolItskov, Invariants, Parameter, ScalarWith, Shipped, StrainEnergy};
 use crate::Result;
 use crate::Scalar;
 
@@ -10,64 +10,37 @@ use crate::Scalar;
 /// I = tr(C L) = (w0/3) tr C + (1 − w0) C:M,
 /// J = cof C : L = det C · tr(C⁻¹ L) = det C [(w0/3) tr C⁻¹ + (1 − w0) C⁻¹:M],
 ///
-/// with L = (w0/3) I + (1 − w0) M. 4C writes it without the two −1 (a constant: the stress is the
-/// same) and calls μ `GAMMA`, w0 `OMEGA0`. Where det C = 1 it is the Ehret–Böl–Itskov energy
-/// (eq. D:Webi, J = K_p); it differs from it only in a compressible or nearly incompressible
-/// body. 4C adds a volumetric term S_vol = −(μ/2) det(C)^(−κ) C⁻¹ (parameter `KAPPA`), which
-/// this energy does not include (it belongs to the volumetric penalty, not to W).
+/// with L = (w0/3) I + (1 − w0) M. It is the Ehret–Böl–Itskov energy (eq. D:Webi) with K_p
+/// replaced by J = det C · K_p: the two agree where det C = 1 and differ only in a compressible or
+/// nearly incompressible body. Written so: EBI's formula evaluated at the invariants with tr C⁻¹
+/// and C⁻¹:M scaled by det C (K_p is linear in them). 4C writes it without the two −1 (a constant:
+/// the stress is the same) and calls μ `GAMMA`, w0 `OMEGA0`. 4C adds a volumetric term
+/// S_vol = −(μ/2) det(C)^(−κ) C⁻¹ (parameter `KAPPA`), which this energy does not include (it
+/// belongs to the volumetric penalty, not to W).
 ///
-/// Defaults: the Ehret–Böl–Itskov values quoted in the chapter, μ = 0.1599 kPa, α = 19.69,
-/// β = 1.190, w0 = 0.7388.
+/// Parameters and defaults as [`EhretBolItskov`]: μ = 0.1599 kPa, α = 19.69, β = 1.190,
+/// w0 = 0.7388 (the values quoted in the chapter after eq. D:Webi).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FourCPassive {
-    mu: f64,
-    alpha: f64,
-    beta: f64,
-    w0: f64,
-}
+pub struct FourCPassive(EhretBolItskov);
 
 impl FourCPassive {
     /// μ \[kPa\] > 0, α [-] > 0, β [-] > 0, w0 [-] ∈ (0, 1).
     pub fn new(mu: f64, alpha: f64, beta: f64, w0: f64) -> Result<Self> {
-        Ok(Self {
-            mu: positive("mu", mu)?,
-            alpha: positive("alpha", alpha)?,
-            beta: positive("beta", beta)?,
-            w0: open_unit("w0", w0)?,
-        })
+        EhretBolItskov::new(mu, alpha, beta, w0).map(Self)
     }
-
-    /// The Ehret–Böl–Itskov parameters quoted in the chapter after eq. D:Webi.
-    pub const PAPER: Self = Self {
-        mu: 0.1599,
-        alpha: 19.69,
-        beta: 1.190,
-        w0: 0.7388,
-    };
 
     /// The Ehret–Böl–Itskov parameters quoted in the chapter after eq. D:Webi.
     pub fn paper() -> Self {
-        Self::PAPER
+        Self(EhretBolItskov::PAPER)
     }
 
-    /// Shear-like modulus μ \[kPa\] (4C: `GAMMA`).
-    pub fn mu(&self) -> f64 {
-        self.mu
-    }
-    /// Exponential stiffening of the I term α [-].
-    pub fn alpha(&self) -> f64 {
-        self.alpha
-    }
-    /// Exponential stiffening of the J term β [-].
-    pub fn beta(&self) -> f64 {
-        self.beta
-    }
-    /// Isotropic weight w0 [-] (4C: `OMEGA0`).
-    pub fn w0(&self) -> f64 {
-        self.w0
+    /// The same parameters as an [`EhretBolItskov`] energy: μ \[kPa\] (4C: `GAMMA`), α, β,
+    /// w0 (4C: `OMEGA0`).
+    pub fn parameters(&self) -> &EhretBolItskov {
+        &self.0
     }
 
-    /// The formula, written once: W \[kPa\] from μ \[kPa\], α, β, w0 [-] and the invariants.
+    /// The formula: W \[kPa\] from μ \[kPa\], α, β, w0 [-] and the invariants.
     pub fn energy_with<P: Scalar, T: ScalarWith<P>>(
         mu: P,
         alpha: P,
@@ -75,17 +48,19 @@ impl FourCPassive {
         w0: P,
         c: &Invariants<T>,
     ) -> T {
-        let (isotropic, fibre) = (w0 / 3.0, -w0 + 1.0);
-        let i = c.tr_c * isotropic + c.c_m * fibre;
-        let j = c.det_c * (c.tr_c_inv * isotropic + c.c_inv_m * fibre);
-        ((i - 1.0) * alpha).exp_m1() * (mu / (alpha * 4.0))
-            + ((j - 1.0) * beta).exp_m1() * (mu / (beta * 4.0))
+        let scaled = Invariants {
+            tr_c_inv: c.tr_c_inv * c.det_c,
+            c_inv_m: c.c_inv_m * c.det_c,
+            ..*c
+        };
+        EhretBolItskov::energy_with(mu, alpha, beta, w0, &scaled)
     }
 }
 
 impl StrainEnergy for FourCPassive {
     fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
-        Self::energy_with(self.mu, self.alpha, self.beta, self.w0, c)
+        let e = &self.0;
+        Self::energy_with(e.mu(), e.alpha(), e.beta(), e.w0(), c)
     }
 
     fn name(&self) -> &str {
@@ -95,17 +70,12 @@ impl StrainEnergy for FourCPassive {
 
 impl Shipped for FourCPassive {
     const NAME: &'static str = "4c-passive";
-    const PARAMETERS: &'static [Parameter] = &[
-        Parameter::positive("mu", "μ", "kPa", Some(Self::PAPER.mu)),
-        Parameter::positive("alpha", "α", "-", Some(Self::PAPER.alpha)),
-        Parameter::positive("beta", "β", "-", Some(Self::PAPER.beta)),
-        Parameter::fraction("w0", "w0", Some(Self::PAPER.w0)),
-    ];
+    const PARAMETERS: &'static [Parameter] = EhretBolItskov::PARAMETERS;
     fn values(&self) -> Vec<f64> {
-        vec![self.mu, self.alpha, self.beta, self.w0]
+        self.0.values()
     }
     fn from_values(v: &[f64]) -> Result<Self> {
-        Self::new(v[0], v[1], v[2], v[3])
+        EhretBolItskov::from_values(v).map(Self)
     }
     fn energy_of<T: Scalar>(p: &[T], invariants: &Invariants<T>) -> T {
         Self::energy_with(p[0], p[1], p[2], p[3], invariants)
