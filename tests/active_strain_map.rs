@@ -14,7 +14,7 @@ use activemuscle::response::{invariant_derivatives_with, Order};
 use activemuscle::testing::Sampler;
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::{Error, Muscle};
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{SMatrix, SVector};
 use num_dual::{hessian, Dual2SVec64, HyperDual64};
 
 const MAPS: [ActiveStrainMap; 2] = [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving];
