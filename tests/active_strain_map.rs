@@ -394,3 +394,33 @@ fn scenes_choose_the_active_strain_map() {
         "{e}"
     );
 }
+
+/// A scene's tabulated law follows the scene's map: the table is built from the exact law solved
+/// with it.
+#[test]
+fn a_scene_tabulates_the_law_of_its_map() {
+    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
+    use activemuscle::scene::Scene;
+    let text = "[activation]\nmap = \"volume-preserving\"\nrepresentation = \"tabulated\"\n\
+                table_stretches = [0.8, 1.3]\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n\
+                laws = [\"implicit\"]\n";
+    let scene = Scene::parse(text, FILE).unwrap();
+    let muscle = scene
+        .models
+        .muscle(ModelChoice {
+            law: LawKind::Implicit,
+            coupling: CouplingKind::Frozen,
+            damage: 0.0,
+        })
+        .unwrap();
+    assert_eq!(muscle.law().name(), "implicit-tabulated");
+    assert_eq!(muscle.map(), volume_preserving());
+    let exact = ImplicitLaw::new(gm(), ActiveCurve::paper()).with_map(volume_preserving());
+    for l in [0.85, 1.0, 1.21] {
+        let (t, e) = (
+            muscle.activation(l).unwrap().gamma,
+            exact.activation(l, 0.0).unwrap(),
+        );
+        assert!((t - e).abs() <= 1e-12, "lambda {l}: {t} vs {e}");
+    }
+}
