@@ -338,6 +338,17 @@ fn a_muscle_refuses_a_map_other_than_its_laws() {
 
 const FILE: &str = "map_scene.toml";
 
+/// The scene's implicit law, frozen, d = 0.
+fn implicit_frozen(scene: &activemuscle::scene::Scene) -> Muscle<activemuscle::Energy> {
+    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
+    let choice = ModelChoice {
+        law: LawKind::Implicit,
+        coupling: CouplingKind::Frozen,
+        damage: 0.0,
+    };
+    scene.models.muscle(choice).unwrap()
+}
+
 fn rejected(text: &str) -> String {
     match activemuscle::scene::Scene::parse(text, FILE) {
         Ok(_) => panic!("accepted a bad scene:\n{text}"),
@@ -347,20 +358,12 @@ fn rejected(text: &str) -> String {
 
 #[test]
 fn scenes_choose_the_active_strain_map() {
-    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
     use activemuscle::scene::Scene;
     let study = "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nlaws = [\"implicit\"]\n";
     let text = format!("[activation]\nmap = \"volume-preserving\"\n{study}");
     let scene = Scene::parse(&text, FILE).unwrap();
     assert_eq!(scene.models.map, volume_preserving());
-    let muscle = scene
-        .models
-        .muscle(ModelChoice {
-            law: LawKind::Implicit,
-            coupling: CouplingKind::Frozen,
-            damage: 0.0,
-        })
-        .unwrap();
+    let muscle = implicit_frozen(&scene);
     assert_eq!(muscle.map(), volume_preserving());
     assert_eq!(
         muscle.activation(1.0).unwrap().gamma,
@@ -399,20 +402,12 @@ fn scenes_choose_the_active_strain_map() {
 /// with it.
 #[test]
 fn a_scene_tabulates_the_law_of_its_map() {
-    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
     use activemuscle::scene::Scene;
     let text = "[activation]\nmap = \"volume-preserving\"\nrepresentation = \"tabulated\"\n\
                 table_stretches = [0.8, 1.3]\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n\
                 laws = [\"implicit\"]\n";
     let scene = Scene::parse(text, FILE).unwrap();
-    let muscle = scene
-        .models
-        .muscle(ModelChoice {
-            law: LawKind::Implicit,
-            coupling: CouplingKind::Frozen,
-            damage: 0.0,
-        })
-        .unwrap();
+    let muscle = implicit_frozen(&scene);
     assert_eq!(muscle.law().name(), "implicit-tabulated");
     assert_eq!(muscle.map(), volume_preserving());
     let exact = ImplicitLaw::new(gm(), ActiveCurve::paper()).with_map(volume_preserving());
