@@ -10,8 +10,8 @@ mod point;
 
 use activemuscle::active::active_energy;
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
-    LawRepresentation, TableSpec,
+    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    FrozenTangent, ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use activemuscle::energy::{GiantesioMusesti, Invariants, StrainEnergy};
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
@@ -256,6 +256,33 @@ fn constitutive(c: &mut Criterion) {
         let law = muscle.law();
         g.bench_function(law.name(), |b| {
             b.iter(|| law.evaluate(black_box(lambda), black_box(0.0)).unwrap())
+        });
+    }
+    g.finish();
+
+    // The active-strain map: the same muscle at constant γ with the chapter's and the
+    // volume-preserving map (P + tangent + dP/dγ from F), axisymmetric and 3D.
+    let mut g = group_config(c, "map");
+    for map in [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving] {
+        let muscle = Muscle::new(
+            energy,
+            Law::Constant(ConstantLaw::new(GAMMA).unwrap()),
+            0.0,
+            Coupling::Consistent,
+        )
+        .and_then(|m| m.with_map(map))
+        .unwrap();
+        g.bench_function(format!("{}_axi", map.name()), |b| {
+            b.iter(|| {
+                let kin = Kinematics::new(&axisymmetric_f(black_box(&f5)), &m).unwrap();
+                muscle.respond(&kin, Order::Tangent, &AXISYMMETRIC).unwrap()
+            })
+        });
+        g.bench_function(format!("{}_3d", map.name()), |b| {
+            b.iter(|| {
+                let kin = Kinematics::new(black_box(&f3), &m).unwrap();
+                muscle.respond(&kin, Order::Tangent, &FULL).unwrap()
+            })
         });
     }
     g.finish();

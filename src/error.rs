@@ -47,6 +47,17 @@ pub enum Error {
         /// Why not.
         reason: String,
     },
+    /// A muscle was given an active-strain map other than the one its activation law is solved
+    /// with.
+    #[error("the {law} law is solved with the {law_map} active-strain map; the muscle asks for the {map} map")]
+    MapMismatch {
+        /// The law's name.
+        law: &'static str,
+        /// The map the law is solved with.
+        law_map: &'static str,
+        /// The map asked for.
+        map: &'static str,
+    },
 }
 
 /// Result alias of the library.

@@ -2,16 +2,18 @@
 
 use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::law::{check_damage, effective_damage, ActivationLaw, Law, LawValue};
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
 use crate::response::{check_returned, in_f_space, unchecked_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
-/// Active skeletal muscle: Ŵ(F, γ) = (1 − γ) W(C_e) with γ = g(λ_f, d_eff), coupled frozen or
-/// consistently (see [`crate::active::coupling`]). The law's target active stress is
-/// (1 − d)·a·P_act: damage d and activation level a (default 1) in one effective damage
-/// d_eff = 1 − (1 − d)·a ([`effective_damage`]).
+/// Active skeletal muscle: Ŵ(F, γ) = det F_a · W(C_e) with γ = g(λ_f, d_eff) and the active-strain
+/// map F_a(γ) of [`ActiveStrainMap`], coupled frozen or consistently (see
+/// [`crate::active::coupling`]). The law's target active stress is (1 − d)·a·P_act: damage d and
+/// activation level a (default 1) in one effective damage d_eff = 1 − (1 − d)·a
+/// ([`effective_damage`]).
 #[derive(Debug, Clone)]
 pub struct Muscle<E> {
     energy: E,
@@ -20,6 +22,7 @@ pub struct Muscle<E> {
     level: f64,
     effective: f64,
     coupling: Coupling,
+    map: ActiveStrainMap,
 }
 
 /// A muscle's answer at one point over the entries of F in use.
@@ -41,10 +44,12 @@ pub struct MuscleResponse<const N: usize> {
 }
 
 impl<E: StrainEnergy> Muscle<E> {
-    /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling.
+    /// A muscle with activation law `law`, damage d ∈ [0, 1] and coupling; its active-strain
+    /// map is the law's (see [`Law::map`]), the chapter's for a law that has none.
     pub fn new(energy: E, law: Law<E>, damage: f64, coupling: Coupling) -> Result<Self> {
         let damage = check_damage(damage)?;
         Ok(Self {
+            map: law.map().unwrap_or_default(),
             energy,
             law,
             damage,
@@ -69,6 +74,19 @@ impl<E: StrainEnergy> Muscle<E> {
         Ok(())
     }
 
+    /// The same muscle with the active-strain map `map`. Rejects a map other than the one the
+    /// law is solved with (the law's γ would not reproduce its target with this map).
+    pub fn with_map(self, map: ActiveStrainMap) -> Result<Self> {
+        match self.law.map() {
+            Some(own) if own != map => Err(crate::Error::MapMismatch {
+                law: self.law.name(),
+                law_map: own.name(),
+                map: map.name(),
+            }),
+            _ => Ok(Self { map, ..self }),
+        }
+    }
+
     /// The passive material (γ ≡ 0).
     pub fn passive(energy: E) -> Self {
         Self {
@@ -78,6 +96,7 @@ impl<E: StrainEnergy> Muscle<E> {
             level: 1.0,
             effective: 0.0,
             coupling: Coupling::Consistent,
+            map: ActiveStrainMap::Chapter,
         }
     }
 
@@ -104,6 +123,10 @@ impl<E: StrainEnergy> Muscle<E> {
     /// The coupling.
     pub fn coupling(&self) -> Coupling {
         self.coupling
+    }
+    /// The active-strain map.
+    pub fn map(&self) -> ActiveStrainMap {
+        self.map
     }
 
     /// γ with its λ-derivatives at fibre stretch `lambda`.
@@ -135,7 +158,7 @@ impl<E: StrainEnergy> Muscle<E> {
             }
         };
         let j = SVector::from(kinematics.invariants);
-        let d = unchecked_derivatives(&self.energy, &j, law.gamma, order)?;
+        let d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
         let mut out = MuscleResponse {
             gamma: law.gamma,
             fibre_stretch,

@@ -4,8 +4,8 @@
 //! registry [`crate::energy::SHIPPED`]. The scene and every study build their models here.
 
 use crate::active::{
-    ActiveCurve, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
-    ImplicitLaw, Law, LawRepresentation, TableSpec,
+    ActiveCurve, ActiveStrainMap, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    FrozenTangent, ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
@@ -120,6 +120,8 @@ pub struct Models {
     pub frozen_tangent: FrozenTangent,
     /// What the energy law does below λ_min.
     pub below_minimum: BelowMinimum,
+    /// The active-strain map F_a(γ).
+    pub map: ActiveStrainMap,
     /// How the implicit and energy laws of [`Models::muscle`] are evaluated.
     pub representation: LawRepresentation,
     /// Near incompressibility: Ŵ + U(J) without constraint; `None`: exact, J = 1 (the
@@ -138,6 +140,7 @@ impl Models {
             explicit: ExplicitLaw::paper().coefficients(),
             frozen_tangent: FrozenTangent::default(),
             below_minimum: BelowMinimum::default(),
+            map: ActiveStrainMap::Chapter,
             representation: LawRepresentation::Exact,
             volumetric: None,
         }
@@ -147,6 +150,10 @@ impl Models {
     /// for the chapter's energy only; the error is the rule, in words.
     pub fn supports(&self, law: LawKind) -> Result<(), String> {
         match (law, &self.energy) {
+            (LawKind::Explicit, _) if self.map != ActiveStrainMap::Chapter => Err(format!(
+                "the explicit law (eq. (14)) is fitted for the chapter's active-strain map; activation.map is {}",
+                self.map.name()
+            )),
             (LawKind::Explicit, Energy::GiantesioMusesti(_)) | (LawKind::Implicit, _) => Ok(()),
             (LawKind::Energy, _) => Ok(()),
             (LawKind::Explicit, other) => Err(format!(
@@ -168,9 +175,13 @@ impl Models {
     /// The activation law `kind` on this material and curve.
     pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
         Ok(match kind {
-            LawKind::Implicit => Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve)),
+            LawKind::Implicit => {
+                Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve).with_map(self.map))
+            }
             LawKind::Energy => Law::Energy(
-                EnergyLaw::new(self.energy.clone(), self.curve).below_minimum(self.below_minimum),
+                EnergyLaw::new(self.energy.clone(), self.curve)
+                    .below_minimum(self.below_minimum)
+                    .with_map(self.map),
             ),
             LawKind::Explicit => Law::Explicit(ExplicitLaw::new(
                 self.explicit.0,
@@ -198,7 +209,8 @@ impl Models {
                 .represented(self.representation, &[model.damage])?,
             model.damage,
             self.coupling(model.coupling),
-        )
+        )?
+        .with_map(self.map)
     }
 
     /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
@@ -208,7 +220,8 @@ impl Models {
             Law::Constant(ConstantLaw::new(gamma)?),
             0.0,
             Coupling::Consistent,
-        )
+        )?
+        .with_map(self.map)
     }
 
     /// The uniaxial test of `muscle` at stretch `lambda` in `direction`, exactly incompressible
@@ -477,6 +490,8 @@ pub struct ActivationSpec {
     pub frozen_tangent: Option<FrozenTangent>,
     /// What the energy law does below λ_min.
     pub below_minimum: Option<BelowMinimum>,
+    /// The active-strain map: "chapter" (default) | "volume-preserving".
+    pub map: Option<ActiveStrainMap>,
     /// Default damage values d ∈ [0, 1].
     pub damage: Option<Vec<f64>>,
     /// Coefficients of the explicit law (eq. (14)).
@@ -634,6 +649,7 @@ impl Models {
             explicit,
             frozen_tangent: act.frozen_tangent.unwrap_or_default(),
             below_minimum: act.below_minimum.unwrap_or_default(),
+            map: act.map.unwrap_or_default(),
             representation: representation(act)?,
             volumetric: None,
         })

@@ -3,6 +3,7 @@
 //! independent of the invariant calculus and of the active-strain map of the fast route, which are
 //! tested against it.
 
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::{Invariants, StrainEnergy};
 use crate::{Result, Scalar};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
@@ -62,9 +63,13 @@ fn quadratic<T: Scalar>(a: &M3<T>, m: &Vector3<f64>) -> T {
     s
 }
 
-/// Ŵ(F, γ) = det F_a · W(F_a⁻ᵀ C F_a⁻¹), F_a = I − γ m⊗m, by matrix products on any scalar.
+/// Ŵ(F, γ) = det F_a · W(F_a⁻ᵀ C F_a⁻¹) by matrix products on any scalar, with F_a built entry
+/// by entry as a 3×3 matrix: I − γ m⊗m (the chapter's map) or
+/// (1 − γ) m⊗m + (1 − γ)^(−½) (I − m⊗m) (the volume-preserving map); det F_a and the inverses
+/// by cofactors.
 pub fn active_energy_by_matrices<E: StrainEnergy, T: Scalar>(
     energy: &E,
+    map: ActiveStrainMap,
     f: &M3<T>,
     m: &Vector3<f64>,
     gamma: T,
@@ -72,7 +77,14 @@ pub fn active_energy_by_matrices<E: StrainEnergy, T: Scalar>(
     let mut fa = [[T::zero(); 3]; 3];
     for (i, row) in fa.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
-            *x = gamma * (-m[i] * m[j]) + if i == j { 1.0 } else { 0.0 };
+            let (mm, delta) = (m[i] * m[j], if i == j { 1.0 } else { 0.0 });
+            *x = match map {
+                ActiveStrainMap::Chapter => gamma * (-mm) + delta,
+                ActiveStrainMap::VolumePreserving => {
+                    let c = -gamma + 1.0;
+                    c * mm + c.sqrt().recip() * (delta - mm)
+                }
+            };
         }
     }
     let fa_inv = inverse(&fa);
@@ -106,9 +118,22 @@ pub struct FullResponse {
     pub d2energy_dgamma2: f64,
 }
 
-/// The reference response at (F, γ) by dual numbers over F's nine entries and γ.
+/// The reference response at (F, γ) by dual numbers over F's nine entries and γ, for the
+/// chapter's map.
 pub fn full_response<E: StrainEnergy>(
     energy: &E,
+    f: &Matrix3<f64>,
+    m: &Vector3<f64>,
+    gamma: f64,
+) -> Result<FullResponse> {
+    full_response_with(energy, ActiveStrainMap::Chapter, f, m, gamma)
+}
+
+/// The reference response at (F, γ) for the active-strain map `map`, by dual numbers over F's
+/// nine entries and γ.
+pub fn full_response_with<E: StrainEnergy>(
+    energy: &E,
+    map: ActiveStrainMap,
     f: &Matrix3<f64>,
     m: &Vector3<f64>,
     gamma: f64,
@@ -124,7 +149,7 @@ pub fn full_response<E: StrainEnergy>(
     let (w, g, h) = hessian(
         |v: SVector<Dual2SVec64<10>, 10>| {
             let f = [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]];
-            active_energy_by_matrices(energy, &f, m, v[9])
+            active_energy_by_matrices(energy, map, &f, m, v[9])
         },
         &x,
     );

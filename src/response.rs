@@ -2,21 +2,22 @@
 //! nothing else: the energy alone is an `f64` evaluation, the stress a 5-component gradient, the
 //! tangent a 5×5 Hessian — always over the five invariants of C_e, never over the entries of F.
 //!
-//! Chain (with Ie = A(γ) j the active-strain map of [`crate::active::strain`], c = 1 − γ, g and
-//! H the gradient and Hessian of the user's W at Ie):
+//! Chain (with Ie = A(γ) j the active-strain map of [`crate::active::strain`], φ = det F_a its
+//! factor — 1 − γ for the chapter's map, 1 for the volume-preserving one — g and H the gradient
+//! and Hessian of the user's W at Ie):
 //!
-//! - Ŵ = c W, Ŵ_j = c Aᵀ g, Ŵ_jj = c Aᵀ H A,
-//! - Ŵ_γ = −W + c g·Ie_γ, Ŵ_jγ = −Aᵀ g + c A_γᵀ g + c Aᵀ H Ie_γ,
-//! - Ŵ_γγ = −2 g·Ie_γ + c (Ie_γᵀ H Ie_γ + g·Ie_γγ),
+//! - Ŵ = φ W, Ŵ_j = φ Aᵀ g, Ŵ_jj = φ Aᵀ H A,
+//! - Ŵ_γ = φ′ W + φ g·Ie_γ, Ŵ_jγ = φ′ Aᵀ g + φ A_γᵀ g + φ Aᵀ H Ie_γ,
+//! - Ŵ_γγ = φ″ W + 2 φ′ g·Ie_γ + φ (Ie_γᵀ H Ie_γ + g·Ie_γγ),
 //!
 //! then P = Dᵀ Ŵ_j, ∂P/∂F = Σ Ŵ_j ∂²j/∂F² + Dᵀ Ŵ_jj D, dP/dγ = Dᵀ Ŵ_jγ (D = ∂j/∂F, see
-//! [`crate::invariants`]). The congruence is formed in F space, Dᵀ Ŵ_jj D = c D_eᵀ H D_e with
+//! [`crate::invariants`]). The congruence is formed in F space, Dᵀ Ŵ_jj D = φ D_eᵀ H D_e with
 //! D_e = A D the gradients of the elastic invariants (A has seven non-zero entries), over the
 //! rows of H that are not identically zero: an energy that is linear in tr C_e⁻¹ and C_e⁻¹:M
 //! (the chapter's) and ignores det C_e has a 2×2 block of H, not 5×5. Which rows are zero is
 //! read off H at each point, so any energy gets the right answer; the shortcut only saves work.
 
-use crate::active::strain::{check_activation, StrainMap};
+use crate::active::strain::{check_activation, ActiveStrainMap, StrainMap};
 use crate::energy::{Invariants, StrainEnergy};
 use crate::invariants::{Entries, Kinematics};
 use crate::{Error, Result};
@@ -38,7 +39,7 @@ pub enum Order {
 #[derive(Debug, Clone, Copy)]
 pub struct SecondDerivatives {
     /// H = ∂²W/∂Ie∂Ie, the Hessian of the user's energy at the elastic invariants Ie = A j
-    /// (Ŵ_jj = c Aᵀ H A; rows and columns of invariants the energy ignores are zero).
+    /// (Ŵ_jj = φ Aᵀ H A; rows and columns of invariants the energy ignores are zero).
     pub energy_hessian: SMatrix<f64, 5, 5>,
     /// ∂²Ŵ/∂j∂γ.
     pub d_jgamma: SVector<f64, 5>,
@@ -46,7 +47,7 @@ pub struct SecondDerivatives {
     pub d_gammagamma: f64,
 }
 
-/// Derivatives of Ŵ(j, γ) = (1 − γ) W(A(γ) j) with respect to the invariants j of C and γ.
+/// Derivatives of Ŵ(j, γ) = φ(γ) W(A(γ) j) with respect to the invariants j of C and γ.
 #[derive(Debug, Clone, Copy)]
 pub struct InvariantDerivatives {
     /// Ŵ \[kPa\].
@@ -59,14 +60,16 @@ pub struct InvariantDerivatives {
     pub second: Option<SecondDerivatives>,
     /// The active-strain map A(γ).
     map: StrainMap,
+    /// γ.
+    gamma: f64,
 }
 
 impl InvariantDerivatives {
-    /// Ŵ_jj = c Aᵀ H A, the Hessian of Ŵ in the invariants of C (present for [`Order::Tangent`]).
+    /// Ŵ_jj = φ Aᵀ H A, the Hessian of Ŵ in the invariants of C (present for [`Order::Tangent`]).
     pub fn d_jj(&self) -> Option<SMatrix<f64, 5, 5>> {
         self.second
             .as_ref()
-            .map(|s| self.map.congruence(&s.energy_hessian) * self.map.c)
+            .map(|s| self.map.congruence(&s.energy_hessian) * self.map.det)
     }
 }
 
@@ -174,8 +177,8 @@ fn energy_hessian<E: StrainEnergy>(
     (w, SVector::from([g[0], g[1], g[2], g[3], 0.0]), h)
 }
 
-/// Derivatives of the active-strain energy in invariant space, to the order asked. Rejects a
-/// non-finite value (an exp overflow of the energy, or of the map's s² = (1 − γ)⁻² factors).
+/// Derivatives of the active-strain energy in invariant space, to the order asked, for the
+/// chapter's map (see [`invariant_derivatives_with`]).
 #[inline(always)]
 pub fn invariant_derivatives<E: StrainEnergy>(
     energy: &E,
@@ -183,7 +186,21 @@ pub fn invariant_derivatives<E: StrainEnergy>(
     gamma: f64,
     order: Order,
 ) -> Result<InvariantDerivatives> {
-    let d = unchecked_derivatives(energy, j, gamma, order)?;
+    invariant_derivatives_with(energy, ActiveStrainMap::Chapter, j, gamma, order)
+}
+
+/// Derivatives of the active-strain energy in invariant space for the active-strain map `map`,
+/// to the order asked. Rejects a non-finite value (an exp overflow of the energy, or of the
+/// map's s² = (1 − γ)⁻² factors).
+#[inline(always)]
+pub fn invariant_derivatives_with<E: StrainEnergy>(
+    energy: &E,
+    map: ActiveStrainMap,
+    j: &SVector<f64, 5>,
+    gamma: f64,
+    order: Order,
+) -> Result<InvariantDerivatives> {
+    let d = unchecked_derivatives(energy, map, j, gamma, order)?;
     let fail = |quantity, bad| Err(non_finite(quantity, bad, j, gamma));
     if let Some(bad) = first_non_finite(d.d_j.as_slice()).or(first_non_finite(&[d.d_gamma])) {
         return fail("energy gradient", bad);
@@ -204,13 +221,14 @@ pub fn invariant_derivatives<E: StrainEnergy>(
 #[inline(always)]
 pub(crate) fn unchecked_derivatives<E: StrainEnergy>(
     energy: &E,
+    map: ActiveStrainMap,
     j: &SVector<f64, 5>,
     gamma: f64,
     order: Order,
 ) -> Result<InvariantDerivatives> {
     check_activation(gamma)?;
-    let map = StrainMap::new(gamma);
-    let c = map.c;
+    let map = StrainMap::new(map, gamma);
+    let (c, c1, c2) = (map.det, map.det_rate, map.det_rate2);
     let (w, g, h) = energy_derivatives(energy, &map.apply(j), order);
     if !w.is_finite() {
         return Err(non_finite("strain energy", w, j, gamma));
@@ -221,19 +239,21 @@ pub(crate) fn unchecked_derivatives<E: StrainEnergy>(
         d_gamma: 0.0,
         second: None,
         map,
+        gamma,
     };
     let Some(g) = g else { return Ok(out) };
     let ie_gamma = map.rate(j);
     let a_t_g = map.transpose_apply(&g);
     out.d_j = a_t_g * c;
-    out.d_gamma = -w + c * g.dot(&ie_gamma);
+    out.d_gamma = c1 * w + c * g.dot(&ie_gamma);
     if let Some(h) = h {
         let h_ie_gamma = h * ie_gamma;
         out.second = Some(SecondDerivatives {
             energy_hessian: h,
-            d_jgamma: -a_t_g
+            d_jgamma: a_t_g * c1
                 + (map.rate_transpose_apply(&g) + map.transpose_apply(&h_ie_gamma)) * c,
-            d_gammagamma: -2.0 * g.dot(&ie_gamma)
+            d_gammagamma: c2 * w
+                + 2.0 * c1 * g.dot(&ie_gamma)
                 + c * (ie_gamma.dot(&h_ie_gamma) + g.dot(&map.rate2(j))),
         });
     }
@@ -250,7 +270,7 @@ pub(crate) fn check_returned<const N: usize>(
     tangent: Option<&SMatrix<f64, N, N>>,
     invariants: &[f64; 5],
 ) -> Result<()> {
-    let gamma = 1.0 - d.map.c;
+    let gamma = d.gamma;
     let j = SVector::from(*invariants);
     let scalars = [d.d_gamma, d.second.map_or(0.0, |s| s.d_gammagamma)];
     let parts: [(&'static str, &[f64]); 4] = [
@@ -290,7 +310,8 @@ pub struct Response<const N: usize> {
     pub d2energy_dgamma2: Option<f64>,
 }
 
-/// Ŵ(F, γ) and, to the order asked, its derivatives in F and γ (γ held fixed: no law).
+/// Ŵ(F, γ) and, to the order asked, its derivatives in F and γ (γ held fixed: no law), for the
+/// chapter's map (a [`crate::Muscle`] with a constant law answers for either map).
 #[inline(always)]
 pub fn active_response<E: StrainEnergy, const N: usize>(
     energy: &E,
@@ -300,7 +321,7 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     entries: &Entries<N>,
 ) -> Result<Response<N>> {
     let j = SVector::from(kinematics.invariants);
-    let d = unchecked_derivatives(energy, &j, gamma, order)?;
+    let d = unchecked_derivatives(energy, ActiveStrainMap::Chapter, &j, gamma, order)?;
     let mut out = Response {
         energy: d.energy,
         denergy_dgamma: None,
@@ -336,7 +357,7 @@ pub(crate) struct FSpace<const N: usize> {
 /// The invariant-space derivatives `d` taken to the entries of F (module docs), with extra
 /// weights on the fibre invariant j₂ = C:M: `a` is added to ∂Ŵ/∂j₂ and `b` to ∂²Ŵ/∂j₂² (both 0
 /// with γ held; the consistent coupling's terms otherwise, see [`crate::active::coupling`]).
-/// With second derivatives, `tangent` receives Σ_j (Ŵ_j + a e₂)_j ∂²j/∂F² + c D_eᵀ H D_e +
+/// With second derivatives, `tangent` receives Σ_j (Ŵ_j + a e₂)_j ∂²j/∂F² + φ D_eᵀ H D_e +
 /// b D₂ D₂ᵀ, written in place (every entry overwritten). Nothing is checked here: the caller
 /// checks what it returns ([`check_returned`]).
 #[inline(always)]
@@ -381,8 +402,8 @@ pub(crate) fn in_f_space<const N: usize>(
     out
 }
 
-/// T += c Eᵀ H E for a symmetric H whose rows and columns beyond the first `R` are zero, E = A D
-/// the gradients of the elastic invariants (rows; only the first `R` are formed): G = c H E
+/// T += φ Eᵀ H E for a symmetric H whose rows and columns beyond the first `R` are zero, E = A D
+/// the gradients of the elastic invariants (rows; only the first `R` are formed): G = φ H E
 /// over those rows once, then the upper triangle (Eᵀ G)_ab = Σ_j E_ja G_jb, mirrored. All loop
 /// bounds are constants (unrolled; the test on b folds away).
 #[inline(always)]
@@ -400,7 +421,7 @@ fn add_congruence<const R: usize, const N: usize>(
             for l in 0..R {
                 v += h[(j, l)] * e[l][b];
             }
-            g[j][b] = map.c * v;
+            g[j][b] = map.det * v;
         }
     }
     for a in 0..N {

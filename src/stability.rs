@@ -122,6 +122,8 @@ pub struct UniaxialStability {
     pub lambda: f64,
     /// Nominal stress \[kPa\].
     pub stress: f64,
+    /// Cauchy stress along the fibres σ₁₁ = J⁻¹ (P Fᵀ)₁₁ \[kPa\] (= λ P).
+    pub cauchy: f64,
     /// dP/dλ \[kPa\] along the homogeneous path (exact, from the tangent).
     pub slope: f64,
     /// Strong ellipticity at the point.
@@ -142,6 +144,8 @@ pub fn along_fibres_stability<E: StrainEnergy>(
     Ok(UniaxialStability {
         lambda,
         stress: nominal_along(&p, lambda),
+        // The lateral faces are traction free: p = ∂Ψ/∂F₂₂ F₂₂ with F₂₂ = λ^-½.
+        cauchy: crate::uniaxial::cauchy_stress(&p, p[4] * lambda.sqrt().recip(), &f)?[(0, 0)],
         slope: slope_along(&p, &k, lambda),
         ellipticity: strong_ellipticity(&k, &f, samples)?,
     })

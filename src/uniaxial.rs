@@ -7,6 +7,9 @@
 //! - Across (stretch along e₂): F = diag(a, λ, 1/(aλ)) with the fibre stretch a unknown; both
 //!   lateral faces traction free: a ∂Ψ/∂F₁₁ = F₃₃ ∂Ψ/∂F₃₃ (= p), solved for a by safeguarded Newton
 //!   with the exact tangent. Nominal stress P₂₂ = ∂Ψ/∂F₂₂ − p/λ.
+//! - Cauchy stress along the stretch from the full tensor, σ = J⁻¹ P Fᵀ with
+//!   P = ∂Ψ/∂F − p F⁻ᵀ ([`cauchy_stress`]); with J = 1, F diagonal and traction-free lateral faces
+//!   it is λ times the nominal stress.
 
 use crate::energy::{positive, StrainEnergy};
 use crate::invariants::{Kinematics, FULL};
@@ -24,6 +27,8 @@ pub struct UniaxialPoint {
     pub lambda: f64,
     /// Nominal stress along the stretch \[kPa\].
     pub stress: f64,
+    /// Cauchy (true) stress along the stretch, σ = J⁻¹ P Fᵀ \[kPa\].
+    pub cauchy: f64,
     /// Activation γ at the point [-].
     pub gamma: f64,
     /// Fibre stretch λ_f [-] (= λ along the fibres).
@@ -170,14 +175,40 @@ pub fn free_contraction<E: StrainEnergy>(muscle: &Muscle<E>) -> Result<UniaxialP
     Ok(point)
 }
 
+/// The Cauchy stress σ = J⁻¹ P Fᵀ \[kPa\] of the total nominal stress P = ∂Ψ/∂F − p F⁻ᵀ, from
+/// ∂Ψ/∂F (`dpsi_df`, row by row), the pressure p \[kPa\] and F: σ = J⁻¹ (∂Ψ/∂F) Fᵀ − p I.
+/// Rejects det F ≤ 0.
+pub fn cauchy_stress(
+    dpsi_df: &SVector<f64, 9>,
+    pressure: f64,
+    f: &Matrix3<f64>,
+) -> Result<Matrix3<f64>> {
+    let j = f.determinant();
+    if j <= 0.0 || !j.is_finite() {
+        return Err(Error::NonPositiveJacobian {
+            det: j,
+            f: [
+                [f[(0, 0)], f[(0, 1)], f[(0, 2)]],
+                [f[(1, 0)], f[(1, 1)], f[(1, 2)]],
+                [f[(2, 0)], f[(2, 1)], f[(2, 2)]],
+            ],
+        });
+    }
+    let p = Matrix3::from_row_slice(dpsi_df.as_slice());
+    Ok(p * f.transpose() / j - Matrix3::identity() * pressure)
+}
+
 /// Uniaxial tension along the fibres.
 pub fn along_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result<UniaxialPoint> {
     let kin = fibre_kinematics(lambda)?;
     let t = lambda.sqrt().recip();
     let r = muscle.respond(&kin, Order::Stress, &FULL)?;
+    let p = r.stress.unwrap_or_default();
+    let f = Matrix3::from_diagonal(&Vector3::new(lambda, t, t));
     Ok(UniaxialPoint {
         lambda,
-        stress: nominal_along(&r.stress.unwrap_or_default(), lambda),
+        stress: nominal_along(&p, lambda),
+        cauchy: cauchy_stress(&p, p[4] * t, &f)?[(0, 0)],
         gamma: r.gamma,
         fibre_stretch: r.fibre_stretch,
         lateral: [t, t],
@@ -246,9 +277,11 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
     let r = muscle.respond(&kin, Order::Stress, &FULL)?;
     let p = r.stress.unwrap_or_default();
     let pressure = p[8] * f33;
+    let f = Matrix3::from_diagonal(&Vector3::new(a, lambda, f33));
     Ok(UniaxialPoint {
         lambda,
         stress: p[4] - pressure / lambda,
+        cauchy: cauchy_stress(&p, pressure, &f)?[(1, 1)],
         gamma: r.gamma,
         fibre_stretch: r.fibre_stretch,
         lateral: [a, f33],
@@ -391,6 +424,8 @@ pub fn nearly_incompressible<E: StrainEnergy>(
             return Ok(UniaxialPoint {
                 lambda,
                 stress,
+                // σ = J⁻¹ P Fᵀ on the diagonal: σ_kk = P_kk λ / (λ x₀ x₁).
+                cauchy: stress / (x[0] * x[1]),
                 gamma,
                 fibre_stretch,
                 lateral: x,

@@ -237,6 +237,7 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
         points: vec![StabilityPoint {
             lambda: 1.2,
             stress: 10.0,
+            cauchy: 12.0,
             slope: f64::INFINITY,
             least: 1.0,
             relative: 1.0,

@@ -24,15 +24,15 @@ fn a_stability_study_writes_its_table_csv_and_figure() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "study,law,coupling,d,lambda,P,dP_dlambda,ellipticity_min,ellipticity_relative,strongly_elliptic,softening"
+        "study,law,coupling,d,lambda,P,dP_dlambda,ellipticity_min,ellipticity_relative,strongly_elliptic,softening,cauchy"
     );
     // Passive and implicit/frozen, 26 stretches each.
     assert_eq!(lines.len(), 1 + 2 * 26, "{csv}");
     // The implicit frozen model softens past the optimum (P_tot = P_pas + P_act falls).
     assert!(
-        lines
-            .iter()
-            .any(|l| l.starts_with("map,implicit,frozen,0,") && l.ends_with(",true")),
+        lines.iter().any(
+            |l| l.starts_with("map,implicit,frozen,0,") && l.split(',').nth(10) == Some("true")
+        ),
         "{csv}"
     );
     let report = std::fs::read_to_string(out_dir.join("report.html")).expect("report");

@@ -1,6 +1,6 @@
 //! The same battery on every shipped energy, passive (γ = 0) and inside the active-strain wrapper.
 
-use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, NeoHookean};
+use activemuscle::energy::{EhretBolItskov, FourCPassive, GiantesioMusesti, NeoHookean};
 use activemuscle::energy_test_battery;
 
 energy_test_battery!(
@@ -23,6 +23,8 @@ energy_test_battery!(
     EhretBolItskov::paper(),
     gamma = 0.2
 );
+energy_test_battery!(four_c_passive_passive, FourCPassive::paper(), gamma = 0.0);
+energy_test_battery!(four_c_passive_active, FourCPassive::paper(), gamma = 0.25);
 energy_test_battery!(
     neo_hookean_passive,
     NeoHookean::new(1.0).unwrap(),

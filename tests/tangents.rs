@@ -1,9 +1,10 @@
 //! Tangents: Taylor tests against the stress, symmetry where it must hold, the measured asymmetry
-//! of the frozen model's exact tangent, and the fast axisymmetric route against the 9-entry route.
+//! of the frozen model's exact tangent, and the fast axisymmetric route against the 9-entry route; the
+//! Taylor test and the full-AD consistent tangent for both active-strain maps.
 
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
-    ImplicitLaw, Law,
+    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, StrainEnergy};
 use activemuscle::invariants::{
@@ -17,14 +18,30 @@ use num_dual::DualNum;
 use num_dual::{hessian, Dual2SVec64};
 
 fn laws() -> Vec<(&'static str, Law<GiantesioMusesti>)> {
-    let (gm, curve) = (GiantesioMusesti::paper(), ActiveCurve::paper());
-    vec![
-        ("constant", Law::Constant(ConstantLaw::new(0.2).unwrap())),
-        ("implicit", Law::Implicit(ImplicitLaw::new(gm, curve))),
-        ("explicit", Law::Explicit(ExplicitLaw::paper())),
-        ("energy", Law::Energy(EnergyLaw::new(gm, curve))),
-    ]
+    laws_with(ActiveStrainMap::Chapter)
 }
+
+/// The laws solved with `map` (the explicit law only with the chapter's map, which it is fitted for).
+fn laws_with(map: ActiveStrainMap) -> Vec<(&'static str, Law<GiantesioMusesti>)> {
+    let (gm, curve) = (GiantesioMusesti::paper(), ActiveCurve::paper());
+    let mut laws = vec![
+        ("constant", Law::Constant(ConstantLaw::new(0.2).unwrap())),
+        (
+            "implicit",
+            Law::Implicit(ImplicitLaw::new(gm, curve).with_map(map)),
+        ),
+        (
+            "energy",
+            Law::Energy(EnergyLaw::new(gm, curve).with_map(map)),
+        ),
+    ];
+    if map == ActiveStrainMap::Chapter {
+        laws.insert(2, ("explicit", Law::Explicit(ExplicitLaw::paper())));
+    }
+    laws
+}
+
+const MAPS: [ActiveStrainMap; 2] = [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving];
 
 const COUPLINGS: [Coupling; 3] = [
     Coupling::Frozen(FrozenTangent::Exact),
@@ -75,10 +92,14 @@ fn taylor_orders<const N: usize>(
 
 #[test]
 fn exact_tangents_pass_the_taylor_test_and_the_symmetric_approximation_does_not() {
-    for (name, law) in laws() {
+    for (map, (name, law)) in MAPS
+        .into_iter()
+        .flat_map(|map| laws_with(map).into_iter().map(move |l| (map, l)))
+    {
         for coupling in COUPLINGS {
-            let muscle =
-                Muscle::new(GiantesioMusesti::paper(), law.clone(), 0.1, coupling).unwrap();
+            let muscle = Muscle::new(GiantesioMusesti::paper(), law.clone(), 0.1, coupling)
+                .and_then(|m| m.with_map(map))
+                .unwrap();
             let full = taylor_orders(&muscle, &sample_f(), &fibre(), &FULL);
             let axi_f = axisymmetric_f(&SVector::from([0.97, 0.04, -0.03, 1.12, 0.95]));
             let axi = taylor_orders(&muscle, &axi_f, &axial_fibre(), &AXISYMMETRIC);
@@ -90,7 +111,8 @@ fn exact_tangents_pass_the_taylor_test_and_the_symmetric_approximation_does_not(
                 if exact {
                     assert!(
                         observed.iter().all(|o| *o > 1.9 && *o < 2.1),
-                        "{name} {coupling:?}: orders {orders:?}"
+                        "{} {name} {coupling:?}: orders {orders:?}",
+                        map.name()
                     );
                 } else {
                     // First order once the dropped term dominates (last decade, 1e-4 → 1e-5).
@@ -186,6 +208,7 @@ fn consistent_tangent_is_symmetric_and_frozen_exact_tangent_is_not() {
 /// the coupling's chain rule.
 fn consistent_by_full_ad<E: StrainEnergy>(
     energy: &E,
+    map: ActiveStrainMap,
     law: &Law<E>,
     f: &Matrix3<f64>,
     m: &Vector3<f64>,
@@ -200,7 +223,7 @@ fn consistent_by_full_ad<E: StrainEnergy>(
             }
             let lambda = (fm[0] * fm[0] + fm[1] * fm[1] + fm[2] * fm[2]).sqrt();
             let gamma = law.gamma(lambda, 0.2).unwrap();
-            active_energy_by_matrices(energy, &f, m, gamma)
+            active_energy_by_matrices(energy, map, &f, m, gamma)
         },
         &x,
     );
@@ -209,13 +232,17 @@ fn consistent_by_full_ad<E: StrainEnergy>(
 
 #[test]
 fn consistent_coupling_equals_full_ad_of_the_composed_energy() {
-    for (name, law) in laws() {
+    for (map, (name, law)) in MAPS
+        .into_iter()
+        .flat_map(|map| laws_with(map).into_iter().map(move |l| (map, l)))
+    {
         let muscle = Muscle::new(
             GiantesioMusesti::paper(),
             law.clone(),
             0.2,
             Coupling::Consistent,
         )
+        .and_then(|m| m.with_map(map))
         .unwrap();
         let r = muscle
             .respond(
@@ -224,14 +251,16 @@ fn consistent_coupling_equals_full_ad_of_the_composed_energy() {
                 &FULL,
             )
             .unwrap();
-        let (p, k) = consistent_by_full_ad(muscle.energy(), &law, &sample_f(), &fibre());
+        let (p, k) = consistent_by_full_ad(muscle.energy(), map, &law, &sample_f(), &fibre());
         assert!(
             (r.stress.unwrap() - p).norm() < 1e-12 * p.norm(),
-            "{name} stress"
+            "{} {name} stress",
+            map.name()
         );
         assert!(
             (r.tangent.unwrap() - k).norm() < 1e-12 * k.norm(),
-            "{name} tangent"
+            "{} {name} tangent",
+            map.name()
         );
     }
 }

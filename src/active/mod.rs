@@ -14,4 +14,6 @@ pub use law::{
     ImplicitLaw, Law, LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport,
     TableSpec, TabulatedLaw,
 };
-pub use strain::{active_energy, check_activation, fibre_path_energy, fibre_path_invariants};
+pub use strain::{
+    active_energy, check_activation, fibre_path_energy, fibre_path_invariants, ActiveStrainMap,
+};

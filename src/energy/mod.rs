@@ -329,4 +329,6 @@ shipped_energies! {
     ehret_bol_itskov::EhretBolItskov,
     /// Incompressible neo-Hookean reference.
     neo_hookean::NeoHookean,
+    /// 4C's muscle passive energy (Weickenmeier et al. 2014).
+    four_c_passive::FourCPassive,
 }

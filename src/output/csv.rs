@@ -17,7 +17,7 @@ use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
 
 /// The header of `curves.csv`.
-pub const COLUMNS: [&str; 14] = [
+pub const COLUMNS: [&str; 15] = [
     "study",
     "model",
     "direction",
@@ -32,6 +32,7 @@ pub const COLUMNS: [&str; 14] = [
     "P_pas",
     "P_act",
     "newton_iterations",
+    "cauchy",
 ];
 
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
@@ -65,6 +66,8 @@ pub struct Row<'a> {
     pub p_act: Option<f64>,
     /// Newton iterations to reach this stretch from the previous one (cylinder).
     pub newton_iterations: Option<usize>,
+    /// Cauchy stress along the stretch σ = J⁻¹ P Fᵀ \[kPa\] (uniaxial).
+    pub cauchy: Option<f64>,
 }
 
 /// What tells one curve of `curves.csv` from the others: every column but the point's values,
@@ -121,6 +124,7 @@ fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &Curv
         p_pas: p.passive,
         p_act: p.active_target,
         newton_iterations: None,
+        cauchy: Some(p.cauchy),
     }
 }
 
@@ -142,6 +146,7 @@ fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &Sweep
         p_pas: None,
         p_act: None,
         newton_iterations: Some(p.newton_iterations),
+        cauchy: None,
     }
 }
 
@@ -154,6 +159,7 @@ pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
             _ => 0.0,
         },
         stress: 0.0,
+        cauchy: 0.0,
         passive: None,
         active_target: None,
     });
@@ -252,6 +258,7 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
             r.newton_iterations
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
+            optional(r.cauchy, "cauchy", r)?,
         ];
         w.write_record(&record).map_err(&fail)?;
     }
@@ -277,7 +284,7 @@ pub const FIT_COLUMNS: [&str; 14] = [
 ];
 
 /// The header of `stability.csv`: one row per model and stretch.
-pub const STABILITY_COLUMNS: [&str; 11] = [
+pub const STABILITY_COLUMNS: [&str; 12] = [
     "study",
     "law",
     "coupling",
@@ -289,6 +296,7 @@ pub const STABILITY_COLUMNS: [&str; 11] = [
     "ellipticity_relative",
     "strongly_elliptic",
     "softening",
+    "cauchy",
 ];
 
 /// `x` as text if finite, else an error naming the quantity and where it came from.
@@ -387,6 +395,7 @@ pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, A
                     text(p.relative, "relative ellipticity", origin)?,
                     p.elliptic.to_string(),
                     (p.slope < 0.0).to_string(),
+                    text(p.cauchy, "cauchy", origin)?,
                 ])
                 .map_err(&fail)?;
             }

@@ -44,6 +44,7 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
             coupling: Some(defaults.coupling),
             frozen_tangent: Some(models.frozen_tangent),
             below_minimum: Some(models.below_minimum),
+            map: Some(models.map),
             damage: Some(damage.clone()),
             explicit: Some(ExplicitSpec {
                 a: Some(models.explicit.0),

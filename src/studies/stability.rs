@@ -131,6 +131,8 @@ pub struct StabilityPoint {
     pub lambda: f64,
     /// Nominal stress P \[kPa\].
     pub stress: f64,
+    /// Cauchy stress along the fibres σ = λ P \[kPa\].
+    pub cauchy: f64,
     /// dP/dλ \[kPa\].
     pub slope: f64,
     /// min a·Q(N)a over the sampled normals \[kPa\].
@@ -261,6 +263,7 @@ impl StabilityStudy {
                 Ok(p) => curve.points.push(StabilityPoint {
                     lambda: l,
                     stress: p.stress,
+                    cauchy: p.cauchy,
                     slope: p.slope,
                     least: p.ellipticity.least,
                     relative: p.ellipticity.relative,

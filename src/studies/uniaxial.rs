@@ -148,6 +148,9 @@ pub struct CurvePoint {
     pub gamma: f64,
     /// Nominal stress along the stretch \[kPa\].
     pub stress: f64,
+    /// Cauchy stress along the stretch σ = J⁻¹ P Fᵀ \[kPa\] (= λ P: incompressible, lateral
+    /// faces traction free).
+    pub cauchy: f64,
     /// Passive stress of the material P_pas(λ) \[kPa\] (active curves along the fibres).
     pub passive: Option<f64>,
     /// Target active stress (1 − d) P_act(λ) \[kPa\] (the same curves).
@@ -197,6 +200,7 @@ impl UniaxialStudy {
                         lambda,
                         gamma: p.gamma,
                         stress: p.stress,
+                        cauchy: p.cauchy,
                         passive: extra.map(|e| e.0),
                         active_target: extra.map(|e| e.1),
                     })

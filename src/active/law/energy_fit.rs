@@ -3,7 +3,7 @@ use super::{
     PathPartials,
 };
 use crate::active::curve::ActiveCurve;
-use crate::active::strain::fibre_path_energy;
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::{positive, StrainEnergy};
 use crate::Result;
 use num_dual::{first_derivative, second_derivative};
@@ -38,6 +38,7 @@ pub struct EnergyLaw<E> {
     energy: E,
     curve: ActiveCurve,
     below_minimum: BelowMinimum,
+    map: ActiveStrainMap,
 }
 
 /// What the energy-consistent law does at fibre stretches λ ≤ λ_min (in a scene:
@@ -70,15 +71,27 @@ impl<E> EnergyLaw<E> {
     pub fn below_minimum_choice(&self) -> BelowMinimum {
         self.below_minimum
     }
+
+    /// The active-strain map the law is solved with.
+    pub fn map(&self) -> ActiveStrainMap {
+        self.map
+    }
+
+    /// The same law solved with the active-strain map `map`.
+    pub fn with_map(self, map: ActiveStrainMap) -> Self {
+        Self { map, ..self }
+    }
 }
 
 impl<E: StrainEnergy> EnergyLaw<E> {
-    /// The energy-consistent law for `energy` and the active curve `curve`.
+    /// The energy-consistent law for `energy` and the active curve `curve`, with the chapter's
+    /// map.
     pub fn new(energy: E, curve: ActiveCurve) -> Self {
         Self {
             energy,
             curve,
             below_minimum: BelowMinimum::ZeroWork,
+            map: ActiveStrainMap::Chapter,
         }
     }
 
@@ -92,8 +105,8 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 
     /// Residual in kPa (energy per volume): Ŵ(λ, γ) − W_pas(λ) − (1 − d) ∫ P_act.
     pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
-        fibre_path_energy(&self.energy, lambda, gamma)
-            - fibre_path_energy(&self.energy, lambda, 0.0)
+        self.map.fibre_path_energy(&self.energy, lambda, gamma)
+            - self.map.fibre_path_energy(&self.energy, lambda, 0.0)
             - (1.0 - damage) * self.curve.integral(lambda)
     }
 }
@@ -116,12 +129,15 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 impl<E: StrainEnergy> EnergyLaw<E> {
     /// The first root above 0 of Ŵ(λ, γ) − W_pas(λ) − work.
     fn root(&self, lambda: f64, damage: f64, work: f64) -> Result<f64> {
-        let passive = fibre_path_energy(&self.energy, lambda, 0.0);
+        let passive = self.map.fibre_path_energy(&self.energy, lambda, 0.0);
         first_activation_root(
             || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
             |g| {
                 let (w, w_g) = first_derivative(
-                    |g| fibre_path_energy(&self.energy, num_dual::Dual64::from(lambda), g),
+                    |g| {
+                        self.map
+                            .fibre_path_energy(&self.energy, num_dual::Dual64::from(lambda), g)
+                    },
                     g,
                 );
                 (w - passive - work, w_g)
@@ -146,8 +162,8 @@ impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
         let gamma = self.root(lambda, damage, work)?;
         let scale = 1.0 - damage;
         let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);
-        let at = PathPartials::at(&self.energy, lambda, gamma)?;
-        let pas = PathPartials::at(&self.energy, lambda, 0.0)?;
+        let at = PathPartials::at(&self.energy, self.map, lambda, gamma)?;
+        let pas = PathPartials::at(&self.energy, self.map, lambda, 0.0)?;
         Ok(implicit_derivatives(
             gamma,
             at.w_l - pas.w_l - t,

@@ -3,6 +3,7 @@ use super::{
     ActivationLaw, LawValue, PathPartials,
 };
 use crate::active::curve::ActiveCurve;
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::{positive, StrainEnergy};
 use crate::Result;
 use num_dual::second_derivative;
@@ -11,7 +12,8 @@ use num_dual::second_derivative;
 ///
 /// P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ),  P_tot = ∂Ŵ/∂λ along F = diag(λ, λ^-½, λ^-½),
 ///
-/// for any energy (for the chapter's energy this is exactly the printed equation). γ = 0 for
+/// for any energy and either active-strain map (for the chapter's energy and map this is exactly
+/// the printed equation). γ = 0 for
 /// λ ≤ λ_min and wherever (1 − d) P_act = 0.
 ///
 /// Valid for λ > λ_min up to the stretch where P_tot overflows at the root (≈ 1.9 for the
@@ -23,12 +25,27 @@ use num_dual::second_derivative;
 pub struct ImplicitLaw<E> {
     energy: E,
     curve: ActiveCurve,
+    map: ActiveStrainMap,
 }
 
 impl<E: StrainEnergy> ImplicitLaw<E> {
-    /// The law fitted for `energy` to the active curve `curve`.
+    /// The law fitted for `energy` to the active curve `curve`, with the chapter's map.
     pub fn new(energy: E, curve: ActiveCurve) -> Self {
-        Self { energy, curve }
+        Self {
+            energy,
+            curve,
+            map: ActiveStrainMap::Chapter,
+        }
+    }
+
+    /// The same law solved with the active-strain map `map`.
+    pub fn with_map(self, map: ActiveStrainMap) -> Self {
+        Self { map, ..self }
+    }
+
+    /// The active-strain map the law is solved with.
+    pub fn map(&self) -> ActiveStrainMap {
+        self.map
     }
 
     /// The active curve the law reproduces.
@@ -43,8 +60,8 @@ impl<E: StrainEnergy> ImplicitLaw<E> {
 
     /// Residual of eq. D:eqgammaesplicita in kPa: P_tot(λ, γ) − P_pas(λ) − (1 − d) P_act(λ).
     pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
-        let (p_tot, _) = fibre_stress_and_slope(&self.energy, lambda, gamma);
-        let (p_pas, _) = fibre_stress_and_slope(&self.energy, lambda, 0.0);
+        let (p_tot, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, gamma);
+        let (p_pas, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, 0.0);
         p_tot - p_pas - (1.0 - damage) * self.curve.value(lambda)
     }
 }
@@ -57,11 +74,11 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         if t <= 0.0 {
             return Ok(0.0);
         }
-        let (p_pas, _) = fibre_stress_and_slope(&self.energy, lambda, 0.0);
+        let (p_pas, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, 0.0);
         first_activation_root(
             || format!("implicit activation law at lambda = {lambda}, d = {damage}"),
             |g| {
-                let (p, dp) = fibre_stress_and_slope(&self.energy, lambda, g);
+                let (p, dp) = fibre_stress_and_slope(&self.energy, self.map, lambda, g);
                 (p - p_pas - t, dp)
             },
         )
@@ -74,8 +91,8 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         if t <= 0.0 {
             return Ok(LawValue::default());
         }
-        let at = PathPartials::at(&self.energy, lambda, gamma)?;
-        let passive = PathPartials::at(&self.energy, lambda, 0.0)?;
+        let at = PathPartials::at(&self.energy, self.map, lambda, gamma)?;
+        let passive = PathPartials::at(&self.energy, self.map, lambda, 0.0)?;
         Ok(implicit_derivatives(
             gamma,
             at.w_ll - passive.w_ll - t_l,

@@ -26,7 +26,7 @@ pub use tabulated::{
     LawRepresentation, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw, MIN_WIDTH,
 };
 
-use crate::active::strain::fibre_path_energy;
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::StrainEnergy;
 use crate::roots::newton_bisection;
 use crate::{Error, Result, Scalar};
@@ -121,6 +121,17 @@ impl<E> Law<E> {
 }
 
 impl<E: StrainEnergy> Law<E> {
+    /// The active-strain map the law is solved with (the implicit and energy laws, tabulated or
+    /// not); `None` for the laws that do not solve an equation of Ŵ.
+    pub fn map(&self) -> Option<ActiveStrainMap> {
+        match self {
+            Law::Implicit(l) => Some(l.map()),
+            Law::Energy(l) => Some(l.map()),
+            Law::Tabulated(l) => Some(l.exact.map()),
+            _ => None,
+        }
+    }
+
     /// The same law in the representation asked for: [`LawRepresentation::Tabulated`] builds a
     /// table per damage in `damages` for the implicit and the energy law (an already tabulated
     /// law is rebuilt from its exact law); [`LawRepresentation::Exact`] returns a tabulated
@@ -230,9 +241,15 @@ pub(crate) struct PathPartials {
 }
 
 impl PathPartials {
-    /// Three hyper-hyper-dual evaluations of Ŵ(λ, γ).
-    pub fn at<E: StrainEnergy>(energy: &E, lambda: f64, gamma: f64) -> Result<Self> {
+    /// Three hyper-hyper-dual evaluations of Ŵ(λ, γ) with the active-strain map `map`.
+    pub fn at<E: StrainEnergy>(
+        energy: &E,
+        map: ActiveStrainMap,
+        lambda: f64,
+        gamma: f64,
+    ) -> Result<Self> {
         let hhd = HyperHyperDual64::from_re;
+        let fibre_path_energy = |e: &E, l, g| map.fibre_path_energy(e, l, g);
         let l3 = hhd(lambda).derivative1().derivative2().derivative3();
         let a = fibre_path_energy(energy, l3, hhd(gamma));
         let b = fibre_path_energy(
@@ -278,10 +295,11 @@ impl PathPartials {
 /// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path (eq. D:Ptotcalcolato), by one hyper-dual.
 pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
     energy: &E,
+    map: ActiveStrainMap,
     lambda: f64,
     gamma: f64,
 ) -> (f64, f64) {
-    let w = fibre_path_energy(
+    let w = map.fibre_path_energy(
         energy,
         HyperDual64::from_re(lambda).derivative1(),
         HyperDual64::from_re(gamma).derivative2(),

@@ -48,7 +48,7 @@
 //! γ = 0. Outside [λ_lo, λ_hi] and for a damage without a table, the exact law is solved.
 
 use super::{ActivationLaw, BelowMinimum, EnergyLaw, ImplicitLaw, LawValue};
-use crate::active::strain::fibre_path_energy;
+use crate::active::strain::ActiveStrainMap;
 use crate::energy::StrainEnergy;
 use crate::{Error, Result};
 use num_dual::HyperDual64;
@@ -172,6 +172,14 @@ impl<E: StrainEnergy> SolvedLaw<E> {
         match self {
             SolvedLaw::Implicit(l) => l.energy(),
             SolvedLaw::Energy(l) => l.energy(),
+        }
+    }
+
+    /// The active-strain map the exact law is solved with.
+    pub fn map(&self) -> ActiveStrainMap {
+        match self {
+            SolvedLaw::Implicit(l) => l.map(),
+            SolvedLaw::Energy(l) => l.map(),
         }
     }
 
@@ -503,8 +511,13 @@ impl<E: StrainEnergy> ActivationLaw for TabulatedLaw<E> {
 }
 
 /// ∂Ŵ/∂λ and ∂Ŵ/∂γ along the fibre path, by one hyper-dual.
-fn path_gradient<E: StrainEnergy>(energy: &E, lambda: f64, gamma: f64) -> (f64, f64) {
-    let w = fibre_path_energy(
+fn path_gradient<E: StrainEnergy>(
+    energy: &E,
+    map: ActiveStrainMap,
+    lambda: f64,
+    gamma: f64,
+) -> (f64, f64) {
+    let w = map.fibre_path_energy(
         energy,
         HyperDual64::from_re(lambda).derivative1(),
         HyperDual64::from_re(gamma).derivative2(),
@@ -522,8 +535,8 @@ fn errors_at<E: StrainEnergy>(
 ) -> Result<PointErrors> {
     let reference = exact.evaluate(lambda, damage)?;
     let energy = exact.energy();
-    let (p_t, w_g_t) = path_gradient(energy, lambda, table.gamma);
-    let (p_e, w_g_e) = path_gradient(energy, lambda, reference.gamma);
+    let (p_t, w_g_t) = path_gradient(energy, exact.map(), lambda, table.gamma);
+    let (p_e, w_g_e) = path_gradient(energy, exact.map(), lambda, reference.gamma);
     let (consistent_t, consistent_e) = (p_t + w_g_t * table.slope, p_e + w_g_e * reference.slope);
     let (frozen, consistent) = ((p_t - p_e).abs(), (consistent_t - consistent_e).abs());
     let allowed = |p: f64| spec.stress_tolerance + spec.relative_stress_tolerance * p.abs();
