@@ -5,7 +5,7 @@
 
 use crate::active::{
     ActiveCurve, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
-    ImplicitLaw, Law,
+    ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
@@ -61,6 +61,19 @@ impl CouplingKind {
     }
 }
 
+/// How the laws that solve an equation for γ (implicit, energy) are evaluated
+/// (`representation = "tabulated"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RepresentationKind {
+    /// Solved at every evaluation.
+    #[default]
+    Exact,
+    /// From a table built once per damage and checked against the exact solve
+    /// ([`crate::active::TabulatedLaw`]): |Δγ| ≤ 1e-12, fibre stress within 1e-9 kPa + 1e-13 |P|.
+    Tabulated,
+}
+
 /// One activation model: law, coupling, damage.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModelChoice {
@@ -105,6 +118,8 @@ pub struct Models {
     pub frozen_tangent: FrozenTangent,
     /// What the energy law does below λ_min.
     pub below_minimum: BelowMinimum,
+    /// How the implicit and energy laws of [`Models::muscle`] are evaluated.
+    pub representation: LawRepresentation,
 }
 
 impl Models {
@@ -118,6 +133,7 @@ impl Models {
             explicit: ExplicitLaw::paper().coefficients(),
             frozen_tangent: FrozenTangent::default(),
             below_minimum: BelowMinimum::default(),
+            representation: LawRepresentation::Exact,
         }
     }
 
@@ -167,11 +183,13 @@ impl Models {
         }
     }
 
-    /// The active muscle of `model`.
+    /// The active muscle of `model`, its law in this material's [`Models::representation`] (a
+    /// table is built for `model.damage`: 0.04–0.1 s for the chapter's laws).
     pub fn muscle(&self, model: ModelChoice) -> crate::Result<Muscle<Energy>> {
         Muscle::new(
             self.energy.clone(),
-            self.law(model.law)?,
+            self.law(model.law)?
+                .represented(self.representation, &[model.damage])?,
             model.damage,
             self.coupling(model.coupling),
         )
@@ -192,12 +210,16 @@ impl Models {
         Muscle::passive(self.energy.clone())
     }
 
-    /// `giantesio-musesti, explicit law, frozen coupling, d = 0`.
+    /// `giantesio-musesti, explicit law, frozen coupling, d = 0` (`implicit law (tabulated)` for a
+    /// tabulated law).
     pub fn label(&self, m: &ModelChoice) -> String {
+        let tabulated = matches!(self.representation, LawRepresentation::Tabulated(_))
+            && m.law != LawKind::Explicit;
         format!(
-            "{}, {} law, {} coupling, d = {}",
+            "{}, {} law{}, {} coupling, d = {}",
             self.energy.name(),
             m.law.name(),
+            if tabulated { " (tabulated)" } else { "" },
             m.coupling.name(),
             m.damage
         )
@@ -438,6 +460,11 @@ pub struct ActivationSpec {
     pub damage: Option<Vec<f64>>,
     /// Coefficients of the explicit law (eq. (14)).
     pub explicit: Option<ExplicitSpec>,
+    /// How the implicit and energy laws are evaluated (default `exact`).
+    pub representation: Option<RepresentationKind>,
+    /// Stretch range `[λ_lo, λ_hi]` [-] of the tables (default `[0.5, 1.6]`; the exact solve
+    /// outside); only with `representation = "tabulated"`.
+    pub table_stretches: Option<[f64; 2]>,
 }
 
 /// `explicit = { a = 1.0133, b = 0.2050 }`.
@@ -482,6 +509,47 @@ impl Models {
             explicit,
             frozen_tangent: act.frozen_tangent.unwrap_or_default(),
             below_minimum: act.below_minimum.unwrap_or_default(),
+            representation: representation(act)?,
         })
+    }
+
+    /// `representation` and `table_stretches` as a scene writes them.
+    pub fn representation_spec(&self) -> (RepresentationKind, Option<[f64; 2]>) {
+        match self.representation {
+            LawRepresentation::Exact => (RepresentationKind::Exact, None),
+            LawRepresentation::Tabulated(t) => (
+                RepresentationKind::Tabulated,
+                Some([t.lambda_lo, t.lambda_hi]),
+            ),
+        }
+    }
+}
+
+/// The law representation of `[activation]`: tables on `table_stretches` (validated:
+/// 0 < λ_lo < λ_hi, finite) with the default tolerances of [`TableSpec`].
+fn representation(act: &ActivationSpec) -> Result<LawRepresentation, SpecError> {
+    let shown = |[lo, hi]: [f64; 2]| format!("[{lo}, {hi}]");
+    match (act.representation.unwrap_or_default(), act.table_stretches) {
+        (RepresentationKind::Exact, None) => Ok(LawRepresentation::Exact),
+        (RepresentationKind::Exact, Some(range)) => Err(SpecError::new(
+            "activation.table_stretches",
+            shown(range),
+            "applies only with activation.representation = \"tabulated\"",
+        )),
+        (RepresentationKind::Tabulated, range) => {
+            let mut spec = TableSpec::default();
+            if let Some([lo, hi]) = range {
+                spec.lambda_lo = lo;
+                spec.lambda_hi = hi;
+            }
+            spec.validate().map_err(|_| {
+                SpecError::new(
+                    "activation.table_stretches",
+                    shown([spec.lambda_lo, spec.lambda_hi]),
+                    "the table's stretch range needs finite 0 < λ_lo < λ_hi",
+                )
+            })?;
+            Ok(LawRepresentation::Tabulated(spec))
+        }
     }
 }

@@ -49,6 +49,8 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
                 a: Some(models.explicit.0),
                 b: Some(models.explicit.1),
             }),
+            representation: Some(models.representation_spec().0),
+            table_stretches: models.representation_spec().1,
         },
         studies: resolved,
     };

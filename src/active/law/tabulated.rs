@@ -105,7 +105,8 @@ impl Default for TableSpec {
 }
 
 impl TableSpec {
-    fn validate(&self) -> Result<()> {
+    /// Checks every field: a positive finite range and tolerances; errors name the field.
+    pub fn validate(&self) -> Result<()> {
         let check = |name, value: f64, ok: bool, rule| {
             if ok && value.is_finite() {
                 Ok(())

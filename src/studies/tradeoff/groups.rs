@@ -4,6 +4,7 @@
 //! |---|---|---|---|
 //! | activation law (0D along the fibres) | explicit (frozen), energy (consistent) | implicit (frozen): reproduces P_pas + P_act | P(λ), γ(λ) |
 //! | activation law (FE, clamped cylinder) | explicit (frozen), energy (consistent) | implicit (frozen) | P(λ), centre γ |
+//! | law representation (0D: implicit frozen, energy consistent; FE: implicit) | tabulated | exact solve | P(λ), γ(λ) or centre γ |
 //! | derivative route at a point | oracle (9-entry F), central differences | fast AD | ∂P/∂F |
 //! | derivative route in the FE | oracle, central differences | fast AD | P(λ), centre γ |
 //! | frozen tangent (FE) | symmetric approximation | exact | P(λ), centre γ |
@@ -17,7 +18,7 @@
 use super::measure::{curve_error, time_median, time_runs, CurveError, Measurement, Timing};
 use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use super::Geometry;
-use crate::active::{Coupling, FrozenTangent};
+use crate::active::{Coupling, FrozenTangent, Law, LawRepresentation, TableSpec};
 use crate::app_error::AppError;
 use crate::energy::Energy;
 use crate::fem::{
@@ -214,6 +215,20 @@ fn largest_error(stretches: &[f64], (p, g): Curves2, (p_ref, g_ref): Curves2) ->
 /// P(λ) and γ(λ) of a 0D sweep, borrowed.
 type Curves2<'a> = (&'a [f64], &'a [f64]);
 
+/// The 0D curve along the fibres of `m` at `stretches`, timed (median of repeated runs).
+fn fibre_curve(m: &Muscle<Energy>, stretches: &[f64]) -> Result<(Timing, Curves), AppError> {
+    time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
+        let mut p = Vec::with_capacity(stretches.len());
+        let mut g = Vec::with_capacity(stretches.len());
+        for &l in stretches {
+            let pt = along_fibres(m, l)?;
+            p.push(pt.stress);
+            g.push(pt.gamma);
+        }
+        Ok((p, g))
+    })
+}
+
 /// Activation law, 0D along the fibres.
 pub(super) fn activation_law(
     models: &Models,
@@ -223,18 +238,7 @@ pub(super) fn activation_law(
 ) -> Result<(), AppError> {
     const OPTION: &str = "activation law (0D)";
     let stretches = &o.curve_stretches;
-    let curve = |m: &Muscle<Energy>| -> Result<(Timing, Curves), AppError> {
-        time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
-            let mut p = Vec::with_capacity(stretches.len());
-            let mut g = Vec::with_capacity(stretches.len());
-            for &l in stretches {
-                let pt = along_fibres(m, l)?;
-                p.push(pt.stress);
-                g.push(pt.gamma);
-            }
-            Ok((p, g))
-        })
-    };
+    let curve = |m: &Muscle<Energy>| fibre_curve(m, stretches);
     let implicit = muscle(models, LawKind::Implicit, EXACT)?;
     let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
     // The reference reproduces the target P_pas + P_act.
@@ -374,6 +378,114 @@ pub(super) fn activation_law_fe(
     for r in rows {
         run.push(r);
     }
+    Ok(())
+}
+
+/// `law` (with `coupling`, d = 0) tabulated as the scene asks, or on the default [`TableSpec`] if
+/// the scene's laws are exact; with the table's build time \[s\] and a description of it.
+fn tabulated_muscle(
+    models: &Models,
+    law: LawKind,
+    coupling: Coupling,
+) -> Result<(Muscle<Energy>, f64, String), AppError> {
+    let spec = match models.representation {
+        LawRepresentation::Tabulated(spec) => spec,
+        LawRepresentation::Exact => TableSpec::default(),
+    };
+    let started = Instant::now();
+    let table = models
+        .law(law)?
+        .represented(LawRepresentation::Tabulated(spec), &[0.0])?;
+    let build = started.elapsed().as_secs_f64();
+    let described = match &table {
+        Law::Tabulated(t) => t
+            .reports()
+            .iter()
+            .map(|r| {
+                format!(
+                    "table on λ ∈ [{}, {}]: {} pieces, {:.1} kB, built in {:.1} ms, checked |Δγ| ≤ {:.1e}, frozen/consistent fibre stress ≤ {:.1e}/{:.1e} kPa",
+                    spec.lambda_lo,
+                    spec.lambda_hi,
+                    r.pieces,
+                    r.bytes as f64 / 1e3,
+                    1e3 * build,
+                    r.gamma_error,
+                    r.frozen_stress_error,
+                    r.consistent_stress_error
+                )
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
+        _ => String::new(),
+    };
+    let muscle = Muscle::new(models.energy.clone(), table, 0.0, coupling)?;
+    Ok((muscle, build, described))
+}
+
+/// Law representation: each law that solves for γ, exact (the reference) against tabulated
+/// ([`crate::active::TabulatedLaw`]): the implicit law (frozen) and the energy law (consistent)
+/// along the 0D fibre curve, the implicit law in the clamped cylinder. Times exclude the table's
+/// build, which the notes and findings state beside them (it is paid once per damage).
+pub(super) fn law_representation(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
+) -> Result<(), AppError> {
+    let stretches = &o.curve_stretches;
+    let quantity = "P(λ) over the 0D sweep [kPa]";
+    for (law, coupling) in [
+        (LawKind::Implicit, EXACT),
+        (LawKind::Energy, Coupling::Consistent),
+    ] {
+        let option = format!("{} law representation (0D)", law.name());
+        let (t_ref, (p_ref, g_ref)) = fibre_curve(&muscle(models, law, coupling)?, stretches)?;
+        let mut r = Measurement::new(&option, "exact", true, t_ref, quantity, CurveError::ZERO);
+        r.gamma_error = Some(0.0);
+        run.push(r);
+        let (tabulated, build, described) = tabulated_muscle(models, law, coupling)?;
+        let (t, (p, g)) = fibre_curve(&tabulated, stretches)?;
+        let e = curve_error(&p_ref, &p);
+        let ge = curve_error(&g_ref, &g).max_abs;
+        let mut r = Measurement::new(&option, "tabulated", false, t, quantity, e);
+        r.gamma_error = Some(ge);
+        r.note = described;
+        run.push(r);
+        findings.push(format!(
+            "Tabulated {} law (0D, {} stretches): {}; stress error max {:.1e} kPa, γ error max {:.1e}; the table's build ({:.1} ms) costs {:.0} exact curves.",
+            law.name(),
+            stretches.len(),
+            t.against(&t_ref, "the exact solve"),
+            e.max_abs,
+            ge,
+            1e3 * build,
+            build / t_ref.median
+        ));
+    }
+    const OPTION: &str = "implicit law representation (FE)";
+    let exact = o.clamped(&muscle(models, LawKind::Implicit, EXACT)?, &tight())?;
+    run.push(fe_row(OPTION, "exact", true, &exact, &exact));
+    let (tabulated, build, described) = tabulated_muscle(models, LawKind::Implicit, EXACT)?;
+    let table = o.clamped(&tabulated, &tight())?;
+    let mut row = fe_row(OPTION, "tabulated", false, &table, &exact);
+    row.note = if row.note.is_empty() {
+        described
+    } else {
+        format!("{}; {described}", row.note)
+    };
+    findings.push(format!(
+        "Tabulated implicit law in the clamped cylinder ({} × {} cells, {} stretches): {}; per Newton iteration {:.2e} s against {:.2e} s; nominal stress error max {:.1e} kPa, centre γ error max {:.1e} (table built once in {:.1} ms).",
+        o.fe_mesh.0,
+        o.fe_mesh.1,
+        o.fe_stretches.len(),
+        table.time.against(&exact.time, "the exact solve"),
+        table.per_iteration_s,
+        exact.per_iteration_s,
+        row.error.max_abs,
+        row.gamma_error.unwrap_or(f64::NAN),
+        1e3 * build
+    ));
+    run.push(row);
     Ok(())
 }
 

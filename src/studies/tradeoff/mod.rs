@@ -19,7 +19,7 @@
 //!
 //! | key | meaning | default |
 //! |---|---|---|
-//! | `options` | option groups: `activation-law`, `activation-law-fe`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe` | all |
+//! | `options` | option groups: `activation-law`, `activation-law-fe`, `law-representation`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe` | all |
 //! | `stretch` | stretches of every sweep (FE and 0D) | FE: 0.8, 1, 1.17, 1.3; 0D: the first uniaxial study along the fibres, or 0.65:0.01:1.60 |
 //! | `meshes` | `[[nr, nz], ...]` of the mesh option, coarse to fine (the last is the reference) | 2 × 8, 4 × 16, 8 × 32, 16 × 64 |
 //! | `nr`, `nz` | mesh of the other FE options | the first cylinder study's, or 4 × 16 |
@@ -52,6 +52,8 @@ pub enum OptionGroup {
     ActivationLaw,
     /// Activation law in the clamped cylinder (FE).
     ActivationLawFe,
+    /// Exact solve versus table of the implicit and energy laws, 0D and FE.
+    LawRepresentation,
     /// Derivative route, at one material point and in the FE.
     DerivativeRoute,
     /// Exact versus symmetric frozen tangent (FE).
@@ -68,9 +70,10 @@ pub enum OptionGroup {
 
 impl OptionGroup {
     /// Every group, in run order.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::ActivationLaw,
         Self::ActivationLawFe,
+        Self::LawRepresentation,
         Self::DerivativeRoute,
         Self::FrozenTangent,
         Self::Mesh,
@@ -84,6 +87,7 @@ impl OptionGroup {
         match self {
             Self::ActivationLaw => "activation-law",
             Self::ActivationLawFe => "activation-law-fe",
+            Self::LawRepresentation => "law-representation",
             Self::DerivativeRoute => "derivative-route",
             Self::FrozenTangent => "frozen-tangent",
             Self::Mesh => "mesh",
@@ -218,6 +222,9 @@ pub fn run(
         match group {
             OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings)?,
             OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings)?,
+            OptionGroup::LawRepresentation => {
+                groups::law_representation(models, plan, run, findings)?
+            }
             OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run)?,
             OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run)?,
             OptionGroup::Mesh => groups::mesh(models, plan, run, findings)?,
