@@ -4,12 +4,15 @@
 //! and Q1/P0 on the same cells and on cells halved in both directions (the same displacement
 //! nodes as Q2/Q1, so similar dofs).
 //!
-//! Anchor (issue #3): a mature Python/C++ FE framework (generated kernels, UMFPACK LU) needs
-//! ≈ 0.13 s per Newton iteration at 9.6k dofs and ≈ 1 s at 37.7k dofs (P2/P1) on this 2-core
-//! machine; the column `anchor/x` is that anchor (interpolated through its two points as a power
-//! of the dofs) divided by our time.
+//! The reference, legacy FEniCS on the same problem and the same dofs, is measured by
+//! `python/bench/fe_per_iteration.py`, which alternates its runs with this example's one-case mode
+//! (BENCHMARKS.md, "Against legacy FEniCS").
 //!
-//! Run: `cargo run --release --example fem_scaling`.
+//! Run: `cargo run --release --example fem_scaling`. One case, for a driver that alternates with
+//! another code (`python/bench/fe_per_iteration.py`): `fem_scaling Q2Q1 16 64` prints one line
+//! `ours <element> <nr>x<nz> dofs <free> its <n> assembly <s> factor <s> solve <s> iteration <s>
+//! P <kPa>`, every time the phase's total divided by the Newton iterations (assembly includes the
+//! line search's residual-only assemblies), P to 12 digits.
 
 use activemuscle::fem::{
     AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, Timings,
@@ -22,13 +25,6 @@ fn peak_memory_mib() -> Option<f64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb / 1024.0)
-}
-
-/// The anchor's seconds per Newton iteration at `dofs` (through its two measured points).
-fn anchor_seconds(dofs: usize) -> f64 {
-    let (d0, t0, d1, t1) = (9.6e3f64, 0.13f64, 37.7e3f64, 1.0f64);
-    let slope = (t1 / t0).ln() / (d1 / d0).ln();
-    t0 * (dofs as f64 / d0).powf(slope)
 }
 
 struct Run {
@@ -59,13 +55,50 @@ fn run(element: Element, nr: usize, nz: usize) -> Result<Run, Box<dyn std::error
     })
 }
 
+/// `fem_scaling ELEMENT NR NZ`: one case, one machine-readable line (see the module doc).
+fn single(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
+    let usage = "usage: fem_scaling [Q2Q1|Q1P0 NR NZ]";
+    let [element, nr, nz] = args else {
+        return Err(usage.into());
+    };
+    let element = match element.as_str() {
+        "Q2Q1" => Element::Q2Q1,
+        "Q1P0" => Element::Q1P0,
+        other => return Err(format!("element {other:?}: {usage}").into()),
+    };
+    let cells = |s: &String| -> Result<usize, String> {
+        s.parse()
+            .map_err(|_| format!("cell count {s:?} is not a positive integer: {usage}"))
+    };
+    let (nr, nz) = (cells(nr)?, cells(nz)?);
+    let r = run(element, nr, nz)?;
+    let t = &r.timings;
+    let per = |d: std::time::Duration| d.as_secs_f64() / t.newton_iterations.max(1) as f64;
+    println!(
+        "ours {} {nr}x{nz} dofs {} its {} assembly {:.6} factor {:.6} solve {:.6} iteration {:.6} P {:.12}",
+        element.name().replace('/', ""),
+        r.dofs,
+        t.newton_iterations,
+        per(t.assembly + t.residual_assembly),
+        per(t.factorisation),
+        per(t.solve),
+        t.per_newton_iteration(),
+        r.stress,
+    );
+    Ok(())
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if !args.is_empty() {
+        return single(&args);
+    }
     println!(
         "threads: {} (rayon, element loop); factorisations sequential",
         rayon::current_num_threads()
     );
     println!(
-        "{:>6} {:>8} {:>7} {:>4} {:>5} {:>5} {:>10} {:>9} {:>8} {:>11} {:>7} {:>6} {:>8} {:>9}",
+        "{:>6} {:>8} {:>7} {:>4} {:>5} {:>5} {:>10} {:>9} {:>8} {:>11} {:>7} {:>6} {:>9}",
         "elem",
         "mesh",
         "dofs",
@@ -78,7 +111,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "s/iteration",
         "setup/s",
         "MiB",
-        "anchor/x",
         "P/kPa"
     );
     for (nr, nz) in [(5, 20), (8, 32), (16, 64), (32, 128), (48, 192), (64, 256)] {
@@ -92,7 +124,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let per = |d: std::time::Duration, n: usize| d.as_secs_f64() / n.max(1) as f64;
             let it = t.per_newton_iteration();
             println!(
-                "{:>6} {:>8} {:>7} {:>4} {:>5} {:>5.1} {:>10.4} {:>9.4} {:>8.4} {:>11.4} {:>7.3} {:>6.0} {:>8.1} {:>9.6}",
+                "{:>6} {:>8} {:>7} {:>4} {:>5} {:>5.1} {:>10.4} {:>9.4} {:>8.4} {:>11.4} {:>7.3} {:>6.0} {:>9.6}",
                 element.name(),
                 format!("{nr}x{nz}"),
                 r.dofs,
@@ -105,7 +137,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 it,
                 r.setup,
                 peak_memory_mib().unwrap_or(f64::NAN),
-                anchor_seconds(r.dofs) / it,
                 r.stress,
             );
         }
