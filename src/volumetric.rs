@@ -214,18 +214,20 @@ impl Volumetric {
 mod tests {
     use super::*;
 
+    /// One of each form, at moduli where every derivative is of order one.
+    const FORMS: [VolumetricForm; 3] = [
+        VolumetricForm::Quadratic { kappa: 7.0 },
+        VolumetricForm::Logarithmic { kappa: 7.0 },
+        VolumetricForm::Giantesio4C {
+            kappa: 3.0,
+            mu: 0.16,
+        },
+    ];
+
     /// U′ and U″ against central differences of U, for every form, and U′(1) = −s₀.
     #[test]
     fn derivatives_match_central_differences_and_reference_is_stress_free() {
-        let forms = [
-            VolumetricForm::Quadratic { kappa: 7.0 },
-            VolumetricForm::Logarithmic { kappa: 7.0 },
-            VolumetricForm::Giantesio4C {
-                kappa: 3.0,
-                mu: 0.16,
-            },
-        ];
-        for form in forms {
+        for form in FORMS {
             for s0 in [0.0, 0.08] {
                 let v = Volumetric::new(form, s0).unwrap();
                 assert!((v.derivatives(1.0).unwrap()[1] + s0).abs() < 1e-15);
@@ -250,15 +252,7 @@ mod tests {
     /// J̃(p) inverts U′: U′(J̃(p)) = −p, and the compliance is 1/U″ (central differences of J̃).
     #[test]
     fn dilatation_inverts_the_volumetric_stress() {
-        let forms = [
-            VolumetricForm::Quadratic { kappa: 7.0 },
-            VolumetricForm::Logarithmic { kappa: 7.0 },
-            VolumetricForm::Giantesio4C {
-                kappa: 3.0,
-                mu: 0.16,
-            },
-        ];
-        for form in forms {
+        for form in FORMS {
             let v = Volumetric::new(form, 0.0).unwrap();
             for p in [-0.07, -0.01, 0.0, 0.5, 5.0] {
                 let (j, compliance) = v.dilatation(p).unwrap();

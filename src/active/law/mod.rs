@@ -292,19 +292,31 @@ impl PathPartials {
     }
 }
 
-/// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path (eq. D:Ptotcalcolato), by one hyper-dual.
+/// ∂Ŵ/∂λ = P_tot(λ, γ) (eq. D:Ptotcalcolato), ∂Ŵ/∂γ and ∂P_tot/∂γ along the fibre path, by one
+/// hyper-dual.
+pub(crate) fn fibre_path_derivatives<E: StrainEnergy>(
+    energy: &E,
+    map: ActiveStrainMap,
+    lambda: f64,
+    gamma: f64,
+) -> [f64; 3] {
+    let w = map.fibre_path_energy(
+        energy,
+        HyperDual64::from_re(lambda).derivative1(),
+        HyperDual64::from_re(gamma).derivative2(),
+    );
+    [w.eps1, w.eps2, w.eps1eps2]
+}
+
+/// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path ([`fibre_path_derivatives`]).
 pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
     energy: &E,
     map: ActiveStrainMap,
     lambda: f64,
     gamma: f64,
 ) -> (f64, f64) {
-    let w = map.fibre_path_energy(
-        energy,
-        HyperDual64::from_re(lambda).derivative1(),
-        HyperDual64::from_re(gamma).derivative2(),
-    );
-    (w.eps1, w.eps1eps2)
+    let [p, _, slope] = fibre_path_derivatives(energy, map, lambda, gamma);
+    (p, slope)
 }
 
 /// The smallest root γ ∈ (0, 1) of `residual` with residual(0) < 0, found by stepping up in

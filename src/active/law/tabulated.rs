@@ -51,7 +51,6 @@ use super::{ActivationLaw, BelowMinimum, EnergyLaw, ImplicitLaw, LawValue};
 use crate::active::strain::ActiveStrainMap;
 use crate::energy::StrainEnergy;
 use crate::{Error, Result};
-use num_dual::HyperDual64;
 use std::fmt;
 use std::sync::Arc;
 use std::time::Instant;
@@ -510,21 +509,6 @@ impl<E: StrainEnergy> ActivationLaw for TabulatedLaw<E> {
     }
 }
 
-/// ∂Ŵ/∂λ and ∂Ŵ/∂γ along the fibre path, by one hyper-dual.
-fn path_gradient<E: StrainEnergy>(
-    energy: &E,
-    map: ActiveStrainMap,
-    lambda: f64,
-    gamma: f64,
-) -> (f64, f64) {
-    let w = map.fibre_path_energy(
-        energy,
-        HyperDual64::from_re(lambda).derivative1(),
-        HyperDual64::from_re(gamma).derivative2(),
-    );
-    (w.eps1, w.eps2)
-}
-
 /// The errors of `table` against `exact` at `lambda`.
 fn errors_at<E: StrainEnergy>(
     exact: &SolvedLaw<E>,
@@ -535,8 +519,9 @@ fn errors_at<E: StrainEnergy>(
 ) -> Result<PointErrors> {
     let reference = exact.evaluate(lambda, damage)?;
     let energy = exact.energy();
-    let (p_t, w_g_t) = path_gradient(energy, exact.map(), lambda, table.gamma);
-    let (p_e, w_g_e) = path_gradient(energy, exact.map(), lambda, reference.gamma);
+    let [p_t, w_g_t, _] = super::fibre_path_derivatives(energy, exact.map(), lambda, table.gamma);
+    let [p_e, w_g_e, _] =
+        super::fibre_path_derivatives(energy, exact.map(), lambda, reference.gamma);
     let (consistent_t, consistent_e) = (p_t + w_g_t * table.slope, p_e + w_g_e * reference.slope);
     let (frozen, consistent) = ((p_t - p_e).abs(), (consistent_t - consistent_e).abs());
     let allowed = |p: f64| spec.stress_tolerance + spec.relative_stress_tolerance * p.abs();
