@@ -161,7 +161,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         }
     }
     println!(
-        "{rows} rows; outputs in {} (report.html, curves.csv, figures); wall time {wall:.1} s",
+        "{rows} rows in curves.csv; outputs in {} (report.html, the CSV tables, figures); wall time {wall:.1} s",
         out.display()
     );
     if !results.complete() {
