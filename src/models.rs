@@ -213,6 +213,23 @@ impl Models {
         .with_map(self.map)
     }
 
+    /// The active muscle of `model` at activation level a = `activation` ∈ [0, 1]: its law sees
+    /// d_eff = d + (1 − d)(1 − a) ([`crate::active::effective_damage`]), and a tabulated law is
+    /// tabulated at d_eff (not at d, whose table would leave every a < 1 to the exact law).
+    /// a = 1 is [`Self::muscle`].
+    pub fn muscle_at(&self, model: ModelChoice, activation: f64) -> crate::Result<Muscle<Energy>> {
+        let effective = crate::active::effective_damage(model.damage, activation)?;
+        Muscle::new(
+            self.energy.clone(),
+            self.law(model.law)?
+                .represented(self.representation, &[effective])?,
+            model.damage,
+            self.coupling(model.coupling),
+        )?
+        .with_activation(activation)?
+        .with_map(self.map)
+    }
+
     /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
     pub fn constant(&self, gamma: f64) -> crate::Result<Muscle<Energy>> {
         Muscle::new(

@@ -428,7 +428,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let f = deformation(&g.b, u);
                     let m = &self.m[q];
                     let pq = m.dot(p);
-                    let pk = material.stress(&f)?;
+                    let pk = material.stress_at(&f, [g.r, g.z])?;
                     let dj = jacobian_gradient(&f);
                     let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
@@ -447,7 +447,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let f = deformation(&g.b, u);
                     let m = &self.m[q];
                     let pq = m.dot(p);
-                    let (pk, a) = material.stress_tangent(&f)?;
+                    let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
                     let dj = jacobian_gradient(&f);
                     let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());

@@ -23,6 +23,105 @@ pub trait AxisymmetricMaterial: Sync {
     ) -> crate::Result<(nalgebra::SVector<f64, 5>, nalgebra::SMatrix<f64, 5, 5>)>;
     /// Scalar fields for output at a point: (activation γ, fibre stretch λ_f). A passive material returns (0, sqrt(C_zz)).
     fn point_fields(&self, f: &AxiF) -> crate::Result<(f64, f64)>;
+    /// [`stress`](Self::stress) at the quadrature point of reference coordinates `at` = (r, z)
+    /// (the mesh's length unit): a material varying in space ([`Regions`]) answers per point;
+    /// every other material is the same everywhere.
+    fn stress_at(&self, f: &AxiF, _at: [f64; 2]) -> crate::Result<SVector<f64, 5>> {
+        self.stress(f)
+    }
+    /// [`stress_tangent`](Self::stress_tangent) at reference (r, z) = `at`.
+    fn stress_tangent_at(
+        &self,
+        f: &AxiF,
+        _at: [f64; 2],
+    ) -> crate::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        self.stress_tangent(f)
+    }
+    /// [`point_fields`](Self::point_fields) at reference (r, z) = `at`.
+    fn point_fields_at(&self, f: &AxiF, _at: [f64; 2]) -> crate::Result<(f64, f64)> {
+        self.point_fields(f)
+    }
+    /// (damage d, activation level a) at reference (r, z) = `at` for a material varying in
+    /// space, written as VTK cell fields; `None` (the default) for a uniform material.
+    fn damage_activation_at(&self, _at: [f64; 2]) -> Option<(f64, f64)> {
+        None
+    }
+}
+
+/// A material varying in space by regions: `base` outside every region, and in each
+/// rectangle [r0, r1] × [z0, z1] of the reference meridian section (the mesh's length unit) its
+/// own material; a later region overrides an earlier one where they overlap. Each region's
+/// (damage, activation) is carried for output only. The lookup is a scan of the regions
+/// (a few comparisons per quadrature point).
+#[derive(Debug, Clone)]
+pub struct Regions<M> {
+    base: M,
+    base_fields: (f64, f64),
+    regions: Vec<Region<M>>,
+}
+
+/// One region of [`Regions`].
+#[derive(Debug, Clone)]
+pub struct Region<M> {
+    /// [r0, r1] (reference, the mesh's length unit).
+    pub r: [f64; 2],
+    /// [z0, z1] (reference, the mesh's length unit).
+    pub z: [f64; 2],
+    /// The material inside.
+    pub material: M,
+    /// (damage d, activation level a) inside, for output.
+    pub fields: (f64, f64),
+}
+
+impl<M> Regions<M> {
+    /// `base` (with its (damage, activation) `base_fields`) outside `regions`.
+    pub fn new(base: M, base_fields: (f64, f64), regions: Vec<Region<M>>) -> Self {
+        Self {
+            base,
+            base_fields,
+            regions,
+        }
+    }
+
+    /// The material and its (damage, activation) at reference (r, z): the last region holding
+    /// the point, else the base.
+    pub fn at(&self, at: [f64; 2]) -> (&M, (f64, f64)) {
+        self.regions
+            .iter()
+            .rev()
+            .find(|g| g.r[0] <= at[0] && at[0] <= g.r[1] && g.z[0] <= at[1] && at[1] <= g.z[1])
+            .map_or((&self.base, self.base_fields), |g| (&g.material, g.fields))
+    }
+}
+
+/// Without a point, a [`Regions`] material answers as its base (the solver always asks with the
+/// point: [`AxisymmetricMaterial::stress_at`]).
+impl<M: AxisymmetricMaterial> AxisymmetricMaterial for Regions<M> {
+    fn stress(&self, f: &AxiF) -> crate::Result<SVector<f64, 5>> {
+        self.base.stress(f)
+    }
+    fn stress_tangent(&self, f: &AxiF) -> crate::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        self.base.stress_tangent(f)
+    }
+    fn point_fields(&self, f: &AxiF) -> crate::Result<(f64, f64)> {
+        self.base.point_fields(f)
+    }
+    fn stress_at(&self, f: &AxiF, at: [f64; 2]) -> crate::Result<SVector<f64, 5>> {
+        self.at(at).0.stress(f)
+    }
+    fn stress_tangent_at(
+        &self,
+        f: &AxiF,
+        at: [f64; 2],
+    ) -> crate::Result<(SVector<f64, 5>, SMatrix<f64, 5, 5>)> {
+        self.at(at).0.stress_tangent(f)
+    }
+    fn point_fields_at(&self, f: &AxiF, at: [f64; 2]) -> crate::Result<(f64, f64)> {
+        self.at(at).0.point_fields(f)
+    }
+    fn damage_activation_at(&self, at: [f64; 2]) -> Option<(f64, f64)> {
+        Some(self.at(at).1)
+    }
 }
 
 /// Index of each entry in [`AxiF`].

@@ -42,7 +42,7 @@ pub use continuation::{Cancel, NonlinearSystem};
 pub use dofs::Bases;
 pub use element::Element;
 pub use error::{FemError, FemResult, StepFailure};
-pub use material::{AxiF, AxisymmetricMaterial, NeoHookean};
+pub use material::{AxiF, AxisymmetricMaterial, NeoHookean, Region, Regions};
 pub use memory::MemoryEstimate;
 pub use mesh::{Boundary, Mesh};
 pub use solver::{

@@ -468,7 +468,9 @@ impl<M: AxisymmetricMaterial + ?Sized> Observer<MixedProblem<'_, M>> for Reporte
             value: format!("{} quadrature points", qps.len()),
             rule: "must keep the quadrature point nearest to the centre",
         })?;
-        let (gamma_centre, fibre_stretch_centre) = problem.material.point_fields(&centre.f)?;
+        let (gamma_centre, fibre_stretch_centre) = problem
+            .material
+            .point_fields_at(&centre.f, [centre.r, centre.z])?;
         let vtk_file = match self.vtk {
             Some(v) if v.stretches.iter().any(|&s| (s - stretch).abs() < 1e-12) => {
                 let (mesh, dofs) = (&problem.mesh, &problem.dofs);

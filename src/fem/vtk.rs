@@ -49,6 +49,25 @@ pub fn write_state<M: AxisymmetricMaterial + ?Sized>(
     x: &[f64],
 ) -> FemResult<()> {
     let cell = cell_sums(mesh.n_elements(), material, qps)?;
+    // A material varying in space: its damage and activation level, cell averages.
+    let mut regional = vec![[0.0f64; 3]; mesh.n_elements()];
+    let mut varying = false;
+    for q in qps {
+        if let Some((d, a)) = material.damage_activation_at([q.r, q.z]) {
+            varying = true;
+            let c = &mut regional[q.element];
+            c[0] += d * q.dv;
+            c[1] += a * q.dv;
+            c[2] += q.dv;
+        }
+    }
+    let damage: Vec<f64> = regional.iter().map(|c| c[0] / c[2]).collect();
+    let activation: Vec<f64> = regional.iter().map(|c| c[1] / c[2]).collect();
+    let extra: &[(&str, &[f64])] = if varying {
+        &[("damage", &damage), ("activation", &activation)]
+    } else {
+        &[]
+    };
     let pressure = nodal_pressure(mesh, dofs, &cell, x);
     let u: Vec<[f64; 2]> = dofs
         .node_u
@@ -59,7 +78,7 @@ pub fn write_state<M: AxisymmetricMaterial + ?Sized>(
         .iter()
         .map(|c| [c[0] / c[4], c[1] / c[4], c[2] / c[4], c[3] / c[4]])
         .collect();
-    write_vtu(path, mesh, &u, &pressure, &cells).map_err(|source| FemError::Io {
+    write_vtu_with(path, mesh, &u, &pressure, &cells, extra).map_err(|source| FemError::Io {
         path: path.display().to_string(),
         source,
     })
@@ -73,8 +92,8 @@ fn cell_sums<M: AxisymmetricMaterial + ?Sized>(
 ) -> FemResult<Vec<[f64; 5]>> {
     let mut cell = vec![[0.0f64; 5]; n_cells];
     for q in qps {
-        let (gamma, lf) = material.point_fields(&q.f)?;
-        let pk = material.stress(&q.f)?;
+        let (gamma, lf) = material.point_fields_at(&q.f, [q.r, q.z])?;
+        let pk = material.stress_at(&q.f, [q.r, q.z])?;
         let pzz = pk[3] - q.pressure * jacobian_gradient(&q.f)[3];
         let c = &mut cell[q.element];
         c[0] += jacobian(&q.f) * q.dv;
@@ -165,11 +184,27 @@ pub fn write_vtu(
     p: &[f64],
     cells: &[[f64; 4]],
 ) -> std::io::Result<()> {
+    write_vtu_with(path, mesh, u, p, cells, &[])
+}
+
+/// [`write_vtu`] with further named cell fields `extra` (one value per cell each), e.g. the
+/// damage and activation level of a material varying in space.
+pub fn write_vtu_with(
+    path: &Path,
+    mesh: &Mesh,
+    u: &[[f64; 2]],
+    p: &[f64],
+    cells: &[[f64; 4]],
+    extra: &[(&str, &[f64])],
+) -> std::io::Result<()> {
     refuse_non_finite("u_r", u.iter().map(|v| v[0]), "node")?;
     refuse_non_finite("u_z", u.iter().map(|v| v[1]), "node")?;
     refuse_non_finite("p", p.iter().copied(), "node")?;
     for (k, name) in ["J", "gamma", "fibre_stretch", "P_zz"].iter().enumerate() {
         refuse_non_finite(name, cells.iter().map(|c| c[k]), "cell")?;
+    }
+    for (name, values) in extra {
+        refuse_non_finite(name, values.iter().copied(), "cell")?;
     }
     let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
     let (nn, ne) = (mesh.nodes.len(), mesh.n_elements());
@@ -204,6 +239,16 @@ pub fn write_vtu(
         )?;
         for c in cells {
             writeln!(w, "{:e}", c[k])?;
+        }
+        writeln!(w, "</DataArray>")?;
+    }
+    for (name, values) in extra {
+        writeln!(
+            w,
+            r#"<DataArray type="Float64" Name="{name}" format="ascii">"#
+        )?;
+        for v in *values {
+            writeln!(w, "{v:e}")?;
         }
         writeln!(w, "</DataArray>")?;
     }

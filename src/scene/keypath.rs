@@ -17,7 +17,15 @@ pub fn key_path(text: &str, offset: usize) -> String {
             break;
         }
         if let Some(name) = body.strip_prefix("[[").and_then(|s| s.split("]]").next()) {
-            let name = name.trim().to_string();
+            // `[[study.regions]]` after the i-th `[[study]]` is an element of study[i].regions.
+            let name = name.trim();
+            let name = name
+                .split_once('.')
+                .and_then(|(first, rest)| {
+                    let (_, c) = counts.iter().find(|(n, _)| n == first.trim())?;
+                    Some(format!("{}[{}].{}", first.trim(), c - 1, rest.trim()))
+                })
+                .unwrap_or_else(|| name.to_string());
             let i = match counts.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, c)) => {
                     *c += 1;
@@ -182,5 +190,17 @@ mod tests {
         assert_eq!(line_of(DOC, "study[1].nr"), Some(6));
         assert_eq!(line_of(DOC, "activation.damage[0]"), None);
         assert_eq!(line_of(DOC, "(file)"), None);
+    }
+
+    #[test]
+    fn counts_arrays_of_tables_inside_each_study() {
+        let doc = "[[study]]\nkind = \"cylinder\"\n[[study.regions]]\nr = [0, 1]\n[[study.regions]]\ndamage = 2\n[[study]]\n[[study.regions]]\nactivation = 3\n";
+        assert_eq!(line_of(doc, "study[0].regions[1].damage"), Some(6));
+        assert_eq!(line_of(doc, "study[0].regions[0]"), Some(3));
+        assert_eq!(line_of(doc, "study[1].regions[0].activation"), Some(9));
+        assert_eq!(
+            key_path(doc, doc.find("3").unwrap_or(0)),
+            "study[1].regions[0].activation"
+        );
     }
 }

@@ -6,14 +6,16 @@ use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
+use crate::energy::Energy;
 use crate::fem::solver::MIN_TOLERANCE;
 use crate::fem::{
-    AxisymmetricSolver, Bases, Element, FemError, Mesh, Progress as FemProgress, SolverOptions,
-    VtkOutput,
+    AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh,
+    Progress as FemProgress, Region, Regions, SolverOptions, VtkOutput,
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
 use crate::uniaxial::Direction;
+use crate::Muscle;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -85,6 +87,85 @@ pub struct CylinderSpec {
     /// surface or a base).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub points: Option<BTreeMap<String, [f64; 2]>>,
+    /// Regions of the meridian section with their own damage and/or activation level
+    /// (`[[study.regions]]`; default none: the model's damage and a = 1 everywhere). A later
+    /// region overrides an earlier one where they overlap.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub regions: Option<Vec<RegionSpec>>,
+}
+
+/// `[[study.regions]]` of a cylinder study as written: the rectangle r ∈ [r0, r1] (in units of
+/// R), z ∈ [z0, z1] (in units of L) of the reference meridian section, and its damage d and/or
+/// activation level a, each in [0, 1]. Inside, the law sees d_eff = d + (1 − d)(1 − a) (d the
+/// sweep's damage where `damage` is not given, a = 1 where `activation` is not given).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    /// [r0, r1] in units of R (default [0, 1]).
+    pub r: Option<[f64; 2]>,
+    /// [z0, z1] in units of L (default [0, 1]).
+    pub z: Option<[f64; 2]>,
+    /// Damage d inside [-] (default: the sweep's damage).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damage: Option<f64>,
+    /// Activation level a inside [-] (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub activation: Option<f64>,
+}
+
+/// A validated region of a cylinder study (see [`RegionSpec`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StudyRegion {
+    /// [r0, r1] in units of R.
+    pub r: [f64; 2],
+    /// [z0, z1] in units of L.
+    pub z: [f64; 2],
+    /// Damage inside (`None`: the sweep's).
+    pub damage: Option<f64>,
+    /// Activation level inside.
+    pub activation: f64,
+}
+
+/// Validates the regions: ranges finite, ordered and inside [0, 1], values in [0, 1], at least
+/// one of damage and activation; errors name `regions[i].key`.
+fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
+    let unit = |x: f64| (0.0..=1.0).contains(&x);
+    let mut out = Vec::with_capacity(specs.len());
+    for (i, g) in specs.iter().enumerate() {
+        let key = |k: &str| format!("regions[{i}].{k}");
+        let r = g.r.unwrap_or([0.0, 1.0]);
+        let z = g.z.unwrap_or([0.0, 1.0]);
+        for (k, v, unit_of) in [("r", r, "R"), ("z", z, "L")] {
+            if !(unit(v[0]) && unit(v[1]) && v[0] < v[1]) {
+                return Err(SpecError::new(
+                    key(k),
+                    format!("[{}, {}]", v[0], v[1]),
+                    format!(
+                        "must be [{k}0, {k}1] with 0 ≤ {k}0 < {k}1 ≤ 1 (in units of {unit_of})"
+                    ),
+                ));
+            }
+        }
+        for (k, v) in [("damage", g.damage), ("activation", g.activation)] {
+            if let Some(v) = v.filter(|v| !unit(*v)) {
+                return Err(SpecError::new(key(k), v, "must lie in [0, 1]"));
+            }
+        }
+        if g.damage.is_none() && g.activation.is_none() {
+            return Err(SpecError::new(
+                format!("regions[{i}]"),
+                format!("r = [{}, {}], z = [{}, {}]", r[0], r[1], z[0], z[1]),
+                "a region needs damage and/or activation",
+            ));
+        }
+        out.push(StudyRegion {
+            r,
+            z,
+            damage: g.damage,
+            activation: g.activation.unwrap_or(1.0),
+        });
+    }
+    Ok(out)
 }
 
 /// A named boundary node of a cylinder study.
@@ -192,6 +273,8 @@ pub struct CylinderStudy {
     pub tolerance: f64,
     /// Named boundary points whose displacements are reported.
     pub points: Vec<NamedPoint>,
+    /// Regions with their own damage and/or activation (empty: uniform).
+    pub regions: Vec<StudyRegion>,
 }
 
 /// `clamped` or `sliding`.
@@ -240,6 +323,7 @@ pub fn resolve(
             ));
         }
     }
+    let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
     let name = spec.name.clone().unwrap_or_else(|| {
         format!(
             "cylinder {} {} {}",
@@ -264,6 +348,17 @@ pub fn resolve(
         vtk: Some(vtk.clone()),
         tolerance: Some(tolerance),
         points: spec.points.clone(),
+        regions: spec.regions.as_ref().map(|_| {
+            regions
+                .iter()
+                .map(|g| RegionSpec {
+                    r: Some(g.r),
+                    z: Some(g.z),
+                    damage: g.damage,
+                    activation: Some(g.activation),
+                })
+                .collect()
+        }),
     };
     let points = match &spec.points {
         Some(p) if !p.is_empty() => {
@@ -291,6 +386,7 @@ pub fn resolve(
             vtk,
             tolerance,
             points,
+            regions,
         },
         resolved,
     ))
@@ -495,6 +591,32 @@ impl CylinderStudy {
         })
     }
 
+    /// The material of model `m` varying by [`Self::regions`] (`None` without regions): in each
+    /// region the muscle at its damage (default `m.damage`) and activation level
+    /// ([`Models::muscle_at`]), scaled to the cylinder's R and L.
+    fn regional(
+        &self,
+        models: &Models,
+        m: &ModelChoice,
+    ) -> Result<Option<Regions<Muscle<Energy>>>, AppError> {
+        if self.regions.is_empty() {
+            return Ok(None);
+        }
+        let base = models.muscle(*m)?;
+        let mut out = Vec::with_capacity(self.regions.len());
+        for g in &self.regions {
+            let damage = g.damage.unwrap_or(m.damage);
+            let model = ModelChoice { damage, ..*m };
+            out.push(Region {
+                r: g.r.map(|x| x * self.radius),
+                z: g.z.map(|x| x * self.length),
+                material: models.muscle_at(model, g.activation)?,
+                fields: (damage, g.activation),
+            });
+        }
+        Ok(Some(Regions::new(base, (m.damage, 1.0), out)))
+    }
+
     /// The sweep of model `m`, with the failures of the directions that stopped.
     fn sweep(
         &self,
@@ -520,7 +642,13 @@ impl CylinderStudy {
             volumetric: models.volumetric,
             ..SolverOptions::default()
         };
-        let mut solver = AxisymmetricSolver::new(mesh, self.bases, &muscle, options)?;
+        // The uniform cylinder solves the muscle itself; regions wrap one muscle per region.
+        let regional = self.regional(models, m)?;
+        let material: &dyn AxisymmetricMaterial = match &regional {
+            Some(r) => r,
+            None => &muscle,
+        };
+        let mut solver = AxisymmetricSolver::new(mesh, self.bases, material, options)?;
         let dofs = solver.n_free_dofs();
         let label = models.label(m);
         let sweep = solver.sweep_with(&self.stretches, &mut |p| {
