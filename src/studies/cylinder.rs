@@ -552,6 +552,12 @@ impl CylinderStudy {
             self.grading,
             self.stretches.len()
         )];
+        if !self.regions.is_empty() {
+            details.push(format!(
+                "{} region(s) with their own damage/activation: P_0D is the uniform model's, for reference only",
+                self.regions.len()
+            ));
+        }
         for (s, m) in sweeps.into_iter().zip(&choices) {
             // A sweep that cannot start (model, mesh, memory) costs only its own model.
             let (sweep, stops) = match s {
