@@ -225,3 +225,53 @@ fn the_tradeoff_group_reports_the_errors_the_tabulated_laws_have() {
         fe.error.max_rel
     );
 }
+
+#[test]
+fn the_tradeoff_measures_the_explicit_law_on_the_scene_s_active_strain_map() {
+    use activemuscle::active::ActiveStrainMap;
+    let mut models = Models::paper();
+    models.map = ActiveStrainMap::VolumePreserving;
+    let stretches = vec![0.8, 1.0, 1.2, 1.4];
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw],
+        curve_stretches: Some(stretches.clone()),
+        ..TradeoffOptions::default()
+    };
+    let results = run(&models, &options, &Fallback::default(), &Silent).expect("runs");
+    let explicit_row = results
+        .rows
+        .iter()
+        .find(|r| r.variant == "explicit (frozen)")
+        .expect("an explicit row");
+    // Built here: both laws on the volume-preserving map, the explicit one by `with_map`.
+    let on_map = |law: LawKind| {
+        Muscle::new(models.energy.clone(), models.law(law).unwrap(), 0.0, EXACT)
+            .unwrap()
+            .with_map(ActiveStrainMap::VolumePreserving)
+            .unwrap()
+    };
+    let curve = |m: &Muscle<_>| -> Vec<f64> {
+        stretches
+            .iter()
+            .map(|&l| along_fibres(m, l).unwrap().stress)
+            .collect()
+    };
+    let expected = largest(
+        &curve(&on_map(LawKind::Implicit)),
+        &curve(&on_map(LawKind::Explicit)),
+    );
+    assert_eq!(explicit_row.error.max_abs, expected);
+    // On the chapter's map the explicit law would be another model: its error would differ.
+    let chapter = Muscle::new(
+        models.energy.clone(),
+        models.law(LawKind::Explicit).unwrap(),
+        0.0,
+        EXACT,
+    )
+    .unwrap();
+    let other = largest(&curve(&on_map(LawKind::Implicit)), &curve(&chapter));
+    assert!(
+        (other - expected).abs() > 1e-3 * expected,
+        "{other} vs {expected}"
+    );
+}

@@ -11,10 +11,11 @@ A[i, j, k, l] = ∂P_ij/∂F_kl (not major-symmetric for the frozen coupling), �
     r["stress"], r["tangent"], r["gamma"], r["dstress_dgamma"]
 
 Keywords, names and defaults are a scene's (scenes/paper.toml): energy ("giantesio-musesti",
-"ehret-bol-itskov", "neo-hookean") with mu, alpha, beta, w0; law ("passive", "constant" with gamma,
+"ehret-bol-itskov", "neo-hookean", "4c-passive") with mu, alpha, beta, w0; law ("passive", "constant" with gamma,
 "implicit", "explicit" with explicit={"a": .., "b": ..}, "energy" with below_minimum); coupling
 ("frozen" with frozen_tangent "exact" | "symmetric", "consistent"); damage; the active curve's
-lambda_min, lambda_opt, k, p_opt. Bad values raise ValueError with the core's message.
+lambda_min, lambda_opt, k, p_opt; map ("chapter" | "volume-preserving"); representation ("exact" |
+"tabulated", with table_stretches=[lo, hi]). Bad values raise ValueError with the core's message.
 
 ``run_scene`` runs a scene (a file, its TOML text or a dict) and returns each study's results as
 columns of numpy arrays (``pandas.DataFrame(r["name"].table)``); ``check_scene`` returns the

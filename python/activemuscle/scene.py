@@ -32,7 +32,9 @@ class Study:
     """One study's outcome. ``vtk``: the VTK files written (under ``out``; none without it).
     ``table``: one column (numpy array) per field, one row per point —
     names as object arrays, values that do not apply to a row masked (``numpy.ma``, missing in
-    pandas). ``failures``: columns ``model`` and ``message``."""
+    pandas). ``failures``: columns ``model`` and ``message``. ``named_points`` (cylinder studies
+    with ``[study.points]``): columns sweep, point, r, z, law, coupling, d, lambda, u_r, u_z, as
+    ``points_<study>.csv``."""
 
     name: str
     kind: str
@@ -45,6 +47,7 @@ class Study:
     details: List[str] = field(default_factory=list)
     vtk: List[Path] = field(default_factory=list)
     findings: List[str] = field(default_factory=list)
+    named_points: Dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass

@@ -242,7 +242,8 @@ impl Material {
         *, energy = None, mu = None, alpha = None, beta = None, w0 = None,
         law = None, gamma = None, coupling = None, frozen_tangent = None,
         damage = 0.0, explicit = None, below_minimum = None,
-        lambda_min = None, lambda_opt = None, k = None, p_opt = None
+        lambda_min = None, lambda_opt = None, k = None, p_opt = None,
+        map = None, representation = None, table_stretches = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -262,6 +263,9 @@ impl Material {
         lambda_opt: Option<f64>,
         k: Option<f64>,
         p_opt: Option<f64>,
+        map: Option<&str>,
+        representation: Option<&str>,
+        table_stretches: Option<[f64; 2]>,
     ) -> PyResult<Self> {
         let given = [("mu", mu), ("alpha", alpha), ("beta", beta), ("w0", w0)];
         let mut material = MaterialSpec::default();
@@ -298,6 +302,11 @@ impl Material {
                 below_minimum: below_minimum
                     .map(|b| named("below_minimum", b))
                     .transpose()?,
+                map: map.map(|m| named("map", m)).transpose()?,
+                representation: representation
+                    .map(|r| named("representation", r))
+                    .transpose()?,
+                table_stretches,
                 explicit,
                 ..ActivationSpec::default()
             };

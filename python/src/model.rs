@@ -77,6 +77,7 @@ pub fn muscle(
         ));
     }
     let model = |e: activemuscle::Error| SpecError::model("", e);
+    // A law without a map of its own (passive, constant) takes the scene's active-strain map.
     let fixed = |law: Law<Energy>| {
         Muscle::new(
             models.energy.clone(),
@@ -84,6 +85,7 @@ pub fn muscle(
             damage,
             models.coupling(coupling),
         )
+        .and_then(|m| m.with_map(models.map))
         .map_err(model)
     };
     match law {

@@ -216,6 +216,9 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
         StudyResult::Uniaxial(u) => uniaxial(&table, u)?,
         StudyResult::Cylinder(c) => {
             cylinder(&table, c)?;
+            let named = Columns::new(py, format!("study {:?}: named points", s.name));
+            named_points(&named, c)?;
+            d.set_item("named_points", named.dict)?;
             let root = out.map(|o| o.join("vtk"));
             vtk = c
                 .sweeps
@@ -267,6 +270,7 @@ fn uniaxial(t: &Columns, u: &UniaxialResult) -> PyResult<()> {
     .numbers("lambda", rows.iter().map(|(_, p)| p.lambda).collect())?
     .numbers("gamma", rows.iter().map(|(_, p)| p.gamma).collect())?
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
+    .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
     .optional("P_pas", rows.iter().map(|(_, p)| p.passive).collect())?
     .optional("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?;
     Ok(())
@@ -315,6 +319,38 @@ fn cylinder(t: &Columns, c: &CylinderResult) -> PyResult<()> {
                 .map(|(_, p)| p.newton_iterations as i64)
                 .collect(),
         )?;
+    Ok(())
+}
+
+/// One row per named point, stretch and sweep, as `points_<study>.csv`: sweep label, point, its
+/// reference r and z, law, coupling, d, λ, and its displacement u_r, u_z (the mesh's unit).
+fn named_points(t: &Columns, c: &CylinderResult) -> PyResult<()> {
+    let mut rows = Vec::new();
+    for w in &c.sweeps {
+        for (p, u) in w.points.iter().zip(&w.displacements) {
+            for ((name, at), u) in c.points.iter().zip(u) {
+                rows.push((w, name, *at, p.lambda, *u));
+            }
+        }
+    }
+    t.names("sweep", rows.iter().map(|r| Some(&r.0.label)).collect())?
+        .names("point", rows.iter().map(|r| Some(r.1)).collect())?
+        .numbers("r", rows.iter().map(|r| r.2[0]).collect())?
+        .numbers("z", rows.iter().map(|r| r.2[1]).collect())?
+        .names(
+            "law",
+            rows.iter().map(|r| Some(r.0.model.law.name())).collect(),
+        )?
+        .names(
+            "coupling",
+            rows.iter()
+                .map(|r| Some(r.0.model.coupling.name()))
+                .collect(),
+        )?
+        .numbers("d", rows.iter().map(|r| r.0.model.damage).collect())?
+        .numbers("lambda", rows.iter().map(|r| r.3).collect())?
+        .numbers("u_r", rows.iter().map(|r| r.4[0]).collect())?
+        .numbers("u_z", rows.iter().map(|r| r.4[1]).collect())?;
     Ok(())
 }
 
@@ -391,6 +427,7 @@ fn stability(t: &Columns, curves: &[StabilityCurve]) -> PyResult<()> {
     .optional("d", rows.iter().map(|(c, _)| c.damage()).collect())?
     .numbers("lambda", rows.iter().map(|(_, p)| p.lambda).collect())?
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
+    .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
     .numbers("dP_dlambda", rows.iter().map(|(_, p)| p.slope).collect())?
     .numbers(
         "ellipticity_min",

@@ -313,3 +313,39 @@ def test_bad_out_arrays_raise_value_error():
     G = np.zeros((3, 3, 4, 5)) + np.eye(3)[:, :, None, None]
     with pytest.raises(ValueError, match="point axes must flatten"):
         material.evaluate(G, out={"gamma": np.empty((5, 4)).T})
+
+
+def test_tabulated_laws_give_the_exact_laws_within_the_tables_checked_tolerance():
+    # Below λ_min (0.55), across the table and beyond it (1.7, where the exact solve answers).
+    lam = np.linspace(0.55, 1.7, 117)
+    for law, coupling in [("implicit", "frozen"), ("energy", "consistent")]:
+        exact = am.Material(law=law, coupling=coupling, damage=0.3).uniaxial(lam)
+        table = am.Material(law=law, coupling=coupling, damage=0.3, representation="tabulated").uniaxial(lam)
+        assert np.all(np.abs(table["gamma"] - exact["gamma"]) <= 1e-12), law
+        assert np.all(np.abs(table["stress"] - exact["stress"]) <= 1e-9 + 1e-13 * np.abs(exact["stress"])), law
+
+
+def test_volume_preserving_map_gives_the_closed_form_of_a_neo_hookean_fibre():
+    # F_a = (1 − γ) M + (1 − γ)^(−1/2) (I − M), W = μ/2 (tr C − 3), along the fibres:
+    # Ŵ = μ/2 (λ²/c² + 2c/λ − 3), P = μ (λ/c² − c/λ²), c = 1 − γ (derived by hand).
+    mu, gamma = 2.0, 0.2
+    lam = np.linspace(0.7, 1.5, 9)
+    c = 1.0 - gamma
+    m = am.Material(energy="neo-hookean", mu=mu, law="constant", gamma=gamma, map="volume-preserving")
+    # P crosses 0 at λ = c = 0.8: there only the rounding of μ-sized terms (≈ 1e-15 kPa) is left.
+    np.testing.assert_allclose(m.uniaxial(lam)["stress"], mu * (lam / c**2 - c / lam**2), rtol=1e-12, atol=1e-13)
+    chapter = am.Material(energy="neo-hookean", mu=mu, law="constant", gamma=gamma)
+    assert not np.allclose(chapter.uniaxial(lam)["stress"], m.uniaxial(lam)["stress"])
+
+
+@pytest.mark.parametrize("case", [
+    (dict(map="isochoric"), 'map = "isochoric"'),
+    (dict(representation="chebyshev"), 'representation = "chebyshev"'),
+    (dict(table_stretches=[0.6, 1.5]), 'applies only with activation.representation = "tabulated"'),
+    (dict(representation="tabulated", table_stretches=[1.5, 0.6]), "0 < λ_lo < λ_hi"),
+], ids=lambda c: c[1])
+def test_bad_map_or_representation_raises_with_the_scene_message(case):
+    choices, message = case
+    with pytest.raises(ValueError) as e:
+        am.Material(**choices)
+    assert message in str(e.value)

@@ -233,3 +233,24 @@ def test_a_scene_and_a_material_with_the_same_keys_give_the_same_curve():
     got = material.uniaxial(list(t["lambda"][active]))
     np.testing.assert_array_equal(got["stress"], t["P"][active])
     np.testing.assert_array_equal(got["gamma"], t["gamma"][active])
+
+
+def test_cauchy_stress_along_the_fibres_is_lambda_times_the_nominal_stress():
+    # Incompressible uniaxial tension along e1: σ11 = J⁻¹ (P Fᵀ)11 = λ P (J = 1, lateral faces free).
+    t = am.run_scene(TEXT)["along"].table
+    np.testing.assert_allclose(t["cauchy"], t["lambda"] * t["P"], rtol=1e-12, atol=1e-15)
+
+
+def test_named_points_of_a_sliding_cylinder_move_homogeneously():
+    # Sliding bases: the homogeneous solution u_z = (λ − 1) z, u_r = (λ^(−1/2) − 1) r.
+    text = TEXT + """
+[study.points]
+tip_axis = [0.0, 4.0]
+tip_rim = [1.0, 4.0]
+base_rim = [1.0, 0.0]
+"""
+    r = am.run_scene(text)["sliding cylinder"]
+    p = r.named_points
+    assert sorted(set(p["point"])) == ["base_rim", "tip_axis", "tip_rim"] and len(p["lambda"]) == 3 * 2
+    np.testing.assert_allclose(p["u_z"], (p["lambda"] - 1) * p["z"], atol=1e-9)
+    np.testing.assert_allclose(p["u_r"], (p["lambda"] ** -0.5 - 1) * p["r"], atol=1e-9)

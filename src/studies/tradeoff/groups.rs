@@ -151,13 +151,15 @@ impl Runner<'_> {
     }
 }
 
+/// The muscle of `law` with `coupling` at d = 0, on the scene's active-strain map: the explicit
+/// law (the cheap model most groups measure with) has no map of its own and would otherwise run
+/// on the chapter's; with another map its γ(λ) is no longer the fit of eq. (14), which the
+/// activation-law groups then measure as part of its error.
 fn muscle(models: &Models, law: LawKind, coupling: Coupling) -> Result<Muscle<Energy>, AppError> {
-    Ok(Muscle::new(
-        models.energy.clone(),
-        models.law(law)?,
-        0.0,
-        coupling,
-    )?)
+    Ok(
+        Muscle::new(models.energy.clone(), models.law(law)?, 0.0, coupling)?
+            .with_map(models.map)?,
+    )
 }
 
 /// The solver's defaults (tolerance 1e-10, 25 Newton iterations per step).
