@@ -249,3 +249,16 @@ fn invalid_regions_are_refused_with_file_line_and_key() {
         assert!(e.contains(rule), "{rule}: {e}");
     }
 }
+
+#[test]
+fn the_example_scene_loads_and_runs_to_the_end() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/examples/damaged_outer_layer.toml");
+    let scene = Scene::load(&path).unwrap();
+    let results = scene.run(&RunOptions::default());
+    assert!(
+        results.complete(),
+        "{:?}",
+        results.failures().collect::<Vec<_>>()
+    );
+}
