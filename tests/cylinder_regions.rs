@@ -12,6 +12,9 @@ use activemuscle::studies::StudyResult;
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 
+mod scratch;
+use scratch::scratch;
+
 const FILE: &str = "regions.toml";
 
 /// A cylinder study (explicit law, frozen) with `regions` appended (TOML) after line 14.
@@ -155,7 +158,8 @@ fn a_damaged_outer_layer_lowers_the_force_monotonically_between_the_uniform_cyli
 
 #[test]
 fn vtk_carries_damage_and_activation_cell_fields_with_regions_only() {
-    let dir = std::env::temp_dir().join(format!("am_regions_vtk_{}", std::process::id()));
+    let tmp = scratch("regions-vtk");
+    let dir = tmp.join("vtk");
     let options = RunOptions {
         vtk_dir: Some(dir.clone()),
         ..RunOptions::default()
@@ -198,7 +202,6 @@ fn vtk_carries_damage_and_activation_cell_fields_with_regions_only() {
     let _ = std::fs::remove_dir_all(&dir);
     let vtu = read("vtk = [1.1]\n");
     assert!(!vtu.contains("Name=\"damage\"") && vtu.contains("Name=\"gamma\""));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

@@ -12,6 +12,8 @@ use activemuscle::fem::{
 
 mod common;
 use common::NonSymmetric;
+mod scratch;
+use scratch::scratch;
 
 fn q1p0() -> SolverOptions {
     SolverOptions {
@@ -245,7 +247,8 @@ fn q1p0_clamped_reaction_converges_to_the_fine_taylor_hood_solution() {
 fn q1p0_vtu_output_has_bilinear_cells_with_the_homogeneous_values() {
     let (mu, lambda) = (4.0, 1.3);
     let material = NeoHookean::new(mu).unwrap();
-    let directory = std::env::temp_dir().join(format!("fem_q1p0_vtu_{}", std::process::id()));
+    let tmp = scratch("fem-q1p0-vtu");
+    let directory = tmp.join("vtk");
     let options = SolverOptions {
         vtk: Some(VtkOutput {
             directory: directory.clone(),
@@ -268,7 +271,6 @@ fn q1p0_vtu_output_has_bilinear_cells_with_the_homogeneous_values() {
     assert!(block("p")
         .iter()
         .all(|v| (v - mu / lambda).abs() < 1e-9 * mu));
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]

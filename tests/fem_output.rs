@@ -6,6 +6,8 @@ use activemuscle::fem::{
 
 mod common;
 use common::NonSymmetric;
+mod scratch;
+use scratch::scratch;
 
 #[test]
 fn gmres_with_symmetric_part_preconditioner_matches_the_sparse_lu() {
@@ -57,7 +59,8 @@ fn vtu_output_holds_the_fields_with_the_homogeneous_values() {
     let mu = 4.0;
     let lambda = 1.3;
     let material = NeoHookean::new(mu).unwrap();
-    let directory = std::env::temp_dir().join(format!("fem_vtu_test_{}", std::process::id()));
+    let tmp = scratch("fem-vtu");
+    let directory = tmp.join("vtk");
     let options = SolverOptions {
         vtk: Some(VtkOutput {
             directory: directory.clone(),
@@ -101,13 +104,13 @@ fn vtu_output_holds_the_fields_with_the_homogeneous_values() {
     assert!(block("p")
         .iter()
         .all(|v| (v - mu / lambda).abs() < 1e-9 * mu));
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]
 fn the_solver_returns_the_path_of_every_file_it_wrote() {
     let material = NeoHookean::new(4.0).unwrap();
-    let directory = std::env::temp_dir().join(format!("fem_vtu_paths_{}", std::process::id()));
+    let tmp = scratch("fem-vtu-paths");
+    let directory = tmp.join("vtk");
     let options = SolverOptions {
         vtk: Some(VtkOutput {
             directory: directory.clone(),
@@ -136,5 +139,4 @@ fn the_solver_returns_the_path_of_every_file_it_wrote() {
         assert!(file.is_file(), "{file:?}");
     }
     assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 2);
-    std::fs::remove_dir_all(&directory).unwrap();
 }
