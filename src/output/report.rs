@@ -14,8 +14,9 @@ use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
 
-/// Facts about the run shown in the report.
-#[derive(Debug, Clone)]
+/// Facts about the run shown in the report. `RunInfo::default()`: nothing known (empty command
+/// and version, zero wall time, no files), e.g. for a report built by a test.
+#[derive(Debug, Clone, Default)]
 pub struct RunInfo {
     /// Command line.
     pub command: String,
