@@ -7,7 +7,7 @@ use activemuscle::fem::dofs::DofMap;
 use activemuscle::fem::element::jacobian;
 use activemuscle::fem::{
     AxisymmetricSolver, Bases, Element, FemError, Mesh, NeoHookean, SolverOptions, StepRecord,
-    VtkOutput,
+    Stepping, VtkOutput,
 };
 
 mod common;
@@ -84,10 +84,13 @@ fn q1p0_sliding_bases_reproduce_the_homogeneous_neo_hookean_curve() {
 fn one_step(material: &NonSymmetric) -> StepRecord {
     let mesh = Mesh::structured(1.0, 3.0, 6, 12, 1.0).unwrap();
     let options = SolverOptions {
-        initial_step: 0.3,
-        max_step: 0.3,
-        max_iterations: 60,
-        tolerance: 1e-11,
+        stepping: Stepping {
+            initial_step: 0.3,
+            max_step: 0.3,
+            max_iterations: 60,
+            tolerance: 1e-11,
+            ..Stepping::default()
+        },
         ..q1p0()
     };
     let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();

@@ -4,7 +4,7 @@
 use activemuscle::fem::material::axial_stretch;
 use activemuscle::fem::{
     AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, FemError, Mesh, NeoHookean,
-    SolverOptions, StepFailure, StepRecord,
+    SolverOptions, StepFailure, StepRecord, Stepping,
 };
 use nalgebra::{SMatrix, SVector};
 
@@ -19,10 +19,13 @@ use common::NonSymmetric;
 fn one_step(material: &NonSymmetric) -> StepRecord {
     let mesh = Mesh::structured(1.0, 3.0, 4, 8, 1.0).unwrap();
     let options = SolverOptions {
-        initial_step: 0.3,
-        max_step: 0.3,
-        max_iterations: 60,
-        tolerance: 1e-11,
+        stepping: Stepping {
+            initial_step: 0.3,
+            max_step: 0.3,
+            max_iterations: 60,
+            tolerance: 1e-11,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
@@ -169,7 +172,7 @@ fn unreachable_target_is_a_typed_error_naming_the_largest_stretch_reached() {
                 "reached {reached}"
             );
             assert!(*attempted > 1.237);
-            assert!(*step < 2.0 * SolverOptions::default().min_step);
+            assert!(*step < 2.0 * SolverOptions::default().stepping.min_step);
             assert!(matches!(
                 cause,
                 StepFailure::Material(activemuscle::Error::NonFinite { .. })
@@ -220,7 +223,10 @@ fn invalid_inputs_are_typed_errors() {
         );
     }
     let bad_options = SolverOptions {
-        min_step: 0.0,
+        stepping: Stepping {
+            min_step: 0.0,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     let mesh = Mesh::structured(1.0, 1.0, 1, 2, 1.0).unwrap();

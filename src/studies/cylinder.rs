@@ -10,7 +10,7 @@ use crate::energy::Energy;
 use crate::fem::solver::MIN_TOLERANCE;
 use crate::fem::{
     AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh,
-    Progress as FemProgress, Region, Regions, SolverOptions, VtkOutput,
+    Progress as FemProgress, Region, Regions, SolverOptions, Stepping, VtkOutput,
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
@@ -641,7 +641,10 @@ impl CylinderStudy {
             _ => None,
         };
         let options = SolverOptions {
-            tolerance: self.tolerance,
+            stepping: Stepping {
+                tolerance: self.tolerance,
+                ..Stepping::default()
+            },
             element: self.element,
             vtk,
             cancel: ctx.stop.map(|s| s.flag().clone()),

@@ -23,7 +23,7 @@ use crate::active::{Coupling, FrozenTangent, Law, LawRepresentation, TableSpec};
 use crate::app_error::AppError;
 use crate::energy::Energy;
 use crate::fem::{
-    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions,
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions, Stepping,
 };
 use crate::models::{LawKind, Models};
 use crate::studies::Progress;
@@ -168,8 +168,15 @@ fn tight() -> SolverOptions {
 }
 
 fn with_tolerance(tolerance: f64) -> SolverOptions {
-    SolverOptions {
+    with_stepping(Stepping {
         tolerance,
+        ..Stepping::default()
+    })
+}
+
+fn with_stepping(stepping: Stepping) -> SolverOptions {
+    SolverOptions {
+        stepping,
         ..SolverOptions::default()
     }
 }
@@ -594,10 +601,11 @@ pub(super) fn frozen_tangent(
         &reference,
     ));
     // Linear convergence: a looser tolerance and twice the iterations per step.
-    let patient = SolverOptions {
+    let patient = with_stepping(Stepping {
+        tolerance: 1e-6,
         max_iterations: 50,
-        ..with_tolerance(1e-6)
-    };
+        ..Stepping::default()
+    });
     let r = o.clamped(&symmetric, &patient)?;
     run.push(fe_row(
         OPTION,
