@@ -7,7 +7,7 @@ use activemuscle::fem::dofs::DofMap;
 use activemuscle::fem::element::jacobian;
 use activemuscle::fem::{
     AxisymmetricSolver, Bases, Element, FemError, Mesh, NeoHookean, SolverOptions, StepRecord,
-    Stepping, VtkOutput,
+    VtkOutput,
 };
 
 mod common;
@@ -80,24 +80,9 @@ fn q1p0_sliding_bases_reproduce_the_homogeneous_neo_hookean_curve() {
     }
 }
 
-/// One large load step 1 → 1.3 on a clamped cylinder; returns the step's record.
+/// One large load step 1 → 1.3 on a clamped cylinder of 6 × 12 Q1/P0 cells.
 fn one_step(material: &NonSymmetric) -> StepRecord {
-    let mesh = Mesh::structured(1.0, 3.0, 6, 12, 1.0).unwrap();
-    let options = SolverOptions {
-        stepping: Stepping {
-            initial_step: 0.3,
-            max_step: 0.3,
-            max_iterations: 60,
-            tolerance: 1e-11,
-            ..Stepping::default()
-        },
-        ..q1p0()
-    };
-    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
-    let res = solver.sweep(&[1.3]).unwrap().into_result().unwrap();
-    let steps = &res[0].steps;
-    assert_eq!(steps.len(), 1, "the step must not be cut");
-    steps[0].clone()
+    common::one_step(material, Element::Q1P0, 6, 12)
 }
 
 #[test]

@@ -5,7 +5,7 @@
 use activemuscle::fem::assembly::Assembler;
 use activemuscle::fem::dofs::DofMap;
 use activemuscle::fem::{
-    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, StepRecord, Stepping,
+    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, StepRecord,
 };
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
 use activemuscle::uniaxial::{nearly_incompressible, reference_stress, Direction};
@@ -121,13 +121,7 @@ fn newton_converges_quadratically_with_the_penalty() {
     for element in Element::ALL {
         for form in chapter_forms {
             let options = SolverOptions {
-                stepping: Stepping {
-                    initial_step: 0.15,
-                    max_step: 0.15,
-                    max_iterations: 60,
-                    tolerance: 1e-11,
-                    ..Stepping::default()
-                },
+                stepping: common::large_steps(0.15),
                 element,
                 volumetric: Some(Volumetric::new(form, 0.0).unwrap()),
                 ..SolverOptions::default()

@@ -3,7 +3,7 @@
 
 use activemuscle::fem::material::axial_stretch;
 use activemuscle::fem::{
-    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, FemError, Mesh, NeoHookean,
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh, NeoHookean,
     SolverOptions, StepFailure, StepRecord, Stepping,
 };
 use nalgebra::{SMatrix, SVector};
@@ -15,28 +15,9 @@ const C: f64 = 0.15 * MU;
 mod common;
 use common::NonSymmetric;
 
-/// One large load step 1 → 1.3 on a clamped cylinder; returns the step's record.
+/// One large load step 1 → 1.3 on a clamped cylinder of 4 × 8 Q2/Q1 cells.
 fn one_step(material: &NonSymmetric) -> StepRecord {
-    let mesh = Mesh::structured(1.0, 3.0, 4, 8, 1.0).unwrap();
-    let options = SolverOptions {
-        stepping: Stepping {
-            initial_step: 0.3,
-            max_step: 0.3,
-            max_iterations: 60,
-            tolerance: 1e-11,
-            ..Stepping::default()
-        },
-        ..SolverOptions::default()
-    };
-    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
-    let sweep = solver.sweep(&[1.3]).unwrap();
-    if let Some(e) = sweep.failures.first() {
-        panic!("{e}");
-    }
-    let res = sweep.results;
-    let steps = &res[0].steps;
-    assert_eq!(steps.len(), 1, "the step must not be cut");
-    steps[0].clone()
+    common::one_step(material, Element::Q2Q1, 4, 8)
 }
 
 fn residuals(step: &StepRecord) -> Vec<f64> {

@@ -1,7 +1,10 @@
 //! Test materials shared by the FE tests.
 
 use activemuscle::fem::material::axial_stretch;
-use activemuscle::fem::{AxiF, AxisymmetricMaterial};
+use activemuscle::fem::{
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions,
+    StepRecord, Stepping,
+};
 use nalgebra::{SMatrix, SVector};
 
 /// Neo-Hookean plus a stress that is not the gradient of any energy: P_rr += c F_zz².
@@ -32,6 +35,39 @@ impl AxisymmetricMaterial for NonSymmetric {
     fn point_fields(&self, f: &AxiF) -> activemuscle::Result<(f64, f64)> {
         Ok((0.0, axial_stretch(f)))
     }
+}
+
+/// Load steps of `step` (the first and the largest), up to 60 Newton iterations each, to
+/// tolerance 1e-11: a large step that Newton must take whole.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn large_steps(step: f64) -> Stepping {
+    Stepping {
+        initial_step: step,
+        max_step: step,
+        max_iterations: 60,
+        tolerance: 1e-11,
+        ..Stepping::default()
+    }
+}
+
+/// One large load step 1 → 1.3 on a clamped cylinder (R = 1, L = 3) of `nr × nz` cells of
+/// `element`; returns the step's record.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn one_step(material: &NonSymmetric, element: Element, nr: usize, nz: usize) -> StepRecord {
+    let mesh = Mesh::structured(1.0, 3.0, nr, nz, 1.0).unwrap();
+    let options = SolverOptions {
+        stepping: large_steps(0.3),
+        element,
+        ..SolverOptions::default()
+    };
+    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
+    let sweep = solver.sweep(&[1.3]).unwrap();
+    if let Some(e) = sweep.failures.first() {
+        panic!("{e}");
+    }
+    let steps = &sweep.results[0].steps;
+    assert_eq!(steps.len(), 1, "the step must not be cut");
+    steps[0].clone()
 }
 
 /// Observed orders of convergence p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}) of a residual history,
