@@ -5,13 +5,17 @@
 use activemuscle::active::time::{
     ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule,
 };
-use activemuscle::active::{effective_damage, ActivationLaw, ActiveCurve, ImplicitLaw};
+use activemuscle::active::{
+    effective_damage, ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, FrozenTangent,
+    ImplicitLaw, Law,
+};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::history::HistoryResult;
 use activemuscle::studies::{Stop, StudyResult};
 use activemuscle::uniaxial::{along_fibres, free_contraction};
+use activemuscle::Muscle;
 
 const FILE: &str = "time.toml";
 
@@ -130,6 +134,58 @@ fn activation_level_and_damage_are_one_scale_of_the_active_curve() {
     }
     assert!(effective_damage(0.0, 1.2).is_err());
     assert!(effective_damage(0.0, -0.1).is_err());
+}
+
+/// A muscle keeps d_eff = 1 − (1 − d)·a with its damage and level (`Muscle::effective`): however it
+/// is built or changed, it answers with the law's γ at the d_eff computed here, and a refused level
+/// changes nothing.
+#[test]
+fn a_muscle_answers_at_its_current_activation_level_however_it_was_set() {
+    let law = ImplicitLaw::new(GiantesioMusesti::paper(), ActiveCurve::paper());
+    let lambda = 1.1;
+    let check = |muscle: &Muscle<GiantesioMusesti>, d: f64, a: f64| {
+        let d_eff = 1.0 - (1.0 - d) * a;
+        assert_eq!((muscle.damage(), muscle.activation_level()), (d, a));
+        assert!(
+            (muscle.effective_damage() - d_eff).abs() < 1e-15,
+            "d = {d}, a = {a}"
+        );
+        let gamma = muscle.activation(lambda).unwrap().gamma;
+        let expected = law.activation(lambda, d_eff).unwrap();
+        assert!(
+            (gamma - expected).abs() < 1e-13,
+            "d = {d}, a = {a}: γ = {gamma} vs {expected}"
+        );
+    };
+    let d = 0.3;
+    let frozen = Coupling::Frozen(FrozenTangent::Exact);
+    let mut muscle = Muscle::new(
+        GiantesioMusesti::paper(),
+        Law::Implicit(law.clone()),
+        d,
+        frozen,
+    )
+    .unwrap();
+    check(&muscle, d, 1.0);
+    muscle.set_activation(0.4).unwrap();
+    check(&muscle, d, 0.4);
+    assert!(muscle.set_activation(1.5).is_err());
+    assert!(muscle.set_activation(f64::NAN).is_err());
+    check(&muscle, d, 0.4);
+    muscle.set_activation(1.0).unwrap();
+    check(&muscle, d, 1.0);
+    let muscle = muscle
+        .with_activation(0.25)
+        .unwrap()
+        .with_map(ActiveStrainMap::Chapter)
+        .unwrap();
+    check(&muscle, d, 0.25);
+    check(&muscle.clone(), d, 0.25);
+    let passive = Muscle::passive(GiantesioMusesti::paper())
+        .with_activation(0.5)
+        .unwrap();
+    assert_eq!(passive.effective_damage(), 0.5);
+    assert_eq!(passive.activation(lambda).unwrap().gamma, 0.0);
 }
 
 fn models() -> Models {
