@@ -92,17 +92,7 @@ fn q1p0_newton_with_the_exact_nonsymmetric_tangent_converges_quadratically() {
         c: 1.5,
         approximate: false,
     });
-    let r: Vec<f64> = std::iter::once(step.initial_residual)
-        .chain(step.iterations.iter().map(|i| i.residual))
-        .collect();
-    println!("Q1/P0, exact tangent, scaled residuals: {:?}", sci(&r));
-    let orders = common::observed_orders(&r);
-    println!("observed orders: {orders:.3?}");
-    let last = *orders
-        .last()
-        .expect("at least three iterates above the floor");
-    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
-    assert!(step.iterations.iter().all(|i| i.step_length == 1.0));
+    common::assert_quadratic(&step, "Q1/P0, exact tangent");
 }
 
 /// A deterministic pseudo-random number in [−1, 1].
@@ -305,8 +295,4 @@ fn elements_are_named_and_parsed_both_ways() {
     }
     assert!("Q2P1".parse::<Element>().is_err());
     assert_eq!(SolverOptions::default().element, Element::Q2Q1);
-}
-
-fn sci(v: &[f64]) -> Vec<String> {
-    v.iter().map(|x| format!("{x:.3e}")).collect()
 }

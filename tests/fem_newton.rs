@@ -13,17 +13,11 @@ const MU: f64 = 10.0;
 const C: f64 = 0.15 * MU;
 
 mod common;
-use common::NonSymmetric;
+use common::{residuals, sci, NonSymmetric};
 
 /// One large load step 1 → 1.3 on a clamped cylinder of 4 × 8 Q2/Q1 cells.
 fn one_step(material: &NonSymmetric) -> StepRecord {
     common::one_step(material, Element::Q2Q1, 4, 8)
-}
-
-fn residuals(step: &StepRecord) -> Vec<f64> {
-    std::iter::once(step.initial_residual)
-        .chain(step.iterations.iter().map(|i| i.residual))
-        .collect()
 }
 
 #[test]
@@ -33,15 +27,7 @@ fn exact_nonsymmetric_tangent_converges_quadratically() {
         c: C,
         approximate: false,
     });
-    let r = residuals(&exact);
-    println!("exact tangent, scaled residuals: {:?}", sci(&r));
-    let orders = common::observed_orders(&r);
-    println!("observed orders: {orders:.3?}");
-    let last = *orders
-        .last()
-        .expect("at least three iterates above the floor");
-    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
-    assert!(exact.iterations.iter().all(|i| i.step_length == 1.0));
+    common::assert_quadratic(&exact, "exact tangent");
 }
 
 #[test]
@@ -215,8 +201,4 @@ fn invalid_inputs_are_typed_errors() {
         AxisymmetricSolver::new(mesh, Bases::Clamped, &material, bad_options),
         Err(FemError::InvalidInput { .. })
     ));
-}
-
-fn sci(v: &[f64]) -> Vec<String> {
-    v.iter().map(|x| format!("{x:.3e}")).collect()
 }

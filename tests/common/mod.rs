@@ -70,6 +70,35 @@ pub fn one_step(material: &NonSymmetric, element: Element, nr: usize, nz: usize)
     steps[0].clone()
 }
 
+/// The scaled residuals of a load step: the initial one, then one per Newton iteration.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn residuals(step: &StepRecord) -> Vec<f64> {
+    std::iter::once(step.initial_residual)
+        .chain(step.iterations.iter().map(|i| i.residual))
+        .collect()
+}
+
+/// Numbers in short scientific notation, for printing residual histories.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn sci(v: &[f64]) -> Vec<String> {
+    v.iter().map(|x| format!("{x:.3e}")).collect()
+}
+
+/// Asserts that Newton converged quadratically in `step` (last observed order ≥ 1.8) with full
+/// steps; prints the residuals and the orders after `label`.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn assert_quadratic(step: &StepRecord, label: &str) {
+    let r = residuals(step);
+    println!("{label}, scaled residuals: {:?}", sci(&r));
+    let orders = observed_orders(&r);
+    println!("observed orders: {orders:.3?}");
+    let last = *orders
+        .last()
+        .expect("at least three iterates above the floor");
+    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
+    assert!(step.iterations.iter().all(|i| i.step_length == 1.0));
+}
+
 /// Observed orders of convergence p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}) of a residual history,
 /// over the iterations above the round-off floor (1e-13).
 #[allow(dead_code)] // not every test target that includes this module uses it
