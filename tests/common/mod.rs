@@ -109,6 +109,24 @@ pub fn observed_orders(r: &[f64]) -> Vec<f64> {
         .collect()
 }
 
+/// Asserts that every cell of a VTU file's text holds the neo-Hookean uniaxial state of stretch λ:
+/// P_zz = μ(λ − λ⁻²) and p = μ/λ \[kPa\], to 1e-9 relative.
+#[allow(dead_code)] // not every test target that includes this module uses it
+pub fn assert_uniaxial_neo_hookean_cells(text: &str, mu: f64, lambda: f64) {
+    let exact = mu * (lambda - lambda.powi(-2));
+    let pzz = vtu_data_array(text, "P_zz");
+    assert!(
+        pzz.iter().all(|v| (v - exact).abs() < 1e-9 * exact),
+        "{pzz:?} vs {exact}"
+    );
+    let p = vtu_data_array(text, "p");
+    assert!(
+        p.iter().all(|v| (v - mu / lambda).abs() < 1e-9 * mu),
+        "{p:?} vs {}",
+        mu / lambda
+    );
+}
+
 /// The numbers of the `<DataArray Name="name">` of a VTU file's text.
 #[allow(dead_code)] // not every test target that includes this module uses it
 pub fn vtu_data_array(text: &str, name: &str) -> Vec<f64> {
