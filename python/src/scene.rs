@@ -271,8 +271,6 @@ fn uniaxial(t: &Columns, u: &UniaxialResult) -> PyResult<()> {
     .numbers("gamma", rows.iter().map(|(_, p)| p.gamma).collect())?
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
     .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
-    .numbers("J", rows.iter().map(|(_, p)| p.volume).collect())?
-    .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
     .optional("P_pas", rows.iter().map(|(_, p)| p.passive).collect())?
     .optional("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?;
     Ok(())
@@ -314,8 +312,6 @@ fn cylinder(t: &Columns, c: &CylinderResult) -> PyResult<()> {
             rows.iter().map(|(_, p)| p.gamma_centre).collect(),
         )?
         .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
-        .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
-        .numbers("J", rows.iter().map(|(_, p)| p.volume).collect())?
         .optional("P_0d", rows.iter().map(|(_, p)| p.stress_0d).collect())?
         .counts(
             "newton_iterations",
@@ -431,8 +427,6 @@ fn stability(t: &Columns, curves: &[StabilityCurve]) -> PyResult<()> {
     .optional("d", rows.iter().map(|(c, _)| c.damage()).collect())?
     .numbers("lambda", rows.iter().map(|(_, p)| p.lambda).collect())?
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
-    .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
-    .numbers("J", rows.iter().map(|(_, p)| p.volume).collect())?
     .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
     .numbers("dP_dlambda", rows.iter().map(|(_, p)| p.slope).collect())?
     .numbers(
