@@ -199,8 +199,12 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
         rows.push((
             format!("incompressibility: {}", v.form().name()),
             format!(
-                "nearly incompressible: Ŵ + U(J), U = {form} + {} (J − 1) (stress-free reference), bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
-                v.shift(),
+                "nearly incompressible: Ŵ + U(J), U = {form}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
+                match v.shift() {
+                    0.0 => String::new(),
+                    c if c > 0.0 => format!(" + {c} kPa (J − 1) (stress-free reference)"),
+                    c => format!(" − {} kPa (J − 1) (stress-free reference)", -c),
+                },
                 v.bulk_modulus()
             ),
             "not in the chapter (eq. (2) is exact: det C = 1)".to_string(),
