@@ -264,4 +264,15 @@ fn the_example_scene_loads_and_runs_to_the_end() {
         "{:?}",
         results.failures().collect::<Vec<_>>()
     );
+    // The report's study table says where each region is and what it holds, as the file wrote it.
+    let details = &results.studies[0].details;
+    for line in [
+        "region 1: r/R ∈ [0.8, 1], z/L ∈ [0, 1], d = 0.5, a = 1",
+        "region 2: r/R ∈ [0, 0.5], z/L ∈ [0.3333, 0.6667], d = the sweep's, a = 0.5",
+    ] {
+        assert!(
+            details.iter().any(|d| d == line),
+            "{line} not in {details:?}"
+        );
+    }
 }
