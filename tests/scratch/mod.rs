@@ -6,35 +6,25 @@ use std::ops::Deref;
 use std::path::Path;
 
 /// A fresh, empty directory `$TMPDIR/activemuscle-NAME-XXXXXX`, removed when dropped.
-pub struct Scratch(Option<tempfile::TempDir>);
+pub struct Scratch(tempfile::TempDir);
 
 /// A new scratch directory whose name starts with `activemuscle-NAME-`.
 pub fn scratch(name: &str) -> Scratch {
+    let keep = std::env::var_os("ACTIVEMUSCLE_KEEP_TEST_DIRS").is_some_and(|v| v == "1");
     let dir = tempfile::Builder::new()
         .prefix(&format!("activemuscle-{name}-"))
+        .disable_cleanup(keep)
         .tempdir()
         .expect("create a scratch directory");
-    Scratch(Some(dir))
+    if keep {
+        eprintln!("keeping the scratch directory {}", dir.path().display());
+    }
+    Scratch(dir)
 }
 
 impl Deref for Scratch {
     type Target = Path;
     fn deref(&self) -> &Path {
-        match &self.0 {
-            Some(dir) => dir.path(),
-            None => unreachable!("a scratch directory is only taken when dropped"),
-        }
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let keep = std::env::var_os("ACTIVEMUSCLE_KEEP_TEST_DIRS").is_some_and(|v| v == "1");
-        if let Some(dir) = self.0.take() {
-            if keep {
-                eprintln!("kept the scratch directory {}", dir.keep().display());
-            }
-            // Otherwise `dir` is dropped here, which removes it and everything in it.
-        }
+        self.0.path()
     }
 }
