@@ -503,8 +503,12 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
                     let kup = bdj * m.transpose();
                     k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
-                    k.fixed_view_mut::<NP, NU>(NU, 0)
-                        .add_assign(&kup.transpose());
+                }
+                // K_pu = K_upᵀ, copied once rather than accumulated point by point.
+                for i in 0..NP {
+                    for j in 0..NU {
+                        k[(NU + i, j)] = k[(j, NU + i)];
+                    }
                 }
                 mirror_node_blocks(&mut kuu_lower);
                 k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&kuu_lower);
