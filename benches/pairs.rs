@@ -10,8 +10,8 @@ mod closed_form;
 mod point;
 
 use activemuscle::active::{
-    ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
-    LawRepresentation, TableSpec,
+    ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
+    ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
@@ -138,6 +138,25 @@ fn main() {
             pair(r, &mut || respond(&explicit), &mut || respond(&mu)),
         );
     }
+    // The active-strain map at constant γ (as benches/constitutive.rs's group "map").
+    let mapped = |map| {
+        muscle(
+            Law::Constant(ConstantLaw::new(GAMMA).unwrap()),
+            Coupling::Consistent,
+        )
+        .with_map(map)
+        .unwrap()
+    };
+    let (chapter, volume_preserving) = (
+        mapped(ActiveStrainMap::Chapter),
+        mapped(ActiveStrainMap::VolumePreserving),
+    );
+    report(
+        "Muscle::respond tangent, axisym, constant gamma: chapter map, volume-preserving map",
+        pair(rounds, &mut || respond(&chapter), &mut || {
+            respond(&volume_preserving)
+        }),
+    );
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average after: {}", load.trim());
 }

@@ -15,7 +15,7 @@
 //! line search's residual-only assemblies), P to 12 digits.
 
 use activemuscle::fem::{
-    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, Timings,
+    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, Stepping, Timings,
 };
 use std::time::Instant;
 
@@ -39,8 +39,11 @@ fn run(element: Element, nr: usize, nz: usize) -> Result<Run, Box<dyn std::error
     let t0 = Instant::now();
     let mesh = Mesh::structured(1.0, 4.0, nr, nz, 1.0)?;
     let options = SolverOptions {
-        initial_step: 0.17,
-        max_step: 0.17,
+        stepping: Stepping {
+            initial_step: 0.17,
+            max_step: 0.17,
+            ..Stepping::default()
+        },
         element,
         ..SolverOptions::default()
     };

@@ -20,6 +20,8 @@ pub struct Muscle<E> {
     law: Law<E>,
     damage: f64,
     level: f64,
+    /// d_eff = 1 − (1 − d)·a of `damage` and `level`, cached: private, and written only where
+    /// those are (`new`, `passive`, `set_activation`), so it cannot go stale.
     effective: f64,
     coupling: Coupling,
     map: ActiveStrainMap,

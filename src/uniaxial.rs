@@ -119,11 +119,55 @@ pub fn free_contraction<E: StrainEnergy>(muscle: &Muscle<E>) -> Result<UniaxialP
             Err(_) => (f64::NAN, f64::NAN),
         }
     };
+    zero_load(
+        "free contraction P(lambda) = 0 along the fibres",
+        0.0,
+        stress,
+        |l| along_fibres(muscle, l),
+    )
+}
+
+/// Free contraction of the nearly incompressible muscle (energy Ŵ + U(J), [`Volumetric`]): the
+/// stretch λ along the fibres at which P₁₁(λ) = 0 with both lateral stretches solved from zero
+/// lateral traction ([`nearly_incompressible`]), the same bracketing and safeguarded Newton as
+/// [`free_contraction`]. The slope is the exact one of the constrained curve, the Schur
+/// complement dP₁₁/dλ = H₁₁ − H₁ₗ H_ll⁻¹ Hₗ₁ of the diagonal Hessian H (ℓ: the lateral axes).
+pub fn nearly_incompressible_free_contraction<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    volumetric: &Volumetric,
+) -> Result<UniaxialPoint> {
+    let stress = |l: f64| match nearly_incompressible_with_slope(
+        muscle,
+        volumetric,
+        Direction::Along,
+        l,
+        true,
+    ) {
+        Ok((point, slope)) => (point.stress, slope),
+        Err(_) => (f64::NAN, f64::NAN),
+    };
+    zero_load(
+        "free contraction P(lambda) = 0 along the fibres of the nearly incompressible block",
+        64.0 * f64::EPSILON * volumetric.bulk_modulus(),
+        stress,
+        |l| nearly_incompressible(muscle, volumetric, Direction::Along, l),
+    )
+}
+
+/// The zero of the nominal stress P(λ) nearest below λ = 1 (above, if P(1) < 0), from
+/// `stress(λ) = (P, dP/dλ)`; `point(λ)` gives the state at the root. See [`free_contraction`].
+/// `noise` \[kPa\] is the rounding level of P on top of |slope| × 1e-15 (a nearly incompressible
+/// block's P carries U″ × J's rounding error, ≈ κ ε).
+fn zero_load(
+    equation: &str,
+    noise: f64,
+    stress: impl Fn(f64) -> (f64, f64),
+    point: impl Fn(f64) -> Result<UniaxialPoint>,
+) -> Result<UniaxialPoint> {
     let at_rest = stress(1.0).0;
     if at_rest == 0.0 {
-        return along_fibres(muscle, 1.0);
+        return point(1.0);
     }
-    let equation = || "free contraction P(lambda) = 0 along the fibres".to_string();
     let (mut lo, mut hi) = (1.0, 1.0);
     let mut offset = 0.005;
     loop {
@@ -134,7 +178,7 @@ pub fn free_contraction<E: StrainEnergy>(muscle: &Muscle<E>) -> Result<UniaxialP
         };
         if !(0.05..=10.0).contains(&trial) {
             return Err(Error::NoSolution {
-                equation: equation(),
+                equation: equation.to_string(),
                 reason: format!(
                     "P(1) = {at_rest} kPa and no sign change of P for lambda in [0.05, 10]"
                 ),
@@ -156,23 +200,23 @@ pub fn free_contraction<E: StrainEnergy>(muscle: &Muscle<E>) -> Result<UniaxialP
         }
         offset *= 2.0;
     }
-    let lambda = newton_bisection(stress, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
-        equation: equation(),
+    let lambda = newton_bisection(&stress, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
+        equation: equation.to_string(),
         reason,
     })?;
-    let point = along_fibres(muscle, lambda)?;
-    // A zero of P has |P| ≲ |slope| × 1e-15; a jump leaves |P| at the size of the jump.
+    let state = point(lambda)?;
+    // A zero of P has |P| ≲ |slope| × 1e-15 + noise; a jump leaves |P| at the size of the jump.
     let (_, slope) = stress(lambda);
-    if point.stress.abs() > 1e-9 * (1.0 + slope.abs()) {
+    if state.stress.abs() > 1e-9 * (1.0 + slope.abs()) + noise {
         return Err(Error::NoSolution {
-            equation: equation(),
+            equation: equation.to_string(),
             reason: format!(
                 "P changes sign at lambda = {lambda} without vanishing (P = {} kPa there): the activation law jumps",
-                point.stress
+                state.stress
             ),
         });
     }
-    Ok(point)
+    Ok(state)
 }
 
 /// The Cauchy stress σ = J⁻¹ P Fᵀ \[kPa\] of the total nominal stress P = ∂Ψ/∂F − p F⁻ᵀ, from
@@ -337,6 +381,20 @@ pub fn nearly_incompressible<E: StrainEnergy>(
     direction: Direction,
     lambda: f64,
 ) -> Result<UniaxialPoint> {
+    Ok(nearly_incompressible_with_slope(muscle, volumetric, direction, lambda, false)?.0)
+}
+
+/// [`nearly_incompressible`], and with `slope` the derivative of the nominal stress along the
+/// loaded axis k with the lateral stretches in equilibrium, dP_kk/dλ = H_kk − H_kℓ H_ℓℓ⁻¹ H_ℓk
+/// \[kPa\], H_ab = ∂P_aa/∂F_bb of the diagonal state (NaN without `slope`; one more tangent
+/// evaluation with it).
+pub fn nearly_incompressible_with_slope<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    volumetric: &Volumetric,
+    direction: Direction,
+    lambda: f64,
+    slope: bool,
+) -> Result<(UniaxialPoint, f64)> {
     positive("lambda", lambda)?;
     let start = direction.point(muscle, lambda)?;
     let (axis, lat) = match direction {
@@ -350,8 +408,9 @@ pub fn nearly_incompressible<E: StrainEnergy>(
         d[lat[1]] = x[1];
         d
     };
-    // Residual (P_ii of both lateral axes), its Jacobian, the loaded axis' P_kk, γ and λ_f.
-    type Lateral = ([f64; 2], [[f64; 2]; 2], f64, f64, f64);
+    // Residual (P_ii of both lateral axes), the diagonal Hessian H_ab = ∂P_aa/∂F_bb (all three
+    // axes), the loaded axis' P_kk, γ and λ_f.
+    type Lateral = ([f64; 2], [[f64; 3]; 3], f64, f64, f64);
     let evaluate = |x: [f64; 2], tangent: bool| -> Result<Lateral> {
         let d = diagonal(x);
         let kin = Kinematics::new(&Matrix3::from_diagonal(&d), &fibre())?;
@@ -369,17 +428,17 @@ pub fn nearly_incompressible<E: StrainEnergy>(
             p[4 * lat[0]] + du * cof(lat[0]),
             p[4 * lat[1]] + du * cof(lat[1]),
         ];
-        let mut jac = [[0.0; 2]; 2];
+        let mut hessian = [[0.0; 3]; 3];
         if let Some(k) = r.tangent {
-            for (a, &i) in lat.iter().enumerate() {
-                for (b, &m) in lat.iter().enumerate() {
+            for (i, row) in hessian.iter_mut().enumerate() {
+                for (m, h) in row.iter_mut().enumerate() {
                     let cross = if i == m { 0.0 } else { du * j / (d[i] * d[m]) };
-                    jac[a][b] = k[(4 * i, 4 * m)] + ddu * cof(i) * cof(m) + cross;
+                    *h = k[(4 * i, 4 * m)] + ddu * cof(i) * cof(m) + cross;
                 }
             }
         }
         let nominal = p[4 * axis] + du * cof(axis);
-        Ok((res, jac, nominal, r.gamma, r.fibre_stretch))
+        Ok((res, hessian, nominal, r.gamma, r.fibre_stretch))
     };
     let failure = |reason: String| {
         Error::NoSolution {
@@ -393,7 +452,8 @@ pub fn nearly_incompressible<E: StrainEnergy>(
     let norm = |r: [f64; 2]| r[0].abs().max(r[1].abs());
     let mut x = start.lateral;
     for iteration in 0..MAX_LATERAL_ITERATIONS {
-        let (r, jac, _, _, _) = evaluate(x, true)?;
+        let (r, hessian, _, _, _) = evaluate(x, true)?;
+        let jac = lateral_block(&hessian, lat);
         let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         if !(det.is_finite() && det != 0.0) {
             return Err(failure(format!(
@@ -420,8 +480,8 @@ pub fn nearly_incompressible<E: StrainEnergy>(
         let moved = (next[0] - x[0]).abs().max((next[1] - x[1]).abs());
         x = next;
         if moved <= 4.0 * f64::EPSILON * x[0].abs().max(x[1].abs()) {
-            let (_, _, stress, gamma, fibre_stretch) = evaluate(x, false)?;
-            return Ok(UniaxialPoint {
+            let (_, hessian, stress, gamma, fibre_stretch) = evaluate(x, slope)?;
+            let point = UniaxialPoint {
                 lambda,
                 stress,
                 // σ = J⁻¹ P Fᵀ on the diagonal: σ_kk = P_kk λ / (λ x₀ x₁).
@@ -429,10 +489,35 @@ pub fn nearly_incompressible<E: StrainEnergy>(
                 gamma,
                 fibre_stretch,
                 lateral: x,
-            });
+            };
+            let slope = if slope {
+                schur_slope(&hessian, axis, lat)
+            } else {
+                f64::NAN
+            };
+            return Ok((point, slope));
         }
     }
     Err(failure(format!(
         "no convergence in {MAX_LATERAL_ITERATIONS} Newton iterations (last lateral stretches {x:?})"
     )))
+}
+
+/// The 2 × 2 block of the diagonal Hessian on the lateral axes `lat`.
+fn lateral_block(h: &[[f64; 3]; 3], lat: [usize; 2]) -> [[f64; 2]; 2] {
+    [
+        [h[lat[0]][lat[0]], h[lat[0]][lat[1]]],
+        [h[lat[1]][lat[0]], h[lat[1]][lat[1]]],
+    ]
+}
+
+/// dP_kk/dλ with the lateral stretches in equilibrium: H_kk − H_kℓ H_ℓℓ⁻¹ H_ℓk.
+fn schur_slope(h: &[[f64; 3]; 3], axis: usize, lat: [usize; 2]) -> f64 {
+    let jac = lateral_block(h, lat);
+    let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
+    let (c0, c1) = (h[lat[0]][axis], h[lat[1]][axis]);
+    // H_ℓℓ⁻¹ H_ℓk by Cramer's rule.
+    let y0 = (jac[1][1] * c0 - jac[0][1] * c1) / det;
+    let y1 = (-jac[1][0] * c0 + jac[0][0] * c1) / det;
+    h[axis][axis] - h[axis][lat[0]] * y0 - h[axis][lat[1]] * y1
 }

@@ -58,6 +58,19 @@ impl VolumetricForm {
         }
     }
 
+    /// The form with its parameters, as report captions write it (`(κ/2)(J − 1)², κ = 1000 kPa`).
+    pub fn formula(&self) -> String {
+        match *self {
+            VolumetricForm::Quadratic { kappa } => format!("(κ/2)(J − 1)², κ = {kappa} kPa"),
+            VolumetricForm::Logarithmic { kappa } => {
+                format!("(κ/4)(J² − 1 − 2 ln J), κ = {kappa} kPa")
+            }
+            VolumetricForm::Giantesio4C { kappa, mu } => {
+                format!("μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio), κ = {kappa}, μ = {mu} kPa")
+            }
+        }
+    }
+
     /// (U, U′, U″) of the form itself at J > 0.
     fn derivatives(&self, j: f64) -> [f64; 3] {
         match *self {

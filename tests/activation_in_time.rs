@@ -1,17 +1,30 @@
 //! Activation in time (issue 15, item 4): the twitch superposition against closed forms summed
 //! by hand, the activation level as one scale with the damage, and the activation-in-time study
-//! against the uniaxial study, the passive material and the free-contraction equation.
+//! against the uniaxial study, the passive material and the free-contraction equation; the nearly
+//! incompressible block against its own equilibrium equations, finite differences and the exact
+//! block as κ → ∞.
 
 use activemuscle::active::time::{
     ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule,
 };
-use activemuscle::active::{effective_damage, ActivationLaw, ActiveCurve, ImplicitLaw};
+use activemuscle::active::{
+    effective_damage, ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, FrozenTangent,
+    ImplicitLaw, Law,
+};
 use activemuscle::energy::GiantesioMusesti;
+use activemuscle::invariants::{Kinematics, FULL};
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
+use activemuscle::response::Order;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::history::HistoryResult;
 use activemuscle::studies::{Stop, StudyResult};
-use activemuscle::uniaxial::{along_fibres, free_contraction};
+use activemuscle::uniaxial::{
+    along_fibres, free_contraction, nearly_incompressible, nearly_incompressible_free_contraction,
+    nearly_incompressible_with_slope, Direction,
+};
+use activemuscle::volumetric::{Volumetric, VolumetricForm};
+use activemuscle::Muscle;
+use nalgebra::{Matrix3, Vector3};
 
 const FILE: &str = "time.toml";
 
@@ -130,6 +143,58 @@ fn activation_level_and_damage_are_one_scale_of_the_active_curve() {
     }
     assert!(effective_damage(0.0, 1.2).is_err());
     assert!(effective_damage(0.0, -0.1).is_err());
+}
+
+/// A muscle keeps d_eff = 1 − (1 − d)·a with its damage and level (`Muscle::effective`): however it
+/// is built or changed, it answers with the law's γ at the d_eff computed here, and a refused level
+/// changes nothing.
+#[test]
+fn a_muscle_answers_at_its_current_activation_level_however_it_was_set() {
+    let law = ImplicitLaw::new(GiantesioMusesti::paper(), ActiveCurve::paper());
+    let lambda = 1.1;
+    let check = |muscle: &Muscle<GiantesioMusesti>, d: f64, a: f64| {
+        let d_eff = 1.0 - (1.0 - d) * a;
+        assert_eq!((muscle.damage(), muscle.activation_level()), (d, a));
+        assert!(
+            (muscle.effective_damage() - d_eff).abs() < 1e-15,
+            "d = {d}, a = {a}"
+        );
+        let gamma = muscle.activation(lambda).unwrap().gamma;
+        let expected = law.activation(lambda, d_eff).unwrap();
+        assert!(
+            (gamma - expected).abs() < 1e-13,
+            "d = {d}, a = {a}: γ = {gamma} vs {expected}"
+        );
+    };
+    let d = 0.3;
+    let frozen = Coupling::Frozen(FrozenTangent::Exact);
+    let mut muscle = Muscle::new(
+        GiantesioMusesti::paper(),
+        Law::Implicit(law.clone()),
+        d,
+        frozen,
+    )
+    .unwrap();
+    check(&muscle, d, 1.0);
+    muscle.set_activation(0.4).unwrap();
+    check(&muscle, d, 0.4);
+    assert!(muscle.set_activation(1.5).is_err());
+    assert!(muscle.set_activation(f64::NAN).is_err());
+    check(&muscle, d, 0.4);
+    muscle.set_activation(1.0).unwrap();
+    check(&muscle, d, 1.0);
+    let muscle = muscle
+        .with_activation(0.25)
+        .unwrap()
+        .with_map(ActiveStrainMap::Chapter)
+        .unwrap();
+    check(&muscle, d, 0.25);
+    check(&muscle.clone(), d, 0.25);
+    let passive = Muscle::passive(GiantesioMusesti::paper())
+        .with_activation(0.5)
+        .unwrap();
+    assert_eq!(passive.effective_damage(), 0.5);
+    assert_eq!(passive.activation(lambda).unwrap().gamma, 0.0);
 }
 
 fn models() -> Models {
@@ -299,4 +364,149 @@ fn a_stop_request_ends_the_history_with_what_was_solved() {
     assert_eq!(outcome.points, 0);
     assert!(outcome.failures[0].message.contains("time limit"));
     assert!(matches!(outcome.result, StudyResult::ActivationInTime(_)));
+}
+
+/// U′(J) of the volumetric forms written out here (the chapter's energy is stress free at F = I,
+/// so no linear term): quadratic κ(J − 1); 4C's −(μ/2) J^(−2κ−1) + μ/2.
+fn du(form: VolumetricForm, j: f64) -> f64 {
+    match form {
+        VolumetricForm::Quadratic { kappa } => kappa * (j - 1.0),
+        VolumetricForm::Giantesio4C { kappa, mu } => {
+            -0.5 * mu * j.powf(-2.0 * kappa - 1.0) + 0.5 * mu
+        }
+        VolumetricForm::Logarithmic { kappa } => 0.5 * kappa * (j - 1.0 / j),
+    }
+}
+
+const FORMS: [VolumetricForm; 4] = [
+    VolumetricForm::Quadratic { kappa: 1e3 },
+    VolumetricForm::Quadratic { kappa: 1e6 },
+    VolumetricForm::Logarithmic { kappa: 1e4 },
+    VolumetricForm::Giantesio4C {
+        kappa: 50.0,
+        mu: 0.033,
+    },
+];
+
+#[test]
+fn nearly_incompressible_free_contraction_has_zero_traction_on_every_face() {
+    let m = models();
+    for form in FORMS {
+        let v = Volumetric::new(form, 0.0).unwrap();
+        for (d, a) in [(0.0, 1.0), (0.3, 0.6), (0.5, 0.01)] {
+            let muscle = m.muscle(choice(d)).unwrap().with_activation(a).unwrap();
+            let p = nearly_incompressible_free_contraction(&muscle, &v).unwrap();
+            let exact = free_contraction(&muscle).unwrap();
+            // Independently: P = ∂Ŵ/∂F + U′(J) J F⁻ᵀ at F = diag(λ, λ₂, λ₃), every diagonal entry 0.
+            let f = Vector3::new(p.lambda, p.lateral[0], p.lateral[1]);
+            let j = f.product();
+            let kin = Kinematics::new(&Matrix3::from_diagonal(&f), &Vector3::x()).unwrap();
+            let r = muscle.respond(&kin, Order::Stress, &FULL).unwrap();
+            let dw = r.stress.unwrap();
+            // The scale the tractions balance: the active and passive stresses at that stretch.
+            let scale = 1.0 + m.curve.value(p.lambda).abs() + dw[0].abs();
+            for i in 0..3 {
+                let traction = dw[4 * i] + du(form, j) * j / f[i];
+                assert!(
+                    traction.abs() < 1e-10 * scale,
+                    "{form:?}, d = {d}, a = {a}: P_{i}{i} = {traction} kPa at {f:?}"
+                );
+            }
+            assert!(p.stress.abs() < 1e-10 * scale, "{form:?}: P = {}", p.stress);
+            assert!(
+                j < 1.0 + 1e-3 && j > 0.5,
+                "{form:?}, d = {d}, a = {a}: J = {j}"
+            );
+            // It shortens like the exact block, by nearly as much.
+            assert!(
+                p.lambda < 1.0 && (p.lambda - exact.lambda).abs() < 0.05,
+                "{form:?}, d = {d}, a = {a}: λ = {} against {} exactly incompressible",
+                p.lambda,
+                exact.lambda
+            );
+        }
+    }
+}
+
+#[test]
+fn the_slope_of_the_nearly_incompressible_curve_passes_a_taylor_test() {
+    let m = models();
+    let muscle = m.muscle(choice(0.2)).unwrap().with_activation(0.7).unwrap();
+    for form in FORMS {
+        let v = Volumetric::new(form, 0.0).unwrap();
+        for lambda in [0.8, 0.95, 1.1] {
+            let (p, slope) =
+                nearly_incompressible_with_slope(&muscle, &v, Direction::Along, lambda, true)
+                    .unwrap();
+            // |P(λ + h) − P(λ) − h P′(λ)| = O(h²): halving h quarters the remainder.
+            let remainder = |h: f64| {
+                let q = nearly_incompressible(&muscle, &v, Direction::Along, lambda + h).unwrap();
+                (q.stress - p.stress - h * slope).abs()
+            };
+            let (r1, r2) = (remainder(1e-3), remainder(5e-4));
+            assert!(
+                r2 < 0.3 * r1 && r1 < 1e-3 * slope.abs().max(1.0),
+                "{form:?}, λ = {lambda}: remainders {r1}, {r2} (slope {slope} kPa)"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_nearly_incompressible_history_tends_to_the_exact_one_as_kappa_grows() {
+    let scene = |incompressibility: &str, loading: &str| {
+        format!(
+            r#"{incompressibility}
+[[study]]
+kind = "activation-in-time"
+name = "h"
+time = {{ from = 0.0, to = 0.2, step = 0.02 }}
+schedule = [[0.0, 1.0], [0.1, 0.3]]
+{loading}
+damage = [0.0, 0.4]
+motor_units = [{{ fraction = 1.0, twitch_force = 0.3, contraction_time = 0.04, interstimulus = 0.02 }}]
+"#
+        )
+    };
+    for loading in ["stretch = \"free\"", "stretch = [[0.0, 0.9], [0.2, 1.2]]"] {
+        let (_, exact) = run(&scene("", loading));
+        assert!(exact.complete());
+        let exact = history(&exact, "h");
+        let mut previous = f64::INFINITY;
+        for kappa in [1e4, 1e6, 1e8] {
+            let (_, near) = run(&scene(
+                &format!("[incompressibility]\nkind = \"quadratic\"\nkappa = {kappa}\n"),
+                loading,
+            ));
+            assert!(near.complete(), "{:?}", near.failures().collect::<Vec<_>>());
+            let near = history(&near, "h");
+            // max over steps of |Δλ| + |ΔP|/μ-scale and |J − 1|: both O(1/κ).
+            let mut gap: f64 = 0.0;
+            for (he, hn) in exact.histories.iter().zip(&near.histories) {
+                for (e, n) in he.points.iter().zip(&hn.points) {
+                    assert_eq!((e.t, e.level), (n.t, n.level));
+                    assert!((e.volume - 1.0).abs() < 1e-14, "exact J = {}", e.volume);
+                    assert!(
+                        (e.cauchy - e.stress * e.lambda).abs() <= 1e-12 * e.stress.abs().max(1.0),
+                        "exact: σ = P λ"
+                    );
+                    assert!(
+                        (n.cauchy * n.volume - n.stress * n.lambda).abs()
+                            <= 1e-12 * n.stress.abs().max(1.0),
+                        "σ J = P λ"
+                    );
+                    gap = gap
+                        .max((e.lambda - n.lambda).abs())
+                        .max((e.stress - n.stress).abs() / 100.0)
+                        .max((n.volume - 1.0).abs());
+                }
+            }
+            assert!(
+                gap < 0.05 * previous,
+                "{loading}, κ = {kappa} kPa: gap {gap} against {previous} at κ/100"
+            );
+            previous = gap;
+        }
+        assert!(previous < 1e-5, "{loading}: gap {previous} at κ = 1e8 kPa");
+    }
 }

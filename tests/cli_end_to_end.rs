@@ -8,6 +8,8 @@ use activemuscle::Muscle;
 use std::collections::HashMap;
 
 mod binary;
+mod scratch;
+use scratch::scratch;
 
 const SCENE: &str = r#"
 title = "end-to-end test"
@@ -35,9 +37,7 @@ fn relative(a: f64, b: f64) -> f64 {
 
 #[test]
 fn small_scene_matches_the_library_and_writes_every_output() {
-    let dir = std::env::temp_dir().join(format!("activemuscle-cli-e2e-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = scratch("cli-e2e");
     let scene = dir.join("small.toml");
     std::fs::write(&scene, SCENE).expect("write scene");
     let out_dir = dir.join("out");
@@ -179,5 +179,4 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     }
     let report = std::fs::read_to_string(out_dir.join("report.html")).expect("report");
     assert!(report.contains("data:image/png;base64,") && report.contains("end-to-end test"));
-    let _ = std::fs::remove_dir_all(&dir);
 }

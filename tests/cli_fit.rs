@@ -9,15 +9,13 @@ use activemuscle::studies::stability::{StabilityCurve, StabilityPoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod scratch;
+use scratch::{scratch, Scratch};
+
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!(
-        "activemuscle-cli-fit-{}-{name}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+fn dir(name: &str) -> Scratch {
+    scratch(&format!("cli-fit-{name}"))
 }
 
 /// Writes `data.csv` and a scene that fits the damage to it; returns the scene path.
@@ -312,5 +310,4 @@ fn the_fit_that_hung_finishes_and_reports_why_it_did_not_converge() {
         );
     }
     assert!(!text.to_lowercase().contains("solver converged"), "{text}");
-    let _ = std::fs::remove_dir_all(&d);
 }

@@ -3,20 +3,16 @@
 //! report, and exits 3; invalid input exits 1; complete success alone exits 0.
 
 mod binary;
+mod scratch;
 
 use binary::run_args;
+use scratch::{scratch, Scratch};
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-/// A fresh directory for one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "activemuscle-cli-runs-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+/// A fresh directory for one test, removed when it ends.
+fn temp_dir(name: &str) -> Scratch {
+    scratch(&format!("cli-runs-{name}"))
 }
 
 const HEAD: &str = r#"title = "one study fails"

@@ -5,16 +5,20 @@ use std::ffi::OsStr;
 use std::path::PathBuf;
 use std::process::Command;
 
+mod scratch;
+use scratch::{scratch, Scratch};
+
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");
 
 const STUDY: &str = "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n";
 
-fn scene_file(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("activemuscle-cli-scene-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
+/// Writes `text` to `NAME.toml` in a fresh scratch directory; returns the directory (removed
+/// when dropped) and the file.
+fn scene_file(name: &str, text: &str) -> (Scratch, PathBuf) {
+    let dir = scratch(&format!("cli-scene-{name}"));
     let p = dir.join(format!("{name}.toml"));
     std::fs::write(&p, text).expect("write scene");
-    p
+    (dir, p)
 }
 
 /// Runs the binary with `args`; asserts success and returns its standard output.
@@ -31,7 +35,7 @@ fn succeeds(args: &[&OsStr]) -> String {
 
 /// Runs `check` on `text`; asserts failure and that stderr names the file and every `needle`.
 fn rejected(name: &str, text: &str, needles: &[&str]) {
-    let path = scene_file(name, text);
+    let (_dir, path) = scene_file(name, text);
     let out = Command::new(BIN)
         .arg("check")
         .arg(&path)
@@ -53,7 +57,7 @@ fn rejected(name: &str, text: &str, needles: &[&str]) {
 
 #[test]
 fn a_valid_scene_is_accepted_and_printed_resolved() {
-    let path = scene_file("valid", STUDY);
+    let (_dir, path) = scene_file("valid", STUDY);
     let text = succeeds(&["check".as_ref(), path.as_ref()]);
     // Defaults are the chapter's values.
     for v in [
@@ -234,9 +238,8 @@ fn a_scene_without_studies_or_file_is_rejected() {
 
 #[test]
 fn a_failed_run_leaves_no_outputs() {
-    let path = scene_file("run_bad", "[[study]]\nkind = \"uniaxial\"\nstretch = []\n");
-    let dir =
-        std::env::temp_dir().join(format!("activemuscle-cli-scene-out-{}", std::process::id()));
+    let (tmp, path) = scene_file("run_bad", "[[study]]\nkind = \"uniaxial\"\nstretch = []\n");
+    let dir = tmp.join("out");
     let out = Command::new(BIN)
         .arg("run")
         .arg(&path)
@@ -249,22 +252,13 @@ fn a_failed_run_leaves_no_outputs() {
     assert!(!dir.join("curves.csv").exists() && !dir.join("report.html").exists());
 }
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "activemuscle-cli-scene-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
 const TRADEOFF: &str =
     "[[study]]\nkind = \"tradeoff\"\noptions = [\"activation-law\"]\nstretch = [1.0, 1.1, 1.2]\n";
 
 #[test]
 fn tradeoff_takes_a_scene_and_measures_only_its_options() {
-    let path = scene_file("tradeoff", TRADEOFF);
-    let dir = out_dir("tradeoff");
+    let (tmp, path) = scene_file("tradeoff", TRADEOFF);
+    let dir = tmp.join("out");
     succeeds(&[
         "tradeoff".as_ref(),
         path.as_ref(),
@@ -290,11 +284,11 @@ fn tradeoff_takes_a_scene_and_measures_only_its_options() {
 
 #[test]
 fn a_tradeoff_study_writes_its_table_and_figures_into_the_run_and_its_report() {
-    let path = scene_file(
+    let (tmp, path) = scene_file(
         "tradeoff_run",
         &format!("{TRADEOFF}\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n"),
     );
-    let dir = out_dir("tradeoff-run");
+    let dir = tmp.join("out");
     succeeds(&[
         "run".as_ref(),
         path.as_ref(),
@@ -333,7 +327,7 @@ fn check_prints_the_parameters_of_the_energies_that_run() {
     use activemuscle::models::EnergySpec;
     use activemuscle::scene::SceneSpec;
     use activemuscle::studies::StudySpec;
-    let path = scene_file(
+    let (_dir, path) = scene_file(
         "energies",
         "[material]\nenergy = \"ehret-bol-itskov\"\nmu = 0.2\nalpha = 15.0\nbeta = 2.0\nw0 = 0.6\n\
          [[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n\
@@ -428,11 +422,11 @@ fn a_bad_tradeoff_study_is_named_with_file_line_key_value_and_rule() {
 /// run's own verification line) with the Q1/P0 dof count; an unknown element is named.
 #[test]
 fn a_cylinder_study_chooses_its_element() {
-    let path = scene_file(
+    let (tmp, path) = scene_file(
         "q1p0",
         "[[study]]\nkind = \"cylinder\"\nbases = \"sliding\"\nelement = \"Q1/P0\"\nnr = 3\nnz = 6\nlaw = \"explicit\"\nstretch = [0.9, 1.0, 1.17]\n",
     );
-    let dir = out_dir("q1p0");
+    let dir = tmp.join("out");
     let stdout = succeeds(&[
         OsStr::new("run"),
         path.as_os_str(),

@@ -4,13 +4,14 @@
 use std::process::Command;
 
 mod binary;
+mod scratch;
+use scratch::scratch;
 
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");
 
 #[test]
 fn a_stability_study_writes_its_table_csv_and_figure() {
-    let d = std::env::temp_dir().join(format!("activemuscle-cli-stability-{}", std::process::id()));
-    std::fs::create_dir_all(&d).expect("temp dir");
+    let d = scratch("cli-stability");
     let scene = d.join("stability.toml");
     std::fs::write(
         &scene,
@@ -44,11 +45,7 @@ fn a_stability_study_writes_its_table_csv_and_figure() {
 
 #[test]
 fn stability_rules_name_the_key() {
-    let d = std::env::temp_dir().join(format!(
-        "activemuscle-cli-stability-rules-{}",
-        std::process::id()
-    ));
-    std::fs::create_dir_all(&d).expect("temp dir");
+    let d = scratch("cli-stability-rules");
     for (extra, needles) in [
         ("normals = 0\n", ["study[0].normals", "[1, 100000]"]),
         ("law = \"implicit\"\n", ["study[0].law", "laws = [...]"]),

@@ -6,7 +6,7 @@ use activemuscle::active::{
     ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::GiantesioMusesti;
-use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, SolverOptions};
+use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, SolverOptions, Stepping};
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 
@@ -136,7 +136,10 @@ fn coarsest_mesh_runs_and_unreachable_targets_stop_with_the_largest_stretch_reac
     let passive = Muscle::passive(gm);
     let mesh = Mesh::structured(1.0, 4.0, 1, 2, 1.0).unwrap();
     let options = SolverOptions {
-        max_step: 0.5,
+        stepping: Stepping {
+            max_step: 0.5,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     let mut solver = AxisymmetricSolver::new(mesh, Bases::Sliding, &passive, options).unwrap();

@@ -73,14 +73,7 @@ fn sliding_cylinder_end_nodes_move_as_the_homogeneous_state() {
         assert_eq!(lines[0], "study,point,r,z,law,coupling,d,lambda,u_r,u_z");
         assert_eq!(lines.len(), 1 + 2 * 3 * 4, "per model, stretch and point");
         assert!(lines[1].starts_with("sliding tip,base_rim,1,0,explicit,frozen,0,0.8,"));
-        let info = RunInfo {
-            command: "test".into(),
-            wall: std::time::Duration::ZERO,
-            version: "0".into(),
-            rustc: None,
-            files: vec![],
-            rows: 0,
-        };
+        let info = RunInfo::default();
         let report = html(&scene, &results, &[], &info).unwrap();
         assert!(report.contains("<h2>Named points</h2>"));
         assert!(

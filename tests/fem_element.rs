@@ -12,6 +12,8 @@ use activemuscle::fem::{
 
 mod common;
 use common::NonSymmetric;
+mod scratch;
+use scratch::scratch;
 
 fn q1p0() -> SolverOptions {
     SolverOptions {
@@ -78,21 +80,9 @@ fn q1p0_sliding_bases_reproduce_the_homogeneous_neo_hookean_curve() {
     }
 }
 
-/// One large load step 1 → 1.3 on a clamped cylinder; returns the step's record.
+/// One large load step 1 → 1.3 on a clamped cylinder of 6 × 12 Q1/P0 cells.
 fn one_step(material: &NonSymmetric) -> StepRecord {
-    let mesh = Mesh::structured(1.0, 3.0, 6, 12, 1.0).unwrap();
-    let options = SolverOptions {
-        initial_step: 0.3,
-        max_step: 0.3,
-        max_iterations: 60,
-        tolerance: 1e-11,
-        ..q1p0()
-    };
-    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
-    let res = solver.sweep(&[1.3]).unwrap().into_result().unwrap();
-    let steps = &res[0].steps;
-    assert_eq!(steps.len(), 1, "the step must not be cut");
-    steps[0].clone()
+    common::one_step(material, Element::Q1P0, 6, 12)
 }
 
 #[test]
@@ -102,17 +92,7 @@ fn q1p0_newton_with_the_exact_nonsymmetric_tangent_converges_quadratically() {
         c: 1.5,
         approximate: false,
     });
-    let r: Vec<f64> = std::iter::once(step.initial_residual)
-        .chain(step.iterations.iter().map(|i| i.residual))
-        .collect();
-    println!("Q1/P0, exact tangent, scaled residuals: {:?}", sci(&r));
-    let orders = common::observed_orders(&r);
-    println!("observed orders: {orders:.3?}");
-    let last = *orders
-        .last()
-        .expect("at least three iterates above the floor");
-    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
-    assert!(step.iterations.iter().all(|i| i.step_length == 1.0));
+    common::assert_quadratic(&step, "Q1/P0, exact tangent");
 }
 
 /// A deterministic pseudo-random number in [−1, 1].
@@ -245,7 +225,8 @@ fn q1p0_clamped_reaction_converges_to_the_fine_taylor_hood_solution() {
 fn q1p0_vtu_output_has_bilinear_cells_with_the_homogeneous_values() {
     let (mu, lambda) = (4.0, 1.3);
     let material = NeoHookean::new(mu).unwrap();
-    let directory = std::env::temp_dir().join(format!("fem_q1p0_vtu_{}", std::process::id()));
+    let tmp = scratch("fem-q1p0-vtu");
+    let directory = tmp.join("vtk");
     let options = SolverOptions {
         vtk: Some(VtkOutput {
             directory: directory.clone(),
@@ -261,14 +242,7 @@ fn q1p0_vtu_output_has_bilinear_cells_with_the_homogeneous_values() {
     let block = |name: &str| common::vtu_data_array(&text, name);
     assert!(block("types").iter().all(|&t| t == 9.0), "VTK_QUAD cells");
     assert_eq!(block("offsets").last(), Some(&24.0));
-    let exact = mu * (lambda - lambda.powi(-2));
-    assert!(block("P_zz")
-        .iter()
-        .all(|v| (v - exact).abs() < 1e-9 * exact));
-    assert!(block("p")
-        .iter()
-        .all(|v| (v - mu / lambda).abs() < 1e-9 * mu));
-    std::fs::remove_dir_all(&directory).unwrap();
+    common::assert_uniaxial_neo_hookean_cells(&text, mu, lambda);
 }
 
 #[test]
@@ -315,8 +289,4 @@ fn elements_are_named_and_parsed_both_ways() {
     }
     assert!("Q2P1".parse::<Element>().is_err());
     assert_eq!(SolverOptions::default().element, Element::Q2Q1);
-}
-
-fn sci(v: &[f64]) -> Vec<String> {
-    v.iter().map(|x| format!("{x:.3e}")).collect()
 }

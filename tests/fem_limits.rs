@@ -6,7 +6,7 @@ use activemuscle::active::{ActiveCurve, Coupling, ExplicitLaw, FrozenTangent, La
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{
     AxisymmetricSolver, Bases, Cancel, Element, FemError, LinearSolver, MemoryEstimate, Mesh,
-    NeoHookean, Progress, SolverOptions, StepFailure, StretchResult,
+    NeoHookean, Progress, SolverOptions, StepFailure, Stepping, StretchResult,
 };
 use activemuscle::Muscle;
 
@@ -102,7 +102,10 @@ fn the_fill_model_bounds_the_factor_from_above_within_a_factor_two() {
 fn load_steps_are_capped_and_an_unreachable_target_is_refused_up_front() {
     let material = NeoHookean::new(5.0).unwrap();
     let options = SolverOptions {
-        max_steps: 3,
+        stepping: Stepping {
+            max_steps: 3,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     let mesh = Mesh::structured(1.0, 4.0, 2, 8, 1.0).unwrap();
@@ -246,7 +249,10 @@ fn unreasonable_cylinders_end_with_typed_errors_and_no_nan() {
     // A tolerance below round-off is refused before anything runs.
     let mesh = Mesh::structured(1.0, 4.0, 6, 24, 1.0).unwrap();
     let options = SolverOptions {
-        tolerance: 1e-300,
+        stepping: Stepping {
+            tolerance: 1e-300,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     assert!(matches!(

@@ -4,9 +4,7 @@
 
 use activemuscle::fem::assembly::Assembler;
 use activemuscle::fem::dofs::DofMap;
-use activemuscle::fem::{
-    AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions, StepRecord,
-};
+use activemuscle::fem::{AxisymmetricSolver, Bases, Element, Mesh, NeoHookean, SolverOptions};
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
 use activemuscle::uniaxial::{nearly_incompressible, reference_stress, Direction};
 use activemuscle::volumetric::{Volumetric, VolumetricForm};
@@ -96,12 +94,6 @@ fn penalised_tangent_passes_the_taylor_test() {
     }
 }
 
-fn residuals(step: &StepRecord) -> Vec<f64> {
-    std::iter::once(step.initial_residual)
-        .chain(step.iterations.iter().map(|i| i.residual))
-        .collect()
-}
-
 /// One large load step 1 → 1.15 of a clamped cylinder of the chapter's active muscle (explicit
 /// law, frozen: non-symmetric exact tangent) with a stiff volumetric energy (U″(1) = 10⁴ kPa):
 /// Newton converges quadratically with the assembled tangent, both elements, every form.
@@ -121,10 +113,7 @@ fn newton_converges_quadratically_with_the_penalty() {
     for element in Element::ALL {
         for form in chapter_forms {
             let options = SolverOptions {
-                initial_step: 0.15,
-                max_step: 0.15,
-                max_iterations: 60,
-                tolerance: 1e-11,
+                stepping: common::large_steps(0.15),
                 element,
                 volumetric: Some(Volumetric::new(form, 0.0).unwrap()),
                 ..SolverOptions::default()
@@ -136,7 +125,7 @@ fn newton_converges_quadratically_with_the_penalty() {
             assert!(sweep.failures.is_empty(), "{:?}", sweep.failures);
             let steps = &sweep.results[0].steps;
             assert_eq!(steps.len(), 1, "the step must not be cut");
-            let r = residuals(&steps[0]);
+            let r = common::residuals(&steps[0]);
             let orders = common::observed_orders(&r);
             println!(
                 "{element} {}: residuals {r:?}, orders {orders:?}",

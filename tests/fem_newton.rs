@@ -3,8 +3,8 @@
 
 use activemuscle::fem::material::axial_stretch;
 use activemuscle::fem::{
-    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, FemError, Mesh, NeoHookean,
-    SolverOptions, StepFailure, StepRecord,
+    AxiF, AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh, NeoHookean,
+    SolverOptions, StepFailure, StepRecord, Stepping,
 };
 use nalgebra::{SMatrix, SVector};
 
@@ -13,33 +13,11 @@ const MU: f64 = 10.0;
 const C: f64 = 0.15 * MU;
 
 mod common;
-use common::NonSymmetric;
+use common::{residuals, sci, NonSymmetric};
 
-/// One large load step 1 → 1.3 on a clamped cylinder; returns the step's record.
+/// One large load step 1 → 1.3 on a clamped cylinder of 4 × 8 Q2/Q1 cells.
 fn one_step(material: &NonSymmetric) -> StepRecord {
-    let mesh = Mesh::structured(1.0, 3.0, 4, 8, 1.0).unwrap();
-    let options = SolverOptions {
-        initial_step: 0.3,
-        max_step: 0.3,
-        max_iterations: 60,
-        tolerance: 1e-11,
-        ..SolverOptions::default()
-    };
-    let mut solver = AxisymmetricSolver::new(mesh, Bases::Clamped, material, options).unwrap();
-    let sweep = solver.sweep(&[1.3]).unwrap();
-    if let Some(e) = sweep.failures.first() {
-        panic!("{e}");
-    }
-    let res = sweep.results;
-    let steps = &res[0].steps;
-    assert_eq!(steps.len(), 1, "the step must not be cut");
-    steps[0].clone()
-}
-
-fn residuals(step: &StepRecord) -> Vec<f64> {
-    std::iter::once(step.initial_residual)
-        .chain(step.iterations.iter().map(|i| i.residual))
-        .collect()
+    common::one_step(material, Element::Q2Q1, 4, 8)
 }
 
 #[test]
@@ -49,15 +27,7 @@ fn exact_nonsymmetric_tangent_converges_quadratically() {
         c: C,
         approximate: false,
     });
-    let r = residuals(&exact);
-    println!("exact tangent, scaled residuals: {:?}", sci(&r));
-    let orders = common::observed_orders(&r);
-    println!("observed orders: {orders:.3?}");
-    let last = *orders
-        .last()
-        .expect("at least three iterates above the floor");
-    assert!(last >= 1.8, "observed order {last} < 1.8 (residuals {r:?})");
-    assert!(exact.iterations.iter().all(|i| i.step_length == 1.0));
+    common::assert_quadratic(&exact, "exact tangent");
 }
 
 #[test]
@@ -169,7 +139,7 @@ fn unreachable_target_is_a_typed_error_naming_the_largest_stretch_reached() {
                 "reached {reached}"
             );
             assert!(*attempted > 1.237);
-            assert!(*step < 2.0 * SolverOptions::default().min_step);
+            assert!(*step < 2.0 * SolverOptions::default().stepping.min_step);
             assert!(matches!(
                 cause,
                 StepFailure::Material(activemuscle::Error::NonFinite { .. })
@@ -220,7 +190,10 @@ fn invalid_inputs_are_typed_errors() {
         );
     }
     let bad_options = SolverOptions {
-        min_step: 0.0,
+        stepping: Stepping {
+            min_step: 0.0,
+            ..Stepping::default()
+        },
         ..SolverOptions::default()
     };
     let mesh = Mesh::structured(1.0, 1.0, 1, 2, 1.0).unwrap();
@@ -228,8 +201,4 @@ fn invalid_inputs_are_typed_errors() {
         AxisymmetricSolver::new(mesh, Bases::Clamped, &material, bad_options),
         Err(FemError::InvalidInput { .. })
     ));
-}
-
-fn sci(v: &[f64]) -> Vec<String> {
-    v.iter().map(|x| format!("{x:.3e}")).collect()
 }

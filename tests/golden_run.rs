@@ -50,6 +50,8 @@ fn column_scale(rows: &[Vec<String>], column: usize) -> f64 {
 }
 
 mod binary;
+mod scratch;
+use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv, issue 15 the Cauchy stress `cauchy`).
@@ -119,11 +121,10 @@ fn same(file: &str, out: &Path) {
 
 #[test]
 fn the_default_run_writes_the_golden_numbers() {
-    let out = std::env::temp_dir().join(format!("activemuscle-golden-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&out);
+    let dir = scratch("golden");
+    let out = dir.join("out");
     binary::run_quiet(None, &out);
     for file in ["curves.csv", "fits.csv", "stability.csv"] {
         same(file, &out);
     }
-    let _ = std::fs::remove_dir_all(&out);
 }

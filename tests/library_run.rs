@@ -11,6 +11,8 @@ use activemuscle::studies::{StudyKind, StudyResult};
 use activemuscle::uniaxial::{along_fibres, Direction};
 
 mod binary;
+mod scratch;
+use scratch::scratch;
 
 const SCENE: &str = r#"
 title = "library run"
@@ -98,9 +100,7 @@ fn a_scene_from_a_string_runs_without_a_terminal_into_typed_results() {
 
 #[test]
 fn the_csv_the_binary_writes_is_the_projection_of_the_typed_results() {
-    let dir = std::env::temp_dir().join(format!("activemuscle-library-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
+    let dir = scratch("library");
     let path = dir.join("library.toml");
     std::fs::write(&path, SCENE).expect("scene");
     binary::run_quiet(Some(&path), &dir.join("out"));
@@ -108,5 +108,4 @@ fn the_csv_the_binary_writes_is_the_projection_of_the_typed_results() {
     let scene = Scene::load(&path).expect("valid scene");
     let results = scene.run(&RunOptions::default());
     assert_eq!(to_csv(&rows(&results)).expect("csv"), written);
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -14,7 +14,6 @@ use activemuscle::scene::{Results, RunOptions, Scene};
 use activemuscle::uniaxial::along_fibres;
 use std::collections::BTreeSet;
 use std::path::Path;
-use std::time::Duration;
 
 /// A small scene shaped like the chapter's: two energies, both directions, every law ×
 /// coupling at two damages, constant γ, a clamped cylinder.
@@ -99,14 +98,7 @@ fn check_coverage(scene: &Scene) -> (Results, Vec<Figure>) {
 
 /// The report of a run, without figures.
 fn report(scene: &Scene, results: &Results) -> String {
-    let info = RunInfo {
-        command: "test".into(),
-        wall: Duration::ZERO,
-        version: "0".into(),
-        rustc: None,
-        files: vec![],
-        rows: 0,
-    };
+    let info = RunInfo::default();
     html(scene, results, &[], &info).expect("report")
 }
 

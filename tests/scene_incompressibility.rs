@@ -158,14 +158,7 @@ coupling = "frozen"
             );
         }
     }
-    let info = RunInfo {
-        command: "test".into(),
-        wall: std::time::Duration::ZERO,
-        version: "0".into(),
-        rustc: None,
-        files: vec![],
-        rows: 0,
-    };
+    let info = RunInfo::default();
     let report = html(&scene, &results, &[], &info).unwrap();
     assert!(
         report.contains("incompressibility: quadratic"),

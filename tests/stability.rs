@@ -9,6 +9,9 @@ use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
+mod scratch;
+use scratch::scratch;
+
 #[test]
 fn neo_hookean_acoustic_tensor_is_mu_in_every_direction() {
     let muscle = Muscle::passive(NeoHookean::new(3.0).unwrap());
@@ -129,8 +132,7 @@ fn diagnosis_finds_the_energy_law_jump_and_passive_stability() {
 fn the_vtk_writer_refuses_non_finite_values() {
     use activemuscle::fem::{vtk::write_vtu, Mesh};
     let mesh = Mesh::structured(1.0, 2.0, 1, 1, 1.0).unwrap();
-    let dir = std::env::temp_dir().join(format!("activemuscle-vtk-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("vtk-non-finite");
     let path = dir.join("bad.vtu");
     let n = mesh.nodes.len();
     let mut u = vec![[0.0, 0.0]; n];
@@ -150,5 +152,4 @@ fn the_vtk_writer_refuses_non_finite_values() {
     )
     .unwrap_err();
     assert!(err.to_string().contains("gamma"), "{err}");
-    std::fs::remove_dir_all(&dir).ok();
 }

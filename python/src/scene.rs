@@ -442,7 +442,7 @@ fn stability(t: &Columns, curves: &[StabilityCurve]) -> PyResult<()> {
 }
 
 /// One row per model and time step, as `history.csv`: law, coupling, d, t, a_s, a, λ, γ, P,
-/// P_pas, P_act.
+/// σ₁₁, J, P_pas, P_act.
 fn history(t: &Columns, r: &HistoryResult) -> PyResult<()> {
     let rows: Vec<_> = r
         .histories
@@ -464,6 +464,8 @@ fn history(t: &Columns, r: &HistoryResult) -> PyResult<()> {
     .numbers("lambda", rows.iter().map(|(_, p)| p.lambda).collect())?
     .numbers("gamma", rows.iter().map(|(_, p)| p.gamma).collect())?
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
+    .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
+    .numbers("J", rows.iter().map(|(_, p)| p.volume).collect())?
     .numbers("P_pas", rows.iter().map(|(_, p)| p.passive).collect())?
     .numbers("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?;
     Ok(())

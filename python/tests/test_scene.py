@@ -254,3 +254,28 @@ base_rim = [1.0, 0.0]
     assert sorted(set(p["point"])) == ["base_rim", "tip_axis", "tip_rim"] and len(p["lambda"]) == 3 * 2
     np.testing.assert_allclose(p["u_z"], (p["lambda"] - 1) * p["z"], atol=1e-9)
     np.testing.assert_allclose(p["u_r"], (p["lambda"] ** -0.5 - 1) * p["r"], atol=1e-9)
+
+
+def test_a_compressible_block_in_time_reports_its_volume_and_cauchy_stress():
+    # Nearly incompressible (quadratic U, κ = 1e4 kPa): σ11 = P11 λ / J with J = λ λ2 λ3 ≠ 1,
+    # and J → 1 as κ → ∞ (O(1/κ): a hundredfold κ brings J a hundredfold closer to 1).
+    def history(kappa):
+        scene = f"""
+[incompressibility]
+kind = "quadratic"
+kappa = {kappa}
+
+[[study]]
+kind = "activation-in-time"
+name = "h"
+time = {{ from = 0.0, to = 0.2, step = 0.05 }}
+schedule = [[0.0, 1.0]]
+stretch = 1.1
+"""
+        return am.run_scene(scene)["h"].table
+
+    t = history(1e4)
+    np.testing.assert_allclose(t["cauchy"] * t["J"], t["P"] * t["lambda"], rtol=1e-12)
+    departure = np.abs(t["J"] - 1).max()
+    assert 1e-5 < departure < 1e-2
+    assert np.abs(history(1e6)["J"] - 1).max() < 0.02 * departure

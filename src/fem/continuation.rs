@@ -145,6 +145,24 @@ pub struct Stepping {
     pub max_steps: usize,
 }
 
+impl Default for Stepping {
+    /// The FE solver's defaults: tolerance 1e-10, 25 Newton iterations per step, first step
+    /// 0.05, steps between 1e-4 and 0.1, doubled after two steps of at most 5 iterations, 8
+    /// line-search halvings, 10 000 load steps per direction.
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-10,
+            max_iterations: 25,
+            initial_step: 0.05,
+            max_step: 0.1,
+            min_step: 1e-4,
+            easy_iterations: 5,
+            max_backtracks: 8,
+            max_steps: 10_000,
+        }
+    }
+}
+
 /// What the driver reports to its caller while it runs.
 pub trait Observer<S: ?Sized> {
     /// A target load was reached; `x` is the converged state, and the system still holds its
@@ -589,13 +607,9 @@ mod tests {
     fn stepping() -> Stepping {
         Stepping {
             tolerance: 1e-13,
-            max_iterations: 25,
-            initial_step: 0.05,
             max_step: 0.5,
-            min_step: 1e-4,
-            easy_iterations: 5,
-            max_backtracks: 8,
             max_steps: 1000,
+            ..Stepping::default()
         }
     }
 

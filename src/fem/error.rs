@@ -78,10 +78,10 @@ pub enum FemError {
         /// Why that last trial was rejected.
         cause: StepFailure,
     },
-    /// A direction of the sweep used up its load steps ([`super::SolverOptions::max_steps`]).
+    /// A direction of the sweep used up its load steps ([`super::Stepping::max_steps`]).
     #[error(
         "target stretch {target} not reached: largest converged stretch {reached} after \
-         {steps} load steps (the limit, SolverOptions::max_steps)"
+         {steps} load steps (the limit, SolverOptions::stepping.max_steps)"
     )]
     StepLimit {
         /// The requested stretch.

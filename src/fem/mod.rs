@@ -47,5 +47,5 @@ pub use memory::MemoryEstimate;
 pub use mesh::{Boundary, Mesh};
 pub use solver::{
     AxisymmetricSolver, IterationRecord, LinearSolver, Progress, SolverOptions, State, StepRecord,
-    StretchResult, Sweep, Timings, VtkOutput,
+    Stepping, StretchResult, Sweep, Timings, VtkOutput,
 };

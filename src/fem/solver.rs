@@ -8,8 +8,8 @@
 
 use super::assembly::Assembler;
 pub use super::assembly::QuadraturePoint;
-pub use super::continuation::{Cancel, IterationRecord, State, StepRecord};
-use super::continuation::{Continuation, Observer, Stepping};
+pub use super::continuation::{Cancel, IterationRecord, State, StepRecord, Stepping};
+use super::continuation::{Continuation, Observer};
 use super::dofs::{Bases, DofMap};
 use super::element::{jacobian, Element};
 use super::error::{FemError, FemResult};
@@ -44,33 +44,20 @@ pub enum LinearSolver {
     Lu,
 }
 
-/// The smallest admissible [`SolverOptions::tolerance`], 4 ε: the scaled residual and
+/// The smallest admissible [`Stepping::tolerance`], 4 ε: the scaled residual and
 /// increment of a solution in f64 are at least of the order of one rounding.
 pub const MIN_TOLERANCE: f64 = 4.0 * f64::EPSILON;
 
 /// Tolerances, load-stepping controls and limits.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SolverOptions {
-    /// Relative tolerance on the scaled residual and increment (see [`super::problem`]); at
-    /// least [`MIN_TOLERANCE`].
-    pub tolerance: f64,
+    /// The driver's tolerance, load steps and Newton controls. Its tolerance applies to the
+    /// scaled residual and increment of [`super::problem`] and is at least [`MIN_TOLERANCE`]; a
+    /// sweep whose farthest target needs more than [`Stepping::max_steps`] steps of
+    /// [`Stepping::max_step`] is refused before it starts.
+    pub stepping: Stepping,
     /// Stress floor added to σ in the force scale \[kPa\] (guards the stress-free state).
     pub stress_floor: f64,
-    /// Newton iterations per load step before the step is cut.
-    pub max_iterations: usize,
-    /// First load step |Δλ|.
-    pub initial_step: f64,
-    /// Largest load step |Δλ|.
-    pub max_step: f64,
-    /// Smallest load step |Δλ| before giving up.
-    pub min_step: f64,
-    /// A step that converged in at most this many iterations counts as easy; two easy steps in a row double the step.
-    pub easy_iterations: usize,
-    /// Backtracking halvings in the line search (0: full Newton steps only).
-    pub max_backtracks: usize,
-    /// Load steps (accepted and rejected) allowed per direction of a sweep; a sweep whose
-    /// farthest target needs more steps of [`Self::max_step`] is refused before it starts.
-    pub max_steps: usize,
     /// Linear solver of the Newton system.
     pub linear_solver: LinearSolver,
     /// The element (the solver turns the mesh's cells into this element's: [`Mesh::with_element`]).
@@ -91,15 +78,8 @@ pub struct SolverOptions {
 impl Default for SolverOptions {
     fn default() -> Self {
         Self {
-            tolerance: 1e-10,
+            stepping: Stepping::default(),
             stress_floor: 1e-6,
-            max_iterations: 25,
-            initial_step: 0.05,
-            max_step: 0.1,
-            min_step: 1e-4,
-            easy_iterations: 5,
-            max_backtracks: 8,
-            max_steps: 10_000,
             linear_solver: LinearSolver::SymmetricPartGmres,
             element: Element::Q2Q1,
             vtk: None,
@@ -111,35 +91,22 @@ impl Default for SolverOptions {
 }
 
 impl SolverOptions {
-    /// The driver's part.
-    fn stepping(&self) -> Stepping {
-        Stepping {
-            tolerance: self.tolerance,
-            max_iterations: self.max_iterations,
-            initial_step: self.initial_step,
-            max_step: self.max_step,
-            min_step: self.min_step,
-            easy_iterations: self.easy_iterations,
-            max_backtracks: self.max_backtracks,
-            max_steps: self.max_steps,
-        }
-    }
-
     /// Every option in its admissible range.
     fn validate(&self) -> FemResult<()> {
-        check_positive("tolerance", self.tolerance)?;
-        if self.tolerance < MIN_TOLERANCE {
+        let stepping = &self.stepping;
+        check_positive("tolerance", stepping.tolerance)?;
+        if stepping.tolerance < MIN_TOLERANCE {
             return Err(FemError::InvalidInput {
                 name: "tolerance",
-                value: self.tolerance.to_string(),
+                value: stepping.tolerance.to_string(),
                 rule:
                     "must be ≥ 4 ε ≈ 8.9e-16: a scaled residual of f64 numbers does not go below \
                        its round-off",
             });
         }
-        check_positive("initial_step", self.initial_step)?;
-        check_positive("max_step", self.max_step)?;
-        check_positive("min_step", self.min_step)?;
+        check_positive("initial_step", stepping.initial_step)?;
+        check_positive("max_step", stepping.max_step)?;
+        check_positive("min_step", stepping.min_step)?;
         if !(self.stress_floor.is_finite() && self.stress_floor >= 0.0) {
             return Err(FemError::InvalidInput {
                 name: "stress_floor",
@@ -148,8 +115,8 @@ impl SolverOptions {
             });
         }
         for (name, value) in [
-            ("max_iterations", self.max_iterations),
-            ("max_steps", self.max_steps),
+            ("max_iterations", stepping.max_iterations),
+            ("max_steps", stepping.max_steps),
         ] {
             if value == 0 {
                 return Err(FemError::InvalidInput {
@@ -284,7 +251,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         estimate.check(limit)?;
         let linear = TangentSolver::new(asm.pattern.n, ldlt);
         let centre = nearest_to_centre(&asm.quadrature_points(&vec![0.0; dofs.n_total]), &mesh);
-        let driver = Continuation::new(dofs.n_total, options.stepping(), options.cancel.clone());
+        let driver = Continuation::new(dofs.n_total, options.stepping, options.cancel.clone());
         let problem = MixedProblem::new(mesh, dofs, asm, linear, material, options.stress_floor);
         Ok(Self {
             problem,
@@ -396,7 +363,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
     }
 
     /// Targets: at least one, each finite and > 0, the farthest reachable within
-    /// [`SolverOptions::max_steps`] steps of [`SolverOptions::max_step`].
+    /// [`Stepping::max_steps`] steps of [`Stepping::max_step`].
     fn check_targets(&self, targets: &[f64]) -> FemResult<()> {
         if targets.is_empty() {
             return Err(FemError::InvalidInput {
@@ -407,7 +374,8 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         }
         for &t in targets {
             check_positive("target stretch", t)?;
-            if (t - 1.0).abs() / self.options.max_step > self.options.max_steps as f64 {
+            let stepping = &self.options.stepping;
+            if (t - 1.0).abs() / stepping.max_step > stepping.max_steps as f64 {
                 return Err(FemError::InvalidInput {
                     name: "target stretch",
                     value: t.to_string(),

@@ -405,7 +405,7 @@ pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, A
 }
 
 /// The header of `history.csv`: one row per activation-in-time study, model and time step.
-pub const HISTORY_COLUMNS: [&str; 14] = [
+pub const HISTORY_COLUMNS: [&str; 16] = [
     "study",
     "loading",
     "energy",
@@ -418,12 +418,15 @@ pub const HISTORY_COLUMNS: [&str; 14] = [
     "lambda",
     "gamma",
     "P",
+    "cauchy",
+    "J",
     "P_pas",
     "P_act",
 ];
 
 /// `history.csv` of the activation-in-time studies (name, result): t [s], the schedule a_s and
-/// the activation level a [-], λ, γ [-], P, P_pas and the target (1 − d)·a·P_act(λ) \[kPa\].
+/// the activation level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-],
+/// P_pas and the target (1 − d)·a·P_act(λ) \[kPa\].
 pub fn history_csv(studies: &[(&str, &HistoryResult)]) -> Result<Vec<u8>, AppError> {
     let mut w = csv::Writer::from_writer(Vec::new());
     let fail = csv_error("history.csv");
@@ -451,6 +454,8 @@ pub fn history_csv(studies: &[(&str, &HistoryResult)]) -> Result<Vec<u8>, AppErr
                     text(p.lambda, "lambda", origin)?,
                     text(p.gamma, "gamma", origin)?,
                     text(p.stress, "P", origin)?,
+                    text(p.cauchy, "cauchy", origin)?,
+                    text(p.volume, "J", origin)?,
                     text(p.passive, "P_pas", origin)?,
                     text(p.active_target, "P_act", origin)?,
                 ])

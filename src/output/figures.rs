@@ -1034,11 +1034,30 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
         p.y_range = Some((low - pad, 1.0 + pad));
     }
     let m = first.model;
+    let block = match &r.volumetric {
+        None => "A homogeneous incompressible block".to_string(),
+        Some(v) => format!(
+            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
+            v.formula()
+        ),
+    };
+    let mut panels = vec![
+        over("Activation level".into(), "activation level a [-]", level),
+        response,
+        over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
+    ];
+    if r.volumetric.is_some() {
+        panels.push(over(
+            "Volume ratio".into(),
+            "volume ratio J = λ λ₂ λ₃ [-]",
+            per_damage(|p| p.volume),
+        ));
+    }
     figure(
         &prefixed("history", study),
         format!("Activation in time (study \"{study}\")"),
         format!(
-            "A homogeneous incompressible block along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+            "{block} along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
             m.law.name(),
             m.coupling.name(),
             if free {
@@ -1047,11 +1066,7 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
                 "Prescribed stretch λ(t): the stress history."
             }
         ),
-        vec![
-            over("Activation level".into(), "activation level a [-]", level),
-            response,
-            over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
-        ],
+        panels,
     )
 }
 

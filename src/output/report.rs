@@ -14,8 +14,9 @@ use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
 
-/// Facts about the run shown in the report.
-#[derive(Debug, Clone)]
+/// Facts about the run shown in the report. `RunInfo::default()`: nothing known (empty command
+/// and version, zero wall time, no files), e.g. for a report built by a test.
+#[derive(Debug, Clone, Default)]
 pub struct RunInfo {
     /// Command line.
     pub command: String,
@@ -195,22 +196,16 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
     if let Some(v) = &scene.models.volumetric {
-        let form = match v.form() {
-            crate::volumetric::VolumetricForm::Quadratic { kappa } => {
-                format!("(κ/2)(J − 1)², κ = {kappa} kPa")
-            }
-            crate::volumetric::VolumetricForm::Logarithmic { kappa } => {
-                format!("(κ/4)(J² − 1 − 2 ln J), κ = {kappa} kPa")
-            }
-            crate::volumetric::VolumetricForm::Giantesio4C { kappa, mu } => {
-                format!("μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio), κ = {kappa}, μ = {mu} kPa")
-            }
-        };
+        let form = v.form().formula();
         rows.push((
             format!("incompressibility: {}", v.form().name()),
             format!(
-                "nearly incompressible: Ŵ + U(J), U = {form} + {} (J − 1) (stress-free reference), bulk modulus U″(1) = {} kPa; uniaxial and cylinder studies (fit and stability: exact)",
-                v.shift(),
+                "nearly incompressible: Ŵ + U(J), U = {form}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
+                match v.shift() {
+                    0.0 => String::new(),
+                    c if c > 0.0 => format!(" + {c} kPa (J − 1) (stress-free reference)"),
+                    c => format!(" − {} kPa (J − 1) (stress-free reference)", -c),
+                },
                 v.bulk_modulus()
             ),
             "not in the chapter (eq. (2) is exact: det C = 1)".to_string(),

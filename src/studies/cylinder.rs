@@ -10,7 +10,7 @@ use crate::energy::Energy;
 use crate::fem::solver::MIN_TOLERANCE;
 use crate::fem::{
     AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh,
-    Progress as FemProgress, Region, Regions, SolverOptions, VtkOutput,
+    Progress as FemProgress, Region, Regions, SolverOptions, Stepping, VtkOutput,
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
@@ -554,9 +554,22 @@ impl CylinderStudy {
         )];
         if !self.regions.is_empty() {
             details.push(format!(
-                "{} region(s) with their own damage/activation: P_0D is the uniform model's, for reference only",
+                "{} region(s) with their own damage/activation (a later one wins where they overlap): P_0D is the uniform model's, for reference only",
                 self.regions.len()
             ));
+            for (i, g) in self.regions.iter().enumerate() {
+                details.push(format!(
+                    "region {}: r/R ∈ [{}, {}], z/L ∈ [{}, {}], d = {}, a = {}",
+                    i + 1,
+                    g.r[0],
+                    g.r[1],
+                    g.z[0],
+                    g.z[1],
+                    g.damage
+                        .map_or("the sweep's".to_string(), |d| d.to_string()),
+                    g.activation
+                ));
+            }
         }
         for (s, m) in sweeps.into_iter().zip(&choices) {
             // A sweep that cannot start (model, mesh, memory) costs only its own model.
@@ -641,7 +654,10 @@ impl CylinderStudy {
             _ => None,
         };
         let options = SolverOptions {
-            tolerance: self.tolerance,
+            stepping: Stepping {
+                tolerance: self.tolerance,
+                ..Stepping::default()
+            },
             element: self.element,
             vtk,
             cancel: ctx.stop.map(|s| s.flag().clone()),

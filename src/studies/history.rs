@@ -4,9 +4,10 @@
 //! solved, either under a prescribed stretch λ(t) (the stress history) or under free contraction
 //! (zero axial load: the stretch history). One history per damage value, in parallel.
 //!
-//! Incompressible (the chapter's exact model, [`crate::uniaxial`]). The compressible block needs
-//! the lateral stretch solved at each step: that is the one call [`state`] makes, to be switched
-//! on the scene's incompressibility option once a nearly incompressible uniaxial point exists.
+//! Exactly incompressible (the chapter's model, [`crate::uniaxial`]) or, with the scene's
+//! `[incompressibility]`, nearly incompressible: then the two lateral stretches are solved from
+//! zero lateral traction at every step ([`crate::uniaxial::nearly_incompressible`]) and the volume
+//! ratio J = λ λ₂ λ₃ is reported.
 
 use super::spec::{damages, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
@@ -14,7 +15,11 @@ use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
-use crate::uniaxial::{along_fibres, free_contraction, UniaxialPoint};
+use crate::uniaxial::{
+    along_fibres, free_contraction, nearly_incompressible, nearly_incompressible_free_contraction,
+    Direction, UniaxialPoint,
+};
+use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::Muscle;
 use rayon::prelude::*;
 use serde::de::{self, SeqAccess, Visitor};
@@ -323,6 +328,10 @@ pub struct HistoryPoint {
     pub gamma: f64,
     /// Nominal stress along the fibres \[kPa\] (0 to rounding under free contraction).
     pub stress: f64,
+    /// Cauchy stress along the fibres σ₁₁ = P₁₁ λ / J \[kPa\].
+    pub cauchy: f64,
+    /// Volume ratio J = λ λ₂ λ₃ [-] (1 when exactly incompressible).
+    pub volume: f64,
     /// Passive stress P_pas(λ) \[kPa\].
     pub passive: f64,
     /// Target active stress (1 − d)·a·P_act(λ) \[kPa\].
@@ -345,16 +354,28 @@ pub struct HistoryResult {
     pub loading: &'static str,
     /// The energy's name.
     pub energy: String,
+    /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
+    pub volumetric: Option<VolumetricForm>,
     /// One history per damage value.
     pub histories: Vec<History>,
 }
 
-/// The homogeneous state of `muscle` under `loading` at time `t`: the incompressible uniaxial
-/// point along the fibres (the hook for a compressible block: its lateral equilibrium goes here).
-pub fn state(muscle: &Muscle<Energy>, loading: &Loading, t: f64) -> crate::Result<UniaxialPoint> {
-    match loading {
-        Loading::Prescribed(s) => along_fibres(muscle, s.value(t)),
-        Loading::Free => free_contraction(muscle),
+/// The homogeneous state of `muscle` under `loading` at time `t`: the uniaxial point along the
+/// fibres, exactly incompressible (`volumetric` = `None`) or nearly incompressible with the
+/// lateral stretches in equilibrium; under free contraction the stretch with zero axial load.
+pub fn state(
+    muscle: &Muscle<Energy>,
+    volumetric: Option<&Volumetric>,
+    loading: &Loading,
+    t: f64,
+) -> crate::Result<UniaxialPoint> {
+    match (loading, volumetric) {
+        (Loading::Prescribed(s), None) => along_fibres(muscle, s.value(t)),
+        (Loading::Prescribed(s), Some(v)) => {
+            nearly_incompressible(muscle, v, Direction::Along, s.value(t))
+        }
+        (Loading::Free, None) => free_contraction(muscle),
+        (Loading::Free, Some(v)) => nearly_incompressible_free_contraction(muscle, v),
     }
 }
 
@@ -417,6 +438,7 @@ impl HistoryStudy {
             result: StudyResult::ActivationInTime(HistoryResult {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
+                volumetric: models.volumetric.as_ref().map(Volumetric::form),
                 histories,
             }),
         })
@@ -449,8 +471,10 @@ impl HistoryStudy {
             }
             let level = self.activation.level(t);
             let step = muscle.set_activation(level).and_then(|()| {
-                let p = state(&muscle, &self.loading, t)?;
-                let passive = along_fibres(&passive, p.lambda)?.stress;
+                let p = state(&muscle, models.volumetric.as_ref(), &self.loading, t)?;
+                let passive = models
+                    .uniaxial(&passive, Direction::Along, p.lambda)?
+                    .stress;
                 Ok((p, passive))
             });
             let (p, passive_stress) = match step {
@@ -472,6 +496,8 @@ impl HistoryStudy {
                 lambda: p.lambda,
                 gamma: p.gamma,
                 stress: p.stress,
+                cauchy: p.cauchy,
+                volume: p.lambda * p.lateral[0] * p.lateral[1],
                 passive: passive_stress,
                 active_target: (1.0 - m.damage) * level * models.curve.value(p.lambda),
             };
