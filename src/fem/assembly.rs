@@ -10,7 +10,7 @@
 use super::condensation::Condensation;
 use super::dofs::DofMap;
 use super::element::{
-    deformation, zeroed, Element, Q1P0Reference, Q2Q1Reference, ReferenceElement,
+    zeroed, Element, PointGeometry, Q1P0Reference, Q2Q1Reference, ReferenceElement,
 };
 use super::error::{FemError, FemResult};
 use super::material::{AxiF, AxisymmetricMaterial};
@@ -38,11 +38,12 @@ pub struct QuadraturePoint {
     pub pressure: f64,
 }
 
-/// The cells of one element type: reference element, nodal coordinates and global dofs.
+/// The cells of one element type: reference element, the mapped geometry of every cell's
+/// quadrature points (computed once: the reference mesh does not move) and global dofs.
 #[derive(Debug, Clone)]
 struct Cells<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize> {
     re: ReferenceElement<NN, NU, NP, ND, NQ>,
-    coords: Vec<[[f64; 2]; NN]>,
+    geometry: Vec<[PointGeometry<NN>; NQ]>,
     dofs: Vec<[u32; ND]>,
 }
 
@@ -70,14 +71,14 @@ struct Buffers<'a> {
 impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>
     Cells<NN, NU, NP, ND, NQ>
 {
-    /// Validates the connectivity and the geometry of every cell.
+    /// Validates the connectivity and the geometry of every cell, and maps its quadrature points.
     fn new(
         re: ReferenceElement<NN, NU, NP, ND, NQ>,
         mesh: &Mesh,
         dofs: &DofMap,
     ) -> FemResult<Self> {
         let n_el = mesh.n_elements();
-        let mut coords = Vec::with_capacity(n_el);
+        let mut geometry = Vec::with_capacity(n_el);
         let mut cell_dofs = Vec::with_capacity(n_el);
         for (e, conn) in mesh.elements().enumerate() {
             let mut x = [[0.0; 2]; NN];
@@ -91,23 +92,18 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                         rule: "node index out of range",
                     })?;
             }
-            for q in 0..NQ {
-                if re.geometry(q, &x).is_none() {
-                    return Err(FemError::InvalidInput {
-                        name: "element geometry",
-                        value: format!("element {e}, nodes {x:?}"),
-                        rule: "mapping must be invertible, counter-clockwise, with r > 0 at quadrature points",
-                    });
-                }
-            }
-            coords.push(x);
+            geometry.push(re.cell_geometry(&x).ok_or_else(|| FemError::InvalidInput {
+                name: "element geometry",
+                value: format!("element {e}, nodes {x:?}"),
+                rule: "mapping must be invertible, counter-clockwise, with r > 0 at quadrature points",
+            })?);
             let mut d = [0u32; ND];
             d.copy_from_slice(dofs.cell_dofs(e));
             cell_dofs.push(d);
         }
         Ok(Self {
             re,
-            coords,
+            geometry,
             dofs: cell_dofs,
         })
     }
@@ -123,15 +119,15 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         let re = &self.re;
         let (rates, n_free, condensation) = (buf.rates, buf.n_free, buf.condensation);
         let volumetric = buf.volumetric;
-        let n_k = buf.kbuf.len() / self.coords.len().max(1);
-        let n_c = buf.cdata.len() / self.coords.len().max(1);
+        let n_k = buf.kbuf.len() / self.geometry.len().max(1);
+        let n_c = buf.cdata.len() / self.geometry.len().max(1);
         buf.rbuf
             .par_chunks_mut(ND)
             .zip(buf.kbuf.par_chunks_mut(n_k.max(1)))
             .zip(buf.cdata.par_chunks_mut(n_c.max(1)))
             .zip(buf.gbuf.par_chunks_mut(ND))
             .zip(buf.scale_buf.par_iter_mut())
-            .zip(self.coords.par_iter().zip(self.dofs.par_iter()))
+            .zip(self.geometry.par_iter().zip(self.dofs.par_iter()))
             .try_for_each(|(((((rb, kb), cd), gb), sc), (xe, d))| {
                 let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
                 let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
@@ -176,22 +172,20 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
 
     fn quadrature_points(&self, x: &[f64]) -> Vec<QuadraturePoint> {
         let re = &self.re;
-        let mut out = Vec::with_capacity(self.coords.len() * NQ);
-        for (e, (xe, d)) in self.coords.iter().zip(&self.dofs).enumerate() {
+        let mut out = Vec::with_capacity(self.geometry.len() * NQ);
+        for (e, (ge, d)) in self.geometry.iter().zip(&self.dofs).enumerate() {
             let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
             let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
-            for q in 0..NQ {
-                if let Some(g) = re.geometry(q, xe) {
-                    out.push(QuadraturePoint {
-                        element: e,
-                        point: q,
-                        r: g.r,
-                        z: g.z,
-                        dv: g.dv,
-                        f: deformation(&g.b, &u),
-                        pressure: re.m[q].dot(&p),
-                    });
-                }
+            for (q, g) in ge.iter().enumerate() {
+                out.push(QuadraturePoint {
+                    element: e,
+                    point: q,
+                    r: g.r,
+                    z: g.z,
+                    dv: g.dv,
+                    f: g.deformation(&u),
+                    pressure: re.m[q].dot(&p),
+                });
             }
         }
         out

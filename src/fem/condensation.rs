@@ -77,7 +77,8 @@ impl Condensation {
         self.external.len()
     }
 
-    /// Values per cell of [`Self::condense_cell`]'s data: K_bb⁻¹ (4), K_be (2 × m), W (m × 2).
+    /// Values per cell of [`Self::condense_cell`]'s data: K_bb⁻¹ (4), K_be (2 × m), W (m × 2,
+    /// by columns).
     pub fn data_per_cell(&self) -> usize {
         4 + 4 * self.external.len()
     }
@@ -132,16 +133,27 @@ impl Condensation {
             kbe[2 * jj] = at(b0, j);
             kbe[2 * jj + 1] = at(b1, j);
         }
-        // W = K_eb K_bb⁻¹, inv column-major: [inv₀₀, inv₁₀, inv₀₁, inv₁₁].
+        // W = K_eb K_bb⁻¹ (inv column-major: [inv₀₀, inv₁₀, inv₀₁, inv₁₁]), stored by columns
+        // w₀ = W[.., 0], w₁ = W[.., 1].
+        let (w0, w1) = w.split_at_mut(m);
         for (ii, &i) in self.external.iter().enumerate() {
             let (ki0, ki1) = (at(i, b0), at(i, b1));
-            w[2 * ii] = ki0 * inv[0] + ki1 * inv[1];
-            w[2 * ii + 1] = ki0 * inv[2] + ki1 * inv[3];
+            w0[ii] = ki0 * inv[0] + ki1 * inv[1];
+            w1[ii] = ki0 * inv[2] + ki1 * inv[3];
         }
+        // The external rows are the contiguous runs 0..b0 and b1 + 1..nd of each column.
+        let head = b0;
         for (jj, &j) in self.external.iter().enumerate() {
             let (c0, c1) = (kbe[2 * jj], kbe[2 * jj + 1]);
-            for (ii, &i) in self.external.iter().enumerate() {
-                kc[ii + m * jj] = at(i, j) - (w[2 * ii] * c0 + w[2 * ii + 1] * c1);
+            let column = &k[nd * j..nd * (j + 1)];
+            let out = &mut kc[m * jj..m * (jj + 1)];
+            for (rows, at) in [(0..head, 0), (b1 + 1..nd, head)] {
+                let n = rows.len();
+                let out = &mut out[at..at + n];
+                let (a0, a1) = (&w0[at..at + n], &w1[at..at + n]);
+                for (((o, &kij), &a0), &a1) in out.iter_mut().zip(&column[rows]).zip(a0).zip(a1) {
+                    *o = kij - (a0 * c0 + a1 * c1);
+                }
             }
         }
         Ok(())
@@ -157,11 +169,11 @@ impl Condensation {
         }
         let (m, nc) = (self.external.len(), self.data_per_cell());
         for (e, b) in self.bubble_dofs.iter().enumerate() {
-            let w = &data[nc * e + 4 + 2 * m..nc * (e + 1)];
+            let (w0, w1) = data[nc * e + 4 + 2 * m..nc * (e + 1)].split_at(m);
             let (f0, f1) = (f[b[0] as usize], f[b[1] as usize]);
             for (ii, &g) in self.external_dofs[m * e..m * (e + 1)].iter().enumerate() {
                 if (g as usize) < self.n_free {
-                    reduced[index[g as usize] as usize] -= w[2 * ii] * f0 + w[2 * ii + 1] * f1;
+                    reduced[index[g as usize] as usize] -= w0[ii] * f0 + w1[ii] * f1;
                 }
             }
         }

@@ -5,8 +5,8 @@
 //! Local dof order: [u_r⁰, u_z⁰, …, u_r^{n−1}, u_z^{n−1}, p⁰, …]: the displacement on the cell's
 //! n nodes, then the pressure dofs (the 4 corner values for Q2/Q1, the one cell value for Q1/P0).
 
-pub use super::kinematics::{deformation, jacobian, jacobian_gradient, jacobian_hessian};
-use super::material::AxisymmetricMaterial;
+pub use super::kinematics::{jacobian, jacobian_gradient, jacobian_hessian};
+use super::material::{AxiF, AxisymmetricMaterial};
 use crate::volumetric::Volumetric;
 use nalgebra::{SMatrix, SVector};
 use std::ops::AddAssign;
@@ -88,8 +88,6 @@ impl std::fmt::Display for Element {
 pub type ElementVector<const ND: usize> = SVector<f64, ND>;
 /// Element matrix (column-major, as nalgebra stores it).
 pub type ElementMatrix<const ND: usize> = SMatrix<f64, ND, ND>;
-/// Strain–displacement operator: δF (5 entries) = B δu (`NU` displacement dofs).
-pub type BMatrix<const NU: usize> = SMatrix<f64, 5, NU>;
 
 /// Shape functions and Gauss rule of one element, tabulated at its quadrature points: `NN`
 /// nodes, `NU` = 2 `NN` displacement dofs, `NP` pressure dofs, `ND` = `NU` + `NP` dofs, `NQ`
@@ -215,17 +213,60 @@ impl Default for Q1P0Reference {
     }
 }
 
-/// Geometry of one quadrature point in physical space (`NU` element displacement dofs).
-#[derive(Debug, Clone, Copy)]
-pub struct QuadratureGeometry<const NU: usize> {
+/// The mapped geometry of one quadrature point: its position, its volume weight and the
+/// nonzero entries of the strain–displacement operator B (δF = B δu). Node a's u_r column of B
+/// is (∂N_a/∂r, ∂N_a/∂z, 0, 0, N_a/r) and its u_z column (0, 0, ∂N_a/∂r, ∂N_a/∂z, 0) on
+/// [F_rr, F_rz, F_zr, F_zz, F_θθ], so three rows of `NN` numbers hold the 5 × 2`NN` operator.
+/// The reference mesh never moves, so the assembly computes it once per mesh
+/// ([`ReferenceElement::cell_geometry`]): 8 (3 `NN` + 3) bytes per point, 2 160 per Q2/Q1 cell
+/// (9 points), 480 per Q1/P0 cell (4 points).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointGeometry<const NN: usize> {
     /// Radius r at the point (> 0).
     pub r: f64,
     /// Axial coordinate z.
     pub z: f64,
     /// Volume weight dV = 2π r det(∂x/∂ξ) w.
     pub dv: f64,
-    /// B operator (δF = B δu).
-    pub b: BMatrix<NU>,
+    /// ∂N_a/∂r.
+    pub dn_dr: [f64; NN],
+    /// ∂N_a/∂z.
+    pub dn_dz: [f64; NN],
+    /// N_a / r.
+    pub n_over_r: [f64; NN],
+}
+
+impl<const NN: usize> PointGeometry<NN> {
+    /// F = I + B u on [F_rr, F_rz, F_zr, F_zz, F_θθ] for the element displacements
+    /// u = [u_r⁰, u_z⁰, u_r¹, …] (`NU` = 2 `NN`):
+    /// F_rr = 1 + Σ ∂N_a/∂r u_r^a, F_rz = Σ ∂N_a/∂z u_r^a, F_zr = Σ ∂N_a/∂r u_z^a,
+    /// F_zz = 1 + Σ ∂N_a/∂z u_z^a, F_θθ = 1 + Σ N_a/r u_r^a.
+    #[inline]
+    pub fn deformation<const NU: usize>(&self, u: &SVector<f64, NU>) -> AxiF {
+        let mut f = [0.0; 5];
+        for a in 0..NN {
+            let (ur, uz) = (u[2 * a], u[2 * a + 1]);
+            f[0] += self.dn_dr[a] * ur;
+            f[1] += self.dn_dz[a] * ur;
+            f[2] += self.dn_dr[a] * uz;
+            f[3] += self.dn_dz[a] * uz;
+            f[4] += self.n_over_r[a] * ur;
+        }
+        AxiF::new(f[0] + 1.0, f[1], f[2], f[3] + 1.0, f[4] + 1.0)
+    }
+
+    /// Bᵀ s · `scale` for a vector s on the five F entries: node a's pair
+    /// (∂N_a/∂r s₀ + ∂N_a/∂z s₁ + N_a/r s₄, ∂N_a/∂r s₂ + ∂N_a/∂z s₃) · `scale`.
+    #[inline]
+    fn transpose_mul<const NU: usize>(&self, s: &AxiF, scale: f64) -> SVector<f64, NU> {
+        let mut out = zeroed::<NU, 1>();
+        for a in 0..NN {
+            let (dr, dz, nr) = (self.dn_dr[a], self.dn_dz[a], self.n_over_r[a]);
+            out[2 * a] = (dr * s[0] + dz * s[1] + nr * s[4]) * scale;
+            out[2 * a + 1] = (dr * s[2] + dz * s[3]) * scale;
+        }
+        out
+    }
 }
 
 /// A zero matrix, zeroed as one block (cheaper than nalgebra's entry-wise `zeros` in hot
@@ -234,25 +275,25 @@ pub fn zeroed<const R: usize, const C: usize>() -> SMatrix<f64, R, C> {
     SMatrix::from_array_storage(nalgebra::ArrayStorage([[0.0; R]; C]))
 }
 
-/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU), using the structure of B: node a's u_r
-/// column is (∂N_a/∂r, ∂N_a/∂z, 0, 0, N_a/r) and its u_z column (0, 0, ∂N_a/∂r, ∂N_a/∂z, 0), so
-/// the 2 × 2 block of nodes (a, b) costs 10 products once D's columns are combined for b. With
-/// `lower`, only the blocks a ≥ b (for a symmetric D; see [`mirror_node_blocks`]).
-fn add_btdb<const NU: usize, const R: usize>(
+/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU = 2 `NN`), using the structure of B
+/// ([`PointGeometry`]): the 2 × 2 block of nodes (a, b) costs 10 products once D's columns are
+/// combined for b. With `lower`, only the blocks a ≥ b (for a symmetric D; see
+/// [`mirror_node_blocks`]).
+fn add_btdb<const NN: usize, const R: usize>(
     k: &mut SMatrix<f64, R, R>,
-    b: &BMatrix<NU>,
+    g: &PointGeometry<NN>,
     d: &SMatrix<f64, 5, 5>,
     lower: bool,
 ) {
-    for nb in 0..NU / 2 {
+    for nb in 0..NN {
         let (rb, zb) = (2 * nb, 2 * nb + 1);
-        let (dr, dz, nr) = (b[(0, rb)], b[(1, rb)], b[(4, rb)]);
+        let (dr, dz, nr) = (g.dn_dr[nb], g.dn_dz[nb], g.n_over_r[nb]);
         let cr: [f64; 5] =
             std::array::from_fn(|i| d[(i, 0)] * dr + d[(i, 1)] * dz + d[(i, 4)] * nr);
         let cz: [f64; 5] = std::array::from_fn(|i| d[(i, 2)] * dr + d[(i, 3)] * dz);
-        for na in if lower { nb } else { 0 }..NU / 2 {
+        for na in if lower { nb } else { 0 }..NN {
             let (ra, za) = (2 * na, 2 * na + 1);
-            let (ar, az, an) = (b[(0, ra)], b[(1, ra)], b[(4, ra)]);
+            let (ar, az, an) = (g.dn_dr[na], g.dn_dz[na], g.n_over_r[na]);
             k[(ra, rb)] += ar * cr[0] + az * cr[1] + an * cr[4];
             k[(za, rb)] += ar * cr[2] + az * cr[3];
             k[(ra, zb)] += ar * cz[0] + az * cz[1] + an * cz[4];
@@ -315,9 +356,11 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         Self { n, dn, m, w }
     }
 
-    /// Maps the reference point `q` to the cell with nodal coordinates `x`. Returns `None`
-    /// when the mapping is not invertible or the point is not at r > 0.
-    pub fn geometry(&self, q: usize, x: &[[f64; 2]; NN]) -> Option<QuadratureGeometry<NU>> {
+    /// Maps the reference point `q` to the cell with nodal coordinates `x`: with the
+    /// isoparametric map (r, z) = Σ N_a(ξ, η) x_a and its Jacobian J = ∂(r, z)/∂(ξ, η),
+    /// (∂N_a/∂r, ∂N_a/∂z) = J⁻ᵀ (∂N_a/∂ξ, ∂N_a/∂η) and dV = 2π r det J w_q. Returns `None`
+    /// when the mapping is not invertible (det J ≤ 0) or the point is not at r > 0.
+    pub fn geometry(&self, q: usize, x: &[[f64; 2]; NN]) -> Option<PointGeometry<NN>> {
         let (mut r, mut z) = (0.0, 0.0);
         let (mut r_xi, mut r_eta, mut z_xi, mut z_eta) = (0.0, 0.0, 0.0, 0.0);
         for (a, xa) in x.iter().enumerate() {
@@ -334,38 +377,31 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         }
         // Inverse Jacobian: ∂ξ/∂r = z_η/det, ∂ξ/∂z = −r_η/det, ∂η/∂r = −z_ξ/det, ∂η/∂z = r_ξ/det.
         let (xi_r, xi_z, eta_r, eta_z) = (z_eta / det, -r_eta / det, -z_xi / det, r_xi / det);
-        let mut b = zeroed::<5, NU>();
-        for a in 0..NN {
-            let [dxi, deta] = self.dn[q][a];
-            let dr = dxi * xi_r + deta * eta_r;
-            let dz = dxi * xi_z + deta * eta_z;
-            // u_r column: δF_rr = ∂δu_r/∂r, δF_rz = ∂δu_r/∂z, δF_θθ = δu_r / r.
-            b[(0, 2 * a)] = dr;
-            b[(1, 2 * a)] = dz;
-            b[(4, 2 * a)] = self.n[q][a] / r;
-            // u_z column: δF_zr = ∂δu_z/∂r, δF_zz = ∂δu_z/∂z.
-            b[(2, 2 * a + 1)] = dr;
-            b[(3, 2 * a + 1)] = dz;
-        }
-        Some(QuadratureGeometry {
+        let mut g = PointGeometry {
             r,
             z,
             dv: 2.0 * std::f64::consts::PI * r * det * self.w[q],
-            b,
-        })
+            dn_dr: [0.0; NN],
+            dn_dz: [0.0; NN],
+            n_over_r: [0.0; NN],
+        };
+        for a in 0..NN {
+            let [dxi, deta] = self.dn[q][a];
+            g.dn_dr[a] = dxi * xi_r + deta * eta_r;
+            g.dn_dz[a] = dxi * xi_z + deta * eta_z;
+            g.n_over_r[a] = self.n[q][a] / r;
+        }
+        Some(g)
     }
 
-    /// [`Self::geometry`] for a mesh already validated; a degenerate point becomes an error, not a panic.
-    pub fn geometry_checked(
-        &self,
-        q: usize,
-        x: &[[f64; 2]; NN],
-    ) -> crate::Result<QuadratureGeometry<NU>> {
-        self.geometry(q, x).ok_or_else(|| crate::Error::NonFinite {
-            quantity: "element geometry",
-            value: f64::NAN,
-            context: format!("degenerate element mapping at quadrature point {q}, nodes {x:?}"),
-        })
+    /// [`Self::geometry`] at every quadrature point of the cell with nodal coordinates `x`
+    /// (what the assembly caches per cell); `None` if any point is degenerate.
+    pub fn cell_geometry(&self, x: &[[f64; 2]; NN]) -> Option<[PointGeometry<NN>; NQ]> {
+        let mut out = [self.geometry(0, x)?; NQ];
+        for (q, g) in out.iter_mut().enumerate().skip(1) {
+            *g = self.geometry(q, x)?;
+        }
+        Some(out)
     }
 
     /// Residual and (optionally) tangent of one element.
@@ -380,8 +416,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     /// K_uu = ∫ Bᵀ (A − p H) B dV,   K_up = −∫ Bᵀ ∂J/∂F M dV,   K_pu = −∫ M (∂J/∂F)ᵀ B dV,   K_pp = 0.
     ///
     /// For Q1/P0 the only M is 1 on the cell, so R_p = −∫_e (J − 1) dV: incompressibility in
-    /// the mean per cell. `x` holds the cell's nodal coordinates (validated by the caller: see
-    /// [`Self::geometry`]).
+    /// the mean per cell. `geometry` is the cell's mapped geometry ([`Self::cell_geometry`]).
     ///
     /// Nearly incompressible (`volumetric` = U(J), strictly convex): the perturbed Lagrangian
     /// with the Legendre transform Φ(p) = sup_J [−p (J − 1) − U(J)] of U,
@@ -401,7 +436,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     #[allow(clippy::too_many_arguments)]
     pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
         &self,
-        x: &[[f64; 2]; NN],
+        geometry: &[PointGeometry<NN>; NQ],
         u: &SVector<f64, NU>,
         p: &SVector<f64, NP>,
         material: &M,
@@ -423,16 +458,14 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         let mut scale = ElementScale::default();
         match tangent {
             None => {
-                for q in 0..NQ {
-                    let g = &self.geometry_checked(q, x)?;
-                    let f = deformation(&g.b, u);
-                    let m = &self.m[q];
+                for (g, m) in geometry.iter().zip(&self.m) {
+                    let f = g.deformation(u);
                     let pq = m.dot(p);
                     let pk = material.stress_at(&f, [g.r, g.z])?;
                     let dj = jacobian_gradient(&f);
                     let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                    let ru = g.b.tr_mul(&s) * g.dv;
+                    let ru = g.transpose_mul::<NU>(&s, g.dv);
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
                     let rp = m * (-constraint(jacobian(&f), pq)?.0 * g.dv);
                     residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
@@ -442,16 +475,14 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                 // Contiguous zeroing (nalgebra's `fill` walks the matrix entry by entry).
                 k.as_mut_slice().fill(0.0);
                 let mut kuu_lower = zeroed::<NU, NU>();
-                for q in 0..NQ {
-                    let g = &self.geometry_checked(q, x)?;
-                    let f = deformation(&g.b, u);
-                    let m = &self.m[q];
+                for (g, m) in geometry.iter().zip(&self.m) {
+                    let f = g.deformation(u);
                     let pq = m.dot(p);
                     let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
                     let dj = jacobian_gradient(&f);
                     let s = pk - dj * pq;
                     scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                    let ru = g.b.tr_mul(&s) * g.dv;
+                    let ru = g.transpose_mul::<NU>(&s, g.dv);
                     residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
                     let (c, compliance) = constraint(jacobian(&f), pq)?;
                     let rp = m * (-c * g.dv);
@@ -464,16 +495,20 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     // material) only the node blocks below the diagonal, mirrored at the end.
                     let d = (a - jacobian_hessian(&f) * pq) * g.dv;
                     if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
-                        add_btdb(&mut kuu_lower, &g.b, &d, true);
+                        add_btdb(&mut kuu_lower, g, &d, true);
                     } else {
-                        add_btdb(k, &g.b, &d, false);
+                        add_btdb(k, g, &d, false);
                     }
                     // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
-                    let bdj = g.b.tr_mul(&dj) * (-g.dv);
+                    let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
                     let kup = bdj * m.transpose();
                     k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
-                    k.fixed_view_mut::<NP, NU>(NU, 0)
-                        .add_assign(&kup.transpose());
+                }
+                // K_pu = K_upᵀ, copied once rather than accumulated point by point.
+                for i in 0..NP {
+                    for j in 0..NU {
+                        k[(NU + i, j)] = k[(j, NU + i)];
+                    }
                 }
                 mirror_node_blocks(&mut kuu_lower);
                 k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&kuu_lower);

@@ -1,20 +1,10 @@
-//! Axisymmetric kinematics at a quadrature point: F from the strain–displacement operator and
-//! the element displacements, and the volume ratio J with its first and second derivatives.
+//! Axisymmetric kinematics at a quadrature point: the volume ratio J with its first and second
+//! derivatives (F = I + B u itself: [`super::element::PointGeometry::deformation`]).
 //!
-//! F = I + B u on the five entries [F_rr, F_rz, F_zr, F_zz, F_θθ], J = F_θθ (F_rr F_zz − F_rz F_zr).
+//! J = F_θθ (F_rr F_zz − F_rz F_zr) on the five entries [F_rr, F_rz, F_zr, F_zz, F_θθ].
 
 use super::material::AxiF;
-use nalgebra::{SMatrix, SVector};
-
-/// F = I + B u on the five entries [F_rr, F_rz, F_zr, F_zz, F_θθ] (`NU` element displacement dofs).
-#[inline]
-pub fn deformation<const NU: usize>(b: &SMatrix<f64, 5, NU>, u: &SVector<f64, NU>) -> AxiF {
-    let mut f = b * u;
-    f[0] += 1.0;
-    f[3] += 1.0;
-    f[4] += 1.0;
-    f
-}
+use nalgebra::SMatrix;
 
 /// J = F_θθ (F_rr F_zz − F_rz F_zr).
 #[inline]

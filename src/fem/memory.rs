@@ -16,6 +16,8 @@
 //!   instead, [`LU_FILL`] times the LDLᵀ's values;
 //! - vectors: 40 vectors of n (Krylov basis, Newton, predictor, rates, 20 stretches' results);
 //! - quadrature-point fields for results and diagnostics: 104 q c;
+//! - the cells' mapped geometry, computed once per mesh ([`super::element::PointGeometry`]):
+//!   8 q (3 k + 3) c for cells of k nodes (2 160 bytes per Q2/Q1 cell, 480 per Q1/P0 cell);
 //! - the mesh and dof map: 28 N + 8 d c.
 //!
 //! Before the symbolic factorisation f is modelled as [`FILL`] · n (log₂ n)² (a 2D mesh under a
@@ -192,8 +194,9 @@ impl MemoryEstimate {
         };
         let vectors = 40.0 * 8.0 * n;
         let fields = 104.0 * q * c.cells;
+        let geometry = 8.0 * q * (3.0 * c.element.nodes() as f64 + 3.0) * c.cells;
         let mesh = 28.0 * c.nodes + 8.0 * d * c.cells;
-        BASELINE + element_buffers + tangent + factors + vectors + fields + mesh
+        BASELINE + element_buffers + tangent + factors + vectors + fields + geometry + mesh
     }
 
     /// Refuses with [`FemError::MemoryLimit`] an estimate above `limit` bytes.
