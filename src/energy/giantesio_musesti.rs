@@ -62,7 +62,7 @@ impl GiantesioMusesti {
         let (isotropic, fibre) = (w0 / 3.0, -w0 + 1.0);
         let i_p = c.tr_c * isotropic + c.c_m * fibre;
         let k_p = c.tr_c_inv * isotropic + c.c_inv_m * fibre;
-        ((i_p - 1.0) * alpha).exp_m1() * (mu / (alpha * 4.0)) + (k_p - 1.0) * (mu / 4.0)
+        super::exp_m1((i_p - 1.0) * alpha) * (mu / (alpha * 4.0)) + (k_p - 1.0) * (mu / 4.0)
     }
 }
 

@@ -8,6 +8,19 @@
 use crate::Scalar;
 use crate::{Error, Result};
 
+/// e^x − 1 \[-\] for any scalar, with one exponential where that is accurate: a dual number's
+/// derivatives need e^x₀ (x₀ the real part) anyway, and for |x₀| ≥ 1/2 the subtraction e^x₀ − 1
+/// amplifies e^x₀'s rounding by e^x₀/|e^x₀ − 1| ≤ 2.6, so the value stays within 3 ulp; below,
+/// where e^x − 1 cancels, num-dual's `exp_m1` (which evaluates both exp_m1 and exp). glibc's
+/// expm1 costs several times its exp: this halves the cost of an exponential energy's term.
+pub fn exp_m1<T: Scalar>(x: T) -> T {
+    if x.re().abs() >= 0.5 {
+        x.exp() - 1.0
+    } else {
+        x.exp_m1()
+    }
+}
+
 /// A scalar `T` that combines with model parameters of type `P` (`T op P -> T`): `P = f64` for
 /// fixed parameters (the fast path every response takes, no zero derivatives carried) or
 /// `P = T` for parameters carried as dual numbers (derivatives in the parameters, for fitting).
@@ -331,4 +344,38 @@ shipped_energies! {
     neo_hookean::NeoHookean,
     /// 4C's muscle passive energy (Weickenmeier et al. 2014).
     four_c_passive::FourCPassive,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::exp_m1;
+    use num_dual::Dual2_64;
+
+    /// |a − b| in units in the last place of b.
+    fn ulps(a: f64, b: f64) -> f64 {
+        (a - b).abs() / (b.abs() * f64::EPSILON).max(f64::MIN_POSITIVE)
+    }
+
+    #[test]
+    fn exp_m1_stays_within_3_ulp_of_libm_and_its_derivatives_are_exp() {
+        let mut worst: f64 = 0.0;
+        for k in -4000i32..=4000 {
+            // Dense around the switch at |x| = 1/2, and out to |x| = 40.
+            let x = if k.abs() <= 2000 {
+                k as f64 * 5e-4
+            } else {
+                k.signum() as f64 * (1.0 + (k.abs() - 2000) as f64 * 0.0195)
+            };
+            worst = worst.max(ulps(exp_m1(x), x.exp_m1()));
+            // Value, first and second derivative of a second-order dual.
+            let d = exp_m1(Dual2_64::from_re(x).derivative());
+            assert!(ulps(d.re, x.exp_m1()) <= 3.0, "x = {x}");
+            assert_eq!(d.v1, x.exp(), "x = {x}: first derivative");
+            assert_eq!(d.v2, x.exp(), "x = {x}: second derivative");
+        }
+        println!("worst {worst} ulp");
+        assert!(worst <= 3.0, "worst {worst} ulp");
+        // Below the switch it is libm's expm1 itself (no cancellation of e^x − 1).
+        assert_eq!(exp_m1(1e-10), 1e-10_f64.exp_m1());
+    }
 }
