@@ -279,3 +279,17 @@ stretch = 1.1
     departure = np.abs(t["J"] - 1).max()
     assert 1e-5 < departure < 1e-2
     assert np.abs(history(1e6)["J"] - 1).max() < 0.02 * departure
+
+
+def test_the_block_in_time_example_tends_to_the_exact_history_as_one_over_kappa():
+    from activemuscle.examples.block_in_time import history
+
+    exact, soft, stiff = history(), history(1e4), history(1e6)
+    np.testing.assert_allclose(exact["J"], 1.0, rtol=0, atol=4e-16)  # λ·(λ^(−½))², rounded
+    for h in (exact, soft, stiff):
+        assert np.abs(h["P"]).max() < 1e-9  # free contraction: zero axial load at every step
+        assert h["lambda"][1:].max() < 0.75  # the stimulated block shortens towards λ_min
+    gap = [np.abs(h["lambda"] - exact["lambda"]).max() for h in (soft, stiff)]
+    volume = [np.abs(h["J"] - 1).max() for h in (soft, stiff)]
+    # O(1/κ): a hundredfold κ, a hundredfold closer (within 20 %).
+    assert 80 < gap[0] / gap[1] < 120 and 80 < volume[0] / volume[1] < 120, (gap, volume)
