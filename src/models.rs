@@ -250,10 +250,13 @@ impl Models {
         direction: Direction,
         lambda: f64,
     ) -> crate::Result<UniaxialPoint> {
-        match &self.volumetric {
-            None => direction.point(muscle, lambda),
-            Some(v) => crate::uniaxial::nearly_incompressible(muscle, v, direction, lambda),
-        }
+        crate::uniaxial::point(muscle, self.volumetric.as_ref(), direction, lambda)
+    }
+
+    /// Free contraction of `muscle` along the fibres (zero axial load), exactly or, with
+    /// [`Self::volumetric`], nearly incompressible ([`crate::uniaxial::zero_load_point`]).
+    pub fn free_contraction(&self, muscle: &Muscle<Energy>) -> crate::Result<UniaxialPoint> {
+        crate::uniaxial::zero_load_point(muscle, self.volumetric.as_ref())
     }
 
     /// The passive material.

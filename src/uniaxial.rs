@@ -97,6 +97,33 @@ pub(crate) fn slope_along(p: &SVector<f64, 9>, k: &SMatrix<f64, 9, 9>, lambda: f
     rate(0) - lambda.powf(-1.5) * rate(4) + 1.5 * lambda.powf(-2.5) * p[4]
 }
 
+/// The uniaxial test of `muscle` at stretch `lambda` in `direction`: exactly incompressible
+/// (`volumetric` = `None`, [`Direction::point`]) or nearly incompressible with the lateral
+/// stretches in equilibrium ([`nearly_incompressible`]).
+pub fn point<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    volumetric: Option<&Volumetric>,
+    direction: Direction,
+    lambda: f64,
+) -> Result<UniaxialPoint> {
+    match volumetric {
+        None => direction.point(muscle, lambda),
+        Some(v) => nearly_incompressible(muscle, v, direction, lambda),
+    }
+}
+
+/// Free contraction along the fibres, exactly incompressible (`volumetric` = `None`,
+/// [`free_contraction`]) or nearly incompressible ([`nearly_incompressible_free_contraction`]).
+pub fn zero_load_point<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    volumetric: Option<&Volumetric>,
+) -> Result<UniaxialPoint> {
+    match volumetric {
+        None => free_contraction(muscle),
+        Some(v) => nearly_incompressible_free_contraction(muscle, v),
+    }
+}
+
 /// Free contraction along the fibres: the stretch at which the nominal stress along the fibres
 /// vanishes (zero axial load, lateral faces traction free), P(λ) = 0. An active muscle shortens:
 /// P(1) = (1 − d)·a·P_act(1) > 0 for the exact laws, and the root taken is the largest one at or

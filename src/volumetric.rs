@@ -24,6 +24,7 @@
 //! form with 4C's energy (s₀ = μ/2), and that makes 4C's form stress-free with the chapter's
 //! energy (U = μ/(4κ) J^(−2κ) + (μ/2)(J − 1), bulk modulus U″(1) = μ(2κ + 1)/2).
 
+use crate::energy::positive;
 use crate::{Error, Result};
 
 /// The volumetric energy's form, as a scene names it (`incompressibility = { volumetric = "quadratic", kappa = 1e3 }`).
@@ -102,18 +103,6 @@ pub struct Volumetric {
     shift: f64,
 }
 
-fn check(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            rule: "must be finite and > 0",
-        })
-    }
-}
-
 impl Volumetric {
     /// The volumetric energy of `form` for a passive energy whose stress at F = I is
     /// `reference_stress` · I \[kPa\] (0 for the chapter's energy): U′(1) = −`reference_stress`.
@@ -121,11 +110,11 @@ impl Volumetric {
     pub fn new(form: VolumetricForm, reference_stress: f64) -> Result<Self> {
         match form {
             VolumetricForm::Quadratic { kappa } | VolumetricForm::Logarithmic { kappa } => {
-                check("kappa", kappa)?;
+                positive("kappa", kappa)?;
             }
             VolumetricForm::Giantesio4C { kappa, mu } => {
-                check("kappa", kappa)?;
-                check("mu", mu)?;
+                positive("kappa", kappa)?;
+                positive("mu", mu)?;
             }
         }
         if !reference_stress.is_finite() {

@@ -15,10 +15,7 @@ use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
-use crate::uniaxial::{
-    along_fibres, free_contraction, nearly_incompressible, nearly_incompressible_free_contraction,
-    Direction, UniaxialPoint,
-};
+use crate::uniaxial::{Direction, UniaxialPoint};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::Muscle;
 use rayon::prelude::*;
@@ -361,21 +358,18 @@ pub struct HistoryResult {
 }
 
 /// The homogeneous state of `muscle` under `loading` at time `t`: the uniaxial point along the
-/// fibres, exactly incompressible (`volumetric` = `None`) or nearly incompressible with the
-/// lateral stretches in equilibrium; under free contraction the stretch with zero axial load.
+/// fibres, exactly or (with the scene's volumetric energy) nearly incompressible
+/// ([`Models::uniaxial`]); under free contraction the stretch with zero axial load
+/// ([`Models::free_contraction`]).
 pub fn state(
+    models: &Models,
     muscle: &Muscle<Energy>,
-    volumetric: Option<&Volumetric>,
     loading: &Loading,
     t: f64,
 ) -> crate::Result<UniaxialPoint> {
-    match (loading, volumetric) {
-        (Loading::Prescribed(s), None) => along_fibres(muscle, s.value(t)),
-        (Loading::Prescribed(s), Some(v)) => {
-            nearly_incompressible(muscle, v, Direction::Along, s.value(t))
-        }
-        (Loading::Free, None) => free_contraction(muscle),
-        (Loading::Free, Some(v)) => nearly_incompressible_free_contraction(muscle, v),
+    match loading {
+        Loading::Prescribed(s) => models.uniaxial(muscle, Direction::Along, s.value(t)),
+        Loading::Free => models.free_contraction(muscle),
     }
 }
 
@@ -471,7 +465,7 @@ impl HistoryStudy {
             }
             let level = self.activation.level(t);
             let step = muscle.set_activation(level).and_then(|()| {
-                let p = state(&muscle, models.volumetric.as_ref(), &self.loading, t)?;
+                let p = state(models, &muscle, &self.loading, t)?;
                 let passive = models
                     .uniaxial(&passive, Direction::Along, p.lambda)?
                     .stress;

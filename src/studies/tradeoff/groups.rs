@@ -27,7 +27,7 @@ use crate::fem::{
 };
 use crate::models::{LawKind, Models};
 use crate::studies::Progress;
-use crate::uniaxial::{along_fibres, nearly_incompressible, Direction};
+use crate::uniaxial::{along_fibres, Direction};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::Muscle;
 use std::time::Instant;
@@ -858,10 +858,7 @@ pub(super) fn incompressibility(
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
             for &l in stretches {
-                let pt = match v {
-                    None => along_fibres(&m, l)?,
-                    Some(v) => nearly_incompressible(&m, v, Direction::Along, l)?,
-                };
+                let pt = crate::uniaxial::point(&m, v, Direction::Along, l)?;
                 p.push(pt.stress);
                 g.push(pt.gamma);
             }
