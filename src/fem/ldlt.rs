@@ -585,11 +585,18 @@ impl Gmres {
         }
         let knorm = values.iter().map(|v| v * v).sum::<f64>().sqrt();
         let norm = |v: &[f64]| v.iter().map(|v| v * v).sum::<f64>().sqrt();
-        self.x.fill(0.0);
-        self.r.copy_from_slice(rhs);
-        let mut total = 0;
-        // Estimate of ‖x‖ for the inner stopping test (exact once M⁻¹ = K⁻¹: x = β z₀).
-        let mut x_estimate = 0.0f64;
+        // First guess x₀ = M⁻¹ b, r₀ = b − K x₀: the solution itself when M is a factorisation
+        // of K (a symmetric tangent), found with one product by K where a GMRES iteration
+        // from x = 0 takes two (its Arnoldi vector and the true residual).
+        self.x.copy_from_slice(rhs);
+        pre.apply(&mut self.x);
+        matvec(pattern, values, &self.x, &mut self.w);
+        for ((ri, bi), wi) in self.r.iter_mut().zip(rhs.iter()).zip(&self.w) {
+            *ri = bi - wi;
+        }
+        let mut total = 1;
+        // Estimate of ‖x‖ for the inner stopping test.
+        let mut x_estimate = norm(&self.x);
         while total < max_iter {
             let beta = norm(&self.r);
             if beta <= tol * (knorm * norm(&self.x) + bnorm) {
