@@ -7,10 +7,12 @@ use activemuscle::studies::tradeoff::run as run_tradeoff;
 use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
+use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+use signal_hook::iterator::Signals;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 /// Active skeletal-muscle mechanics after Giantesio & Musesti: homogeneous tests and an
@@ -184,8 +186,8 @@ const EXIT_STATUS: &str = "Exit status:
   1    invalid input or usage (nothing computed), or the outputs could not be written
   3    something requested failed or the time limit (--max-seconds) was reached (named on
        the FAILED lines of the summary and in report.html); everything computed was written
-  130  interrupted (Ctrl-C, SIGINT): the stretches solved so far were written; a second
-       interrupt aborts at once and writes nothing
+  130  interrupted (Ctrl-C, SIGINT; 143 for SIGTERM, 129 for SIGHUP): the stretches solved
+       so far were written; a second signal aborts at once and writes nothing
 
 Progress: a bar per study on a terminal, else one line per solved stretch; --quiet: neither.";
 
@@ -199,34 +201,50 @@ enum Ended {
     Complete,
     /// Something requested failed; everything computed was written (exit status 3).
     Incomplete,
-    /// Interrupted (SIGINT); everything computed was written (exit status 130).
-    Interrupted,
+    /// Interrupted by this signal; everything computed was written (exit status 128 + signal).
+    Interrupted(i32),
 }
 
-/// Exit status of an interrupted run (128 + SIGINT, the shell's convention).
-const EXIT_INTERRUPTED: u8 = 130;
+/// The signal that stopped the run (0: none). Its exit status is 128 + the signal, the shell's
+/// convention (130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP).
+static STOPPED_BY: AtomicI32 = AtomicI32::new(0);
 
 /// The reason an interrupted run gives.
-const INTERRUPTED: &str = "interrupted (SIGINT)";
+fn interrupted(signal: i32) -> String {
+    let name = match signal {
+        SIGINT => "SIGINT",
+        SIGTERM => "SIGTERM",
+        SIGHUP => "SIGHUP",
+        _ => "a signal",
+    };
+    format!("interrupted ({name})")
+}
 
-/// Stops `stop` on the first SIGINT; exits at once with status 130 on the second.
+/// Stops `stop` on the first SIGINT (Ctrl-C), SIGTERM (`kill`, `timeout`, a batch scheduler's
+/// time limit) or SIGHUP (the terminal closed); exits at once on the second.
 fn on_interrupt(stop: &Stop) {
     let stop = stop.clone();
-    let count = AtomicUsize::new(0);
-    let installed = ctrlc::set_handler(move || {
-        if count.fetch_add(1, Ordering::SeqCst) > 0 {
-            eprintln!("second interrupt: aborting without writing");
-            std::process::exit(i32::from(EXIT_INTERRUPTED));
+    let mut signals = match Signals::new([SIGINT, SIGTERM, SIGHUP]) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("warning: no signal handler ({e}): Ctrl-C or SIGTERM will end the run without writing");
+            return;
         }
-        eprintln!(
-            "interrupt: stopping after the current Newton iteration and writing what was solved \
-             (interrupt again to abort)"
-        );
-        stop.stop(INTERRUPTED);
+    };
+    std::thread::spawn(move || {
+        for signal in signals.forever() {
+            if STOPPED_BY.swap(signal, Ordering::SeqCst) != 0 {
+                eprintln!("second interrupt: aborting without writing");
+                std::process::exit(128 + signal);
+            }
+            eprintln!(
+                "{}: stopping after the current Newton iteration and writing what was solved \
+                 (interrupt again to abort)",
+                interrupted(signal)
+            );
+            stop.stop(&interrupted(signal));
+        }
     });
-    if let Err(e) = installed {
-        eprintln!("warning: no interrupt handler ({e}): Ctrl-C will end the run without writing");
-    }
 }
 
 /// Stops `stop` once `seconds` of wall time have passed (a detached timer thread).
@@ -278,9 +296,8 @@ fn run_command(
     }
     let results = scene.run(&options);
     // A time limit reached after the last study is no stop.
-    let reason = stop
-        .reason()
-        .filter(|r| r == INTERRUPTED || !results.complete());
+    let signal = STOPPED_BY.load(Ordering::SeqCst);
+    let reason = stop.reason().filter(|_| signal != 0 || !results.complete());
     let meta = RunMeta {
         command: command_line(),
         started,
@@ -292,8 +309,8 @@ fn run_command(
     if let Some(reason) = &reason {
         println!("STOPPED: {reason}; what was solved before is written");
     }
-    Ok(if reason.as_deref() == Some(INTERRUPTED) {
-        Ended::Interrupted
+    Ok(if signal != 0 {
+        Ended::Interrupted(signal)
     } else if results.complete() {
         Ended::Complete
     } else {
@@ -381,7 +398,7 @@ fn main() -> ExitCode {
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,
         Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
-        Ok(Ended::Interrupted) => ExitCode::from(EXIT_INTERRUPTED),
+        Ok(Ended::Interrupted(signal)) => ExitCode::from(u8::try_from(128 + signal).unwrap_or(1)),
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::FAILURE

@@ -274,14 +274,21 @@ fn reported_stretches(lines: &[String]) -> Vec<String> {
     v
 }
 
-/// SIGINT during a long sweep, stdout a pipe: a progress line per solved stretch (plain,
-/// stamped), and after the interrupt the solved stretches are in curves.csv, exactly those the
-/// progress lines reported, the study after is recorded as not run, exit 130.
+/// SIGINT (Ctrl-C) or SIGTERM (`kill`, a batch scheduler's time limit) during a long sweep,
+/// stdout a pipe: a progress line per solved stretch (plain, stamped), and after the signal the
+/// solved stretches are in curves.csv, exactly those the progress lines reported, the study
+/// after is recorded as not run, exit 128 + the signal.
 #[test]
-fn sigint_keeps_the_solved_stretches_and_exits_130() {
+fn a_signal_keeps_the_solved_stretches_and_exits_128_plus_the_signal() {
+    for (signal, status) in [("INT", 130), ("TERM", 143)] {
+        signal_keeps_the_solved_stretches(signal, status);
+    }
+}
+
+fn signal_keeps_the_solved_stretches(signal: &str, code: i32) {
     use std::io::{BufRead, BufReader};
     use std::process::{Command, Stdio};
-    let dir = temp_dir("sigint");
+    let dir = temp_dir(&format!("sig{signal}"));
     let scene = dir.join("long.toml");
     std::fs::write(&scene, LONG).expect("write scene");
     let out = dir.join("out");
@@ -305,7 +312,7 @@ fn sigint_keeps_the_solved_stretches_and_exits_130() {
         }
     }
     let kill = Command::new("kill")
-        .arg("-INT")
+        .arg(format!("-{signal}"))
         .arg(child.id().to_string())
         .status()
         .expect("kill");
@@ -313,7 +320,7 @@ fn sigint_keeps_the_solved_stretches_and_exits_130() {
     seen.extend(lines.map(|l| l.expect("line")));
     let status = child.wait().expect("wait");
     let stdout = seen.join("\n");
-    assert_eq!(status.code(), Some(130), "{stdout}");
+    assert_eq!(status.code(), Some(code), "{stdout}");
     let solved = cylinder_stretches(&read(&out.join("curves.csv")));
     assert!(
         !solved.is_empty() && solved.len() < 1599,
@@ -322,8 +329,12 @@ fn sigint_keeps_the_solved_stretches_and_exits_130() {
     );
     assert_eq!(solved, reported_stretches(&seen));
     assert!(stdout.contains("FAILED: after — the whole study: not run: interrupted"));
-    assert!(stdout.contains("interrupted (SIGINT): sweep cancelled"));
-    assert!(read(&out.join("report.html")).contains("interrupted (SIGINT)"));
+    let reason = format!("interrupted (SIG{signal})");
+    assert!(
+        stdout.contains(&format!("{reason}: sweep cancelled")),
+        "{stdout}"
+    );
+    assert!(read(&out.join("report.html")).contains(&reason));
 }
 
 /// `--max-seconds` stops like an interruption, names the time limit and exits 3.
