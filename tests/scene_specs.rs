@@ -210,3 +210,40 @@ motor_units = [{ fraction = 1.0, twitch_force = 0.3, contraction_time = 0.04, in
     assert_eq!(again.studies, scene.studies);
     assert_eq!(again.resolved_toml().unwrap(), printed);
 }
+
+/// Every study without its own `damage` takes `activation.damage`: a stability study beside a
+/// uniaxial one shows the same damages.
+#[test]
+fn studies_without_their_own_damage_take_the_activation_s() {
+    let scene = Scene::parse(
+        r#"
+[activation]
+damage = [0.0, 0.3, 0.9]
+
+[[study]]
+kind = "uniaxial"
+name = "u"
+stretch = [0.9, 1.1]
+
+[[study]]
+kind = "stability"
+name = "s"
+stretch = [0.9, 1.1]
+normals = 4
+"#,
+        FILE,
+    )
+    .unwrap();
+    let resolved: toml::Value = toml::from_str(&scene.resolved_toml().unwrap()).unwrap();
+    let studies = resolved["study"].as_array().unwrap();
+    assert_eq!(studies.len(), 2);
+    for study in studies {
+        let damage: Vec<f64> = study["damage"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_float().unwrap())
+            .collect();
+        assert_eq!(damage, [0.0, 0.3, 0.9], "{study}");
+    }
+}

@@ -20,7 +20,7 @@ pub struct StabilitySpec {
     pub name: Option<String>,
     /// Stretches along the fibres (default 0.65:0.005:1.60).
     pub stretch: Option<StretchSpec>,
-    /// Damage values (default 0 and 0.5).
+    /// Damage values (default: `activation.damage`).
     pub damage: Option<Vec<f64>>,
     /// Include the passive material (default true).
     pub passive: Option<bool>,
@@ -68,7 +68,7 @@ pub fn resolve(
         Some(l) => l,
         None => stretch.resolve("stretch")?,
     };
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(&[0.0, 0.5]))?;
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let laws = match &spec.laws {
         Some(l) => l.clone(),
         None => [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
