@@ -350,13 +350,24 @@ fn tradeoff_command(
     );
     // A variant that could not be measured (no finite error) is a failure of what was asked.
     let failed: Vec<String> = results
-        .rows
+        .failures
         .iter()
-        .filter(|r| !r.error.max_rel.is_finite())
-        .map(|r| format!("{}: {}", r.option, r.variant))
+        .map(|(group, why)| format!("option group {group}: {why}"))
+        .chain(
+            results
+                .rows
+                .iter()
+                .filter(|r| !r.error.max_rel.is_finite())
+                .map(|r| {
+                    format!(
+                        "{}: {} (not measured: see tradeoff.md)",
+                        r.option, r.variant
+                    )
+                }),
+        )
         .collect();
     for f in &failed {
-        println!("FAILED: {f} (not measured: see tradeoff.md)");
+        println!("FAILED: {f}");
     }
     Ok(if failed.is_empty() {
         Ended::Complete

@@ -104,6 +104,9 @@ pub fn product(laws: &[LawKind], couplings: &[CouplingKind], damages: &[f64]) ->
     models
 }
 
+/// Stretches (from, to, intervals) on which the explicit law must hold for a scene to use it.
+const EXPLICIT_PROBE: (f64, f64, usize) = (0.5, 2.0, 150);
+
 /// The material and the activation every model of a scene shares.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Models {
@@ -154,13 +157,46 @@ impl Models {
                 "the explicit law (eq. (14)) is fitted for the chapter's active-strain map; activation.map is {}",
                 self.map.name()
             )),
-            (LawKind::Explicit, Energy::GiantesioMusesti(_)) | (LawKind::Implicit, _) => Ok(()),
+            (LawKind::Explicit, Energy::GiantesioMusesti(_)) => self.explicit_law_holds(),
+            (LawKind::Implicit, _) => Ok(()),
             (LawKind::Energy, _) => Ok(()),
             (LawKind::Explicit, other) => Err(format!(
                 "the explicit law (eq. (14)) is derived for the giantesio-musesti energy; material.energy is {}",
                 other.name()
             )),
         }
+    }
+
+    /// Whether the explicit law's closed form stays in its domain (logarithms and square roots of
+    /// positive numbers) at every λ of `EXPLICIT_PROBE` for d = 0 and d = 1: its (a, b) are the
+    /// chapter's fit for the chapter's energy and active curve, and with other parameters the
+    /// formula can leave its domain at ordinary stretches (μ = 0.5 kPa, α = 12: at λ = 0.9).
+    fn explicit_law_holds(&self) -> Result<(), String> {
+        use crate::active::ActivationLaw;
+        let law = self.law(LawKind::Explicit).map_err(|e| e.to_string())?;
+        let (from, to, n) = EXPLICIT_PROBE;
+        for k in 0..=n {
+            let lambda = from + (to - from) * k as f64 / n as f64;
+            for d in [0.0, 1.0] {
+                if let Err(e) = law.evaluate(lambda, d) {
+                    return Err(format!(
+                        concat!(
+                            "the explicit law (eq. (14)) with a = {}, b = {} fails on this material at ",
+                            "λ = {:.3}, d = {} ({}); a and b are a fit for one energy and active curve ",
+                            "(the chapter's: a = 1.0133, b = 0.2050): fit them for this material (a study ",
+                            "with fit = \"explicit-law\") and set activation.explicit = {{ a, b }}, or use ",
+                            "the implicit law"
+                        ),
+                        self.explicit.0,
+                        self.explicit.1,
+                        lambda,
+                        d,
+                        e
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The chapter's energy with this material's parameters, or the chapter's own if the material

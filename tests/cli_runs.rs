@@ -98,10 +98,10 @@ fn a_failing_cylinder_study_costs_the_others_nothing_and_exits_3() {
     }
 }
 
-/// The explicit law's γ leaves its domain (b = 1e6): the cylinder study on that law fails, the
-/// uniaxial study on the implicit law is untouched.
+/// The explicit law's γ leaves its domain (b = 1e6): refused before anything is computed, exit
+/// 1, naming the study's law, where eq. (14) fails and what to do instead.
 #[test]
-fn a_law_outside_its_domain_fails_only_its_study() {
+fn a_law_outside_its_domain_is_refused_before_computing() {
     let dir = temp_dir("law");
     let head = HEAD.replace(
         "law = \"explicit\"\n",
@@ -111,9 +111,17 @@ fn a_law_outside_its_domain_fails_only_its_study() {
         "{head}{UNIAXIAL}\n[[study]]\nkind = \"cylinder\"\nname = \"cyl b\"\nnr = 2\nnz = 2\nstretch = [1.1]\n"
     );
     let (output, out) = run_scene(&dir, "b", &text);
-    assert_eq!(output.status.code(), Some(3), "{output:?}");
-    assert_eq!(rows_of(&read(&out.join("curves.csv")), "uniaxial").len(), 8);
-    assert!(String::from_utf8_lossy(&output.stdout).contains("FAILED: cyl b"));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{output:?}");
+    for words in [
+        "law = \"explicit\"",
+        "eq. (14)",
+        "b = 1000000",
+        "fit = \"explicit-law\"",
+    ] {
+        assert!(stderr.contains(words), "{words:?} missing: {stderr}");
+    }
+    assert!(!out.join("curves.csv").exists());
 }
 
 /// Invalid input exits 1 and names the file and line: a tolerance below round-off, a usage

@@ -5,9 +5,12 @@
 use activemuscle::active::{ActivationLaw, ActiveCurve, BelowMinimum, EnergyLaw};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::models::LawKind;
+use activemuscle::scene::RunOptions;
 use activemuscle::scene::{Scene, SceneError};
-use activemuscle::studies::tradeoff::{Geometry, OptionGroup, TradeoffOptions, TradeoffStudy};
-use activemuscle::studies::Study;
+use activemuscle::studies::tradeoff::{
+    Geometry, OptionGroup, TradeoffOptions, TradeoffResults, TradeoffStudy,
+};
+use activemuscle::studies::{Study, StudyResult};
 
 const FILE: &str = "tradeoff_scene.toml";
 
@@ -238,4 +241,99 @@ fn validation_errors_carry_the_line_of_their_key() {
         "[activation]\nlambda_min = 1.2\n\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n",
     );
     names(&e, 1, "activation.lambda_opt", "1.1704", "lambda_min");
+}
+
+/// Runs `text`'s single trade-off study; its outcome and results.
+fn run_tradeoff(text: &str) -> (activemuscle::studies::Outcome, TradeoffResults) {
+    let scene = Scene::parse(text, FILE).unwrap();
+    let mut results = scene.run(&RunOptions::default());
+    let outcome = results.studies.remove(0);
+    let StudyResult::Tradeoff(r) = outcome.result.clone() else {
+        panic!("not a trade-off result: {outcome:?}");
+    };
+    (outcome, r)
+}
+
+/// On a material the explicit law does not hold for (the chapter's energy with μ = 0.5 kPa,
+/// α = 12: eq. (14) leaves its domain at λ = 0.63), the trade-off measures what it can: the
+/// explicit variant is left out and said so, the groups that trade something else run with the
+/// implicit law and are measured.
+#[test]
+fn a_tradeoff_on_a_material_without_the_explicit_law_measures_with_the_implicit_law() {
+    let (outcome, r) = run_tradeoff(
+        r#"
+[material]
+mu = 0.5
+alpha = 12.0
+[[study]]
+kind = "tradeoff"
+options = ["activation-law", "newton-tolerance"]
+stretch = [0.9, 1.1, 1.25]
+nr = 1
+nz = 4
+tolerances = [1e-6, 1e-10]
+"#,
+    );
+    assert!(outcome.failures.is_empty(), "{:?}", outcome.failures);
+    assert!(
+        r.rows.iter().all(|m| !m.variant.contains("explicit")),
+        "{:?}",
+        r.rows
+    );
+    let tolerance: Vec<_> = r
+        .rows
+        .iter()
+        .filter(|m| m.option.contains("tolerance"))
+        .collect();
+    assert_eq!(tolerance.len(), 2);
+    assert!(tolerance.iter().all(|m| m.error.max_abs.is_finite()));
+    assert!(
+        r.findings
+            .iter()
+            .any(|f| f.contains("explicit law (0D) not measured")),
+        "{:?}",
+        r.findings
+    );
+    assert!(
+        r.findings
+            .iter()
+            .any(|f| f.contains("ran with the implicit law")),
+        "{:?}",
+        r.findings
+    );
+}
+
+/// A group whose reference cannot be computed (the implicit law finds no γ at λ = 1.6 before
+/// exp overflows, α = 2000) is a failure of the study with its reason; the groups after it still
+/// run, and the report does not claim that everything was computed.
+#[test]
+fn a_failed_option_group_is_named_and_the_others_still_run() {
+    let (outcome, r) = run_tradeoff(
+        r#"
+[material]
+alpha = 2000.0
+[[study]]
+kind = "tradeoff"
+options = ["activation-law", "newton-tolerance"]
+stretch = [1.0, 1.05, 1.6]
+nr = 1
+nz = 4
+tolerances = [1e-6, 1e-10]
+"#,
+    );
+    assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
+    assert_eq!(r.failures[0].0, "activation-law");
+    assert!(r.failures[0].1.contains("1.6"), "{}", r.failures[0].1);
+    assert_eq!(
+        r.rows
+            .iter()
+            .filter(|m| m.option.contains("tolerance"))
+            .count(),
+        2
+    );
+    assert!(!outcome.complete());
+    assert!(outcome
+        .failures
+        .iter()
+        .any(|f| f.model == "option group activation-law"));
 }

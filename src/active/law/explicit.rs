@@ -111,7 +111,7 @@ impl ExplicitLaw {
                 quantity: "explicit activation gamma",
                 value: gamma.re(),
                 context: format!(
-                    "at lambda = {}, d = {damage}: eq. D:gamma left its domain",
+                    "at lambda = {}, d = {damage}: eq. (14) left its domain (a logarithm or square root of a non-positive number)",
                     lambda.re()
                 ),
             });

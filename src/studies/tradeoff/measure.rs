@@ -319,7 +319,12 @@ pub fn finalise(rows: &mut [Measurement]) {
         let front = pareto_front(&points);
         for (k, &i) in idx.iter().enumerate() {
             let r = &mut rows[i];
-            r.speedup = t_ref / r.time.median;
+            // A failed variant's time is the time to its failure: no speed-up.
+            r.speedup = if r.error.max_abs.is_infinite() {
+                f64::NAN
+            } else {
+                t_ref / r.time.median
+            };
             r.measurable = reference.is_some_and(|t| r.time.speedup_over(&t).is_some());
             r.error_ratio = if best.is_finite() {
                 r.error.max_rel / best
@@ -351,6 +356,24 @@ pub fn cell(x: Option<f64>, digits: usize) -> String {
 }
 
 impl Measurement {
+    /// The row of a variant that could not be computed: infinite error (`failed` in the
+    /// tables), no time, `e` in the note.
+    pub fn failed(option: &str, variant: &str, quantity: &str, e: &dyn std::fmt::Display) -> Self {
+        let mut m = Self::new(
+            option,
+            variant,
+            false,
+            Timing::of(&mut []),
+            quantity,
+            CurveError {
+                max_abs: f64::INFINITY,
+                max_rel: f64::INFINITY,
+            },
+        );
+        m.note = format!("failed: {e}");
+        m
+    }
+
     /// The row in words, both axes with their numbers:
     /// `activation law (FE) · explicit (frozen): 5.4e-1 s (5.3e-1–5.6e-1, 3 runs), speed-up 1.06
     /// (no measurable difference), max abs error 2.7e0, max rel error 1.4e-1`.

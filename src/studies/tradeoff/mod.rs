@@ -37,7 +37,7 @@ pub use measure::{
 pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
 use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
-use super::{Outcome, RunContext, StudyKind, StudyResult};
+use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::models::Models;
 use groups::{Resolved, Runner};
@@ -84,6 +84,15 @@ impl OptionGroup {
         Self::ZeroDVsFe,
         Self::Incompressibility,
     ];
+
+    /// Whether the group measures with [`groups::working_law`] (every group but those that
+    /// trade the law itself).
+    fn uses_working_law(self) -> bool {
+        !matches!(
+            self,
+            Self::ActivationLaw | Self::ActivationLawFe | Self::LawRepresentation
+        )
+    }
 
     /// The name a scene uses (`activation-law-fe`).
     pub fn key(self) -> &'static str {
@@ -184,6 +193,9 @@ pub struct TradeoffResults {
     pub rows: Vec<Measurement>,
     /// Conclusions with their numbers, one line each.
     pub findings: Vec<String>,
+    /// Option groups that could not be measured (their reference failed), with the reason; the
+    /// rows measured before the failure are kept.
+    pub failures: Vec<(String, String)>,
 }
 
 /// Runs the chosen option groups on `models`, with the geometry and stretches of `o`, or of
@@ -218,31 +230,56 @@ pub fn run(
         started: Instant::now(),
     };
     let mut findings = Vec::new();
+    let mut failures = Vec::new();
     for group in OptionGroup::ALL {
         if !o.groups.contains(&group) {
             continue;
         }
         let (run, findings) = (&mut runner, &mut findings);
-        match group {
-            OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings)?,
-            OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings)?,
+        let measured = match group {
+            OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings),
+            OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings),
             OptionGroup::LawRepresentation => {
-                groups::law_representation(models, plan, run, findings)?
+                groups::law_representation(models, plan, run, findings)
             }
-            OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run)?,
-            OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run)?,
-            OptionGroup::Mesh => groups::mesh(models, plan, run, findings)?,
-            OptionGroup::Element => groups::element(models, plan, run, findings)?,
-            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings)?,
-            OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run)?,
+            OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run),
+            OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run),
+            OptionGroup::Mesh => groups::mesh(models, plan, run, findings),
+            OptionGroup::Element => groups::element(models, plan, run, findings),
+            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings),
+            OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run),
             OptionGroup::Incompressibility => {
-                groups::incompressibility(models, plan, run, findings)?
+                groups::incompressibility(models, plan, run, findings)
             }
+        };
+        // One group's failure does not cost the others.
+        if let Err(e) = measured {
+            runner
+                .progress
+                .log(&format!("{}: FAILED: {e}", group.key()));
+            findings.push(format!("Option group {} not measured: {e}.", group.key()));
+            failures.push((group.key().to_string(), e.to_string()));
         }
+    }
+    if groups::working_law(models) != crate::models::LawKind::Explicit
+        && o.groups.iter().any(|g| g.uses_working_law())
+    {
+        findings.push(format!(
+            "The groups that trade something other than the law ran with the {} law: {}.",
+            groups::working_law(models).name(),
+            models
+                .supports(crate::models::LawKind::Explicit)
+                .err()
+                .unwrap_or_default()
+        ));
     }
     let mut rows = runner.rows;
     measure::finalise(&mut rows);
-    Ok(TradeoffResults { rows, findings })
+    Ok(TradeoffResults {
+        rows,
+        findings,
+        failures,
+    })
 }
 
 /// Checks every mesh the chosen groups solve against the memory limit
@@ -494,6 +531,25 @@ impl TradeoffStudy {
             .count();
         let mut details = results.findings.clone();
         details.extend(results.rows.iter().map(Measurement::line));
+        // What was asked and not measured: whole groups, and variants that failed.
+        let failures = results
+            .failures
+            .iter()
+            .map(|(group, why)| Failure {
+                model: format!("option group {group}"),
+                message: why.clone(),
+            })
+            .chain(
+                results
+                    .rows
+                    .iter()
+                    .filter(|r| !r.error.max_rel.is_finite())
+                    .map(|r| Failure {
+                        model: format!("{} · {}", r.option, r.variant),
+                        message: r.note.clone(),
+                    }),
+            )
+            .collect();
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Tradeoff,
@@ -502,7 +558,7 @@ impl TradeoffStudy {
             requested: results.rows.len(),
             elapsed: Default::default(),
             details,
-            failures: Vec::new(),
+            failures,
             result: StudyResult::Tradeoff(results),
         })
     }
