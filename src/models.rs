@@ -438,8 +438,26 @@ fn visit_energy<'de, A: MapAccess<'de>>(
             ("energy", _) => spec.energy = map.next_value()?,
             ("fibre", Some(slot)) => *slot = Some(map.next_value()?),
             _ => {
-                let value = map.next_value::<f64>()?;
-                spec.parameters.push((key, value));
+                /// A parameter's value: a number, or anything else (a misspelt key).
+                #[derive(Deserialize)]
+                #[serde(untagged)]
+                enum Parameter {
+                    Number(f64),
+                    Other(serde::de::IgnoredAny),
+                }
+                match map.next_value::<Parameter>()? {
+                    Parameter::Number(value) => spec.parameters.push((key, value)),
+                    Parameter::Other(_) => {
+                        let keys = if fibre.is_some() {
+                            "energy = \"name\", fibre = [x, y, z] and the energy's parameters"
+                        } else {
+                            "energy = \"name\" and the energy's parameters"
+                        };
+                        return Err(serde::de::Error::custom(format!(
+                            "{key} is not a number: the keys are {keys}, each a number (a misspelt key?)"
+                        )));
+                    }
+                }
             }
         }
     }

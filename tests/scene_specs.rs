@@ -247,3 +247,12 @@ normals = 4
         assert_eq!(damage, [0.0, 0.3, 0.9], "{study}");
     }
 }
+
+/// A misspelt key of `[material]` (taken for an energy parameter, whose values are numbers) is
+/// named as such, not as a type error.
+#[test]
+fn a_misspelt_material_key_is_named() {
+    let e = rejected("[material]\nengery = \"neo-hookean\"\n");
+    assert!(e.to_string().contains("engery is not a number"), "{e}");
+    assert!(e.to_string().contains("misspelt"), "{e}");
+}

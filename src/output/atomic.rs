@@ -151,6 +151,12 @@ impl Staging {
                 format!("refusing to write outputs into {what}: give a directory of their own, e.g. --out out"),
             ));
         }
+        if root.exists() && !root.is_dir() {
+            return Err(refuse(
+                root,
+                "is a file, not a directory: give a directory for the outputs, e.g. --out out",
+            ));
+        }
         let created = !root.exists();
         std::fs::create_dir_all(root)
             .map_err(|e| AppError::io("create the output directory", root, e))?;

@@ -354,15 +354,39 @@ fn transverse_isotropy(run: &Run) -> Option<Figure> {
             })
     };
     let ((ua, along), (ux, across)) = (find(Direction::Along)?, find(Direction::Across)?);
+    // An isotropic energy gives the same curve both ways (where both were computed).
+    let isotropic = along
+        .points
+        .iter()
+        .filter_map(|a| {
+            let x = across.points.iter().find(|x| x.lambda == a.lambda)?;
+            Some((a.stress - x.stress).abs() <= 1e-9 * (1.0 + a.stress.abs()))
+        })
+        .fold(None, |all, same| Some(all.unwrap_or(true) && same))
+        .unwrap_or(false);
+    let (title, shape) = if isotropic {
+        (
+            format!(
+                "Passive stress along and across the fibres: {} is isotropic",
+                run.material
+            ),
+            "The two curves coincide: the energy does not see the fibre direction.",
+        )
+    } else {
+        (
+            format!(
+                "Transversely isotropic behaviour of {}{}",
+                run.material,
+                chapter(2, &run.material)
+            ),
+            "On the scale of the softer curve across the fibres.",
+        )
+    };
     figure(
         "fig_transverse_isotropy",
+        title,
         format!(
-            "Transversely isotropic behaviour of {}{}",
-            run.material,
-            chapter(2, &run.material)
-        ),
-        format!(
-            "Passive nominal stress of {} in uniaxial tension along and across the fibres (lateral faces traction free), on the scale of the softer curve across the fibres.",
+            "Passive nominal stress of {} in uniaxial tension along and across the fibres (lateral faces traction free). {shape}",
             run.material
         ),
         vec![panel(
@@ -664,15 +688,47 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
             u.study
         ),
         format!(
-            "Uniaxial tension {} the fibres, energy {}, d = {d}. Solid: frozen coupling, P = ∂Ŵ/∂F at γ = g(λ_f) held (the chapter's model); dashed: consistent coupling, the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))). The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres, the energy law so that its consistent model does.",
+            "Uniaxial tension {} the fibres, energy {}, d = {d}. {}",
             u.dir(),
-            run.material
+            run.material,
+            laws_caption(&pairs)
         ),
         vec![
-            panel(format!("Activation γ, d = {d} (either coupling)"), GAMMA, gammas),
+            panel(
+                format!("Activation γ, d = {d} (either coupling)"),
+                GAMMA,
+                gammas,
+            ),
             panel(format!("Nominal stress, d = {d}"), STRESS, p),
         ],
     )
+}
+
+/// What the strokes and the laws of [`laws`] mean, for the pairs drawn only.
+fn laws_caption(pairs: &[(LawKind, CouplingKind)]) -> String {
+    let has_law = |l: LawKind| pairs.iter().any(|p| p.0 == l);
+    let has_coupling = |c: CouplingKind| pairs.iter().any(|p| p.1 == c);
+    const FROZEN: &str = "frozen coupling, P = ∂Ŵ/∂F at γ = g(λ_f) held (the chapter's model)";
+    const CONSISTENT: &str = "consistent coupling, the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F)))";
+    let mut words = match (
+        has_coupling(CouplingKind::Frozen),
+        has_coupling(CouplingKind::Consistent),
+    ) {
+        (true, true) => vec![format!("Solid: {FROZEN}; dashed: {CONSISTENT}.")],
+        (true, false) => vec![format!("Solid: {FROZEN}.")],
+        (false, true) => vec![format!("Dashed: {CONSISTENT}.")],
+        (false, false) => Vec::new(),
+    };
+    if has_law(LawKind::Implicit) {
+        words.push("The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres.".into());
+    }
+    if has_law(LawKind::Explicit) {
+        words.push("The explicit law is the chapter's closed-form approximation of the implicit one (eq. (14)).".into());
+    }
+    if has_law(LawKind::Energy) {
+        words.push("The energy law is built so that its consistent model reproduces the target along the fibres.".into());
+    }
+    words.join(" ")
 }
 
 /// One panel per law × coupling of study `u`, a curve per damage (two or more damages).

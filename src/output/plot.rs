@@ -240,8 +240,15 @@ impl Panel {
             .iter()
             .map(|c| c.0[c.0.len() - 1])
             .fold(f64::NEG_INFINITY, f64::max);
+        // A range narrower than a millionth of its magnitude (a constant series) would print
+        // the same tick label everywhere: it is opened to ±10 % of the value (±1 around 0).
         let pad = |a: f64, b: f64, f: f64| {
-            let w = (b - a).abs().max(1e-9 * a.abs().max(b.abs()).max(1e-300));
+            let m = a.abs().max(b.abs());
+            if (b - a).abs() <= 1e-6 * m || m == 0.0 {
+                let h = if m > 0.0 { 0.1 * m } else { 1.0 };
+                return (a - h, b + h);
+            }
+            let w = (b - a).abs();
             (a - f * w, b + f * w)
         };
         let x = self.x_range.unwrap_or_else(|| pad(x0, x1, 0.02));

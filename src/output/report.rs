@@ -2,7 +2,7 @@
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
 use super::base64;
-use super::csv::{correlations, COLUMNS};
+use super::csv::{correlations, COLUMNS, HISTORY_COLUMNS};
 use super::plot::{short, Rendered};
 use crate::app_error::{finite, AppError};
 use crate::energy::Parametric;
@@ -412,13 +412,13 @@ fn fe_table(h: &mut String, results: &Results) {
     let e = escape;
     let sweeps: Vec<_> = results
         .cylinders()
-        .flat_map(|(_, c)| c.sweeps.iter().map(move |s| (c.bases, s)))
+        .flat_map(|(study, c)| c.sweeps.iter().map(move |s| (study, c.bases, s)))
         .collect();
     if sweeps.is_empty() {
         return;
     }
-    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive exponential takes over, and with it the end effect of clamped bases.</p>\n<table><tr><th>bases</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
-    for (bases, s) in sweeps {
+    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive stress dominates, and with it the end effect of clamped bases.</p>\n<table><tr><th>study</th><th>bases</th><th>free dofs</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
+    for (study, bases, s) in sweeps {
         let range: Vec<f64> = s
             .points
             .iter()
@@ -431,8 +431,10 @@ fn fe_table(h: &mut String, results: &Results) {
         };
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{range}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{range}</td><td>{}</td><td>{}</td></tr>",
+            e(study),
             bases_name(bases),
+            s.dofs,
             e(&s.label),
             s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
             difference(largest(&s.points, active)),
@@ -511,9 +513,24 @@ fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
     );
     let _ = writeln!(
         h,
-        ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {} rows.</p>",
-        info.rows
+        ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {}</p>",
+        if info.rows == 0 {
+            "No rows: this scene has no uniaxial or cylinder study.".to_string()
+        } else {
+            format!("{} rows.", info.rows)
+        }
     );
+    if info.files.iter().any(|f| f == "history.csv") {
+        h.push_str("<p><code>history.csv</code>: one row per activation-in-time model and time step, columns ");
+        h.push_str(
+            &HISTORY_COLUMNS
+                .iter()
+                .map(|c| format!("<code>{c}</code>"))
+                .collect::<Vec<_>>()
+                .join(", "),
+        );
+        h.push_str(". t in s; a_schedule (the schedule), a (the activation level used), λ, γ and the volume ratio J dimensionless; P (nominal), cauchy (σ₁₁ = P λ / J), P_pas and P_act (the target (1 − d) a P_act(λ)) in kPa.</p>\n");
+    }
     h.push_str("<p>Other files: ");
     h.push_str(
         &info

@@ -360,6 +360,15 @@ pub fn resolve(
                 .collect()
         }),
     };
+    // The solve's memory, from the counts, before anything runs (`check` says it too).
+    crate::fem::MemoryEstimate::structured(
+        nr,
+        nz,
+        spec.element,
+        crate::fem::SolverOptions::default().linear_solver,
+    )
+    .check(crate::fem::memory::default_limit())
+    .map_err(|e| SpecError::new("nr", nr, e.to_string()))?;
     let points = match &spec.points {
         Some(p) if !p.is_empty() => {
             let mesh = Mesh::structured(radius, length, nr, nz, grading)

@@ -377,7 +377,7 @@ impl HistoryStudy {
     /// One line for `check`.
     pub fn describe(&self) -> String {
         format!(
-            "{}: {} time steps in [{}, {}] s, {} loading, a(t) = {}, {} history(ies)",
+            "{}: {} time steps in [{}, {}] s, {} loading, a(t) = {}, {} {}",
             self.name,
             self.times.len(),
             self.times.first().copied().unwrap_or(f64::NAN),
@@ -388,7 +388,12 @@ impl HistoryStudy {
             } else {
                 "schedule"
             },
-            self.damages.len()
+            self.damages.len(),
+            if self.damages.len() == 1 {
+                "history"
+            } else {
+                "histories"
+            }
         )
     }
 
