@@ -521,26 +521,37 @@ fn a_blocked_commit_leaves_the_previous_outputs_unchanged() {
 }
 
 /// Meshes far beyond the memory limit (5000 × 10000 cells: thousands of GiB) are refused before
-/// anything is allocated, in a cylinder study and in a trade-off study, and cost the other
-/// studies nothing; `tradeoff` refuses before computing.
+/// anything is allocated: a cylinder study's when the scene is read (exit 1, naming the key), a
+/// trade-off study's before it computes, costing the other studies nothing; `tradeoff` refuses
+/// before computing.
 #[test]
 fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     let dir = temp_dir("memory");
+    let cylinder = format!(
+        "{HEAD}{UNIAXIAL}\n[[study]]\nkind = \"cylinder\"\nname = \"huge\"\nnr = 5000\nnz = 10000\nstretch = [1.1]\n"
+    );
+    let (output, out) = run_scene(&dir, "huge-cylinder", &cylinder);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{output:?}");
+    assert!(
+        stderr.contains("nr = 5000")
+            && stderr.contains("5000 × 10000")
+            && stderr.contains("of memory, above the limit"),
+        "{stderr}"
+    );
+    assert!(!out.join("curves.csv").exists());
     let text = format!(
-        "{HEAD}{UNIAXIAL}\n[[study]]\nkind = \"cylinder\"\nname = \"huge\"\nnr = 5000\nnz = 10000\nstretch = [1.1]\n\
-         \n[[study]]\nkind = \"tradeoff\"\nname = \"huge tradeoff\"\nmeshes = [[2, 8], [5000, 10000]]\n"
+        "{HEAD}{UNIAXIAL}\n[[study]]\nkind = \"tradeoff\"\nname = \"huge tradeoff\"\nmeshes = [[2, 8], [5000, 10000]]\n"
     );
     let (output, out) = run_scene(&dir, "huge", &text);
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert_eq!(output.status.code(), Some(3), "{output:?}");
     assert_eq!(rows_of(&read(&out.join("curves.csv")), "uniaxial").len(), 8);
-    for study in ["FAILED: huge —", "FAILED: huge tradeoff —"] {
-        let line = stdout
-            .lines()
-            .find(|l| l.starts_with(study))
-            .unwrap_or_else(|| panic!("{study}: {stdout}"));
-        assert!(line.contains("5000 × 10000") && line.contains("of memory, above the limit"));
-    }
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("FAILED: huge tradeoff —"))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(line.contains("5000 × 10000") && line.contains("of memory, above the limit"));
     let tradeoff = run_args(&[
         "tradeoff".as_ref(),
         dir.join("huge.toml").as_os_str(),
