@@ -170,8 +170,8 @@ impl Models {
     /// Whether the explicit law's closed form stays in its domain (logarithms and square roots of
     /// positive numbers) at every λ of `EXPLICIT_PROBE` for d = 0 and d = 1: its (a, b) are the
     /// chapter's fit for the chapter's energy and active curve, and with other parameters the
-    /// formula can leave its domain at ordinary stretches (μ = 0.5 kPa, α = 12: at λ = 0.9).
-    fn explicit_law_holds(&self) -> Result<(), String> {
+    /// formula can leave its domain at ordinary stretches (μ = 0.5 kPa, α = 12: at λ = 0.63).
+    pub fn explicit_law_holds(&self) -> Result<(), String> {
         use crate::active::ActivationLaw;
         let law = self.law(LawKind::Explicit).map_err(|e| e.to_string())?;
         let (from, to, n) = EXPLICIT_PROBE;

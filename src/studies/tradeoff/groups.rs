@@ -170,9 +170,9 @@ fn muscle(models: &Models, law: LawKind, coupling: Coupling) -> Result<Muscle<En
 
 /// The law the groups that trade something else (derivative route, tangent, mesh, element,
 /// tolerance, 0D vs FE, incompressibility) measure with: the explicit law, the cheapest, where
-/// the material supports it ([`Models::supports`]), else the implicit law.
+/// its formula holds on this material ([`Models::explicit_law_holds`]), else the implicit law.
 pub(super) fn working_law(models: &Models) -> LawKind {
-    if models.supports(LawKind::Explicit).is_ok() {
+    if models.explicit_law_holds().is_ok() {
         LawKind::Explicit
     } else {
         LawKind::Implicit
@@ -297,8 +297,8 @@ pub(super) fn activation_law(
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ];
     for (name, law, coupling) in variants {
-        if let Err(why) = models.supports(law) {
-            findings.push(format!("{} law (0D) not measured: {why}.", law.name()));
+        if let (LawKind::Explicit, Err(why)) = (law, models.explicit_law_holds()) {
+            findings.push(format!("explicit law (0D) not measured: {why}."));
             continue;
         }
         let (t, (p, g)) = match muscle(models, law, coupling).and_then(|m| curve(&m)) {
@@ -362,7 +362,7 @@ pub fn activation_law_fe_rows(
         ("explicit (frozen)", LawKind::Explicit, EXACT),
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ] {
-        if models.supports(law).is_err() {
+        if law == LawKind::Explicit && models.explicit_law_holds().is_err() {
             continue;
         }
         let r = match sweep(law, coupling) {
@@ -415,7 +415,7 @@ pub(super) fn activation_law_fe(
         Bases::Clamped,
         &o.fe_stretches,
     )?;
-    if let Err(why) = models.supports(LawKind::Explicit) {
+    if let Err(why) = models.explicit_law_holds() {
         findings.push(format!("Explicit law (FE) not measured: {why}."));
     }
     let explicit = rows.iter().find(|r| r.variant == "explicit (frozen)");

@@ -267,10 +267,7 @@ pub fn run(
         findings.push(format!(
             "The groups that trade something other than the law ran with the {} law: {}.",
             groups::working_law(models).name(),
-            models
-                .supports(crate::models::LawKind::Explicit)
-                .err()
-                .unwrap_or_default()
+            models.explicit_law_holds().err().unwrap_or_default()
         ));
     }
     let mut rows = runner.rows;
