@@ -354,3 +354,57 @@ fn figures_of_studies_whose_names_give_one_stem_get_different_files() {
         ["fig_cylinder", "fig_cylinder_x", "fig_cylinder_x_2"]
     );
 }
+
+/// A constant series (an activation level held at 1) gets a frame around it wide enough for
+/// distinct tick labels: ±10 % of the value (±1 around 0), not a relative 1e-9.
+#[test]
+fn a_constant_series_gets_a_readable_axis() {
+    for value in [1.0, -250.0, 0.0] {
+        let points = (0..=10).map(|i| (f64::from(i), value)).collect();
+        let panel = Panel::new(
+            "test",
+            "time t [s]",
+            "a [-]",
+            vec![Series::new("level", points, Stroke::Solid, 0)],
+        );
+        let f = panel.frame();
+        let width = f.y.1 - f.y.0;
+        assert!(f.contains((5.0, value)), "{f:?}");
+        let expected = if value == 0.0 { 2.0 } else { 0.2 * value.abs() };
+        assert!(width >= expected * (1.0 - 1e-12), "{value}: {f:?}");
+    }
+}
+
+/// An isotropic energy's curves along and across the fibres coincide: the figure says so and
+/// does not call the material transversely isotropic; a γ close to 1 is noted.
+#[test]
+fn an_isotropic_energy_is_not_called_transversely_isotropic() {
+    let scene = Scene::parse(
+        r#"
+[material]
+energy = "neo-hookean"
+mu = 2.0
+[[study]]
+kind = "uniaxial"
+name = "along"
+stretch = { from = 0.8, to = 1.4, step = 0.05 }
+laws = ["implicit"]
+couplings = ["frozen"]
+[[study]]
+kind = "uniaxial"
+name = "across"
+direction = "across"
+stretch = { from = 0.8, to = 1.4, step = 0.05 }
+laws = []
+"#,
+        "isotropic.toml",
+    )
+    .unwrap();
+    let (results, figures) = check_coverage(&scene);
+    let all = text(&figures);
+    assert!(all.contains("neo-hookean is isotropic"), "{all}");
+    assert!(!all.contains("Transversely isotropic behaviour"), "{all}");
+    // The chapter's active curve on a neo-Hookean block of μ = 2 kPa drives γ to ≈ 0.97.
+    let page = report(&scene, &results);
+    assert!(page.contains("γ reaches 0.9"), "no note on γ close to 1");
+}

@@ -585,7 +585,10 @@ impl CylinderStudy {
             let (sweep, stops) = match s {
                 Ok(s) => s,
                 Err(e) => {
-                    details.push(format!("d = {}: not run (see notes)", m.damage));
+                    details.push(format!(
+                        "d = {}: not run (see \"Where a model stopped\")",
+                        m.damage
+                    ));
                     failures.push(Failure {
                         model: models.label(m),
                         message: e.to_string(),
@@ -600,7 +603,7 @@ impl CylinderStudy {
                 self.stretches.len(),
                 sweep.dofs,
                 sweep.max_relative_to_0d(),
-                if stops.is_empty() { "" } else { " (stopped: see notes)" }
+                if stops.is_empty() { "" } else { " (stopped: see \"Where a model stopped\")" }
             ));
             failures.extend(stops);
             result.sweeps.push(sweep);

@@ -399,7 +399,7 @@ impl Outcome {
             points: 0,
             requested: 0,
             elapsed: Duration::ZERO,
-            details: vec!["nothing computed: see notes".into()],
+            details: vec!["nothing computed: see \"Where a model stopped\"".into()],
             failures: vec![Failure {
                 model: "the whole study".into(),
                 message,

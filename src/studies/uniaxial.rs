@@ -274,6 +274,15 @@ impl UniaxialStudy {
             failures.extend(failure);
         }
         let points = result.curves.iter().map(|c| c.points.len()).sum();
+        let mut details = vec![format!(
+            "{} curves × {} stretches in [{}, {}], {} the fibres",
+            curves.len(),
+            self.stretches.len(),
+            self.stretches.first().copied().unwrap_or(f64::NAN),
+            self.stretches.last().copied().unwrap_or(f64::NAN),
+            self.direction.name()
+        )];
+        details.extend(extreme_activation(&result));
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Uniaxial,
@@ -281,14 +290,7 @@ impl UniaxialStudy {
             points,
             requested: curves.len() * self.stretches.len(),
             elapsed: Default::default(),
-            details: vec![format!(
-                "{} curves × {} stretches in [{}, {}], {} the fibres",
-                curves.len(),
-                self.stretches.len(),
-                self.stretches.first().copied().unwrap_or(f64::NAN),
-                self.stretches.last().copied().unwrap_or(f64::NAN),
-                self.direction.name()
-            )],
+            details,
             failures,
             result: StudyResult::Uniaxial(result),
         })
@@ -346,4 +348,33 @@ fn label(models: &Models, model: &CurveModel, energy: &Energy) -> String {
         CurveModel::Constant(g) => format!("{}, constant gamma = {g}", models.energy.name()),
         CurveModel::Active(m) => models.label(m),
     }
+}
+
+/// γ above which a note says how extreme the activation is: F_a = I − γ m⊗m shortens the
+/// fibre to 1 − γ of its length in the intermediate configuration (the chapter's γ stays below
+/// about 0.4).
+const EXTREME_GAMMA: f64 = 0.9;
+
+/// A note on the largest γ of `result`, if it exceeds [`EXTREME_GAMMA`].
+fn extreme_activation(result: &UniaxialResult) -> Option<String> {
+    // Activation models only: a constant γ is the user's own choice.
+    let (gamma, lambda, model) = result
+        .curves
+        .iter()
+        .filter_map(|c| match c.model {
+            CurveModel::Active(m) => Some((m, c)),
+            _ => None,
+        })
+        .flat_map(|(m, c)| c.points.iter().map(move |p| (p.gamma, p.lambda, m)))
+        .filter(|(g, _, _)| g.is_finite())
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    (gamma > EXTREME_GAMMA).then(|| {
+        format!(
+            "γ reaches {gamma:.3} ({} law, {} coupling, d = {}, λ = {lambda}): F_a = I − γ m⊗m shortens the fibre to {:.1} % of its length, nearly singular; the active curve may be too strong for this energy",
+            model.law.name(),
+            model.coupling.name(),
+            model.damage,
+            100.0 * (1.0 - gamma)
+        )
+    })
 }
