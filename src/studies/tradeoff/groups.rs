@@ -134,12 +134,6 @@ pub(super) struct Runner<'a> {
 }
 
 impl Runner<'_> {
-    /// A variant that could not be computed: a row with an infinite error (shown as `failed`),
-    /// no time, and the reason in its note.
-    fn failed(&mut self, option: &str, variant: &str, quantity: &str, e: &AppError) {
-        self.push(Measurement::failed(option, variant, quantity, e));
-    }
-
     fn push(&mut self, m: Measurement) {
         self.progress.log(&format!(
             "[{:6.1} s] {:<28} {:<34} time {:>10.3e} s ({} runs)  error {:>9.2e} (rel {:>9.2e}){}",
@@ -305,7 +299,7 @@ pub(super) fn activation_law(
             Ok(c) => c,
             Err(e) => {
                 findings.push(format!("{} law (0D): failed: {e}.", law.name()));
-                run.failed(OPTION, name, quantity, &e);
+                run.push(Measurement::failed(OPTION, name, quantity, &e));
                 continue;
             }
         };
