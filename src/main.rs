@@ -3,7 +3,7 @@
 
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
-use activemuscle::studies::tradeoff::run as run_tradeoff;
+use activemuscle::studies::tradeoff::run_until as run_tradeoff;
 use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
@@ -238,8 +238,8 @@ fn on_interrupt(stop: &Stop) {
                 std::process::exit(128 + signal);
             }
             eprintln!(
-                "{}: stopping after the current Newton iteration and writing what was solved \
-                 (interrupt again to abort)",
+                "{}: stopping after the current Newton iteration (a trade-off: after the current \
+                 option group) and writing what was computed (interrupt again to abort)",
                 interrupted(signal)
             );
             stop.stop(&interrupted(signal));
@@ -332,7 +332,15 @@ fn tradeoff_command(
     let options = scene.tradeoff_options().cloned().unwrap_or_default();
     let printing = Printing::new(true, false);
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
-    let results = run_tradeoff(&scene.models, &options, &scene.fallback(), progress)?;
+    let stop = Stop::new();
+    on_interrupt(&stop);
+    let results = run_tradeoff(
+        &scene.models,
+        &options,
+        &scene.fallback(),
+        progress,
+        Some(&stop),
+    )?;
     let wall = started.elapsed().as_secs_f64();
     let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
     staging.commit()?;
@@ -369,7 +377,16 @@ fn tradeoff_command(
     for f in &failed {
         println!("FAILED: {f}");
     }
-    Ok(if failed.is_empty() {
+    let signal = STOPPED_BY.load(Ordering::SeqCst);
+    if signal != 0 {
+        println!(
+            "STOPPED: {}; what was measured before is written",
+            interrupted(signal)
+        );
+    }
+    Ok(if signal != 0 {
+        Ended::Interrupted(signal)
+    } else if failed.is_empty() {
         Ended::Complete
     } else {
         Ended::Incomplete

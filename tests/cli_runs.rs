@@ -282,6 +282,41 @@ fn reported_stretches(lines: &[String]) -> Vec<String> {
     v
 }
 
+/// Runs the binary with `args`, sends `signal` (`INT`, `TERM`) once a stdout line satisfies
+/// `ready`, and returns the exit code and every stdout line.
+fn signalled(
+    args: &[&std::ffi::OsStr],
+    signal: &str,
+    ready: impl Fn(&str) -> bool,
+) -> (Option<i32>, Vec<String>) {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn");
+    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
+    let mut seen = Vec::new();
+    for line in lines.by_ref() {
+        let line = line.expect("line");
+        let go = ready(&line);
+        seen.push(line);
+        if go {
+            break;
+        }
+    }
+    let kill = Command::new("kill")
+        .arg(format!("-{signal}"))
+        .arg(child.id().to_string())
+        .status()
+        .expect("kill");
+    assert!(kill.success());
+    seen.extend(lines.map(|l| l.expect("line")));
+    (child.wait().expect("wait").code(), seen)
+}
+
 /// SIGINT (Ctrl-C) or SIGTERM (`kill`, a batch scheduler's time limit) during a long sweep,
 /// stdout a pipe: a progress line per solved stretch (plain, stamped), and after the signal the
 /// solved stretches are in curves.csv, exactly those the progress lines reported, the study
@@ -294,41 +329,22 @@ fn a_signal_keeps_the_solved_stretches_and_exits_128_plus_the_signal() {
 }
 
 fn signal_keeps_the_solved_stretches(signal: &str, code: i32) {
-    use std::io::{BufRead, BufReader};
-    use std::process::{Command, Stdio};
     let dir = temp_dir(&format!("sig{signal}"));
     let scene = dir.join("long.toml");
     std::fs::write(&scene, LONG).expect("write scene");
     let out = dir.join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
-        .arg("run")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("spawn");
-    let mut lines = BufReader::new(child.stdout.take().expect("stdout")).lines();
-    let mut seen = Vec::new();
-    for line in lines.by_ref() {
-        let line = line.expect("line");
-        let first = line.starts_with('[') && line.contains("solved");
-        seen.push(line);
-        if first {
-            break;
-        }
-    }
-    let kill = Command::new("kill")
-        .arg(format!("-{signal}"))
-        .arg(child.id().to_string())
-        .status()
-        .expect("kill");
-    assert!(kill.success());
-    seen.extend(lines.map(|l| l.expect("line")));
-    let status = child.wait().expect("wait");
+    let (status, seen) = signalled(
+        &[
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ],
+        signal,
+        |line| line.starts_with('[') && line.contains("solved"),
+    );
     let stdout = seen.join("\n");
-    assert_eq!(status.code(), Some(code), "{stdout}");
+    assert_eq!(status, Some(code), "{stdout}");
     let solved = cylinder_stretches(&read(&out.join("curves.csv")));
     assert!(
         !solved.is_empty() && solved.len() < 1599,
@@ -343,6 +359,46 @@ fn signal_keeps_the_solved_stretches(signal: &str, code: i32) {
         "{stdout}"
     );
     assert!(read(&out.join("report.html")).contains(&reason));
+}
+
+/// SIGTERM during `activemuscle tradeoff`: the option group running is finished, the groups after
+/// it are named as not run, what was measured is written, exit 143.
+#[test]
+fn a_signal_during_a_tradeoff_keeps_what_was_measured() {
+    let dir = temp_dir("tradeoff-signal");
+    let scene = dir.join("tradeoff.toml");
+    std::fs::write(
+        &scene,
+        "[[study]]\nkind = \"tradeoff\"\noptions = [\"activation-law\", \"newton-tolerance\", \"mesh\"]\n\
+         stretch = { from = 0.7, to = 1.5, step = 0.01 }\nnr = 1\nnz = 4\nmeshes = [[1, 4], [2, 8]]\n",
+    )
+    .expect("write scene");
+    let out = dir.join("out");
+    // After the first measured variant the first group (activation law, 0D; each variant is
+    // repeated for 0.3 s) has ≥ 0.6 s to go.
+    let (status, seen) = signalled(
+        &[
+            "tradeoff".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ],
+        "TERM",
+        |line| line.contains("activation law (0D)"),
+    );
+    let stdout = seen.join("\n");
+    assert_eq!(status, Some(143), "{stdout}");
+    for group in ["newton-tolerance", "mesh"] {
+        assert!(
+            stdout.contains(&format!(
+                "FAILED: option group {group}: not run: interrupted (SIGTERM)"
+            )),
+            "{group}: {stdout}"
+        );
+    }
+    let csv = read(&out.join("tradeoff.csv"));
+    assert!(csv.contains("activation law (0D)"), "{csv}");
+    assert!(!csv.contains("Newton tolerance"), "{csv}");
 }
 
 /// `--max-seconds` stops like an interruption, names the time limit and exits 3.

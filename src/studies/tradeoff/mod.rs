@@ -206,6 +206,18 @@ pub fn run(
     fallback: &Fallback,
     progress: &dyn super::Progress,
 ) -> Result<TradeoffResults, AppError> {
+    run_until(models, o, fallback, progress, None)
+}
+
+/// [`run`], until `stop` is requested: the group running then is finished, the groups after it
+/// are listed in [`TradeoffResults::failures`] as not run, with the stop's reason.
+pub fn run_until(
+    models: &Models,
+    o: &TradeoffOptions,
+    fallback: &Fallback,
+    progress: &dyn super::Progress,
+    stop: Option<&super::Stop>,
+) -> Result<TradeoffResults, AppError> {
     if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
         return Err(AppError::Invalid(
             "need at least one mesh, tolerance and FE stretch".into(),
@@ -233,6 +245,10 @@ pub fn run(
     let mut failures = Vec::new();
     for group in OptionGroup::ALL {
         if !o.groups.contains(&group) {
+            continue;
+        }
+        if let Some(reason) = stop.and_then(super::Stop::reason) {
+            failures.push((group.key().to_string(), format!("not run: {reason}")));
             continue;
         }
         let (run, findings) = (&mut runner, &mut findings);
@@ -519,8 +535,8 @@ impl TradeoffStudy {
             self.name,
             self.options.groups.len()
         ));
-        let results =
-            run(models, &self.options, fallback, ctx.progress).map_err(|e| e.within(&self.name))?;
+        let results = run_until(models, &self.options, fallback, ctx.progress, ctx.stop)
+            .map_err(|e| e.within(&self.name))?;
         let measured = results
             .rows
             .iter()
