@@ -356,26 +356,10 @@ fn tradeoff_command(
         out.display(),
         started.elapsed().as_secs_f64()
     );
-    // A variant that could not be measured (no finite error) is a failure of what was asked.
-    let failed: Vec<String> = results
-        .failures
-        .iter()
-        .map(|(group, why)| format!("option group {group}: {why}"))
-        .chain(
-            results
-                .rows
-                .iter()
-                .filter(|r| !r.error.max_rel.is_finite())
-                .map(|r| {
-                    format!(
-                        "{}: {} (not measured: see tradeoff.md)",
-                        r.option, r.variant
-                    )
-                }),
-        )
-        .collect();
+    // A group or variant that could not be measured is a failure of what was asked.
+    let failed = results.unmeasured();
     for f in &failed {
-        println!("FAILED: {f}");
+        println!("FAILED: {}: {}", f.model, f.message);
     }
     let signal = STOPPED_BY.load(Ordering::SeqCst);
     if signal != 0 {

@@ -8,7 +8,7 @@ use activemuscle::models::LawKind;
 use activemuscle::scene::RunOptions;
 use activemuscle::scene::{Scene, SceneError};
 use activemuscle::studies::tradeoff::{
-    Geometry, OptionGroup, TradeoffOptions, TradeoffResults, TradeoffStudy,
+    Geometry, Measurement, OptionGroup, TradeoffOptions, TradeoffResults, TradeoffStudy,
 };
 use activemuscle::studies::{Study, StudyResult};
 
@@ -254,6 +254,14 @@ fn run_tradeoff(text: &str) -> (activemuscle::studies::Outcome, TradeoffResults)
     (outcome, r)
 }
 
+/// The rows of the options whose name contains `option`.
+fn rows_of<'a>(r: &'a TradeoffResults, option: &str) -> Vec<&'a Measurement> {
+    r.rows
+        .iter()
+        .filter(|m| m.option.contains(option))
+        .collect()
+}
+
 /// On a material the explicit law does not hold for (the chapter's energy with μ = 0.5 kPa,
 /// α = 12: eq. (14) leaves its domain at λ = 0.63), the trade-off measures what it can: the
 /// explicit variant is left out and said so, the groups that trade something else run with the
@@ -280,11 +288,7 @@ tolerances = [1e-6, 1e-10]
         "{:?}",
         r.rows
     );
-    let tolerance: Vec<_> = r
-        .rows
-        .iter()
-        .filter(|m| m.option.contains("tolerance"))
-        .collect();
+    let tolerance = rows_of(&r, "tolerance");
     assert_eq!(tolerance.len(), 2);
     assert!(tolerance.iter().all(|m| m.error.max_abs.is_finite()));
     assert!(
@@ -324,13 +328,7 @@ tolerances = [1e-6, 1e-10]
     assert_eq!(r.failures.len(), 1, "{:?}", r.failures);
     assert_eq!(r.failures[0].0, "activation-law");
     assert!(r.failures[0].1.contains("1.6"), "{}", r.failures[0].1);
-    assert_eq!(
-        r.rows
-            .iter()
-            .filter(|m| m.option.contains("tolerance"))
-            .count(),
-        2
-    );
+    assert_eq!(rows_of(&r, "tolerance").len(), 2);
     assert!(!outcome.complete());
     assert!(outcome
         .failures

@@ -504,13 +504,7 @@ fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
     }
 
     h.push_str("<h2>Data</h2>\n<p><code>curves.csv</code>: one row per point, columns ");
-    h.push_str(
-        &COLUMNS
-            .iter()
-            .map(|c| format!("<code>{c}</code>"))
-            .collect::<Vec<_>>()
-            .join(", "),
-    );
+    h.push_str(&code_list(COLUMNS));
     let _ = writeln!(
         h,
         ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {}</p>",
@@ -522,25 +516,21 @@ fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
     );
     if info.files.iter().any(|f| f == "history.csv") {
         h.push_str("<p><code>history.csv</code>: one row per activation-in-time model and time step, columns ");
-        h.push_str(
-            &HISTORY_COLUMNS
-                .iter()
-                .map(|c| format!("<code>{c}</code>"))
-                .collect::<Vec<_>>()
-                .join(", "),
-        );
+        h.push_str(&code_list(HISTORY_COLUMNS));
         h.push_str(". t in s; a_schedule (the schedule), a (the activation level used), λ, γ and the volume ratio J dimensionless; P (nominal), cauchy (σ₁₁ = P λ / J), P_pas and P_act (the target (1 − d) a P_act(λ)) in kPa.</p>\n");
     }
     h.push_str("<p>Other files: ");
-    h.push_str(
-        &info
-            .files
-            .iter()
-            .map(|f| format!("<code>{}</code>", e(f)))
-            .collect::<Vec<_>>()
-            .join(", "),
-    );
+    h.push_str(&code_list(info.files.iter().map(String::as_str)));
     h.push_str("</p>\n");
+}
+
+/// `items` as `<code>` elements (escaped), separated by commas.
+fn code_list<'a>(items: impl IntoIterator<Item = &'a str>) -> String {
+    items
+        .into_iter()
+        .map(|c| format!("<code>{}</code>", escape(c)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.

@@ -41,6 +41,9 @@ pub(super) struct Resolved {
     pub curve_stretches: Vec<f64>,
     pub tolerances: Vec<f64>,
     pub fd_step: f64,
+    /// Whether the explicit law's formula holds on the material ([`Models::explicit_law_holds`],
+    /// evaluated once per run), and why not.
+    pub explicit: Result<(), String>,
 }
 
 /// One FE sweep, timed.
@@ -162,17 +165,6 @@ fn muscle(models: &Models, law: LawKind, coupling: Coupling) -> Result<Muscle<En
     )
 }
 
-/// The law the groups that trade something else (derivative route, tangent, mesh, element,
-/// tolerance, 0D vs FE, incompressibility) measure with: the explicit law, the cheapest, where
-/// its formula holds on this material ([`Models::explicit_law_holds`]), else the implicit law.
-pub(super) fn working_law(models: &Models) -> LawKind {
-    if models.explicit_law_holds().is_ok() {
-        LawKind::Explicit
-    } else {
-        LawKind::Implicit
-    }
-}
-
 /// The solver's defaults (tolerance 1e-10, 25 Newton iterations per step).
 fn tight() -> SolverOptions {
     SolverOptions::default()
@@ -195,6 +187,17 @@ fn with_stepping(stepping: Stepping) -> SolverOptions {
 const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
 
 impl Resolved {
+    /// The law the groups that trade something else (derivative route, tangent, mesh, element,
+    /// tolerance, 0D vs FE, incompressibility) measure with: the explicit law, the cheapest,
+    /// where its formula holds on the material, else the implicit law.
+    pub fn working_law(&self) -> LawKind {
+        if self.explicit.is_ok() {
+            LawKind::Explicit
+        } else {
+            LawKind::Implicit
+        }
+    }
+
     /// One timed sweep of `material` on the FE mesh of the clamped cylinder.
     fn clamped<M: AxisymmetricMaterial + ?Sized>(
         &self,
@@ -291,7 +294,7 @@ pub(super) fn activation_law(
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ];
     for (name, law, coupling) in variants {
-        if let (LawKind::Explicit, Err(why)) = (law, models.explicit_law_holds()) {
+        if let (LawKind::Explicit, Err(why)) = (law, &o.explicit) {
             findings.push(format!("explicit law (0D) not measured: {why}."));
             continue;
         }
@@ -409,7 +412,7 @@ pub(super) fn activation_law_fe(
         Bases::Clamped,
         &o.fe_stretches,
     )?;
-    if let Err(why) = models.explicit_law_holds() {
+    if let Err(why) = &o.explicit {
         findings.push(format!("Explicit law (FE) not measured: {why}."));
     }
     let explicit = rows.iter().find(|r| r.variant == "explicit (frozen)");
@@ -559,7 +562,7 @@ pub(super) fn derivative_route(
     o: &Resolved,
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
-    let fast = muscle(models, working_law(models), EXACT)?;
+    let fast = muscle(models, o.working_law(), EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
     let f = representative_point();
@@ -578,7 +581,7 @@ pub(super) fn derivative_route(
     const POINT: &str = "derivative route (point)";
     let quantity = &format!(
         "∂P/∂F at one point [kPa] ({} law, frozen exact)",
-        working_law(models).name()
+        o.working_law().name()
     );
     let (t_fast, k_fast) = per_point(&fast)?;
     run.push(Measurement::new(
@@ -624,10 +627,10 @@ pub(super) fn frozen_tangent(
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "frozen tangent (FE)";
-    let exact = muscle(models, working_law(models), EXACT)?;
+    let exact = muscle(models, o.working_law(), EXACT)?;
     let symmetric = muscle(
         models,
-        working_law(models),
+        o.working_law(),
         Coupling::Frozen(FrozenTangent::Symmetric),
     )?;
     let reference = o.clamped(&exact, &tight())?;
@@ -671,7 +674,7 @@ pub(super) fn mesh(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "mesh (clamped)";
-    let m = muscle(models, working_law(models), EXACT)?;
+    let m = muscle(models, o.working_law(), EXACT)?;
     let mut runs = Vec::new();
     for &cells in &o.meshes {
         runs.push((
@@ -721,7 +724,7 @@ pub(super) fn mesh(
 }
 
 /// Element: Q2/Q1 and the cheaper Q1/P0 (on the FE mesh and on cells halved once and twice)
-/// against Q2/Q1 on cells halved once (the accurate end), clamped cylinder, [`working_law`].
+/// against Q2/Q1 on cells halved once (the accurate end), clamped cylinder, [`Resolved::working_law`].
 pub(super) fn element(
     models: &Models,
     o: &Resolved,
@@ -729,7 +732,7 @@ pub(super) fn element(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "element (clamped)";
-    let m = muscle(models, working_law(models), EXACT)?;
+    let m = muscle(models, o.working_law(), EXACT)?;
     let (nr, nz) = o.fe_mesh;
     let with = |element| SolverOptions { element, ..tight() };
     let reference = fe_run(
@@ -797,7 +800,7 @@ pub(super) fn tolerance(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "Newton tolerance (FE)";
-    let m = muscle(models, working_law(models), EXACT)?;
+    let m = muscle(models, o.working_law(), EXACT)?;
     let mut runs = Vec::new();
     for &tol in &o.tolerances {
         runs.push((tol, o.clamped(&m, &with_tolerance(tol))?));
@@ -843,7 +846,7 @@ pub(super) fn zero_d_vs_fe(
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "0D vs FE (sliding)";
-    let m = muscle(models, working_law(models), EXACT)?;
+    let m = muscle(models, o.working_law(), EXACT)?;
     let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
         let mut p = Vec::new();
         let mut g = Vec::new();
@@ -888,7 +891,7 @@ pub(super) fn zero_d_vs_fe(
 }
 
 /// Incompressibility: the quadratic volumetric energy (κ/2)(J − 1)² at growing κ against the
-/// exact constraint (the accurate end: κ = ∞), [`working_law`], frozen; 0D along the fibres (the
+/// exact constraint (the accurate end: κ = ∞), [`Resolved::working_law`], frozen; 0D along the fibres (the
 /// lateral stretches solved per point) and the clamped cylinder (perturbed Lagrangian: the
 /// Newton iterations show whether the mixed form stays well posed as κ grows).
 pub(super) fn incompressibility(
@@ -899,7 +902,7 @@ pub(super) fn incompressibility(
 ) -> Result<(), AppError> {
     const OPTION_0D: &str = "incompressibility (0D)";
     const OPTION_FE: &str = "incompressibility (clamped)";
-    let m = muscle(models, working_law(models), EXACT)?;
+    let m = muscle(models, o.working_law(), EXACT)?;
     let s0 = crate::uniaxial::reference_stress(&models.energy)?;
     let quadratic = |kappa: f64| Volumetric::new(VolumetricForm::Quadratic { kappa }, s0);
     let stretches = &o.curve_stretches;

@@ -85,7 +85,7 @@ impl OptionGroup {
         Self::Incompressibility,
     ];
 
-    /// Whether the group measures with [`groups::working_law`] (every group but those that
+    /// Whether the group measures with [`Resolved::working_law`] (every group but those that
     /// trade the law itself).
     fn uses_working_law(self) -> bool {
         !matches!(
@@ -198,6 +198,26 @@ pub struct TradeoffResults {
     pub failures: Vec<(String, String)>,
 }
 
+impl TradeoffResults {
+    /// What was asked and not measured, each with its reason: whole option groups
+    /// ([`Self::failures`]) and the variants that failed (rows without a finite error).
+    pub fn unmeasured(&self) -> Vec<Failure> {
+        let groups = self.failures.iter().map(|(group, why)| Failure {
+            model: format!("option group {group}"),
+            message: why.clone(),
+        });
+        let variants = self
+            .rows
+            .iter()
+            .filter(|r| !r.error.max_rel.is_finite())
+            .map(|r| Failure {
+                model: format!("{} · {}", r.option, r.variant),
+                message: r.note.clone(),
+            });
+        groups.chain(variants).collect()
+    }
+}
+
 /// Runs the chosen option groups on `models`, with the geometry and stretches of `o`, or of
 /// `fallback` where `o` leaves them out; one line per measured variant goes to `progress`.
 pub fn run(
@@ -234,6 +254,7 @@ pub fn run_until(
             .unwrap_or_else(|| fallback.curve_stretches.clone()),
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
+        explicit: models.explicit_law_holds(),
     };
     check_memory(plan, &o.groups)?;
     let mut runner = Runner {
@@ -277,14 +298,13 @@ pub fn run_until(
             failures.push((group.key().to_string(), e.to_string()));
         }
     }
-    if groups::working_law(models) != crate::models::LawKind::Explicit
-        && o.groups.iter().any(|g| g.uses_working_law())
-    {
-        findings.push(format!(
-            "The groups that trade something other than the law ran with the {} law: {}.",
-            groups::working_law(models).name(),
-            models.explicit_law_holds().err().unwrap_or_default()
-        ));
+    if let Err(why) = &plan.explicit {
+        if o.groups.iter().any(|g| g.uses_working_law()) {
+            findings.push(format!(
+                "The groups that trade something other than the law ran with the {} law: {why}.",
+                plan.working_law().name()
+            ));
+        }
     }
     let mut rows = runner.rows;
     measure::finalise(&mut rows);
@@ -544,25 +564,7 @@ impl TradeoffStudy {
             .count();
         let mut details = results.findings.clone();
         details.extend(results.rows.iter().map(Measurement::line));
-        // What was asked and not measured: whole groups, and variants that failed.
-        let failures = results
-            .failures
-            .iter()
-            .map(|(group, why)| Failure {
-                model: format!("option group {group}"),
-                message: why.clone(),
-            })
-            .chain(
-                results
-                    .rows
-                    .iter()
-                    .filter(|r| !r.error.max_rel.is_finite())
-                    .map(|r| Failure {
-                        model: format!("{} · {}", r.option, r.variant),
-                        message: r.note.clone(),
-                    }),
-            )
-            .collect();
+        let failures = results.unmeasured();
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Tradeoff,
