@@ -162,8 +162,14 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             );
         }
     }
+    // A scene without a curve study (stability or trade-off only) writes a header-only
+    // curves.csv: not worth a line.
+    let curves = match rows {
+        0 => String::new(),
+        n => format!("{n} rows in curves.csv; "),
+    };
     println!(
-        "{rows} rows in curves.csv; outputs in {} (report.html, the CSV tables, figures); wall time {wall:.1} s",
+        "{curves}outputs in {} (report.html, the CSV tables, figures); wall time {wall:.1} s",
         out.display()
     );
     if !results.complete() {

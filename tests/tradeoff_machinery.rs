@@ -496,3 +496,38 @@ fn the_zero_error_reference_is_drawn_on_the_lower_edge_a_decade_below_the_smalle
     assert!(caption("opt", &rows)
         .contains("An error of 0 (the reference's own) is drawn on the lower edge"));
 }
+
+#[test]
+fn a_failed_variant_is_not_drawn_and_does_not_stretch_the_time_axis() {
+    use activemuscle::output::tradeoff::figure;
+    let row = |v: &str, reference: bool, times: &mut [f64], e: f64| {
+        Measurement::new(
+            "opt",
+            v,
+            reference,
+            Timing::of(times),
+            "P",
+            CurveError {
+                max_abs: e,
+                max_rel: e,
+            },
+        )
+    };
+    let mut drawn = vec![
+        row("tight", true, &mut [1.0, 1.1, 1.2], 0.0),
+        row("loose", false, &mut [0.5, 0.55, 0.6], 1e-6),
+    ];
+    finalise(&mut drawn);
+    // A variant that failed after 500 s: its error is infinite (as `Measurement::failed` and a
+    // failed sweep leave it), its time the time to the failure.
+    let mut with_failure = drawn.clone();
+    with_failure.push(row("stalled", false, &mut [500.0], f64::INFINITY));
+    finalise(&mut with_failure);
+    let frame = |rows: &[Measurement]| figure("opt", rows).panels[0].frame();
+    assert_eq!(frame(&with_failure), frame(&drawn));
+    assert!(frame(&with_failure).x.1 < 500.0);
+    assert!(figure("opt", &with_failure).panels[0]
+        .series
+        .iter()
+        .all(|s| s.points.iter().all(|p| p.0 < 500.0)));
+}

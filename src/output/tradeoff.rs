@@ -103,13 +103,14 @@ pub fn stem(option: &str) -> String {
     format!("tradeoff_{}", slug(option))
 }
 
-/// The (time, error) ranges of the figure of `rows`: the runs' times, widened to at least two
-/// decades; the positive errors, a decade beyond each end.
+/// The (time, error) ranges of the figure of `rows`: the times of the drawn rows (a failed
+/// row, whose error is infinite, is not drawn and does not stretch the axis), widened to at
+/// least two decades; the positive errors, a decade beyond each end.
 fn ranges(rows: &[&Measurement]) -> ((f64, f64), (f64, f64)) {
     let positive = |e: f64| e.is_finite() && e > 0.0;
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for r in rows {
-        if r.time.median.is_finite() && r.time.median > 0.0 {
+        if r.error.max_rel.is_finite() && r.time.median.is_finite() && r.time.median > 0.0 {
             x0 = x0.min(r.time.low);
             x1 = x1.max(r.time.high);
         }
