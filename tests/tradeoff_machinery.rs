@@ -7,7 +7,7 @@ use activemuscle::active::{
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxiF, AxisymmetricMaterial, Bases, NeoHookean, SolverOptions};
-use activemuscle::models::Models;
+use activemuscle::models::{LawKind, Models};
 use activemuscle::studies::tradeoff::measure::finalise;
 use activemuscle::studies::tradeoff::{
     activation_law_fe_rows, curve_error, fe_row, fe_run, pareto_front, run, time_median, time_runs,
@@ -530,4 +530,121 @@ fn a_failed_variant_is_not_drawn_and_does_not_stretch_the_time_axis() {
         .series
         .iter()
         .all(|s| s.points.iter().all(|p| p.0 < 500.0)));
+}
+
+/// On another energy the explicit law (eq. (14), derived for the chapter's) is neither measured
+/// nor the law the other groups run with: they take the implicit law, and the findings say both
+/// (a user found the mesh group on a neo-Hookean scene running the chapter's fit, 105 % off).
+#[test]
+fn on_another_energy_the_explicit_law_is_not_measured_nor_used_by_the_other_groups() {
+    use activemuscle::energy::{Energy, NeoHookean as NeoHookeanEnergy};
+    let mut models = Models::paper();
+    models.energy = Energy::NeoHookean(NeoHookeanEnergy::new(5.0).unwrap());
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw, OptionGroup::Mesh],
+        geometry: Some(geometry()),
+        meshes: vec![(1, 4), (2, 8)],
+        curve_stretches: Some(vec![0.9, 1.0, 1.1]),
+        fe_stretches: vec![1.0, 1.1],
+        ..TradeoffOptions::default()
+    };
+    let results = run(&models, &options, &Fallback::default(), &Silent).unwrap();
+    println!("{:#?}", results.findings);
+    assert!(results
+        .rows
+        .iter()
+        .all(|r| r.variant != "explicit (frozen)"));
+    let said = |needle: &str| results.findings.iter().any(|f| f.contains(needle));
+    assert!(said("explicit law (0D) not measured: the explicit law (eq. (14)) is derived for the giantesio-musesti energy"));
+    assert!(said("ran with the implicit law"));
+    // The coarse mesh's error against the finest, both solved here with the implicit law's
+    // muscle (with the explicit law the group's stresses would differ by ≈ 100 %).
+    let implicit = Muscle::new(
+        models.energy.clone(),
+        models.law(LawKind::Implicit).unwrap(),
+        0.0,
+        activemuscle::active::Coupling::Frozen(activemuscle::active::FrozenTangent::Exact),
+    )
+    .unwrap();
+    let solve = |cells| {
+        fe_run(
+            &implicit,
+            geometry(),
+            cells,
+            Bases::Clamped,
+            &[1.0, 1.1],
+            &SolverOptions::default(),
+        )
+        .unwrap()
+    };
+    let expected = curve_error(&solve((2, 8)).stress, &solve((1, 4)).stress);
+    let coarse = results
+        .rows
+        .iter()
+        .find(|r| r.variant == "1 × 4 cells")
+        .unwrap();
+    println!("{:?} against {expected:?}", coarse.error);
+    assert!(
+        (coarse.error.max_abs - expected.max_abs).abs() <= 1e-6 * expected.max_abs,
+        "{:?} against {expected:?}",
+        coarse.error
+    );
+}
+
+/// A reference that stopped short: the others are compared where it converged (and the note says
+/// so), itself and a variant that stopped short have no error.
+#[test]
+fn a_reference_that_stopped_short_is_failed_and_the_others_are_compared_where_it_converged() {
+    let sweep = |stress: Vec<f64>, failures: Vec<&str>| FeRun {
+        time: Timing::once(1.0),
+        gamma_centre: stress.iter().map(|p| p / 10.0).collect(),
+        stress,
+        iterations: 3,
+        per_iteration_s: 0.1,
+        dofs: 10,
+        failures: failures.into_iter().map(String::from).collect(),
+    };
+    let reference = sweep(vec![1.0, 2.0, f64::NAN], vec!["stopped at 1.2"]);
+    let good = sweep(vec![1.1, 2.2, 3.3], vec![]);
+    let short = sweep(vec![1.0, f64::NAN, f64::NAN], vec!["stopped at 1.1"]);
+    let row = |run: &FeRun, is_reference: bool| fe_row("o", "v", is_reference, run, &reference);
+    let r = row(&good, false);
+    // |1.1 − 1| = 0.1, |2.2 − 2| = 0.2: max abs 0.2, max rel 0.1 (the third stretch unjudged).
+    assert!((r.error.max_abs - 0.2).abs() < 1e-12 && (r.error.max_rel - 0.1).abs() < 1e-12);
+    assert!((r.gamma_error.unwrap() - 0.02).abs() < 1e-12);
+    assert_eq!(
+        r.note,
+        "compared at the 2 of 3 stretches the reference reached"
+    );
+    for (run, is_reference) in [(&reference, true), (&short, false)] {
+        let r = row(run, is_reference);
+        assert!(!r.error.max_rel.is_finite(), "{}", r.note);
+        assert!(r.note.starts_with("failed: stopped at 1."), "{}", r.note);
+    }
+}
+
+/// Every variant runs at d = 0: a scene whose damage is not 0 is told so, one with d = 0 is not.
+#[test]
+fn a_scene_with_damage_is_told_that_the_tradeoff_runs_at_d_0() {
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw],
+        curve_stretches: Some(vec![0.9, 1.1]),
+        ..TradeoffOptions::default()
+    };
+    let findings = |damage: Vec<f64>| {
+        let fallback = Fallback {
+            damage,
+            ..Fallback::default()
+        };
+        run(&Models::paper(), &options, &fallback, &Silent)
+            .unwrap()
+            .findings
+    };
+    let told = |f: &[String]| f.iter().any(|f| f.contains("runs at d = 0"));
+    let damaged = findings(vec![0.0, 0.2]);
+    assert!(told(&damaged), "{damaged:#?}");
+    assert!(damaged
+        .iter()
+        .any(|f| f.contains("the scene's damage 0.2 is not traded")));
+    assert!(!told(&findings(vec![0.0])));
 }

@@ -214,7 +214,7 @@ fn number(x: f64, quantity: &str, row: &Row) -> Result<String, AppError> {
             row.study, row.model, row.energy, row.law, row.d, row.lambda
         )
     })
-    .map(|x| x.to_string())
+    .map(shortest)
 }
 
 fn optional(x: Option<f64>, quantity: &str, row: &Row) -> Result<String, AppError> {
@@ -301,7 +301,18 @@ pub const STABILITY_COLUMNS: [&str; 12] = [
 
 /// `x` as text if finite, else an error naming the quantity and where it came from.
 fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, AppError> {
-    finite(x, quantity, origin).map(|x| x.to_string())
+    finite(x, quantity, origin).map(shortest)
+}
+
+/// `x` with the fewest digits that read back to the same f64, in scientific notation outside
+/// 1e-4 ≤ |x| < 1e15 (Rust's plain `Display` writes 2.85e266 as 267 digits and 6e-16 with
+/// fifteen leading zeros).
+pub fn shortest(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`
@@ -532,4 +543,45 @@ pub fn tables(results: &Results) -> Result<Vec<(String, Vec<u8>)>, AppError> {
         out.push(("history.csv".into(), history_csv(&histories)?));
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shortest;
+
+    #[test]
+    fn numbers_read_back_exactly_and_stay_short_at_every_magnitude() {
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -1.25,
+            1e-4,
+            9.99e-5,
+            1e15,
+            9.99e14,
+            2.85e266,
+            -3.8e-100,
+            8.128632865720501e-75,
+            6.16e-16,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            5e-324,
+        ];
+        // A deterministic spread of magnitudes and mantissas.
+        let mut x = 0.123_456_789_f64;
+        for k in -300..300 {
+            x = (x * 997.0 + 0.317).fract();
+            values.push((x + 0.01) * 10f64.powi(k));
+        }
+        for v in values {
+            let s = shortest(v);
+            assert_eq!(s.parse::<f64>().ok(), Some(v), "{v:e} written as {s}");
+            assert!(
+                s.len() <= 25,
+                "{v:e} written as {s} ({} characters)",
+                s.len()
+            );
+        }
+    }
 }

@@ -289,13 +289,11 @@ impl Panel {
         }
     }
 
-    /// What the frame leaves out, in words: a clipped axis with how far the data go, and every
-    /// labelled series with no point inside the frame.
-    pub fn notes(&self) -> Vec<String> {
-        let f = self.frame();
+    /// Where `frame` cuts the y axis (above: true), with how far the curves go beyond the cut:
+    /// `on up to 17kPa at λ = 1.6`. Drawn on the figure and said in its caption.
+    fn cuts(&self, frame: &Frame) -> Vec<(bool, String)> {
         let symbol = axis_symbol(&self.x_label);
         let unit = axis_unit(&self.y_label);
-        let mut notes = Vec::new();
         let extreme = |above: bool| {
             self.series
                 .iter()
@@ -309,26 +307,37 @@ impl Panel {
                 })
                 .unwrap_or((f64::NAN, f64::NAN))
         };
-        if f.clipped_above {
-            let (x, y) = extreme(true);
-            notes.push(format!(
-                "{}: y axis cut at {}{unit} (the curves go on up to {}{unit} at {symbol} = {})",
-                self.title,
-                short(f.y.1),
-                short(y),
-                short(x)
-            ));
-        }
-        if f.clipped_below {
-            let (x, y) = extreme(false);
-            notes.push(format!(
-                "{}: y axis cut at {}{unit} (the curves go down to {}{unit} at {symbol} = {})",
-                self.title,
-                short(f.y.0),
-                short(y),
-                short(x)
-            ));
-        }
+        [(true, frame.clipped_above), (false, frame.clipped_below)]
+            .into_iter()
+            .filter(|&(_, cut)| cut)
+            .map(|(above, _)| {
+                let (x, y) = extreme(above);
+                let way = if above { "on up to" } else { "down to" };
+                (
+                    above,
+                    format!("{way} {}{unit} at {symbol} = {}", short(y), short(x)),
+                )
+            })
+            .collect()
+    }
+
+    /// What the frame leaves out, in words: a clipped axis with how far the data go, and every
+    /// labelled series with no point inside the frame.
+    pub fn notes(&self) -> Vec<String> {
+        let f = self.frame();
+        let unit = axis_unit(&self.y_label);
+        let mut notes: Vec<String> = self
+            .cuts(&f)
+            .into_iter()
+            .map(|(above, reach)| {
+                let edge = if above { f.y.1 } else { f.y.0 };
+                format!(
+                    "{}: y axis cut at {}{unit} (the curves go {reach})",
+                    self.title,
+                    short(edge)
+                )
+            })
+            .collect();
         if self.scale == Scale::LogY
             && self
                 .series
@@ -553,11 +562,12 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     panel: &Panel,
 ) -> Result<(), String> {
+    let frame = panel.frame();
     let Frame {
         x: (x0, x1),
         y: (y0, y1),
         ..
-    } = panel.frame();
+    } = frame;
     let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
     let mut builder = ChartBuilder::on(area);
     builder
@@ -573,7 +583,25 @@ fn draw_panel<DB: DrawingBackend>(
             let span = (y1 - y0).abs();
             let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
             mesh(&mut chart, panel, None, Some(&tick))?;
-            draw_series(&mut chart, panel, y0, y1)
+            draw_series(&mut chart, panel, y0, y1)?;
+            // A cut axis says so on the figure itself, in the corner where the curves leave.
+            let font = ("sans-serif", 15).into_font().color(&RGBColor(150, 0, 0));
+            for (above, reach) in panel.cuts(&frame) {
+                let (y, v) = if above {
+                    (y1, VPos::Top)
+                } else {
+                    (y0, VPos::Bottom)
+                };
+                chart
+                    .plotting_area()
+                    .draw(&Text::new(
+                        format!("axis cut: the curves go {reach} "),
+                        (x1, y),
+                        font.pos(Pos::new(HPos::Right, v)),
+                    ))
+                    .map_err(e)?;
+            }
+            Ok(())
         }
         Scale::LogLog => {
             let mut chart = builder

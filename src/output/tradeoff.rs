@@ -360,6 +360,14 @@ pub fn stage(
     files.push("tradeoff.md".to_string());
     let mut figures = Vec::new();
     for option in options(&results.rows) {
+        // No variant measured (every one failed, or the reference did): no empty frame.
+        if !results
+            .rows
+            .iter()
+            .any(|r| r.option == option && r.error.max_rel.is_finite())
+        {
+            continue;
+        }
         let f = figure(&option, &results.rows);
         let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
         let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
@@ -404,11 +412,15 @@ pub fn caption(option: &str, rows: &[Measurement]) -> String {
         .map(|r| r.variant.as_str())
         .collect();
     format!(
-        "{option}: relative error of {} against wall time, log–log: the median of the runs, the \
+        "{option}: relative error [-] of {} against wall time, log–log: the median of the runs, the \
          bar their spread (10th to 90th percentile); filled markers and the dashed line are the \
          Pareto front, the reference is red. An error of 0 (the reference's own) is drawn on the \
          lower edge of the frame and labelled so.{} Numbers in tradeoff.csv and tradeoff.md.",
-        mine().next().map_or("", |r| r.quantity.as_str()),
+        // The quantity without its unit: the error is relative.
+        mine().next().map_or("", |r| r
+            .quantity
+            .rsplit_once(" [")
+            .map_or(r.quantity.as_str(), |(q, _)| q)),
         if failed.is_empty() {
             String::new()
         } else {

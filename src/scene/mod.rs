@@ -108,7 +108,10 @@ impl Scene {
 
     /// What a trade-off takes from this scene's other studies.
     pub fn fallback(&self) -> Fallback {
-        crate::studies::fallback(&self.studies)
+        Fallback {
+            damage: self.resolved.activation.damage.clone().unwrap_or_default(),
+            ..crate::studies::fallback(&self.studies)
+        }
     }
 
     /// The options of the scene's trade-off study, if it has one.

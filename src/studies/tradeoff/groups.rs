@@ -41,8 +41,8 @@ pub(super) struct Resolved {
     pub curve_stretches: Vec<f64>,
     pub tolerances: Vec<f64>,
     pub fd_step: f64,
-    /// Whether the explicit law's formula holds on the material ([`Models::explicit_law_holds`],
-    /// evaluated once per run), and why not.
+    /// Whether the explicit law's formula applies to the material
+    /// ([`Models::explicit_formula_holds`], evaluated once per run), and why not.
     pub explicit: Result<(), String>,
 }
 
@@ -104,7 +104,10 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
     Ok(run)
 }
 
-/// The row of an FE run measured against `reference_run`'s stresses and centre γ.
+/// The row of an FE run measured against `reference_run`'s stresses and centre γ, at the
+/// stretches the reference reached: a run that stopped short has no error (it failed, the
+/// reference too), and where the reference stopped short the others are compared at the
+/// stretches it reached, which the row's note says.
 pub fn fe_row(
     option: &str,
     variant: &str,
@@ -112,20 +115,44 @@ pub fn fe_row(
     run: &FeRun,
     reference_run: &FeRun,
 ) -> Measurement {
+    let reached: Vec<usize> = (0..reference_run.stress.len())
+        .filter(|&i| reference_run.stress[i].is_finite())
+        .collect();
+    let at_reached = |v: &[f64]| -> Vec<f64> {
+        reached
+            .iter()
+            .map(|&i| v.get(i).copied().unwrap_or(f64::NAN))
+            .collect()
+    };
+    let error = |r: &[f64], c: &[f64]| {
+        if run.failures.is_empty() {
+            curve_error(&at_reached(r), &at_reached(c))
+        } else {
+            CurveError::FAILED
+        }
+    };
     let mut m = Measurement::new(
         option,
         variant,
         reference,
         run.time,
         "P(λ) at the FE stretches [kPa]",
-        curve_error(&reference_run.stress, &run.stress),
+        error(&reference_run.stress, &run.stress),
     );
-    m.gamma_error = Some(curve_error(&reference_run.gamma_centre, &run.gamma_centre).max_abs);
+    m.gamma_error = Some(error(&reference_run.gamma_centre, &run.gamma_centre).max_abs);
     m.iterations = Some(run.iterations);
     m.per_iteration_s = Some(run.per_iteration_s);
     m.dofs = Some(run.dofs);
+    let n = reference_run.stress.len();
     if !run.failures.is_empty() {
         m.note = format!("failed: {}", run.failures.join("; "));
+    } else if reached.is_empty() {
+        m.note = "not compared: the reference reached none of the stretches".into();
+    } else if reached.len() < n {
+        m.note = format!(
+            "compared at the {} of {n} stretches the reference reached",
+            reached.len()
+        );
     }
     m
 }
@@ -359,7 +386,7 @@ pub fn activation_law_fe_rows(
         ("explicit (frozen)", LawKind::Explicit, EXACT),
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ] {
-        if law == LawKind::Explicit && models.explicit_law_holds().is_err() {
+        if law == LawKind::Explicit && models.explicit_formula_holds().is_err() {
             continue;
         }
         let r = match sweep(law, coupling) {
@@ -460,7 +487,7 @@ fn tabulated_muscle(
             .iter()
             .map(|r| {
                 format!(
-                    "table on λ ∈ [{}, {}]: {} pieces, {:.1} kB, built in {:.1} ms, checked |Δγ| ≤ {:.1e}, frozen/consistent fibre stress ≤ {:.1e}/{:.1e} kPa",
+                    "table on λ ∈ [{}, {}]: {} pieces, {:.1} kB, built in {:.1} ms, checked |Δγ| ≤ {:.1e}, frozen/consistent fibre stress ≤ {:.1e}/{:.1e} kPa{}",
                     spec.lambda_lo,
                     spec.lambda_hi,
                     r.pieces,
@@ -468,7 +495,14 @@ fn tabulated_muscle(
                     1e3 * build,
                     r.gamma_error,
                     r.frozen_stress_error,
-                    r.consistent_stress_error
+                    r.consistent_stress_error,
+                    match r.exact_intervals {
+                        0 => String::new(),
+                        n => format!(
+                            "; {n} interval(s) of total width {:.1e} left to the exact solve (its own rounding above the tolerances there)",
+                            r.exact_width
+                        ),
+                    }
                 )
             })
             .collect::<Vec<_>>()
@@ -509,7 +543,7 @@ pub(super) fn law_representation(
         r.note = described;
         run.push(r);
         findings.push(format!(
-            "Tabulated {} law (0D, {} stretches): {}; stress error max {:.1e} kPa, γ error max {:.1e}; the table's build ({:.1} ms) costs {:.0} exact curves.",
+            "Tabulated {} law (0D, {} stretches): {}; stress error max {:.1e} kPa, γ error max {:.1e}; building the table ({:.1} ms) takes as long as {:.0} of these curves solved exactly.",
             law.name(),
             stretches.len(),
             t.against(&t_ref, "the exact solve"),
@@ -699,19 +733,27 @@ pub(super) fn mesh(
             r,
             &finest,
         );
-        if let Some(i) = at {
-            let rel = ((r.stress[i] - finest.stress[i]) / finest.stress[i]).abs();
-            row.note = format!(
-                "P(1.17) = {:.6} kPa, rel. error {:.1e}; {}",
-                r.stress[i], rel, row.note
-            );
+        let (p, p_ref) = match at {
+            Some(i) => (r.stress[i], finest.stress[i]),
+            None => (f64::NAN, f64::NAN),
+        };
+        if p.is_finite() && p_ref.is_finite() {
+            let rel = ((p - p_ref) / p_ref).abs();
+            row.note = format!("P(1.17) = {p:.6} kPa, rel. error {rel:.1e}; {}", row.note);
             if !reference && rel <= 1e-4 && coarsest.is_none() {
                 coarsest = Some((*cells, rel, r.dofs));
             }
         }
         run.push(row);
     }
-    if at.is_some() {
+    if !finest.failures.is_empty() {
+        findings.push(format!(
+            "Mesh: the finest mesh ({} × {}) failed, so no mesh is judged against it: {}.",
+            o.meshes[o.meshes.len() - 1].0,
+            o.meshes[o.meshes.len() - 1].1,
+            finest.failures.join("; ")
+        ));
+    } else if at.is_some() {
         findings.push(match coarsest {
             Some((c, rel, dofs)) => format!(
                 "Mesh: the coarsest mesh with P(1.17) within 1e-4 (relative) of the finest ({} × {}) is {} × {} cells ({} dofs, rel. error {:.1e}).",

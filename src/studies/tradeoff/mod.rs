@@ -169,6 +169,9 @@ pub struct Fallback {
     pub cells: (usize, usize),
     /// Stretches of the 0D curves.
     pub curve_stretches: Vec<f64>,
+    /// The scene's default damage values (`activation.damage`): not traded, every variant
+    /// runs at d = 0, and a finding says so when one of them is not 0.
+    pub damage: Vec<f64>,
 }
 
 impl Default for Fallback {
@@ -182,6 +185,7 @@ impl Default for Fallback {
             },
             cells: (4, 16),
             curve_stretches: (0..=95).map(|i| 0.65 + 0.01 * i as f64).collect(),
+            damage: vec![0.0],
         }
     }
 }
@@ -254,7 +258,7 @@ pub fn run_until(
             .unwrap_or_else(|| fallback.curve_stretches.clone()),
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
-        explicit: models.explicit_law_holds(),
+        explicit: models.explicit_formula_holds(),
     };
     check_memory(plan, &o.groups)?;
     let mut runner = Runner {
@@ -305,6 +309,18 @@ pub fn run_until(
                 plan.working_law().name()
             ));
         }
+    }
+    let damaged: Vec<String> = fallback
+        .damage
+        .iter()
+        .filter(|&&d| d != 0.0)
+        .map(|d| d.to_string())
+        .collect();
+    if !damaged.is_empty() {
+        findings.push(format!(
+            "Every variant runs at d = 0 (full activation): the scene's damage {} is not traded.",
+            damaged.join(", ")
+        ));
     }
     let mut rows = runner.rows;
     measure::finalise(&mut rows);
