@@ -15,6 +15,23 @@ use std::process::ExitCode;
 use std::sync::atomic::{AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
+/// `println!` that ignores a closed standard output (`activemuscle check scene.toml | head`):
+/// the command goes on (a run still writes its files) instead of panicking on the broken pipe.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// [`say!`] for standard error.
+macro_rules! say_err {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 /// Active skeletal-muscle mechanics after Giantesio & Musesti: homogeneous tests and an
 /// axisymmetric FE cylinder, with loss of activation.
 ///
@@ -93,14 +110,14 @@ fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
 
 fn check(path: &Path) -> Result<Ended, AppError> {
     let scene = load(Some(path))?;
-    println!(
+    say!(
         "# {}: valid. Resolved scene (every default written out):\n",
         scene.file
     );
-    println!("{}", scene.resolved_toml()?);
-    println!("# What `activemuscle run` would compute:");
+    say!("{}", scene.resolved_toml()?);
+    say!("# What `activemuscle run` would compute:");
     for study in &scene.studies {
-        println!("#   {}", study.describe());
+        say!("#   {}", study.describe());
     }
     Ok(Ended::Complete)
 }
@@ -118,18 +135,18 @@ fn rustc_version() -> Option<String> {
 /// Prints the table of studies, every failure and where the outputs are; says whether the run
 /// is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
-    println!();
-    println!(
+    say!();
+    say!(
         "{:<48} {:>9} {:>7} {:>14} {:>9}",
         "study", "kind", "models", "points", "time [s]"
     );
-    println!("{}", "-".repeat(91));
+    say!("{}", "-".repeat(91));
     for s in &results.studies {
         let points = match s.result {
             StudyResult::Nothing => "FAILED".to_string(),
             _ => format!("{}/{}", s.points, s.requested),
         };
-        println!(
+        say!(
             "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
             s.name,
             s.kind.name(),
@@ -144,7 +161,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         }
         for s in &c.sweeps {
             if let Some((worst, _)) = s.worst_against_0d() {
-                println!(
+                say!(
                     "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
                     s.label
                 );
@@ -152,11 +169,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         }
     }
     for (study, f) in results.failures() {
-        println!("FAILED: {study} — {}: {}", f.model, f.message);
+        say!("FAILED: {study} — {}: {}", f.model, f.message);
     }
     for s in &results.studies {
         if s.failures.is_empty() && s.points < s.requested {
-            println!(
+            say!(
                 "FAILED: {} — {} of {} requested points computed",
                 s.name, s.points, s.requested
             );
@@ -168,13 +185,13 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         0 => String::new(),
         n => format!("{n} rows in curves.csv; "),
     };
-    println!(
+    say!(
         "{curves}outputs in {} (report.html, the CSV tables, figures); wall time {wall:.1} s",
         out.display()
     );
     if !results.complete() {
         let failed = results.studies.iter().filter(|s| !s.complete()).count();
-        println!(
+        say!(
             "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
              everything computed was written",
             results.studies.len()
@@ -233,17 +250,17 @@ fn on_interrupt(stop: &Stop) {
     let mut signals = match Signals::new([SIGINT, SIGTERM, SIGHUP]) {
         Ok(s) => s,
         Err(e) => {
-            eprintln!("warning: no signal handler ({e}): Ctrl-C or SIGTERM will end the run without writing");
+            say_err!("warning: no signal handler ({e}): Ctrl-C or SIGTERM will end the run without writing");
             return;
         }
     };
     std::thread::spawn(move || {
         for signal in signals.forever() {
             if STOPPED_BY.swap(signal, Ordering::SeqCst) != 0 {
-                eprintln!("second interrupt: aborting without writing");
+                say_err!("second interrupt: aborting without writing");
                 std::process::exit(128 + signal);
             }
-            eprintln!(
+            say_err!(
                 "{}: stopping after the current Newton iteration (a trade-off: after the current \
                  option group) and writing what was computed (interrupt again to abort)",
                 interrupted(signal)
@@ -293,7 +310,7 @@ fn run_command(
     };
     on_interrupt(&stop);
     if !quiet {
-        println!(
+        say!(
             "activemuscle {}: {} ({})",
             env!("CARGO_PKG_VERSION"),
             scene.title,
@@ -313,7 +330,7 @@ fn run_command(
     staging.commit()?;
     summary(&results, rows, out, started.elapsed().as_secs_f64());
     if let Some(reason) = &reason {
-        println!("STOPPED: {reason}; what was solved before is written");
+        say!("STOPPED: {reason}; what was solved before is written");
     }
     Ok(if signal != 0 {
         Ended::Interrupted(signal)
@@ -351,12 +368,12 @@ fn tradeoff_command(
     let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
     staging.commit()?;
     if !quiet {
-        println!("\n{}", tradeoff::markdown(&results.rows));
+        say!("\n{}", tradeoff::markdown(&results.rows));
     }
     for f in &results.findings {
-        println!("{f}");
+        say!("{f}");
     }
-    println!(
+    say!(
         "{} files in {} (tradeoff.html, tradeoff.csv); wall time {:.1} s",
         files.len(),
         out.display(),
@@ -365,11 +382,11 @@ fn tradeoff_command(
     // A group or variant that could not be measured is a failure of what was asked.
     let failed = results.unmeasured();
     for f in &failed {
-        println!("FAILED: {}: {}", f.model, f.message);
+        say!("FAILED: {}: {}", f.model, f.message);
     }
     let signal = STOPPED_BY.load(Ordering::SeqCst);
     if signal != 0 {
-        println!(
+        say!(
             "STOPPED: {}; what was measured before is written",
             interrupted(signal)
         );
@@ -418,7 +435,7 @@ fn main() -> ExitCode {
         Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
         Ok(Ended::Interrupted(signal)) => ExitCode::from(u8::try_from(128 + signal).unwrap_or(1)),
         Err(e) => {
-            eprintln!("error: {e}");
+            say_err!("error: {e}");
             ExitCode::FAILURE
         }
     }

@@ -459,3 +459,21 @@ fn a_cylinder_study_chooses_its_element() {
         &["element.toml:4", "study[0].element", "Q3", "Q1/P0"],
     );
 }
+
+/// `activemuscle check scene.toml | head -1`: the reader goes away, the command does not panic
+/// on the broken pipe (it used to, exit 101).
+#[test]
+fn a_closed_standard_output_is_no_panic() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/paper.toml");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_activemuscle"))
+        .args(["check", path])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("runs");
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("waits");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+}

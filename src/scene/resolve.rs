@@ -53,10 +53,8 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
             representation: Some(models.representation_spec().0),
             table_stretches: models.representation_spec().1,
         },
-        incompressibility: spec
-            .incompressibility
-            .as_ref()
-            .map(|_| IncompressibilitySpec::written(models.volumetric.as_ref())),
+        // Written out even when left out (`kind = "exact"`): `check` shows every default.
+        incompressibility: Some(IncompressibilitySpec::written(models.volumetric.as_ref())),
         studies: resolved,
     };
     Ok(Scene {
