@@ -122,3 +122,17 @@ def test_umat_interface_shapes():
     (A,) = umat.hessian([F, np.zeros((1, 4, 7))])
     assert P.shape == (3, 3, 4, 7) and gamma.shape == (1, 4, 7) and A.shape == (3, 3, 3, 3, 4, 7)
     assert np.all((gamma > 0) & (gamma < 1))
+
+
+def test_the_fusiform_example_runs_every_model_it_lists(capsys):
+    """The documented command (`python -m activemuscle.examples.felupe_fusiform 1.1`) on a small
+    mesh: every model converges and is printed, and the exit status is 0 (it used to crash on the
+    energy-consistent model, which felupe's Newton without line search cannot run here)."""
+    from activemuscle.examples.felupe_fusiform import main
+
+    assert main(["felupe_fusiform", "1.1", "6", "2"]) == 0
+    rows = [l.split() for l in capsys.readouterr().out.splitlines() if not l.startswith("#")]
+    assert [r[0] for r in rows[1:]] == [
+        "passive", "explicit-frozen", "explicit-frozen-d0.5", "energy-frozen"
+    ]
+    assert all(float(r[1]) > 0.0 for r in rows[1:])
