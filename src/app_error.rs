@@ -115,7 +115,10 @@ impl fmt::Display for SceneError {
         if let Some(l) = self.line {
             write!(f, ":{l}")?;
         }
-        write!(f, ": {}", self.key)?;
+        // An error of the whole file (it cannot be read, or TOML names no place) has no key.
+        if self.key != "(file)" {
+            write!(f, ": {}", self.key)?;
+        }
         if !self.value.is_empty() {
             write!(f, " = {}", self.value)?;
         }

@@ -138,7 +138,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     say!();
     say!(
         "{:<48} {:>9} {:>7} {:>14} {:>9}",
-        "study", "kind", "models", "points", "time [s]"
+        "study",
+        "kind",
+        "models",
+        "points",
+        "time [s]"
     );
     say!("{}", "-".repeat(91));
     for s in &results.studies {
@@ -175,7 +179,9 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         if s.failures.is_empty() && s.points < s.requested {
             say!(
                 "FAILED: {} — {} of {} requested points computed",
-                s.name, s.points, s.requested
+                s.name,
+                s.points,
+                s.requested
             );
         }
     }

@@ -50,6 +50,29 @@ fn each_kind_refuses_the_keys_of_the_others_with_their_line() {
     let e =
         rejected("[[study]]\nkind = \"uniaxial\"\nstretch = { from = 1, to = 2, stepp = 0.5 }\n");
     names(&e, 3, "study[0].stretch.stepp", "unknown field `stepp`");
+    assert!(e.to_string().contains("(did you mean `step`?)"), "{e}");
+}
+
+/// A misspelt key is answered with the nearest key the table takes and, in a study, all of them;
+/// a word far from every key gets no guess.
+#[test]
+fn a_misspelt_key_gets_the_nearest_one_and_the_list() {
+    let e = rejected("[[study]]\nkind = \"uniaxial\"\nstretches = [1.0, 1.1]\n");
+    names(&e, 3, "study[0].stretches", "(did you mean `stretch`?)");
+    for key in [
+        "name",
+        "stretch",
+        "damage",
+        "laws",
+        "couplings",
+        "constant_gamma",
+    ] {
+        assert!(e.rule.contains(key), "{key} not listed: {e}");
+    }
+    let e = rejected("titel = \"t\"\n[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\n");
+    names(&e, 1, "titel = (given)", "(did you mean `title`?)");
+    let e = rejected("[[study]]\nkind = \"uniaxial\"\nstretch = [1.0]\nresolution = 3\n");
+    assert!(!e.to_string().contains("did you mean"), "{e}");
 }
 
 #[test]

@@ -10,11 +10,12 @@ pub enum FitError {
     #[error(transparent)]
     Model(#[from] crate::Error),
     /// The CSV file could not be read or parsed (I/O, missing header, text where a number belongs).
-    #[error("{source_name}, line {line}: {message}")]
+    #[error("{source_name}{}: {message}", if *line > 0 { format!(", line {line}") } else { String::new() })]
     Csv {
         /// File name or `"<reader>"`.
         source_name: String,
-        /// 1-based line in the file (the header is line 1).
+        /// 1-based line in the file (the header is line 1); 0: the file as a whole (it cannot
+        /// be opened), and the message names no line.
         line: u64,
         /// What is wrong.
         message: String,

@@ -183,8 +183,9 @@ impl Staging {
             return Err(refuse(
                 root,
                 format!(
-                    "the directory holds {foreign} entries that no activemuscle run wrote (no {MANIFEST}): \
-                     refusing to mix outputs with them; choose an empty or new directory, or pass --force"
+                    "the directory holds {foreign} {} that no activemuscle run wrote (no {MANIFEST}): \
+                     refusing to mix outputs with them; choose an empty or new directory, or pass --force",
+                    if foreign == 1 { "entry" } else { "entries" }
                 ),
             ));
         }

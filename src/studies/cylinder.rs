@@ -488,8 +488,10 @@ fn describe_failure(f: &FemError) -> String {
             cause,
             ..
         } => format!(
-            "stopped before target lambda = {target}: converged up to lambda = {reached}; \
-             the step to {attempted:.5} failed even at the smallest load step ({cause})"
+            "stopped before target lambda = {}: converged up to lambda = {}; \
+             the step to {attempted:.5} failed even at the smallest load step ({cause})",
+            crate::fem::error::stretch(*target),
+            crate::fem::error::stretch(*reached)
         ),
         other => other.to_string(),
     }
