@@ -136,22 +136,34 @@ fn rustc_version() -> Option<String> {
 /// is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     say!();
+    // Columns as wide as their longest entry (study names and kinds such as
+    // activation-in-time are the scene's).
+    let name_w = results
+        .studies
+        .iter()
+        .map(|s| s.name.chars().count())
+        .fold(5, usize::max);
+    let kind_w = results
+        .studies
+        .iter()
+        .map(|s| s.kind.name().len())
+        .fold(4, usize::max);
     say!(
-        "{:<48} {:>9} {:>7} {:>14} {:>9}",
+        "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9}",
         "study",
         "kind",
         "models",
         "points",
         "time [s]"
     );
-    say!("{}", "-".repeat(91));
+    say!("{}", "-".repeat(name_w + kind_w + 34));
     for s in &results.studies {
         let points = match s.result {
             StudyResult::Nothing => "FAILED".to_string(),
             _ => format!("{}/{}", s.points, s.requested),
         };
         say!(
-            "{:<48} {:>9} {:>7} {:>14} {:>9.2}",
+            "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9.2}",
             s.name,
             s.kind.name(),
             s.models,

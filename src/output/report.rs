@@ -507,7 +507,10 @@ fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
     h.push_str(&code_list(COLUMNS));
     let _ = writeln!(
         h,
-        ". Stresses in kPa (nominal, along the stretch); an empty cell does not apply. {}</p>",
+        ". Stresses in kPa (nominal, along the stretch; <code>cauchy</code> the Cauchy stress); \
+         <code>P_act</code> is the active stress with its damage, (1 − d) P_act(λ); \
+         <code>gamma</code> is γ at the point for uniaxial rows and γ at the centre of the \
+         cylinder for cylinder rows; an empty cell does not apply. {}</p>",
         if info.rows == 0 {
             "No rows: this scene has no uniaxial or cylinder study.".to_string()
         } else {
