@@ -145,11 +145,15 @@ const CLIP_REACH: f64 = 2.0;
 /// Fewer points than this tell nothing of a blow-up: such a curve is drawn whole.
 const MIN_POINTS: usize = 8;
 
+/// A curve blows up only if its maximum lies this many times further above its median than the
+/// level where it would be cut (an exponential ending at 17 kPa, cut at 6.7, is drawn whole).
+const BLOW_UP: f64 = 3.0;
+
 /// Where a linear y axis is cut above, if a curve blows up: `None` if none does. `curves` are
 /// each curve's values, sorted.
 ///
 /// A curve blows up when it has [`MIN_POINTS`] points or more and its maximum lies above
-/// q75 + [`CLIP_REACH`] · (q75 − q25) of its own values (the passive exponential reaches 10⁴ kPa at λ = 1.6 where the active features are tens
+/// q75 + [`CLIP_REACH`] · (q75 − q25) of its own values, [`BLOW_UP`] times as far from its median (the passive exponential reaches 10⁴ kPa at λ = 1.6 where the active features are tens
 /// of kPa). The cut is at that level, taken as the upper median over the curves that blow up
 /// (one that blows up early does not set the scale of the others); if some curves do not blow
 /// up, at most [`CLIP_REACH`] times their height above their maximum and never below it: they
@@ -163,7 +167,10 @@ fn limit(curves: &[Vec<f64>]) -> Option<f64> {
         let top = q75 + CLIP_REACH * (q75 - q25);
         let max = c[c.len() - 1];
         tenth = tenth.max(quantile(c, 0.1));
-        if c.len() >= MIN_POINTS && max > top {
+        // A curve that ends at most BLOW_UP times as far above its median as `top` is drawn
+        // whole: cutting it would hide its end to gain little height.
+        let q50 = quantile(c, 0.5);
+        if c.len() >= MIN_POINTS && max > top && max - q50 > BLOW_UP * (top - q50) {
             tops.push(top);
         } else {
             calm = Some(calm.map_or(max, |m| m.max(max)));
@@ -584,20 +591,21 @@ fn draw_panel<DB: DrawingBackend>(
             let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
             mesh(&mut chart, panel, None, Some(&tick))?;
             draw_series(&mut chart, panel, y0, y1)?;
-            // A cut axis says so on the figure itself, in the corner where the curves leave.
+            // A cut axis says so on the figure itself, along the cut edge, in the corner the
+            // curves usually do not cross there (they blow up at large λ and dive at small λ).
             let font = ("sans-serif", 15).into_font().color(&RGBColor(150, 0, 0));
             for (above, reach) in panel.cuts(&frame) {
-                let (y, v) = if above {
-                    (y1, VPos::Top)
+                let (at, pos) = if above {
+                    ((x0, y1), Pos::new(HPos::Left, VPos::Top))
                 } else {
-                    (y0, VPos::Bottom)
+                    ((x1, y0), Pos::new(HPos::Right, VPos::Bottom))
                 };
                 chart
                     .plotting_area()
                     .draw(&Text::new(
-                        format!("axis cut: the curves go {reach} "),
-                        (x1, y),
-                        font.pos(Pos::new(HPos::Right, v)),
+                        format!(" axis cut: the curves go {reach} "),
+                        at,
+                        font.pos(pos),
                     ))
                     .map_err(e)?;
             }
@@ -818,6 +826,45 @@ mod tests {
         ] {
             assert_eq!(short(x), text, "{x}");
         }
+    }
+
+    /// An exponential that ends far above the rest is cut, and the figure files say so; one
+    /// that ends within [`BLOW_UP`] of the cut is drawn whole.
+    #[test]
+    fn a_cut_axis_is_said_on_the_figure_and_a_modest_rise_is_not_cut() {
+        let curve = || -> Vec<(f64, f64)> {
+            (0..25)
+                .map(|i| {
+                    let l = 0.75 + 0.025 * i as f64;
+                    (l, (20.0 * (l - 1.0)).exp() - 1.0)
+                })
+                .collect()
+        };
+        let panel = |points| {
+            Panel::new(
+                "P",
+                "stretch λ [-]",
+                "nominal stress P [kPa]",
+                vec![Series::new("p", points, Stroke::Solid, 0)],
+            )
+        };
+        // exp(20 (λ − 1)) − 1 on [0.75, 1.35]: ends at 1096 kPa, 400 × its median, cut.
+        let steep = panel(curve());
+        assert!(steep.frame().clipped_above);
+        let dir = tempfile::tempdir().unwrap();
+        let (png, svg) = (dir.path().join("f.png"), dir.path().join("f.svg"));
+        let figure = Figure::new("f", "f", "caption", vec![steep]);
+        render(&figure, &png, &svg).unwrap();
+        let text = std::fs::read_to_string(&svg).unwrap();
+        assert!(text.contains("axis cut: the curves go on up to 1096 kPa at λ = 1.35"));
+        // A straight rise, then a mild upturn (the last points 2× the line's): whole.
+        let mild: Vec<(f64, f64)> = (0..25)
+            .map(|i| {
+                let x = i as f64;
+                (x, x + if i >= 22 { x } else { 0.0 })
+            })
+            .collect();
+        assert!(!panel(mild).frame().clipped_above);
     }
 
     #[test]
