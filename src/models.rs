@@ -208,6 +208,26 @@ impl Models {
         Ok(())
     }
 
+    /// Whether the explicit law's (a, b) are a fit for this material: the chapter's (a, b) on
+    /// the chapter's energy and active curve, or (a, b) the scene gives (its own fit, e.g. by a
+    /// study with fit = "explicit-law"). The chapter's fit on another material can be far off
+    /// (90 % in P on the chapter's energy with μ = 0.5 kPa, α = 12, w0 = 0.7).
+    pub fn explicit_fit_applies(&self) -> Result<(), String> {
+        let paper = Self::paper();
+        if self.explicit != paper.explicit
+            || (self.energy == paper.energy && self.curve == paper.curve)
+        {
+            Ok(())
+        } else {
+            Err(format!(
+                "the explicit law's a = {}, b = {} are the chapter's fit, for the chapter's energy \
+                 and active curve, which this scene changes; fit them for this material (a study \
+                 with fit = \"explicit-law\") and set activation.explicit = {{ a, b }} to use it",
+                self.explicit.0, self.explicit.1
+            ))
+        }
+    }
+
     /// The chapter's energy with this material's parameters, or the chapter's own if the material
     /// is another energy: what the explicit law is built on.
     pub fn explicit_energy(&self) -> GiantesioMusesti {

@@ -648,3 +648,38 @@ fn a_scene_with_damage_is_told_that_the_tradeoff_runs_at_d_0() {
         .any(|f| f.contains("the scene's damage 0.2 is not traded")));
     assert!(!told(&findings(vec![0.0])));
 }
+
+/// The chapter's (a, b) on another parameter set of the chapter's energy: the law group measures
+/// the explicit law (its error is the news), the other groups run with the implicit law and say
+/// why; with (a, b) the scene gives, the explicit law serves them.
+#[test]
+fn the_chapter_s_explicit_fit_serves_the_other_groups_only_on_the_chapter_s_material() {
+    let softer = |explicit: Option<(f64, f64)>| {
+        let mut m = Models::paper();
+        m.energy = activemuscle::energy::Energy::GiantesioMusesti(
+            GiantesioMusesti::new(0.5, 12.0, 0.7).unwrap(),
+        );
+        if let Some(ab) = explicit {
+            m.explicit = ab;
+        }
+        m
+    };
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw, OptionGroup::Mesh],
+        geometry: Some(geometry()),
+        meshes: vec![(1, 4), (2, 8)],
+        curve_stretches: Some(vec![0.9, 1.0, 1.1]),
+        fe_stretches: vec![1.0, 1.1],
+        ..TradeoffOptions::default()
+    };
+    let implicit_said = |models: &Models| {
+        let r = run(models, &options, &Fallback::default(), &Silent).unwrap();
+        assert!(r.rows.iter().any(|r| r.variant == "explicit (frozen)"));
+        r.findings
+            .iter()
+            .any(|f| f.contains("ran with the implicit law: the explicit law's a = 1.0133"))
+    };
+    assert!(implicit_said(&softer(None)));
+    assert!(!implicit_said(&softer(Some((1.02, 0.21)))));
+    assert!(!implicit_said(&Models::paper()));
+}

@@ -259,6 +259,9 @@ pub fn run_until(
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
         explicit: models.explicit_formula_holds(),
+        explicit_working: models
+            .explicit_formula_holds()
+            .and_then(|()| models.explicit_fit_applies()),
     };
     check_memory(plan, &o.groups)?;
     let mut runner = Runner {
@@ -302,7 +305,7 @@ pub fn run_until(
             failures.push((group.key().to_string(), e.to_string()));
         }
     }
-    if let Err(why) = &plan.explicit {
+    if let Err(why) = &plan.explicit_working {
         if o.groups.iter().any(|g| g.uses_working_law()) {
             findings.push(format!(
                 "The groups that trade something other than the law ran with the {} law: {why}.",
