@@ -437,23 +437,25 @@ fn the_study_runs_only_the_option_groups_asked_for() {
     assert!(results.findings[0].contains("clamped cylinder (1 × 4 cells, 2 stretches)"));
 }
 
+/// A row of option `opt`, variant `v`, timed by `times`, with relative and absolute error `e`.
+fn row(v: &str, reference: bool, times: &mut [f64], e: f64) -> Measurement {
+    Measurement::new(
+        "opt",
+        v,
+        reference,
+        Timing::of(times),
+        "P",
+        CurveError {
+            max_abs: e,
+            max_rel: e,
+        },
+    )
+}
+
 #[test]
 fn the_zero_error_reference_is_drawn_on_the_lower_edge_a_decade_below_the_smallest_error_and_labelled(
 ) {
     use activemuscle::output::tradeoff::{caption, figure};
-    let row = |v: &str, reference: bool, times: &mut [f64], e: f64| {
-        Measurement::new(
-            "opt",
-            v,
-            reference,
-            Timing::of(times),
-            "P",
-            CurveError {
-                max_abs: e,
-                max_rel: e,
-            },
-        )
-    };
     let mut rows = vec![
         row("tight", true, &mut [1.0, 1.1, 1.2], 0.0),
         row("loose", false, &mut [0.5, 0.55, 0.6], 1e-6),
@@ -500,19 +502,6 @@ fn the_zero_error_reference_is_drawn_on_the_lower_edge_a_decade_below_the_smalle
 #[test]
 fn a_failed_variant_is_not_drawn_and_does_not_stretch_the_time_axis() {
     use activemuscle::output::tradeoff::figure;
-    let row = |v: &str, reference: bool, times: &mut [f64], e: f64| {
-        Measurement::new(
-            "opt",
-            v,
-            reference,
-            Timing::of(times),
-            "P",
-            CurveError {
-                max_abs: e,
-                max_rel: e,
-            },
-        )
-    };
     let mut drawn = vec![
         row("tight", true, &mut [1.0, 1.1, 1.2], 0.0),
         row("loose", false, &mut [0.5, 0.55, 0.6], 1e-6),
@@ -532,6 +521,19 @@ fn a_failed_variant_is_not_drawn_and_does_not_stretch_the_time_axis() {
         .all(|s| s.points.iter().all(|p| p.0 < 500.0)));
 }
 
+/// The 0D activation-law group and the mesh group (1 × 4 and 2 × 8 cells, λ = 1, 1.1): small
+/// enough for a test, and the mesh group runs with the working law.
+fn law_and_mesh() -> TradeoffOptions {
+    TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw, OptionGroup::Mesh],
+        geometry: Some(geometry()),
+        meshes: vec![(1, 4), (2, 8)],
+        curve_stretches: Some(vec![0.9, 1.0, 1.1]),
+        fe_stretches: vec![1.0, 1.1],
+        ..TradeoffOptions::default()
+    }
+}
+
 /// On another energy the explicit law (eq. (14), derived for the chapter's) is neither measured
 /// nor the law the other groups run with: they take the implicit law, and the findings say both
 /// (a user found the mesh group on a neo-Hookean scene running the chapter's fit, 105 % off).
@@ -540,14 +542,7 @@ fn on_another_energy_the_explicit_law_is_not_measured_nor_used_by_the_other_grou
     use activemuscle::energy::{Energy, NeoHookean as NeoHookeanEnergy};
     let mut models = Models::paper();
     models.energy = Energy::NeoHookean(NeoHookeanEnergy::new(5.0).unwrap());
-    let options = TradeoffOptions {
-        groups: vec![OptionGroup::ActivationLaw, OptionGroup::Mesh],
-        geometry: Some(geometry()),
-        meshes: vec![(1, 4), (2, 8)],
-        curve_stretches: Some(vec![0.9, 1.0, 1.1]),
-        fe_stretches: vec![1.0, 1.1],
-        ..TradeoffOptions::default()
-    };
+    let options = law_and_mesh();
     let results = run(&models, &options, &Fallback::default(), &Silent).unwrap();
     println!("{:#?}", results.findings);
     assert!(results
@@ -664,14 +659,7 @@ fn the_chapter_s_explicit_fit_serves_the_other_groups_only_on_the_chapter_s_mate
         }
         m
     };
-    let options = TradeoffOptions {
-        groups: vec![OptionGroup::ActivationLaw, OptionGroup::Mesh],
-        geometry: Some(geometry()),
-        meshes: vec![(1, 4), (2, 8)],
-        curve_stretches: Some(vec![0.9, 1.0, 1.1]),
-        fe_stretches: vec![1.0, 1.1],
-        ..TradeoffOptions::default()
-    };
+    let options = law_and_mesh();
     let implicit_said = |models: &Models| {
         let r = run(models, &options, &Fallback::default(), &Silent).unwrap();
         assert!(r.rows.iter().any(|r| r.variant == "explicit (frozen)"));
