@@ -35,8 +35,9 @@
 //! [`MIN_WIDTH`]) the piece is left to the exact solve: there the exact law's own rounding
 //! (amplified by the energy's exponential) is above the tolerances, and the table answers only
 //! where it meets them. With the node values assembled, every piece is checked again against
-//! [`FINAL_MARGIN`] of the tolerances (one that fails is left to the exact solve too), and the largest errors and
-//! the intervals left to the exact solve are kept in a [`TableReport`]. The interpolation error is h⁶ |γ⁽⁶⁾| t³(1 − t)³/720, largest at t = ½.
+//! [`FINAL_MARGIN`] of the tolerances (one that fails is left to the exact solve too), and the
+//! largest errors and the intervals left to the exact solve are kept in a [`TableReport`]. The
+//! interpolation error is h⁶ |γ⁽⁶⁾| t³(1 − t)³/720, largest at t = ½.
 //!
 //! **The rule at λ_min.** λ_min is always a piece boundary: no polynomial spans it.
 //! - Implicit law: γ = 0 for λ ≤ λ_min exactly, as in the exact law (no table there). Above
@@ -75,6 +76,7 @@ const INITIAL_WIDTH: f64 = 0.05;
 /// the exact solve: a halving divides the interpolation error by 2⁶ = 64, so an error that no
 /// longer falls is the exact law's own rounding, which no table can beat.
 const STALL_WIDTH: f64 = 1e-3;
+/// See [`STALL_WIDTH`].
 const STALL_FACTOR: f64 = 4.0;
 
 /// What to tabulate: the stretch range and the tolerances the build checks.

@@ -247,6 +247,7 @@ pub fn run_until(
             "need at least one mesh, tolerance and FE stretch".into(),
         ));
     }
+    let explicit = models.explicit_formula_holds();
     let plan = &Resolved {
         geom: o.geometry.unwrap_or(fallback.geometry),
         fe_mesh: o.fe_mesh.unwrap_or(fallback.cells),
@@ -258,10 +259,10 @@ pub fn run_until(
             .unwrap_or_else(|| fallback.curve_stretches.clone()),
         tolerances: o.tolerances.clone(),
         fd_step: o.fd_step,
-        explicit: models.explicit_formula_holds(),
-        explicit_working: models
-            .explicit_formula_holds()
+        explicit_working: explicit
+            .clone()
             .and_then(|()| models.explicit_fit_applies()),
+        explicit,
     };
     check_memory(plan, &o.groups)?;
     let mut runner = Runner {
