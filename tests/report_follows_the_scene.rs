@@ -408,3 +408,46 @@ laws = []
     let page = report(&scene, &results);
     assert!(page.contains("γ reaches 0.9"), "no note on γ close to 1");
 }
+
+/// The same studies on the chapter's energy with another μ: the figures that depend on the energy
+/// are "as the chapter's", with this scene's parameters; those of the active curve alone (Figs. 7
+/// and 9) are still the chapter's, since the curve is.
+#[test]
+fn a_scene_with_other_parameters_does_not_claim_the_chapter_s_figures() {
+    let text_of = |material: &str| {
+        let scene =
+            Scene::parse(&format!("{CHAPTER_LIKE}{material}"), "other-mu.toml").expect("valid");
+        let (_, figures) = check_coverage(&scene);
+        text(&figures)
+    };
+    let words = text_of("[material]\nmu = 0.5\n");
+    for fig in [2, 5, 8, 10, 11, 12] {
+        assert!(
+            words.contains(&format!(
+                "as the chapter's Fig. {fig}, with this scene's parameters"
+            )),
+            "Fig. {fig}:\n{words}"
+        );
+        assert!(
+            !words.contains(&format!("— the chapter's Fig. {fig}")),
+            "Fig. {fig}"
+        );
+    }
+    assert!(!words.contains("Fig. 3"), "{words}");
+    for fig in [7, 9] {
+        assert!(
+            words.contains(&format!("— the chapter's Fig. {fig}")),
+            "Fig. {fig}"
+        );
+    }
+    // Another active curve: Figs. 7 and 9 are no longer the chapter's either.
+    let words = text_of("[activation]\np_opt = 50.0\n");
+    for fig in [7, 9] {
+        assert!(
+            words.contains(&format!(
+                "as the chapter's Fig. {fig}, with this scene's parameters"
+            )),
+            "Fig. {fig}:\n{words}"
+        );
+    }
+}

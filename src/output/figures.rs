@@ -57,12 +57,16 @@ fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
     v
 }
 
-/// ` — the chapter's Fig. n` for a figure of the chapter's energy; with another energy, which.
-fn chapter(n: u32, energy: &str) -> String {
-    if energy == "giantesio-musesti" {
+/// ` — the chapter's Fig. n` for a figure of the chapter's energy and parameters
+/// (`chapter_material`: the scene's energy and active curve are the chapter's); with other
+/// parameters or another energy, ` — as the chapter's Fig. n` and what differs.
+fn chapter(n: u32, energy: &str, chapter_material: bool) -> String {
+    if energy != "giantesio-musesti" {
+        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+    } else if chapter_material {
         format!(" — the chapter's Fig. {n}")
     } else {
-        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+        format!(" — as the chapter's Fig. {n}, with this scene's parameters")
     }
 }
 
@@ -77,6 +81,8 @@ struct Uniaxial<'a> {
     study: &'a str,
     direction: Direction,
     curves: &'a [Curve],
+    /// The scene's energy and active curve are the chapter's (see [`chapter`]).
+    chapter_material: bool,
 }
 
 impl<'a> Uniaxial<'a> {
@@ -204,22 +210,28 @@ struct Run<'a> {
     /// The material's energy.
     material: String,
     curve: ActiveCurve,
+    /// The scene's energy and active curve are the chapter's (see [`chapter`]).
+    chapter_material: bool,
     uniaxial: Vec<Uniaxial<'a>>,
 }
 
 /// Every figure the results support: the uniaxial studies' (in study order), the transverse
 /// isotropy, the cylinders', the FE-vs-0D differences, the fits' and the stability studies'.
 pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
+    let paper = crate::models::Models::paper();
+    let chapter_material = scene.models.energy == paper.energy && scene.models.curve == paper.curve;
     let run = Run {
         results,
         material: scene.models.energy.name().to_string(),
         curve: scene.models.curve,
+        chapter_material,
         uniaxial: results
             .uniaxial()
             .map(|(study, u)| Uniaxial {
                 study,
                 direction: u.direction,
                 curves: &u.curves,
+                chapter_material,
             })
             .collect(),
     };
@@ -324,7 +336,11 @@ fn passive(run: &Run, u: &Uniaxial, in_isotropy: bool) -> Option<Figure> {
             "Passive stress {} the fibres: {}{} (study \"{}\")",
             u.dir(),
             energies.join(", "),
-            if like_fig_3 { " — the chapter's Fig. 3" } else { "" },
+            if like_fig_3 && u.chapter_material {
+                " — the chapter's Fig. 3"
+            } else {
+                ""
+            },
             u.study
         ),
         format!(
@@ -377,7 +393,7 @@ fn transverse_isotropy(run: &Run) -> Option<Figure> {
             format!(
                 "Transversely isotropic behaviour of {}{}",
                 run.material,
-                chapter(2, &run.material)
+                chapter(2, &run.material, run.chapter_material)
             ),
             "On the scale of the softer curve across the fibres.",
         )
@@ -455,7 +471,7 @@ fn constant_gamma(u: &Uniaxial) -> Option<Figure> {
             "Stress–stretch curves for constant γ = {}{} (study \"{}\")",
             list(&gammas),
             match curves.first() {
-                Some((_, c)) if u.along() => chapter(5, &c.energy),
+                Some((_, c)) if u.along() => chapter(5, &c.energy, u.chapter_material),
                 _ => String::new(),
             },
             u.study
@@ -489,7 +505,10 @@ fn active_curve(run: &Run, u: &Uniaxial) -> Option<Figure> {
     let points = lambdas.iter().map(|&l| (l, run.curve.value(l))).collect();
     figure(
         "fig_active_curve",
-        "The active curve P_act — the chapter's Fig. 7".into(),
+        format!(
+            "The active curve P_act{}",
+            chapter(7, "giantesio-musesti", run.curve == ActiveCurve::paper())
+        ),
         format!(
             "P_act(λ) of the scene's active curve (λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa; the chapter's values are in its Table 2). The chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program.",
             run.curve.lambda_min(),
@@ -512,7 +531,7 @@ fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
         "fig_gamma_and_stresses",
         format!(
             "γ(λ) of the implicit law and the stresses P_tot, P_act, P_pas at d = {d}{}",
-            if d == 0.0 { chapter(8, &c.energy) } else { String::new() }
+            if d == 0.0 { chapter(8, &c.energy, u.chapter_material) } else { String::new() }
         ),
         format!(
             "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas.",
@@ -565,7 +584,11 @@ fn damage_active(run: &Run, u: &Uniaxial) -> Option<Figure> {
         .collect();
     figure(
         "fig_damage_active",
-        format!("(1 − d) P_act for d = {} — the chapter's Fig. 9", list(&ds)),
+        format!(
+            "(1 − d) P_act for d = {}{}",
+            list(&ds),
+            chapter(9, "giantesio-musesti", run.curve == ActiveCurve::paper())
+        ),
         "The active curve scaled by the loss of activation 1 − d.".into(),
         vec![panel("(1 − d) P_act", STRESS, series)],
     )
@@ -588,7 +611,7 @@ fn explicit_vs_implicit_gamma(u: &Uniaxial) -> Option<Figure> {
         "fig_explicit_vs_implicit_gamma",
         format!(
             "Explicit against implicit γ at d = {d}{}",
-            if d == 0.0 { chapter(10, energy) } else { String::new() }
+            if d == 0.0 { chapter(10, energy, u.chapter_material) } else { String::new() }
         ),
         format!("γ from the explicit law's closed form (solid) and from solving the implicit law (dotted), d = {d}."),
         vec![panel(
@@ -610,7 +633,7 @@ fn explicit_ptot(u: &Uniaxial) -> Option<Figure> {
         "fig_explicit_ptot",
         format!(
             "P_tot with the explicit γ at d = {d}{}",
-            if d == 0.0 { chapter(11, &c.energy) } else { String::new() }
+            if d == 0.0 { chapter(11, &c.energy, u.chapter_material) } else { String::new() }
         ),
         format!("Total stress of the frozen model with γ from the explicit law, d = {d}, against the target P_pas + (1 − d) P_act it approximates (the chapter compares with the experimental data instead)."),
         vec![panel(
@@ -837,7 +860,7 @@ fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
             bases_name(c.bases),
             words(m.law, m.coupling),
             list(&ds),
-            if like_fig_12 { chapter(12, &c.energy) } else { String::new() }
+            if like_fig_12 { chapter(12, &c.energy, run.chapter_material) } else { String::new() }
         ),
         format!(
             "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: the homogeneous uniaxial (0D) curve of the same model.",
