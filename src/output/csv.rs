@@ -304,11 +304,14 @@ fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, A
     finite(x, quantity, origin).map(shortest)
 }
 
-/// `x` with the fewest digits that read back to the same f64, in scientific notation outside
+/// `x` with the fewest digits that read back to the same f64 (−0 as 0), in scientific notation outside
 /// 1e-4 ≤ |x| < 1e15 (Rust's plain `Display` writes 2.85e266 as 267 digits and 6e-16 with
 /// fifteen leading zeros).
 pub fn shortest(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) {
+    if x == 0.0 {
+        // −0 (a symmetry-axis displacement) is written 0.
+        "0".to_string()
+    } else if (1e-4..1e15).contains(&x.abs()) {
         x.to_string()
     } else {
         format!("{x:e}")
@@ -574,6 +577,7 @@ mod tests {
             x = (x * 997.0 + 0.317).fract();
             values.push((x + 0.01) * 10f64.powi(k));
         }
+        assert_eq!(shortest(-0.0), "0");
         for v in values {
             let s = shortest(v);
             assert_eq!(s.parse::<f64>().ok(), Some(v), "{v:e} written as {s}");
