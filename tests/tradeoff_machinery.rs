@@ -162,12 +162,16 @@ fn spreads_are_percentiles_and_overlapping_or_close_times_are_no_measurable_diff
     assert_eq!(a.speedup_over(&b), None);
     assert!(a
         .against(&b, "B")
-        .starts_with("no measurable difference in time from B"));
+        .starts_with("no measurable difference in time from B (the runs' spreads overlap)"));
     // Disjoint spreads but 5 % apart: within what load drift between variants makes.
     let (a, b) = (three(1.0, 1.0, 1.01), three(1.05, 1.05, 1.06));
     assert_eq!(a.speedup_over(&b), None);
-    // One run has no spread to compare.
+    assert!(a.against(&b, "B").contains("(the medians within 1.10×)"));
+    // One run has no spread to compare, and the words say that rather than "no difference".
     assert_eq!(Timing::once(1.0).speedup_over(&slow), None);
+    assert!(Timing::once(0.4)
+        .against(&slow, "B")
+        .starts_with("not timed against B (a single run"));
 }
 
 #[test]

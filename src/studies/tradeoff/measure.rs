@@ -105,7 +105,17 @@ impl Timing {
         let verdict = match self.speedup_over(other) {
             Some(x) if x >= 1.0 => format!("{}× faster than {other_name}", ratio(x)),
             Some(x) => format!("{}× slower than {other_name}", ratio(1.0 / x)),
-            None => format!("no measurable difference in time from {other_name}"),
+            // Why not, so that two medians far apart are not read as equal.
+            None if self.runs <= 1 || other.runs <= 1 => {
+                format!("not timed against {other_name} (a single run: it failed or is slow)")
+            }
+            None if self.high >= other.low && other.high >= self.low => format!(
+                "no measurable difference in time from {other_name} (the runs' spreads overlap)"
+            ),
+            None => format!(
+                "no measurable difference in time from {other_name} (the medians within {}×)",
+                ratio(MEASURABLE)
+            ),
         };
         format!("{verdict} ({} against {})", self.text(), other.text())
     }
