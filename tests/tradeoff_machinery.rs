@@ -171,7 +171,7 @@ fn spreads_are_percentiles_and_overlapping_or_close_times_are_no_measurable_diff
     assert_eq!(Timing::once(1.0).speedup_over(&slow), None);
     assert!(Timing::once(0.4)
         .against(&slow, "B")
-        .starts_with("not timed against B (a single run"));
+        .starts_with("not timed against B (one of them ran once)"));
 }
 
 #[test]

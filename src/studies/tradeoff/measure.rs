@@ -107,7 +107,7 @@ impl Timing {
             Some(x) => format!("{}× slower than {other_name}", ratio(1.0 / x)),
             // Why not, so that two medians far apart are not read as equal.
             None if self.runs <= 1 || other.runs <= 1 => {
-                format!("not timed against {other_name} (a single run: it failed or is slow)")
+                format!("not timed against {other_name} (one of them ran once)")
             }
             None if self.high >= other.low && other.high >= self.low => format!(
                 "no measurable difference in time from {other_name} (the runs' spreads overlap)"
