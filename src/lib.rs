@@ -39,6 +39,7 @@ pub mod scene;
 pub mod stability;
 pub mod studies;
 pub mod testing;
+pub mod text;
 pub mod uniaxial;
 pub mod volumetric;
 

@@ -1,5 +1,6 @@
 //! Errors of the finite-element solver: what failed, at which stretch, and why.
 
+use crate::text::significant;
 use thiserror::Error;
 
 /// Why one Newton solve (one load step) was rejected. A rejected step is cut, never a crash;
@@ -65,7 +66,7 @@ pub enum FemError {
     #[error(
         "target stretch {} not reached: largest converged stretch {}; \
          last attempted stretch {} with step {step:.3e} failed: {cause}",
-        stretch(*target), stretch(*reached), stretch(*attempted)
+        significant(*target, 10), significant(*reached, 10), significant(*attempted, 10)
     )]
     TargetNotReached {
         /// The requested stretch.
@@ -83,7 +84,7 @@ pub enum FemError {
     #[error(
         "target stretch {} not reached: largest converged stretch {} after \
          {steps} load steps (the limit, SolverOptions::stepping.max_steps)",
-        stretch(*target), stretch(*reached)
+        significant(*target, 10), significant(*reached, 10)
     )]
     StepLimit {
         /// The requested stretch.
@@ -145,45 +146,3 @@ fn bytes(b: f64) -> String {
 
 /// Result alias of the FE solver.
 pub type FemResult<T> = std::result::Result<T, FemError>;
-
-/// A stretch in a message: 10 significant digits, trailing zeros dropped (the bisected load
-/// steps reach 1.1070312500000001, written 1.10703125).
-pub fn stretch(x: f64) -> String {
-    if !x.is_finite() || x == 0.0 {
-        return x.to_string();
-    }
-    let decimals = (9 - x.abs().log10().floor() as i32).clamp(0, 17) as usize;
-    let s = format!("{x:.decimals$}");
-    if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_string()
-    } else {
-        s
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::stretch;
-
-    #[test]
-    fn stretches_in_messages_lose_the_binary_noise_and_keep_ten_digits() {
-        assert_eq!(stretch(1.1070312500000001), "1.10703125");
-        assert_eq!(stretch(1.17), "1.17");
-        assert_eq!(stretch(0.5), "0.5");
-        assert_eq!(stretch(2.0), "2");
-        assert_eq!(stretch(0.0), "0");
-        for x in [
-            0.123_456_789_123,
-            1.000_000_000_1,
-            12.345_678_912_3,
-            1e-7 / 3.0,
-        ] {
-            let back: f64 = stretch(x).parse().unwrap();
-            assert!(
-                (back - x).abs() <= 1e-9 * x.abs(),
-                "{x} written {}",
-                stretch(x)
-            );
-        }
-    }
-}

@@ -4,6 +4,7 @@
 
 use super::csv::CurveId;
 use crate::app_error::AppError;
+use crate::text::{significant, trim_zeros};
 use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -387,23 +388,12 @@ fn axis_symbol(label: &str) -> &str {
 /// outside [1e-3, 1e5):
 /// `0.1`, `-2.5`, `1.628e5`, `2e-12`, `0` (also for −0).
 pub fn short(x: f64) -> String {
-    let a = x.abs();
-    let trim = |s: &str| -> String {
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s.to_string()
-        }
-    };
-    if a == 0.0 {
-        "0".into()
-    } else if (1e-3..1e5).contains(&a) {
-        let digits = (3 - a.log10().floor() as i32).clamp(0, 6) as usize;
-        trim(&format!("{x:.digits$}"))
+    if x == 0.0 || (1e-3..1e5).contains(&x.abs()) {
+        significant(x, 4)
     } else {
         let s = format!("{x:.3e}");
         let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
-        format!("{}e{exponent}", trim(mantissa))
+        format!("{}e{exponent}", trim_zeros(mantissa))
     }
 }
 

@@ -110,7 +110,7 @@ fn ranges(rows: &[&Measurement]) -> ((f64, f64), (f64, f64)) {
     let positive = |e: f64| e.is_finite() && e > 0.0;
     let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
     for r in rows {
-        if r.error.max_rel.is_finite() && r.time.median.is_finite() && r.time.median > 0.0 {
+        if r.measured() && r.time.median.is_finite() && r.time.median > 0.0 {
             x0 = x0.min(r.time.low);
             x1 = x1.max(r.time.high);
         }
@@ -364,7 +364,7 @@ pub fn stage(
         if !results
             .rows
             .iter()
-            .any(|r| r.option == option && r.error.max_rel.is_finite())
+            .any(|r| r.option == option && r.measured())
         {
             continue;
         }
@@ -408,7 +408,7 @@ pub fn write_all(
 pub fn caption(option: &str, rows: &[Measurement]) -> String {
     let mine = || rows.iter().filter(|r| r.option == option);
     let failed: Vec<&str> = mine()
-        .filter(|r| !r.error.max_rel.is_finite())
+        .filter(|r| !r.measured())
         .map(|r| r.variant.as_str())
         .collect();
     format!(

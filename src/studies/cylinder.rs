@@ -490,8 +490,8 @@ fn describe_failure(f: &FemError) -> String {
         } => format!(
             "stopped before target lambda = {}: converged up to lambda = {}; \
              the step to {attempted:.5} failed even at the smallest load step ({cause})",
-            crate::fem::error::stretch(*target),
-            crate::fem::error::stretch(*reached)
+            crate::text::significant(*target, 10),
+            crate::text::significant(*reached, 10)
         ),
         other => other.to_string(),
     }

@@ -813,7 +813,7 @@ pub(super) fn element(
             &r,
             &reference,
         );
-        if element == Element::Q1P0 && row.error.max_rel.is_finite() {
+        if element == Element::Q1P0 && row.measured() {
             best = Some((cells, row.error.max_rel, r.time));
         }
         run.push(row);

@@ -384,6 +384,12 @@ impl Measurement {
         m
     }
 
+    /// Whether the variant was measured: it ran and has an error. A failed one (or one whose
+    /// reference failed everywhere) has an infinite error, is drawn nowhere and has no speed-up.
+    pub fn measured(&self) -> bool {
+        self.error.max_rel.is_finite()
+    }
+
     /// The row in words, both axes with their numbers:
     /// `activation law (FE) · explicit (frozen): 5.4e-1 s (5.3e-1–5.6e-1, 3 runs), speed-up 1.06
     /// (no measurable difference), max abs error 2.7e0, max rel error 1.4e-1`.

@@ -210,14 +210,10 @@ impl TradeoffResults {
             model: format!("option group {group}"),
             message: why.clone(),
         });
-        let variants = self
-            .rows
-            .iter()
-            .filter(|r| !r.error.max_rel.is_finite())
-            .map(|r| Failure {
-                model: format!("{} · {}", r.option, r.variant),
-                message: r.note.clone(),
-            });
+        let variants = self.rows.iter().filter(|r| !r.measured()).map(|r| Failure {
+            model: format!("{} · {}", r.option, r.variant),
+            message: r.note.clone(),
+        });
         groups.chain(variants).collect()
     }
 }
@@ -577,11 +573,7 @@ impl TradeoffStudy {
         ));
         let results = run_until(models, &self.options, fallback, ctx.progress, ctx.stop)
             .map_err(|e| e.within(&self.name))?;
-        let measured = results
-            .rows
-            .iter()
-            .filter(|r| r.error.max_rel.is_finite())
-            .count();
+        let measured = results.rows.iter().filter(|r| r.measured()).count();
         let mut details = results.findings.clone();
         details.extend(results.rows.iter().map(Measurement::line));
         let failures = results.unmeasured();
