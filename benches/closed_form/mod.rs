@@ -1,5 +1,5 @@
 //! Hand-derived closed form of the chapter's active model, written ONLY as the benchmark's
-//! yardstick (and as an independent check of the AD routes in `tests/closed_form.rs`).
+//! yardstick (and as an independent check of the AD routes in `tests/it/closed_form.rs`).
 //!
 //! Passive energy (eq. (1)) W(C) = μ/4 { (e^{α(I−1)} − 1)/α + K − 1 } with
 //! I = A : C, K = A : C⁻¹, A = a I + b M, a = w0/3, b = 1 − w0, M = m ⊗ m.

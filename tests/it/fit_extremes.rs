@@ -3,7 +3,7 @@
 //! deadline, so a regression to an unbounded loop fails the test instead of hanging CI; the
 //! iteration counts are also checked against the caps.
 
-mod deadline;
+use crate::deadline;
 use activemuscle::active::ActiveCurve;
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fit::{

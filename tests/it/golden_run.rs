@@ -49,8 +49,8 @@ fn column_scale(rows: &[Vec<String>], column: usize) -> f64 {
         .fold(0.0, |m, v| m.max(v.abs()))
 }
 
-mod binary;
-mod scratch;
+use crate::binary;
+use crate::scratch;
 use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to

@@ -3,8 +3,8 @@
 
 use std::process::Command;
 
-mod binary;
-mod scratch;
+use crate::binary;
+use crate::scratch;
 use scratch::scratch;
 
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");

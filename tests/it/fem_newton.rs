@@ -12,7 +12,7 @@ const MU: f64 = 10.0;
 /// Strength of the non-gradient stress term.
 const C: f64 = 0.15 * MU;
 
-mod common;
+use crate::common;
 use common::{residuals, sci, NonSymmetric};
 
 /// One large load step 1 → 1.3 on a clamped cylinder of 4 × 8 Q2/Q1 cells.

@@ -2,8 +2,8 @@
 //! results, the run writes everything it computed, names every failure in its summary and
 //! report, and exits 3; invalid input exits 1; complete success alone exits 0.
 
-mod binary;
-mod scratch;
+use crate::binary;
+use crate::scratch;
 
 use binary::run_args;
 use scratch::{scratch, Scratch};

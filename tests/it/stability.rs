@@ -9,7 +9,7 @@ use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 use nalgebra::{Matrix3, SMatrix, Vector3};
 
-mod scratch;
+use crate::scratch;
 use scratch::scratch;
 
 #[test]

@@ -5,7 +5,7 @@ use std::ffi::OsStr;
 use std::path::PathBuf;
 use std::process::Command;
 
-mod scratch;
+use crate::scratch;
 use scratch::{scratch, Scratch};
 
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");

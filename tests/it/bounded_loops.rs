@@ -4,7 +4,7 @@
 //! its own thread under a generous deadline, so a regression to an unbounded loop fails the test
 //! instead of hanging CI.
 
-mod deadline;
+use crate::deadline;
 use activemuscle::active::{ActivationLaw, ActiveCurve, EnergyLaw, ImplicitLaw};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::roots::{newton_bisection, MAX_ITERATIONS};

@@ -11,7 +11,7 @@ use activemuscle::fem::tangent_solver::TangentSolver;
 use activemuscle::fem::{Bases, Mesh, NonlinearSystem};
 use nalgebra::{DMatrix, DVector};
 
-mod common;
+use crate::common;
 use common::NonSymmetric;
 
 /// The residual on the free dofs at `x`.

@@ -4,9 +4,9 @@ use activemuscle::fem::{
     AxisymmetricSolver, Bases, LinearSolver, Mesh, NeoHookean, SolverOptions, VtkOutput,
 };
 
-mod common;
+use crate::common;
 use common::NonSymmetric;
-mod scratch;
+use crate::scratch;
 use scratch::scratch;
 
 #[test]

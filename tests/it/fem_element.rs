@@ -10,9 +10,9 @@ use activemuscle::fem::{
     VtkOutput,
 };
 
-mod common;
+use crate::common;
 use common::NonSymmetric;
-mod scratch;
+use crate::scratch;
 use scratch::scratch;
 
 fn q1p0() -> SolverOptions {

@@ -1,7 +1,7 @@
 //! The tests' scratch directories (tests/scratch/) leave nothing behind: each is removed when the
 //! test that made it ends, also when that test fails.
 
-mod scratch;
+use crate::scratch;
 use scratch::scratch;
 
 #[test]

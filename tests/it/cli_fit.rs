@@ -9,7 +9,7 @@ use activemuscle::studies::stability::{StabilityCurve, StabilityPoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-mod scratch;
+use crate::scratch;
 use scratch::{scratch, Scratch};
 
 const BIN: &str = env!("CARGO_BIN_EXE_activemuscle");

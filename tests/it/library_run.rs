@@ -10,8 +10,8 @@ use activemuscle::studies::uniaxial::CurveModel;
 use activemuscle::studies::{StudyKind, StudyResult};
 use activemuscle::uniaxial::{along_fibres, Direction};
 
-mod binary;
-mod scratch;
+use crate::binary;
+use crate::scratch;
 use scratch::scratch;
 
 const SCENE: &str = r#"

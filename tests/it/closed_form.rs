@@ -5,7 +5,7 @@
 //! near the identity, random unit m and γ ∈ [0, 0.4]. Checks the yardstick and, independently of
 //! the invariant calculus, the AD.
 
-#[path = "../benches/closed_form/mod.rs"]
+#[path = "../../benches/closed_form/mod.rs"]
 mod closed_form;
 
 use activemuscle::energy::GiantesioMusesti;

@@ -9,7 +9,7 @@ use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
 use activemuscle::uniaxial::{nearly_incompressible, reference_stress, Direction};
 use activemuscle::volumetric::{Volumetric, VolumetricForm};
 
-mod common;
+use crate::common;
 use common::NonSymmetric;
 
 const MU: f64 = 2.5; // kPa

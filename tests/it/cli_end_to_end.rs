@@ -7,8 +7,8 @@ use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 use std::collections::HashMap;
 
-mod binary;
-mod scratch;
+use crate::binary;
+use crate::scratch;
 use scratch::scratch;
 
 const SCENE: &str = r#"

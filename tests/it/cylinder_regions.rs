@@ -12,7 +12,7 @@ use activemuscle::studies::StudyResult;
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::Muscle;
 
-mod scratch;
+use crate::scratch;
 use scratch::scratch;
 
 const FILE: &str = "regions.toml";
