@@ -157,6 +157,41 @@ fn main() {
             respond(&volume_preserving)
         }),
     );
+    // The activation approaches at the chapter's material (issue 23): each against the
+    // chapter's active strain with the explicit law, frozen.
+    let active_stress = Muscle::active_stress(energy, curve, 0.0).unwrap();
+    report(
+        "Muscle::respond tangent, axisym: explicit law (frozen), active stress",
+        pair(rounds, &mut || respond(&explicit), &mut || {
+            respond(&active_stress)
+        }),
+    );
+    let structural_map = activemuscle::active::ActivationMap::structural(&energy).unwrap();
+    let structural = |law: Law<GiantesioMusesti>, coupling| {
+        muscle(law, coupling).with_map(structural_map).unwrap()
+    };
+    let structural_implicit =
+        Law::Implicit(ImplicitLaw::new(energy, curve).with_map(structural_map));
+    for (name, mu) in [
+        (
+            "Muscle::respond tangent, axisym: explicit law (frozen), structural implicit tabulated (frozen)",
+            structural(tabulated(structural_implicit.clone()), frozen),
+        ),
+        (
+            "Muscle::respond tangent, axisym: explicit law (frozen), structural implicit exact (frozen)",
+            structural(structural_implicit.clone(), frozen),
+        ),
+    ] {
+        let r = if name.contains("exact") {
+            rounds / 10 + 1
+        } else {
+            rounds
+        };
+        report(
+            name,
+            pair(r, &mut || respond(&explicit), &mut || respond(&mu)),
+        );
+    }
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average after: {}", load.trim());
 }

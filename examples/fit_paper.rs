@@ -161,9 +161,9 @@ fn main() -> Result<(), Box<dyn Error>> {
     let total = Data::sampled(grid(0.66, 1.5, 43), |l| {
         Ok(along_fibres(&passive, l)?.stress + curve.value(l))
     })?;
-    let total = with_noise(&total, 0.01 * curve.p_opt(), 2)?;
+    let total = with_noise(&total, 0.01 * curve.parameter("p_opt").unwrap(), 2)?;
     let active = active_from_total(&gm, &total)?;
-    let start = ActiveCurve::new(0.55, 1.1, 0.6, curve.p_opt())?;
+    let start = ActiveCurve::chapter(0.55, 1.1, 0.6, curve.parameter("p_opt").unwrap())?;
     let fit = fit_active_curve(&start, &active, &FitSetup::new())?;
     println!(
         "== 2. Active curve from a total curve with noise of 1 % of P_opt\n{}\n",
@@ -172,7 +172,12 @@ fn main() -> Result<(), Box<dyn Error>> {
     let c = fit.curve;
     table.push((
         "lambda_min, lambda_opt, k (noise 1 % P_opt)".into(),
-        format!("{:.4}, {:.4}, {:.4}", c.lambda_min(), c.lambda_opt(), c.k()),
+        format!(
+            "{:.4}, {:.4}, {:.4}",
+            c.lambda_min(),
+            c.parameter("lambda_opt").unwrap(),
+            c.parameter("k").unwrap()
+        ),
         "0.6243, 1.1704, 0.4342".into(),
     ));
     FitPlot {
@@ -255,7 +260,11 @@ fn main() -> Result<(), Box<dyn Error>> {
             Ok(along_fibres(&passive, l)?.stress + (1.0 - d) * curve.value(l))
         })?;
         let exact_fit = fit_damage(&gm, &curve, &exact, &FitSetup::new())?;
-        let noisy = with_noise(&exact, 0.01 * curve.p_opt(), 10 + k as u64)?;
+        let noisy = with_noise(
+            &exact,
+            0.01 * curve.parameter("p_opt").unwrap(),
+            10 + k as u64,
+        )?;
         let noisy_fit = fit_damage(&gm, &curve, &noisy, &FitSetup::new())?;
         println!(
             "== 4. d = {d}: exact data -> {:.12}; noise 1 % of P_opt -> {:.4} ± {:.4}",

@@ -23,10 +23,11 @@ pub enum Error {
         /// The offending F, row by row.
         f: [[f64; 3]; 3],
     },
-    /// The activation parameter γ left [0, 1).
-    #[error("activation gamma = {gamma} is outside [0, 1)")]
+    /// The activation variable left its range: γ ∉ [0, 1) (active strain) or ω < 0
+    /// (structural).
+    #[error("activation gamma = {gamma} is outside its range ([0, 1) for active strain, [0, inf) for the structural omega)")]
     ActivationOutOfRange {
-        /// The offending γ.
+        /// The offending γ (or ω).
         gamma: f64,
     },
     /// A number that must be finite was not.
@@ -47,9 +48,9 @@ pub enum Error {
         /// Why not.
         reason: String,
     },
-    /// A muscle was given an active-strain map other than the one its activation law is solved
+    /// A muscle was given an activation map other than the one its activation law is solved
     /// with.
-    #[error("the {law} law is solved with the {law_map} active-strain map; the muscle asks for the {map} map")]
+    #[error("the {law} law is solved with the {law_map} activation map; the muscle asks for the {map} map")]
     MapMismatch {
         /// The law's name.
         law: &'static str,
@@ -57,6 +58,12 @@ pub enum Error {
         law_map: &'static str,
         /// The map asked for.
         map: &'static str,
+    },
+    /// A combination of model choices that is not defined, and why.
+    #[error("{reason}")]
+    Unsupported {
+        /// Why (which choice, and what would work).
+        reason: String,
     },
 }
 

@@ -5,7 +5,8 @@
 //! passive energy; activation by active strain F = F_e F_a with F_a = I − γ m⊗m; γ fitted as a
 //! function of the fibre stretch; loss of activation through a damage d scaling the active stress.
 //!
-//! - [`energy`]: energies written once, generically ([`StrainEnergy`]).
+//! - [`energy`]: energies written once, generically ([`StrainEnergy`]); [`parameter`]: their
+//!   (and the active curves') named, validated parameters.
 //! - [`invariants`]: the invariants of C and their exact derivatives in F (framework-owned).
 //! - [`response`]: the one place that seeds dual numbers.
 //! - [`active`]: active strain, active curve, activation laws, frozen/consistent coupling.
@@ -31,6 +32,7 @@ pub mod material;
 pub mod models;
 pub mod oracle;
 pub mod output;
+pub mod parameter;
 pub mod random;
 pub mod response;
 pub mod roots;

@@ -1,30 +1,35 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
+use crate::active::approach::active_stress_terms;
 use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
-use crate::active::law::{check_damage, effective_damage, ActivationLaw, Law, LawValue};
-use crate::active::strain::ActiveStrainMap;
+use crate::active::curve::ActiveCurve;
+use crate::active::drive::{Drive, StretchRate};
+use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
+use crate::active::map::ActivationMap;
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
 use crate::response::{check_returned, in_f_space, unchecked_derivatives, Order};
 use crate::Result;
 use nalgebra::{SMatrix, SVector};
 
-/// Active skeletal muscle: Ŵ(F, γ) = det F_a · W(C_e) with γ = g(λ_f, d_eff) and the active-strain
-/// map F_a(γ) of [`ActiveStrainMap`], coupled frozen or consistently (see
-/// [`crate::active::coupling`]). The law's target active stress is (1 − d)·a·P_act: damage d and
-/// activation level a (default 1) in one effective damage d_eff = 1 − (1 − d)·a
-/// ([`effective_damage`]).
+/// Active skeletal muscle, by one of the approaches of [`crate::active::approach`]:
+///
+/// - an activation map (active strain or structural): Ŵ(F, γ) = φ(γ) W(A(γ) j) with
+///   γ = g(λ_f, drive) ([`ActivationMap`]), coupled frozen or consistently (see
+///   [`crate::active::coupling`]);
+/// - active stress ([`Muscle::active_stress`]): Ψ = W(C) + E(λ_f) with dE/dλ = T(λ_f), no law.
+///
+/// The target active stress is T = (1 − d)·a·f_v·P_act ([`Drive`]): damage d, activation level a
+/// (default 1) and, in a time study with force–velocity, the stretch-rate state.
 #[derive(Debug, Clone)]
 pub struct Muscle<E> {
     energy: E,
     law: Law<E>,
-    damage: f64,
-    level: f64,
-    /// d_eff = 1 − (1 − d)·a of `damage` and `level`, cached: private, and written only where
-    /// those are (`new`, `passive`, `set_activation`), so it cannot go stale.
-    effective: f64,
+    drive: Drive,
     coupling: Coupling,
-    map: ActiveStrainMap,
+    map: ActivationMap,
+    /// The active curve of the active-stress approach (`None`: the activation map's approach).
+    active_stress: Option<ActiveCurve>,
 }
 
 /// A muscle's answer at one point over the entries of F in use.
@@ -54,37 +59,69 @@ impl<E: StrainEnergy> Muscle<E> {
             map: law.map().unwrap_or_default(),
             energy,
             law,
-            damage,
-            level: 1.0,
-            effective: damage,
+            drive: Drive::from(damage),
             coupling,
+            active_stress: None,
         })
     }
 
-    /// The same muscle at activation level a ∈ [0, 1] (the fraction of the optimal active stress
-    /// recruited, e.g. a(t) of [`crate::active::time::ActivationInTime`]); a = 1 is the
-    /// tetanised muscle of the chapter.
+    /// The active-stress muscle (FEBio's prescribed active contraction, Blemker's muscle):
+    /// Ψ = W(C) + E(λ_f) with dE/dλ = (1 − d)·a·f_v·P_act(λ), so that
+    /// P = ∂W/∂F + T(λ_f) F M/λ_f (− p F⁻ᵀ under the constraint). No law: the target is met by
+    /// construction along the fibres. Hyperelastic without force–velocity (symmetric tangent).
+    pub fn active_stress(energy: E, curve: ActiveCurve, damage: f64) -> Result<Self> {
+        let mut muscle = Self::passive(energy);
+        muscle.drive = Drive::from(check_damage(damage)?);
+        muscle.active_stress = Some(curve);
+        Ok(muscle)
+    }
+
+    /// The same muscle at activation level a ≥ 0 (the fraction of the optimal active stress
+    /// recruited, e.g. a(t) of [`crate::active::time::ActivationInTime`]; 4C's twitch trains
+    /// with P_opt = N_a exceed 1); a = 1 is the tetanised muscle of the chapter.
     pub fn with_activation(mut self, level: f64) -> Result<Self> {
         self.set_activation(level)?;
         Ok(self)
     }
 
-    /// Sets the activation level a ∈ [0, 1] (see [`with_activation`](Self::with_activation)).
+    /// Sets the activation level a ≥ 0 (see [`with_activation`](Self::with_activation)).
     pub fn set_activation(&mut self, level: f64) -> Result<()> {
-        self.effective = effective_damage(self.damage, level)?;
-        self.level = level;
+        let drive = Drive::new(self.drive.damage(), level)?;
+        self.drive = match self.drive.rate() {
+            Some(rate) => drive.with_rate(*rate)?,
+            None => drive,
+        };
         Ok(())
     }
 
-    /// The same muscle with the active-strain map `map`. Rejects a map other than the one the
-    /// law is solved with (the law's γ would not reproduce its target with this map).
-    pub fn with_map(self, map: ActiveStrainMap) -> Result<Self> {
+    /// Sets (`Some`) or clears (`None`, quasi-static: f_v = 1) the stretch-rate state of a time
+    /// step for the force–velocity factor.
+    pub fn set_rate(&mut self, rate: Option<StretchRate>) -> Result<()> {
+        self.drive = match rate {
+            Some(rate) => self.drive.without_rate().with_rate(rate)?,
+            None => self.drive.without_rate(),
+        };
+        Ok(())
+    }
+
+    /// The same muscle with the activation map `map`. Rejects a map other than the one the law
+    /// is solved with (the law's γ would not reproduce its target with this map), and any map
+    /// for an active-stress muscle.
+    pub fn with_map(self, map: impl Into<ActivationMap>) -> Result<Self> {
+        let map = map.into();
         match self.law.map() {
             Some(own) if own != map => Err(crate::Error::MapMismatch {
                 law: self.law.name(),
                 law_map: own.name(),
                 map: map.name(),
             }),
+            _ if self.active_stress.is_some() && map != ActivationMap::Chapter => {
+                Err(crate::Error::MapMismatch {
+                    law: "active-stress",
+                    law_map: "none",
+                    map: map.name(),
+                })
+            }
             _ => Ok(Self { map, ..self }),
         }
     }
@@ -94,11 +131,10 @@ impl<E: StrainEnergy> Muscle<E> {
         Self {
             energy,
             law: Law::Passive,
-            damage: 0.0,
-            level: 1.0,
-            effective: 0.0,
+            drive: Drive::from(0.0),
             coupling: Coupling::Consistent,
-            map: ActiveStrainMap::Chapter,
+            map: ActivationMap::Chapter,
+            active_stress: None,
         }
     }
 
@@ -112,28 +148,36 @@ impl<E: StrainEnergy> Muscle<E> {
     }
     /// Damage d [-].
     pub fn damage(&self) -> f64 {
-        self.damage
+        self.drive.damage()
     }
     /// Activation level a [-] (1: tetanised).
     pub fn activation_level(&self) -> f64 {
-        self.level
+        self.drive.level()
     }
-    /// The damage the law sees, d_eff = 1 − (1 − d)·a [-].
+    /// d_eff = 1 − (1 − d)·a [-] ([`Drive::effective_damage`]).
     pub fn effective_damage(&self) -> f64 {
-        self.effective
+        self.drive.effective_damage()
+    }
+    /// What drives the activation: damage, level, stretch rate.
+    pub fn drive(&self) -> &Drive {
+        &self.drive
+    }
+    /// The active curve of an active-stress muscle (`None` for the other approaches).
+    pub fn active_stress_curve(&self) -> Option<&ActiveCurve> {
+        self.active_stress.as_ref()
     }
     /// The coupling.
     pub fn coupling(&self) -> Coupling {
         self.coupling
     }
-    /// The active-strain map.
-    pub fn map(&self) -> ActiveStrainMap {
+    /// The activation map.
+    pub fn map(&self) -> ActivationMap {
         self.map
     }
 
     /// γ with its λ-derivatives at fibre stretch `lambda`.
     pub fn activation(&self, lambda: f64) -> Result<LawValue> {
-        self.law.evaluate(lambda, self.effective)
+        self.law.evaluate(lambda, self.drive)
     }
 
     /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
@@ -155,12 +199,22 @@ impl<E: StrainEnergy> Muscle<E> {
             self.activation(fibre_stretch)?
         } else {
             LawValue {
-                gamma: self.law.activation(fibre_stretch, self.effective)?,
+                gamma: self.law.activation(fibre_stretch, self.drive)?,
                 ..LawValue::default()
             }
         };
         let j = SVector::from(kinematics.invariants);
-        let d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
+        let mut d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
+        if let Some(curve) = &self.active_stress {
+            // Ψ = W + E(C:M): the map is the identity at γ = 0, so Ŵ_jj = H and the term adds
+            // to the C:M entries of the gradient and of H.
+            let (e, e_c, e_cc) = active_stress_terms(&self.drive, curve, j[1]);
+            d.energy += e;
+            d.d_j[1] += e_c;
+            if let Some(s) = d.second.as_mut() {
+                s.energy_hessian[(1, 1)] += e_cc;
+            }
+        }
         let mut out = MuscleResponse {
             gamma: law.gamma,
             fibre_stretch,
@@ -230,6 +284,6 @@ impl<E: StrainEnergy> crate::fem::AxisymmetricMaterial for Muscle<E> {
     fn point_fields(&self, f: &crate::fem::AxiF) -> Result<(f64, f64)> {
         let kin = Kinematics::new(&axisymmetric_f(f), &axial_fibre())?;
         let lambda = kin.fibre_stretch();
-        Ok((self.law.activation(lambda, self.effective)?, lambda))
+        Ok((self.law.activation(lambda, self.drive)?, lambda))
     }
 }

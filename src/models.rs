@@ -4,8 +4,9 @@
 //! registry [`crate::energy::SHIPPED`]. The scene and every study build their models here.
 
 use crate::active::{
-    ActiveCurve, ActiveStrainMap, BelowMinimum, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
-    FrozenTangent, ImplicitLaw, Law, LawRepresentation, TableSpec,
+    ActivationMap, ActiveCurve, ActiveStrainMap, Approach, BelowMinimum, ConstantLaw, Coupling,
+    CurveEntry, EnergyLaw, ExplicitLaw, ForceVelocity, FrozenTangent, ImplicitLaw, Law,
+    LawRepresentation, TableSpec, CURVES,
 };
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
@@ -123,8 +124,13 @@ pub struct Models {
     pub frozen_tangent: FrozenTangent,
     /// What the energy law does below λ_min.
     pub below_minimum: BelowMinimum,
-    /// The active-strain map F_a(γ).
+    /// The activation approach (active strain, active stress, structural).
+    pub approach: Approach,
+    /// The active-strain map F_a(γ) of the active-strain approach.
     pub map: ActiveStrainMap,
+    /// The force–velocity factor of activation-in-time studies (`None`: f_v = 1; quasi-static
+    /// studies have λ̇ = 0, so f_v = 1 there whatever this is).
+    pub force_velocity: Option<ForceVelocity>,
     /// How the implicit and energy laws of [`Models::muscle`] are evaluated.
     pub representation: LawRepresentation,
     /// Near incompressibility: Ŵ + U(J) without constraint; `None`: exact, J = 1 (the
@@ -143,20 +149,79 @@ impl Models {
             explicit: ExplicitLaw::paper().coefficients(),
             frozen_tangent: FrozenTangent::default(),
             below_minimum: BelowMinimum::default(),
+            approach: Approach::ActiveStrain,
             map: ActiveStrainMap::Chapter,
+            force_velocity: None,
             representation: LawRepresentation::Exact,
             volumetric: None,
+        }
+    }
+
+    /// The activation map of the scene's approach: the active-strain map, or the structural map
+    /// of the energy (refused, in words, for an energy without a structural invariant I = C:L);
+    /// the chapter's for active stress, which has none (γ ≡ 0).
+    pub fn activation_map(&self) -> Result<ActivationMap, String> {
+        match self.approach {
+            Approach::ActiveStrain => Ok(self.map.into()),
+            Approach::ActiveStress => Ok(ActivationMap::Chapter),
+            Approach::Structural => ActivationMap::structural(&self.energy).ok_or_else(|| {
+                format!(
+                    "the structural approach activates the structural invariant I = C:(L + ωM) \
+                     of an energy that depends on C:M only through I = C:L (giantesio-musesti, \
+                     ehret-bol-itskov, 4c-passive); material.energy is {}",
+                    self.energy.name()
+                )
+            }),
+        }
+    }
+
+    /// The models of a study: every law × coupling × damage, in that order of nesting
+    /// ([`product`]); with active stress, which has neither law nor coupling, one per damage.
+    pub fn choices(
+        &self,
+        laws: &[LawKind],
+        couplings: &[CouplingKind],
+        damages: &[f64],
+    ) -> Vec<ModelChoice> {
+        if self.approach.has_law() {
+            product(laws, couplings, damages)
+        } else {
+            product(
+                &laws[..laws.len().min(1)],
+                &couplings[..couplings.len().min(1)],
+                damages,
+            )
         }
     }
 
     /// Whether `law` can be built on this material: the explicit law (eq. (14)) is derived
     /// for the chapter's energy only; the error is the rule, in words.
     pub fn supports(&self, law: LawKind) -> Result<(), String> {
+        self.activation_map()?;
         match law {
+            LawKind::Explicit if self.approach == Approach::Structural => Err(
+                "the explicit law (eq. (14)) is fitted for active strain; activation.approach is structural"
+                    .to_string(),
+            ),
+            _ if !self.approach.has_law() => Ok(()),
             LawKind::Explicit if self.map != ActiveStrainMap::Chapter => Err(format!(
                 "the explicit law (eq. (14)) is fitted for the chapter's active-strain map; activation.map is {}",
                 self.map.name()
             )),
+            LawKind::Explicit
+                if !matches!(self.curve, ActiveCurve::Chapter(_))
+                    && self.explicit == ExplicitLaw::paper().coefficients() =>
+            {
+                Err(format!(
+                    "the explicit law's a = {}, b = {} are the chapter's fit for its active curve \
+                     (eq. (8)); activation.curve is {}: fit them for this curve (a study with \
+                     fit = \"explicit-law\") and set activation.explicit = {{ a, b }}, or use the \
+                     implicit law",
+                    self.explicit.0,
+                    self.explicit.1,
+                    self.curve.name()
+                ))
+            }
             LawKind::Explicit => self.explicit_formula_holds(),
             LawKind::Implicit | LawKind::Energy => Ok(()),
         }
@@ -237,16 +302,23 @@ impl Models {
         }
     }
 
+    /// The activation map, or the error that refuses it as a model error.
+    fn map_or_error(&self) -> crate::Result<ActivationMap> {
+        self.activation_map()
+            .map_err(|reason| crate::Error::Unsupported { reason })
+    }
+
     /// The activation law `kind` on this material and curve.
     pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
+        let map = self.map_or_error()?;
         Ok(match kind {
             LawKind::Implicit => {
-                Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve).with_map(self.map))
+                Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve).with_map(map))
             }
             LawKind::Energy => Law::Energy(
                 EnergyLaw::new(self.energy.clone(), self.curve)
                     .below_minimum(self.below_minimum)
-                    .with_map(self.map),
+                    .with_map(map),
             ),
             LawKind::Explicit => Law::Explicit(ExplicitLaw::new(
                 self.explicit.0,
@@ -268,6 +340,9 @@ impl Models {
     /// The active muscle of `model`, its law in this material's [`Models::representation`] (a
     /// table is built for `model.damage`: 0.04–0.1 s for the chapter's laws).
     pub fn muscle(&self, model: ModelChoice) -> crate::Result<Muscle<Energy>> {
+        if !self.approach.has_law() {
+            return Muscle::active_stress(self.energy.clone(), self.curve, model.damage);
+        }
         Muscle::new(
             self.energy.clone(),
             self.law(model.law)?
@@ -275,15 +350,29 @@ impl Models {
             model.damage,
             self.coupling(model.coupling),
         )?
-        .with_map(self.map)
+        .with_map(self.map_or_error()?)
     }
 
-    /// The active muscle of `model` at activation level a = `activation` ∈ [0, 1]: its law sees
-    /// d_eff = d + (1 − d)(1 − a) ([`crate::active::effective_damage`]), and a tabulated law is
-    /// tabulated at d_eff (not at d, whose table would leave every a < 1 to the exact law).
-    /// a = 1 is [`Self::muscle`].
+    /// The active muscle of `model` at activation level a = `activation` ≥ 0: its law sees
+    /// d_eff = d + (1 − d)(1 − a) ([`crate::active::Drive::effective_damage`]), and a tabulated
+    /// law is tabulated at d_eff (not at d, whose table would leave every a < 1 to the exact
+    /// law). a = 1 is [`Self::muscle`].
     pub fn muscle_at(&self, model: ModelChoice, activation: f64) -> crate::Result<Muscle<Energy>> {
-        let effective = crate::active::effective_damage(model.damage, activation)?;
+        if !self.approach.has_law() {
+            return self.muscle(model)?.with_activation(activation);
+        }
+        let effective = crate::active::Drive::new(model.damage, activation)?.effective_damage();
+        if effective < 0.0 {
+            // a > 1: no table holds a negative damage; the exact law answers.
+            return Muscle::new(
+                self.energy.clone(),
+                self.law(model.law)?,
+                model.damage,
+                self.coupling(model.coupling),
+            )?
+            .with_activation(activation)?
+            .with_map(self.map_or_error()?);
+        }
         Muscle::new(
             self.energy.clone(),
             self.law(model.law)?
@@ -292,7 +381,7 @@ impl Models {
             self.coupling(model.coupling),
         )?
         .with_activation(activation)?
-        .with_map(self.map)
+        .with_map(self.map_or_error()?)
     }
 
     /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
@@ -303,7 +392,7 @@ impl Models {
             0.0,
             Coupling::Consistent,
         )?
-        .with_map(self.map)
+        .with_map(self.map_or_error()?)
     }
 
     /// The uniaxial test of `muscle` at stretch `lambda` in `direction`, exactly incompressible
@@ -330,12 +419,21 @@ impl Models {
     }
 
     /// `giantesio-musesti, explicit law, frozen coupling, d = 0` (`implicit law (tabulated)` for a
-    /// tabulated law).
+    /// tabulated law); an approach other than the chapter's is named (`structural, implicit law,
+    /// …`, `active stress, d = 0`), and so is the volume-preserving map.
     pub fn label(&self, m: &ModelChoice) -> String {
+        if !self.approach.has_law() {
+            return format!("{}, active stress, d = {}", self.energy.name(), m.damage);
+        }
         let tabulated = matches!(self.representation, LawRepresentation::Tabulated(_))
             && m.law != LawKind::Explicit;
+        let approach = match (self.approach, self.map) {
+            (Approach::Structural, _) => "structural, ",
+            (_, ActiveStrainMap::VolumePreserving) => "volume-preserving active strain, ",
+            _ => "",
+        };
         format!(
-            "{}, {} law{}, {} coupling, d = {}",
+            "{}, {approach}{} law{}, {} coupling, d = {}",
             self.energy.name(),
             m.law.name(),
             if tabulated { " (tabulated)" } else { "" },
@@ -571,20 +669,23 @@ impl MaterialSpec {
     }
 }
 
-/// `[activation]`: the active curve, the explicit law's coefficients and the options every model
-/// shares ([`Models::from_spec`]), and the studies' default law, coupling and damage values.
-/// `None` is the chapter's value.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+/// `[activation]`: the approach, the active curve with its parameters (flat beside `curve`), the
+/// explicit law's coefficients and the options every model shares ([`Models::from_spec`]), and
+/// the studies' default law, coupling and damage values. `None` is the default.
+///
+/// The curve's parameters are read by name from the table (the scene reader takes the
+/// parameters of every shipped curve out of it, see [`crate::scene`]); each must be one of the
+/// chosen curve's.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ActivationSpec {
-    /// λ_min [-] (Table 2).
-    pub lambda_min: Option<f64>,
-    /// λ_opt [-].
-    pub lambda_opt: Option<f64>,
-    /// k [-].
-    pub k: Option<f64>,
-    /// P_opt \[kPa\].
-    pub p_opt: Option<f64>,
+    /// `active-strain` (default) | `active-stress` | `structural`.
+    pub approach: Option<Approach>,
+    /// A shipped active curve by name (default `chapter`).
+    pub curve: Option<String>,
+    /// The curve's parameters as given, in the order written (`lambda_min = 0.7`).
+    #[serde(skip)]
+    pub curve_parameters: Vec<(String, f64)>,
     /// Default law of the studies.
     pub law: Option<LawKind>,
     /// Default coupling of the studies.
@@ -604,6 +705,133 @@ pub struct ActivationSpec {
     /// Stretch range `[λ_lo, λ_hi]` [-] of the tables (default `[0.5, 1.6]`; the exact solve
     /// outside); only with `representation = "tabulated"`.
     pub table_stretches: Option<[f64; 2]>,
+    /// The force–velocity factor of activation-in-time studies (default none: f_v = 1).
+    pub force_velocity: Option<ForceVelocity>,
+}
+
+impl Serialize for ActivationSpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(None)?;
+        if let Some(v) = &self.approach {
+            map.serialize_entry("approach", v)?;
+        }
+        if let Some(v) = &self.curve {
+            map.serialize_entry("curve", v)?;
+        }
+        for (name, value) in &self.curve_parameters {
+            map.serialize_entry(name, value)?;
+        }
+        macro_rules! entries {
+            ($($key:ident),*) => {$(
+                if let Some(v) = &self.$key {
+                    map.serialize_entry(stringify!($key), v)?;
+                }
+            )*};
+        }
+        entries!(
+            law,
+            coupling,
+            frozen_tangent,
+            below_minimum,
+            map,
+            damage,
+            explicit,
+            representation,
+            table_stretches,
+            force_velocity
+        );
+        map.end()
+    }
+}
+
+/// The names of every shipped curve's parameters: the keys of `[activation]` that the scene
+/// reader hands to the curve.
+pub fn curve_parameter_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = Vec::new();
+    for c in CURVES {
+        for p in c.parameters {
+            if !names.contains(&p.name) {
+                names.push(p.name);
+            }
+        }
+    }
+    names
+}
+
+impl ActivationSpec {
+    /// The active curve it describes, validated; errors name the key as a scene writes it
+    /// (`activation.curve`, `activation.k`).
+    pub fn build_curve(&self) -> Result<ActiveCurve, SpecError> {
+        let name = self.curve.as_deref().unwrap_or(CURVES[0].name);
+        let Some(entry) = CurveEntry::find(name) else {
+            let names: Vec<&str> = CURVES.iter().map(|c| c.name).collect();
+            return Err(SpecError::new(
+                "activation.curve",
+                format!("{name:?}"),
+                format!(
+                    "unknown active curve; the shipped ones are {}",
+                    names.join(", ")
+                ),
+            ));
+        };
+        let listed = || {
+            let v: Vec<String> = entry
+                .parameters
+                .iter()
+                .map(|p| format!("{} [{}]", p.name, p.unit))
+                .collect();
+            v.join(", ")
+        };
+        if let Some((key, value)) = self
+            .curve_parameters
+            .iter()
+            .find(|(n, _)| !entry.parameters.iter().any(|p| p.name == n))
+        {
+            return Err(SpecError::new(
+                format!("activation.{key}"),
+                value,
+                format!(
+                    "the {} curve has no parameter {key}; its parameters are {}",
+                    entry.name,
+                    listed()
+                ),
+            ));
+        }
+        let mut values = Vec::with_capacity(entry.parameters.len());
+        for p in entry.parameters {
+            let given = self
+                .curve_parameters
+                .iter()
+                .find(|(n, _)| n == p.name)
+                .map(|(_, v)| *v);
+            match given.or(p.default) {
+                Some(v) => values.push(v),
+                None => {
+                    return Err(SpecError::new(
+                        format!("activation.{}", p.name),
+                        "(missing)",
+                        format!("the {} curve needs {} [{}]", entry.name, p.name, p.unit),
+                    ))
+                }
+            }
+        }
+        entry
+            .build(&values)
+            .map_err(|e| SpecError::model("activation", e))
+    }
+
+    /// The curve as a scene writes it: its name and every parameter.
+    pub fn written_curve(curve: &ActiveCurve) -> (String, Vec<(String, f64)>) {
+        (
+            curve.name().to_string(),
+            curve
+                .parameters()
+                .iter()
+                .zip(curve.parameter_values())
+                .map(|(p, v)| (p.name.to_string(), v))
+                .collect(),
+        )
+    }
 }
 
 /// `explicit = { a = 1.0133, b = 0.2050 }`.
@@ -732,14 +960,7 @@ impl Models {
     ) -> Result<Self, SpecError> {
         let (energy, fibre) = material.build().map_err(|e| e.within("material"))?;
         let act = activation;
-        let p = ActiveCurve::paper();
-        let curve = ActiveCurve::new(
-            act.lambda_min.unwrap_or(p.lambda_min()),
-            act.lambda_opt.unwrap_or(p.lambda_opt()),
-            act.k.unwrap_or(p.k()),
-            act.p_opt.unwrap_or(p.p_opt()),
-        )
-        .map_err(|e| SpecError::model("activation", e))?;
+        let curve = act.build_curve()?;
         let (a, b) = ExplicitLaw::paper().coefficients();
         let ex = act.explicit.clone().unwrap_or_default();
         let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
@@ -752,7 +973,15 @@ impl Models {
             explicit,
             frozen_tangent: act.frozen_tangent.unwrap_or_default(),
             below_minimum: act.below_minimum.unwrap_or_default(),
+            approach: act.approach.unwrap_or_default(),
             map: act.map.unwrap_or_default(),
+            force_velocity: match act.force_velocity {
+                Some(fv) => Some(
+                    fv.validated()
+                        .map_err(|e| SpecError::model("activation", e))?,
+                ),
+                None => None,
+            },
             representation: representation(act)?,
             volumetric: None,
         })

@@ -3,7 +3,7 @@
 //! independent of the invariant calculus and of the active-strain map of the fast route, which are
 //! tested against it.
 
-use crate::active::strain::ActiveStrainMap;
+use crate::active::map::ActivationMap;
 use crate::energy::{Invariants, StrainEnergy};
 use crate::{Result, Scalar};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
@@ -66,24 +66,39 @@ fn quadratic<T: Scalar>(a: &M3<T>, m: &Vector3<f64>) -> T {
 /// Ŵ(F, γ) = det F_a · W(F_a⁻ᵀ C F_a⁻¹) by matrix products on any scalar, with F_a built entry
 /// by entry as a 3×3 matrix: I − γ m⊗m (the chapter's map) or
 /// (1 − γ) m⊗m + (1 − γ)^(−½) (I − m⊗m) (the volume-preserving map); det F_a and the inverses
-/// by cofactors.
+/// by cofactors. For the structural map, W at the invariants of C with the structural invariant
+/// C:(L + ωM) = C:L + ω C:M entered through C:M ↦ C:M + (ω/f) C:M.
 pub fn active_energy_by_matrices<E: StrainEnergy, T: Scalar>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: impl Into<ActivationMap>,
     f: &M3<T>,
     m: &Vector3<f64>,
     gamma: T,
 ) -> T {
+    let map = map.into();
+    if let ActivationMap::Structural { fibre_weight } = map {
+        let c = mul(&transpose(f), f);
+        let c_inv = inverse(&c);
+        let c_m = quadratic(&c, m);
+        let inv = Invariants {
+            tr_c: c[0][0] + c[1][1] + c[2][2],
+            c_m: c_m + c_m * gamma / fibre_weight,
+            tr_c_inv: c_inv[0][0] + c_inv[1][1] + c_inv[2][2],
+            c_inv_m: quadratic(&c_inv, m),
+            det_c: det(&c),
+        };
+        return energy.energy(&inv);
+    }
     let mut fa = [[T::zero(); 3]; 3];
     for (i, row) in fa.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
             let (mm, delta) = (m[i] * m[j], if i == j { 1.0 } else { 0.0 });
             *x = match map {
-                ActiveStrainMap::Chapter => gamma * (-mm) + delta,
-                ActiveStrainMap::VolumePreserving => {
+                ActivationMap::VolumePreserving => {
                     let c = -gamma + 1.0;
                     c * mm + c.sqrt().recip() * (delta - mm)
                 }
+                _ => gamma * (-mm) + delta,
             };
         }
     }
@@ -126,19 +141,20 @@ pub fn full_response<E: StrainEnergy>(
     m: &Vector3<f64>,
     gamma: f64,
 ) -> Result<FullResponse> {
-    full_response_with(energy, ActiveStrainMap::Chapter, f, m, gamma)
+    full_response_with(energy, ActivationMap::Chapter, f, m, gamma)
 }
 
 /// The reference response at (F, γ) for the active-strain map `map`, by dual numbers over F's
 /// nine entries and γ.
 pub fn full_response_with<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: impl Into<ActivationMap>,
     f: &Matrix3<f64>,
     m: &Vector3<f64>,
     gamma: f64,
 ) -> Result<FullResponse> {
-    crate::active::strain::check_activation(gamma)?;
+    let map = map.into();
+    map.check(gamma)?;
     let mut x = SVector::<f64, 10>::zeros();
     for i in 0..3 {
         for j in 0..3 {

@@ -17,7 +17,7 @@
 //! (the chapter's) and ignores det C_e has a 2×2 block of H, not 5×5. Which rows are zero is
 //! read off H at each point, so any energy gets the right answer; the shortcut only saves work.
 
-use crate::active::strain::{check_activation, ActiveStrainMap, StrainMap};
+use crate::active::map::{ActivationMap, StrainMap};
 use crate::energy::{Invariants, StrainEnergy};
 use crate::invariants::{Entries, Kinematics};
 use crate::{Error, Result};
@@ -186,21 +186,21 @@ pub fn invariant_derivatives<E: StrainEnergy>(
     gamma: f64,
     order: Order,
 ) -> Result<InvariantDerivatives> {
-    invariant_derivatives_with(energy, ActiveStrainMap::Chapter, j, gamma, order)
+    invariant_derivatives_with(energy, ActivationMap::Chapter, j, gamma, order)
 }
 
-/// Derivatives of the active-strain energy in invariant space for the active-strain map `map`,
-/// to the order asked. Rejects a non-finite value (an exp overflow of the energy, or of the
-/// map's s² = (1 − γ)⁻² factors).
+/// Derivatives of the activated energy in invariant space for the activation map `map`, to the
+/// order asked. Rejects a non-finite value (an exp overflow of the energy, or of the map's
+/// s² = (1 − γ)⁻² factors).
 #[inline(always)]
 pub fn invariant_derivatives_with<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: impl Into<ActivationMap>,
     j: &SVector<f64, 5>,
     gamma: f64,
     order: Order,
 ) -> Result<InvariantDerivatives> {
-    let d = unchecked_derivatives(energy, map, j, gamma, order)?;
+    let d = unchecked_derivatives(energy, map.into(), j, gamma, order)?;
     let fail = |quantity, bad| Err(non_finite(quantity, bad, j, gamma));
     if let Some(bad) = first_non_finite(d.d_j.as_slice()).or(first_non_finite(&[d.d_gamma])) {
         return fail("energy gradient", bad);
@@ -221,12 +221,12 @@ pub fn invariant_derivatives_with<E: StrainEnergy>(
 #[inline(always)]
 pub(crate) fn unchecked_derivatives<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: ActivationMap,
     j: &SVector<f64, 5>,
     gamma: f64,
     order: Order,
 ) -> Result<InvariantDerivatives> {
-    check_activation(gamma)?;
+    map.check(gamma)?;
     let map = StrainMap::new(map, gamma);
     let (c, c1, c2) = (map.det, map.det_rate, map.det_rate2);
     let (w, g, h) = energy_derivatives(energy, &map.apply(j), order);
@@ -321,7 +321,7 @@ pub fn active_response<E: StrainEnergy, const N: usize>(
     entries: &Entries<N>,
 ) -> Result<Response<N>> {
     let j = SVector::from(kinematics.invariants);
-    let d = unchecked_derivatives(energy, ActiveStrainMap::Chapter, &j, gamma, order)?;
+    let d = unchecked_derivatives(energy, ActivationMap::Chapter, &j, gamma, order)?;
     let mut out = Response {
         energy: d.energy,
         denergy_dgamma: None,

@@ -36,4 +36,3 @@ fn a_mesh_beyond_the_memory_limit_is_refused_before_anything_is_allocated() {
         );
     }
 }
-

@@ -13,16 +13,13 @@ pub mod model;
 mod scene;
 
 use activemuscle::active::Law;
-use activemuscle::app_error::SpecError;
 use activemuscle::energy::Energy;
 use activemuscle::fit::Parametric;
 use activemuscle::invariants::{Kinematics, FULL};
-use activemuscle::models::{ActivationSpec, ExplicitSpec, MaterialSpec};
 use activemuscle::response::Order;
 use activemuscle::StrainEnergy;
 use activemuscle::{Error, Muscle};
 use layout::{Convention, Input, PointOrder, Strided};
-use model::{named, LawChoice};
 use nalgebra::{Matrix3, Vector3};
 use numpy::{
     AllowTypeChange, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyReadwriteArrayDyn,
@@ -32,7 +29,6 @@ use pyo3::exceptions::{PyArithmeticError, PyFloatingPointError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// Batches of at least this many points run on rayon's threads.
 const PARALLEL_MIN_POINTS: usize = 2048;
@@ -237,88 +233,24 @@ struct Material {
 
 #[pymethods]
 impl Material {
+    /// Keywords: a scene's `[material]` and `[activation]` keys (energy, its parameters by name,
+    /// fibre excepted; approach, curve and its parameters by name, law, coupling, frozen_tangent,
+    /// damage, explicit = {a, b}, below_minimum, map, representation, table_stretches,
+    /// force_velocity = {min_rate, ke, kc, de, dc}), and gamma for law = "constant". The
+    /// parameter names come from the registries of energies and curves.
     #[new]
-    #[pyo3(signature = (
-        *, energy = None, mu = None, alpha = None, beta = None, w0 = None,
-        law = None, gamma = None, coupling = None, frozen_tangent = None,
-        damage = 0.0, explicit = None, below_minimum = None,
-        lambda_min = None, lambda_opt = None, k = None, p_opt = None,
-        map = None, representation = None, table_stretches = None
-    ))]
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        energy: Option<&str>,
-        mu: Option<f64>,
-        alpha: Option<f64>,
-        beta: Option<f64>,
-        w0: Option<f64>,
-        law: Option<&str>,
-        gamma: Option<f64>,
-        coupling: Option<&str>,
-        frozen_tangent: Option<&str>,
-        damage: f64,
-        explicit: Option<HashMap<String, f64>>,
-        below_minimum: Option<&str>,
-        lambda_min: Option<f64>,
-        lambda_opt: Option<f64>,
-        k: Option<f64>,
-        p_opt: Option<f64>,
-        map: Option<&str>,
-        representation: Option<&str>,
-        table_stretches: Option<[f64; 2]>,
-    ) -> PyResult<Self> {
-        let given = [("mu", mu), ("alpha", alpha), ("beta", beta), ("w0", w0)];
-        let mut material = MaterialSpec::default();
-        if let Some(e) = energy {
-            material.energy.energy = e.to_string();
+    #[pyo3(signature = (**choices))]
+    fn new(choices: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut c = model::Choices::default();
+        if let Some(d) = choices {
+            for (key, value) in d.iter() {
+                let key: String = key.extract()?;
+                c.take(&key, &value)?;
+            }
         }
-        material.energy.parameters = given
-            .iter()
-            .filter_map(|(n, v)| v.map(|v| (n.to_string(), v)))
-            .collect();
-        let spec = || -> Result<Muscle<Energy>, SpecError> {
-            let explicit = explicit
-                .map(|m| match m.keys().find(|k| *k != "a" && *k != "b") {
-                    Some(key) => Err(SpecError::new(
-                        format!("explicit.{key}"),
-                        m[key],
-                        "unknown key: eq. (14) has coefficients a and b",
-                    )),
-                    None => Ok(ExplicitSpec {
-                        a: m.get("a").copied(),
-                        b: m.get("b").copied(),
-                    }),
-                })
-                .transpose()?;
-            let activation = ActivationSpec {
-                lambda_min,
-                lambda_opt,
-                k,
-                p_opt,
-                coupling: coupling.map(|c| named("coupling", c)).transpose()?,
-                frozen_tangent: frozen_tangent
-                    .map(|t| named("frozen_tangent", t))
-                    .transpose()?,
-                below_minimum: below_minimum
-                    .map(|b| named("below_minimum", b))
-                    .transpose()?,
-                map: map.map(|m| named("map", m)).transpose()?,
-                representation: representation
-                    .map(|r| named("representation", r))
-                    .transpose()?,
-                table_stretches,
-                explicit,
-                ..ActivationSpec::default()
-            };
-            model::muscle(
-                &material,
-                &activation,
-                LawChoice::parse(law)?,
-                gamma,
-                damage,
-            )
-        };
-        let muscle = spec().map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let muscle = c
+            .muscle()
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         Ok(Self { muscle })
     }
 

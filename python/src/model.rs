@@ -6,15 +6,18 @@
 //! (`mu = -1: ...`) where a scene names `material.mu`. Beyond a scene's laws, `law` takes
 //! `"passive"` and `"constant"` (with `gamma`): a uniaxial study's passive and constant-γ curves.
 
-use activemuscle::active::{ConstantLaw, Law};
+use activemuscle::active::{ConstantLaw, CurveEntry, ForceVelocity, Law, CURVES};
 use activemuscle::app_error::SpecError;
-use activemuscle::energy::Energy;
+use activemuscle::energy::{Energy, ShippedEnergy, SHIPPED};
 use activemuscle::models::{
-    ActivationSpec, CouplingKind, LawKind, MaterialSpec, ModelChoice, Models,
+    ActivationSpec, CouplingKind, ExplicitSpec, LawKind, MaterialSpec, ModelChoice, Models,
 };
 use activemuscle::Muscle;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
 use serde::de::value::{Error as ValueError, StrDeserializer};
 use serde::de::{DeserializeOwned, IntoDeserializer};
+use std::collections::HashMap;
 
 /// What `law = "..."` names.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,5 +117,167 @@ pub fn muscle(
                 })
                 .map_err(model)
         }
+    }
+}
+
+/// The keywords of `Material(...)`, gathered into a scene's tables: every parameter name comes
+/// from the registries ([`activemuscle::energy::SHIPPED`], [`activemuscle::active::CURVES`]).
+#[derive(Debug, Default)]
+pub struct Choices {
+    material: MaterialSpec,
+    activation: ActivationSpec,
+    law: Option<String>,
+    gamma: Option<f64>,
+    damage: f64,
+    /// Numeric keywords that are neither options nor known yet to be the energy's or the
+    /// curve's: sorted out once the energy and the curve are known.
+    parameters: Vec<(String, f64)>,
+}
+
+/// The keywords that are options (not parameters), as the error for an unknown one lists them.
+const OPTIONS: &[&str] = &[
+    "energy",
+    "approach",
+    "curve",
+    "law",
+    "gamma",
+    "coupling",
+    "frozen_tangent",
+    "damage",
+    "explicit",
+    "below_minimum",
+    "map",
+    "representation",
+    "table_stretches",
+    "force_velocity",
+];
+
+fn keyword_error(key: &str, rule: impl Into<String>) -> PyErr {
+    PyValueError::new_err(SpecError::new(key, "(given)", rule.into()).to_string())
+}
+
+impl Choices {
+    /// Takes one keyword.
+    pub fn take(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let text = || -> PyResult<String> { value.extract() };
+        let err = |e: SpecError| PyValueError::new_err(e.to_string());
+        let act = &mut self.activation;
+        match key {
+            "energy" => self.material.energy.energy = text()?,
+            "curve" => act.curve = Some(text()?),
+            "law" => self.law = Some(text()?),
+            "gamma" => self.gamma = Some(value.extract()?),
+            "damage" => self.damage = value.extract()?,
+            "approach" => act.approach = Some(named("approach", &text()?).map_err(err)?),
+            "coupling" => act.coupling = Some(named("coupling", &text()?).map_err(err)?),
+            "frozen_tangent" => {
+                act.frozen_tangent = Some(named("frozen_tangent", &text()?).map_err(err)?)
+            }
+            "below_minimum" => {
+                act.below_minimum = Some(named("below_minimum", &text()?).map_err(err)?)
+            }
+            "map" => act.map = Some(named("map", &text()?).map_err(err)?),
+            "representation" => {
+                act.representation = Some(named("representation", &text()?).map_err(err)?)
+            }
+            "table_stretches" => act.table_stretches = Some(value.extract()?),
+            "explicit" => {
+                let m: HashMap<String, f64> = value.extract()?;
+                if let Some(k) = m.keys().find(|k| *k != "a" && *k != "b") {
+                    return Err(err(SpecError::new(
+                        format!("explicit.{k}"),
+                        m[k],
+                        "unknown key: eq. (14) has coefficients a and b",
+                    )));
+                }
+                act.explicit = Some(ExplicitSpec {
+                    a: m.get("a").copied(),
+                    b: m.get("b").copied(),
+                });
+            }
+            "force_velocity" => {
+                let m: HashMap<String, f64> = value.extract()?;
+                let keys = ["min_rate", "ke", "kc", "de", "dc"];
+                if let Some(k) = m.keys().find(|k| !keys.contains(&k.as_str())) {
+                    return Err(keyword_error(
+                        &format!("force_velocity.{k}"),
+                        format!("unknown key: the keys are {}", keys.join(", ")),
+                    ));
+                }
+                let get = |k: &str| {
+                    m.get(k).copied().ok_or_else(|| {
+                        keyword_error(
+                            &format!("force_velocity.{k}"),
+                            "missing: give all of min_rate [1/s], ke, kc, de, dc",
+                        )
+                    })
+                };
+                act.force_velocity = Some(ForceVelocity {
+                    min_rate: get("min_rate")?,
+                    ke: get("ke")?,
+                    kc: get("kc")?,
+                    de: get("de")?,
+                    dc: get("dc")?,
+                });
+            }
+            _ => {
+                let known = SHIPPED
+                    .iter()
+                    .flat_map(|e| e.parameters.iter())
+                    .chain(CURVES.iter().flat_map(|c| c.parameters.iter()))
+                    .any(|p| p.name == key);
+                if !known {
+                    let mut names: Vec<&str> = SHIPPED
+                        .iter()
+                        .flat_map(|e| e.parameters.iter().map(|p| p.name))
+                        .chain(
+                            CURVES
+                                .iter()
+                                .flat_map(|c| c.parameters.iter().map(|p| p.name)),
+                        )
+                        .collect();
+                    names.sort_unstable();
+                    names.dedup();
+                    return Err(keyword_error(
+                        key,
+                        format!(
+                            "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
+                            OPTIONS.join(", "),
+                            names.join(", ")
+                        ),
+                    ));
+                }
+                self.parameters.push((key.to_string(), value.extract()?));
+            }
+        }
+        Ok(())
+    }
+
+    /// The muscle the keywords describe: each parameter goes to the chosen energy if it has
+    /// one of that name, else to the chosen curve, else to whichever registry knows the name
+    /// (whose message then says that the chosen one has no such parameter).
+    pub fn muscle(mut self) -> Result<Muscle<Energy>, SpecError> {
+        let energy = ShippedEnergy::find(&self.material.energy.energy);
+        let curve = CurveEntry::find(self.activation.curve.as_deref().unwrap_or(CURVES[0].name));
+        let has = |params: Option<&[activemuscle::energy::Parameter]>, n: &str| {
+            params.is_some_and(|ps| ps.iter().any(|p| p.name == n))
+        };
+        let in_any_energy = |n: &str| SHIPPED.iter().any(|e| has(Some(e.parameters), n));
+        for (name, value) in std::mem::take(&mut self.parameters) {
+            let to_energy = has(energy.map(|e| e.parameters), &name)
+                || (!has(curve.map(|c| c.parameters), &name) && in_any_energy(&name));
+            if to_energy {
+                self.material.energy.parameters.push((name, value));
+            } else {
+                self.activation.curve_parameters.push((name, value));
+            }
+        }
+        muscle(
+            &self.material,
+            &self.activation,
+            LawChoice::parse(self.law.as_deref())?,
+            self.gamma,
+            self.damage,
+        )
     }
 }

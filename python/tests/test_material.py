@@ -349,3 +349,40 @@ def test_bad_map_or_representation_raises_with_the_scene_message(case):
     with pytest.raises(ValueError) as e:
         am.Material(**choices)
     assert message in str(e.value)
+
+
+# Issue 23, item 6: the keywords come from the registries of energies and curves.
+def test_curve_and_its_parameters_are_keywords_from_the_registry():
+    # Ehret–Böl–Itskov's curve, as 4C writes it, along the fibres: P − P_pas = (1 − d) P_act.
+    lmin, lopt, popt, d = 0.682, 1.192, 40.0, 0.2
+    lam = np.array([0.8, 1.0, 1.2])
+    e = np.exp((2 * lmin - lam - lopt) * (lam - lopt) / (2 * (lmin - lopt) ** 2))
+    target = (1 - d) * popt * (lam - lmin) / (lopt - lmin) * e
+    for choices in [dict(law="implicit", coupling="frozen"), dict(law="energy", coupling="consistent"),
+                    dict(approach="active-stress")]:
+        active = am.Material(curve="ehret-bol-itskov", lambda_min=lmin, lambda_opt=lopt, p_opt=popt,
+                             damage=d, **choices)
+        passive = am.Material(law="passive")
+        got = np.asarray(active.uniaxial(list(lam))["stress"]) - np.asarray(passive.uniaxial(list(lam))["stress"])
+        np.testing.assert_allclose(got, target, rtol=1e-10, err_msg=str(choices))
+
+
+def test_energy_parameters_of_any_shipped_energy_are_keywords():
+    m = am.Material(energy="4c-passive", mu=5.0, alpha=15.0, beta=1.0, w0=0.8, law="passive")
+    assert 'energy="4c-passive"' in repr(m) and "mu=5" in repr(m)
+
+
+@pytest.mark.parametrize("case", [
+    (dict(curve="ehret-bol-itskov", k=0.4), "the ehret-bol-itskov curve has no parameter k"),
+    (dict(curve="sine"), "unknown active curve"),
+    (dict(approach="sideways"), 'approach = "sideways"'),
+    (dict(tau=1.0), "tau: unknown keyword"),
+    (dict(approach="structural", energy="neo-hookean", mu=1.0), "structural approach"),
+    (dict(force_velocity={"min_rate": -17.0}), "force_velocity.ke"),
+    (dict(force_velocity={"min_rate": 17.0, "ke": 5, "kc": 5, "de": 0.5, "dc": 1}), "min_rate"),
+], ids=lambda c: c[1])
+def test_bad_registry_keywords_name_the_keyword(case):
+    choices, message = case
+    with pytest.raises(ValueError) as e:
+        am.Material(**choices)
+    assert message in str(e.value)

@@ -1,19 +1,26 @@
-//! Activation: the active-strain map, the active curve, the activation laws γ = g(λ_f, d) and the
-//! coupling (frozen or consistent) of a law to the energy.
+//! Activation: the active curves, what drives them (damage, level, force–velocity), the
+//! activation maps (active strain, structural), the activation laws γ = g(λ_f, drive), the
+//! coupling (frozen or consistent) of a law to the energy, and the approaches that choose among
+//! them ([`Approach`]: active strain, active stress, structural).
 
+pub mod approach;
 pub mod coupling;
 pub mod curve;
+pub mod drive;
 pub mod law;
+pub mod map;
 pub mod strain;
 pub mod time;
 
+pub use approach::Approach;
 pub use coupling::{Coupling, FrozenTangent};
-pub use curve::ActiveCurve;
+pub use curve::{ActiveCurve, CurveEntry, CURVES};
+pub use drive::{Drive, ForceVelocity, StretchRate};
 pub use law::{
-    effective_damage, ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw,
-    ImplicitLaw, Law, LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport,
-    TableSpec, TabulatedLaw,
+    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law,
+    LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw,
 };
+pub use map::ActivationMap;
 pub use strain::{
     active_energy, check_activation, fibre_path_energy, fibre_path_invariants, ActiveStrainMap,
 };

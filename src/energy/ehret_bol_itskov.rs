@@ -87,6 +87,11 @@ impl StrainEnergy for EhretBolItskov {
     fn uses_det_c(&self) -> bool {
         false
     }
+
+    /// f = 1 − w0: W depends on C:M only through I_p = (w0/3) tr C + (1 − w0) C:M.
+    fn structural_fibre_weight(&self) -> Option<f64> {
+        Some(1.0 - self.w0)
+    }
 }
 
 impl Shipped for EhretBolItskov {

@@ -66,6 +66,11 @@ impl StrainEnergy for FourCPassive {
     fn name(&self) -> &str {
         Self::NAME
     }
+
+    /// f = 1 − w0: W depends on C:M only through I_p = (w0/3) tr C + (1 − w0) C:M.
+    fn structural_fibre_weight(&self) -> Option<f64> {
+        Some(1.0 - self.0.w0())
+    }
 }
 
 impl Shipped for FourCPassive {

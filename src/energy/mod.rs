@@ -5,6 +5,8 @@
 //! and their derivatives with respect to F (see [`crate::invariants`]), so a model never writes a
 //! derivative by hand.
 
+pub(crate) use crate::parameter::{open_unit, positive};
+pub use crate::parameter::{Parameter, ScalarWith};
 use crate::Scalar;
 use crate::{Error, Result};
 
@@ -19,28 +21,6 @@ pub fn exp_m1<T: Scalar>(x: T) -> T {
     } else {
         x.exp_m1()
     }
-}
-
-/// A scalar `T` that combines with model parameters of type `P` (`T op P -> T`): `P = f64` for
-/// fixed parameters (the fast path every response takes, no zero derivatives carried) or
-/// `P = T` for parameters carried as dual numbers (derivatives in the parameters, for fitting).
-/// Lets each model write its formula once for both.
-pub trait ScalarWith<P>:
-    Scalar
-    + std::ops::Add<P, Output = Self>
-    + std::ops::Sub<P, Output = Self>
-    + std::ops::Mul<P, Output = Self>
-    + std::ops::Div<P, Output = Self>
-{
-}
-
-impl<P, T> ScalarWith<P> for T where
-    T: Scalar
-        + std::ops::Add<P, Output = T>
-        + std::ops::Sub<P, Output = T>
-        + std::ops::Mul<P, Output = T>
-        + std::ops::Div<P, Output = T>
-{
 }
 
 /// The invariants of a right Cauchy–Green tensor C with respect to the fibre direction m
@@ -109,76 +89,14 @@ pub trait StrainEnergy: Clone + Send + Sync {
     fn uses_det_c(&self) -> bool {
         true
     }
-}
 
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            rule: "must be finite and > 0",
-        })
-    }
-}
-
-/// Checks that `value` lies in the open interval (0, 1).
-pub(crate) fn open_unit(name: &'static str, value: f64) -> Result<f64> {
-    if value > 0.0 && value < 1.0 {
-        Ok(value)
-    } else {
-        Err(Error::InvalidParameter {
-            name,
-            value,
-            rule: "must lie in (0, 1)",
-        })
-    }
-}
-
-/// A named parameter of an energy: what a scene writes, a fit frees, a report prints.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Parameter {
-    /// Name in scene files, fits and outputs (`mu`).
-    pub name: &'static str,
-    /// Symbol in the docs (`μ`).
-    pub symbol: &'static str,
-    /// Unit (`kPa`, or `-` for a dimensionless parameter).
-    pub unit: &'static str,
-    /// The chapter's value, used when a scene leaves the parameter out; `None`: it must be given.
-    pub default: Option<f64>,
-    /// Admissible range [lower, upper] (the constructor may exclude an end); the default bounds
-    /// of a fit.
-    pub range: (f64, f64),
-}
-
-impl Parameter {
-    /// A parameter that must be > 0.
-    pub const fn positive(
-        name: &'static str,
-        symbol: &'static str,
-        unit: &'static str,
-        default: Option<f64>,
-    ) -> Self {
-        Self {
-            name,
-            symbol,
-            unit,
-            default,
-            range: (0.0, f64::INFINITY),
-        }
-    }
-
-    /// A dimensionless parameter in (0, 1).
-    pub const fn fraction(name: &'static str, symbol: &'static str, default: Option<f64>) -> Self {
-        Self {
-            name,
-            symbol,
-            unit: "-",
-            default,
-            range: (0.0, 1.0),
-        }
+    /// The weight f of C:M in a structural invariant I = C:L = ((1 − f)/3) tr C + f C:M, if W
+    /// depends on C:M only through I (the chapter's, Ehret–Böl–Itskov's and 4C's energies:
+    /// f = 1 − w0). Lets the structural activation I = C:(L + ωM) of Ehret, Böl & Itskov (2011)
+    /// act on the energy ([`crate::active::ActivationMap::Structural`]); `None` (the default):
+    /// the energy has no such invariant and the structural approach is refused.
+    fn structural_fibre_weight(&self) -> Option<f64> {
+        None
     }
 }
 
@@ -296,6 +214,12 @@ macro_rules! shipped_energies {
             fn uses_det_c(&self) -> bool {
                 match self {
                     $(Energy::$energy(w) => w.uses_det_c(),)*
+                }
+            }
+
+            fn structural_fibre_weight(&self) -> Option<f64> {
+                match self {
+                    $(Energy::$energy(w) => w.structural_fibre_weight(),)*
                 }
             }
         }

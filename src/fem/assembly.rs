@@ -395,6 +395,11 @@ impl Assembler {
         Self::with_volumetric(mesh, dofs, None)
     }
 
+    /// The volumetric energy of a nearly incompressible material (`None`: the exact constraint).
+    pub fn volumetric(&self) -> Option<&Volumetric> {
+        self.volumetric.as_ref()
+    }
+
     /// [`Self::new`] for the nearly incompressible material Ψ + U(J) when `volumetric` is given
     /// (the perturbed Lagrangian of [`super::element::ReferenceElement::residual_tangent`]: the
     /// pressure–pressure block −∫ M Mᵀ/κ₀ dV enters the pattern).

@@ -32,6 +32,9 @@ pub trait NonlinearSystem {
     fn free(&self) -> usize;
     /// Sets the prescribed unknowns of `x` for the load λ.
     fn apply_load(&self, x: &mut [f64], load: f64);
+    /// The start of the reference solve, `x` all zero on entry: by default the zero state (no
+    /// displacement, no pressure).
+    fn initial_guess(&self, _x: &mut [f64]) {}
     /// Evaluates the residual R(x) and, if `tangent`, the tangent K = ∂R_f/∂x_f and ∂R_f/∂λ.
     fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()>;
     /// The scale of the last evaluation (e.g. its largest stress) that makes the norms below
@@ -274,12 +277,13 @@ impl Continuation {
         Ok(failures)
     }
 
-    /// Solves the reference state λ = 1 from x = 0 and its rate.
+    /// Solves the reference state λ = 1 from the system's initial guess and its rate.
     fn reference<S: NonlinearSystem>(
         &mut self,
         system: &mut S,
     ) -> Result<(Converged, StepRecord), StepFailure> {
         let mut x = vec![0.0; system.unknowns()];
+        system.initial_guess(&mut x);
         system.apply_load(&mut x, 1.0);
         let mut record = StepRecord {
             from: 1.0,

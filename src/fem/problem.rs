@@ -168,6 +168,23 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         self.dofs.apply_stretch(x, load);
     }
 
+    /// No displacement, and the pressure of the undeformed body under a volumetric energy,
+    /// p = −U′(1) = s₀ (the passive stress at F = I, μ/2 for 4C's energy, which 4C's
+    /// J^(−2κ) balances): that energy's J̃(p) exists only for p above its linear coefficient,
+    /// so p = 0 would have no volume ratio at all (4C's form with 4C's energy). 0 under the
+    /// exact constraint.
+    fn initial_guess(&self, x: &mut [f64]) {
+        let Some(v) = self.asm.volumetric() else {
+            return;
+        };
+        let Ok([_, du, _]) = v.derivatives(1.0) else {
+            return;
+        };
+        for p in &mut x[self.dofs.n_free_u..self.dofs.n_free] {
+            *p = -du;
+        }
+    }
+
     fn evaluate(&mut self, x: &[f64], tangent: bool) -> crate::Result<()> {
         let t = Instant::now();
         let r = self.asm.assemble(x, self.material, tangent);

@@ -1,19 +1,17 @@
-//! Fit 2: the active curve (eq. (8)) to active-stress data,
+//! Fit 2: an active curve ([`crate::active::curve`]: the chapter's eq. (8) or any shipped one) to
+//! active-stress data,
 //!
-//! r_i = P_act(λ_i; λ_min, λ_opt, k, P_opt) − P_i \[kPa\],
+//! r_i = P_act(λ_i; θ) − P_i \[kPa\],
 //!
-//! with P_opt fixed by default (the chapter's practice: Table 2). Data of the total stress
-//! of a tetanised muscle become active data by subtracting the model's passive stress
-//! ([`active_from_total`]): P_act,i = P_i − P_pas(λ_i).
+//! over the curve's own parameters θ (by name), with P_opt fixed by default (the chapter's
+//! practice: Table 2). Data of the total stress of a tetanised muscle become active data by
+//! subtracting the model's passive stress ([`active_from_total`]): P_act,i = P_i − P_pas(λ_i).
 
 use super::{Bounds, Data, FitError, FitReport, FitSetup, Residuals, Selection};
 use crate::active::ActiveCurve;
 use crate::material::Muscle;
 use crate::uniaxial::along_fibres;
 use crate::{Scalar, StrainEnergy};
-
-/// Names of the active-curve parameters, in order.
-pub const CURVE_PARAMETERS: [&str; 4] = ["lambda_min", "lambda_opt", "k", "p_opt"];
 
 /// A fitted active curve and its report.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,6 +36,7 @@ pub fn active_from_total<E: StrainEnergy>(energy: &E, total: &Data) -> Result<Da
 }
 
 struct CurveProblem<'a> {
+    curve: &'a ActiveCurve,
     selection: &'a Selection,
     data: &'a Data,
 }
@@ -50,43 +49,42 @@ impl Residuals for CurveProblem<'_> {
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let p = self.selection.assemble(theta);
         // Parameters the curve's constructor refuses (λ_opt ≤ λ_min, k = 0) are outside the model.
-        ActiveCurve::new(p[0].re(), p[1].re(), p[2].re(), p[3].re())?;
+        let values: Vec<f64> = p.iter().map(|x| x.re()).collect();
+        self.curve.rebuilt(&values)?;
         Ok(self
             .data
             .lambda()
             .iter()
             .zip(self.data.stress())
-            .map(|(&l, &s)| ActiveCurve::value_with(p[0], p[1], p[2], p[3], T::from(l)) - s)
+            .map(|(&l, &s)| self.curve.value_with(&p, T::from(l)) - s)
             .collect())
     }
 }
 
-/// Fits the parameters of `curve` chosen in `setup` (default λ_min, λ_opt, k; starts: the
-/// curve's values; bounds: λ_min ∈ [0, 1], λ_opt ∈ [0.5, 2], k, P_opt > 0) to active data.
+/// Fits the parameters of `curve` chosen in `setup` (default: all but P_opt; starts: the curve's
+/// values; bounds: the ranges of its parameter table, e.g. λ_min ∈ [0, 1], λ_opt ∈ [0.5, 2],
+/// k, P_opt > 0) to active data.
 pub fn fit_active_curve(
     curve: &ActiveCurve,
     data: &Data,
     setup: &FitSetup,
 ) -> Result<ActiveFit, FitError> {
-    let values = [
-        curve.lambda_min(),
-        curve.lambda_opt(),
-        curve.k(),
-        curve.p_opt(),
-    ];
-    let bounds = [
-        Bounds::new(0.0, 1.0),
-        Bounds::new(0.5, 2.0),
-        Bounds::POSITIVE,
-        Bounds::POSITIVE,
-    ];
-    let selection = setup.resolve(&CURVE_PARAMETERS, &values, &bounds, &CURVE_PARAMETERS[..3])?;
+    let parameters = curve.parameters();
+    let names: Vec<&str> = parameters.iter().map(|p| p.name).collect();
+    let values = curve.parameter_values();
+    let bounds: Vec<Bounds> = parameters
+        .iter()
+        .map(|p| Bounds::new(p.range.0, p.range.1))
+        .collect();
+    let default_free: Vec<&str> = names.iter().copied().filter(|n| *n != "p_opt").collect();
+    let selection = setup.resolve(&names, &values, &bounds, &default_free)?;
     let problem = CurveProblem {
+        curve,
         selection: &selection,
         data,
     };
     let report = selection.solve(&problem, &setup.options)?;
     let v = selection.assemble_values(&report.values);
-    let curve = ActiveCurve::new(v[0], v[1], v[2], v[3])?;
+    let curve = curve.rebuilt(&v)?;
     Ok(ActiveFit { curve, report })
 }

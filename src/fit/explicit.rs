@@ -11,6 +11,7 @@
 //! fibres is evaluated with λ as a dual number nested over the (a, b) dual.
 
 use super::{Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
+use crate::active::drive::Drive;
 use crate::active::law::check_damage;
 use crate::active::{fibre_path_energy, ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use crate::energy::{positive, GiantesioMusesti};
@@ -100,7 +101,7 @@ pub fn explicit_law_errors(
     for &l in lambda {
         let g = law.gamma(l, damage)?;
         dg = dg.max((g - implicit.evaluate(l, damage)?.gamma).abs());
-        let target = along_fibres(&passive, l)?.stress + (1.0 - damage) * curve.value(l);
+        let target = along_fibres(&passive, l)?.stress + Drive::from(damage).target(curve, l);
         dp = dp.max((total_stress(energy, l, g) - target).abs());
     }
     Ok((dg, dp))
@@ -135,7 +136,7 @@ pub fn fit_explicit_law(
             Ok(match target {
                 ExplicitTarget::Activation => implicit.evaluate(l, damage)?.gamma,
                 ExplicitTarget::Stress => {
-                    along_fibres(&passive, l)?.stress + (1.0 - damage) * curve.value(l)
+                    along_fibres(&passive, l)?.stress + Drive::from(damage).target(curve, l)
                 }
             })
         })

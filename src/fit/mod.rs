@@ -29,7 +29,7 @@ mod passive;
 pub mod solver;
 
 pub use crate::uniaxial::Direction;
-pub use active::{active_from_total, fit_active_curve, ActiveFit, CURVE_PARAMETERS};
+pub use active::{active_from_total, fit_active_curve, ActiveFit};
 pub use damage::{fit_damage, DamageFit};
 pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
 pub use error::{FitError, NotConverged};

@@ -24,6 +24,7 @@
 
 use super::csv::{sweep_curve, uniaxial_curve};
 use super::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
+use crate::active::drive::Drive;
 use crate::active::ActiveCurve;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
@@ -510,14 +511,33 @@ fn active_curve(run: &Run, u: &Uniaxial) -> Option<Figure> {
             chapter(7, "giantesio-musesti", run.curve == ActiveCurve::paper())
         ),
         format!(
-            "P_act(λ) of the scene's active curve (λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa; the chapter's values are in its Table 2). The chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program.",
-            run.curve.lambda_min(),
-            run.curve.lambda_opt(),
-            run.curve.k(),
-            run.curve.p_opt()
+            "P_act(λ) of the scene's active curve, {} ({}: {}, for λ > λ_min, 0 below), with {}; the chapter's values of its own curve are in its Table 2. The chapter also shows the experimental data of the rat tibialis anterior, which are not part of this program.",
+            run.curve.name(),
+            run.curve.source(),
+            run.curve.formula(),
+            curve_parameters_text(&run.curve)
         ),
         vec![panel("Active curve P_act", STRESS, vec![derived("P_act", points, Stroke::Solid, 1)])],
     )
+}
+
+/// `λ_min = 0.6243, λ_opt = 1.1704, k = 0.4342, P_opt = 73.52 kPa`: a curve's parameters as the
+/// figures and the report print them.
+pub fn curve_parameters_text(curve: &ActiveCurve) -> String {
+    let v: Vec<String> = curve
+        .parameters()
+        .iter()
+        .zip(curve.parameter_values())
+        .map(|(p, v)| {
+            let unit = if p.unit == "-" {
+                String::new()
+            } else {
+                format!(" {}", p.unit)
+            };
+            format!("{} = {v}{unit}", p.symbol)
+        })
+        .collect();
+    v.join(", ")
 }
 
 /// The chapter's Fig. 8: γ of the implicit law (frozen) and its stresses, at the smallest damage.
@@ -577,7 +597,7 @@ fn damage_active(run: &Run, u: &Uniaxial) -> Option<Figure> {
         .map(|(i, d)| {
             let points = lambdas
                 .iter()
-                .map(|&l| (l, (1.0 - d) * run.curve.value(l)))
+                .map(|&l| (l, Drive::from(*d).target(&run.curve, l)))
                 .collect();
             derived(format!("d = {d}"), points, Stroke::Solid, i)
         })

@@ -261,14 +261,10 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
     let mut rows: Vec<ModelRow> = Vec::new();
     let active = !chosen.is_empty() || constant;
     if active {
-        rows.push((
-            "γ, activation".into(),
-            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
-            "eqs. (5)–(6)".into(),
-        ));
+        rows.push(approach_row(m));
         rows.push((
             "λ_f, fibre stretch".into(),
-            "λ_f = √(C:M), the argument of the activation laws".into(),
+            "λ_f = √(C:M), the argument of the activation laws and of the active curve".into(),
             "–".into(),
         ));
         rows.push((
@@ -279,22 +275,36 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
     }
     if !chosen.is_empty() {
         let c = &m.curve;
+        let chapter = matches!(c, crate::active::ActiveCurve::Chapter(_));
         rows.push((
-            "P_act, active curve".into(),
+            format!("P_act, active curve ({})", c.name()),
             format!(
-                "P_act(λ) = P_opt exp(−k (λ² − λ_opt²)²/(λ − λ_min)) for λ > λ_min, else 0; here λ_min = {}, λ_opt = {}, k = {}, P_opt = {} kPa",
-                c.lambda_min(),
-                c.lambda_opt(),
-                c.k(),
-                c.p_opt()
+                "P_act(λ) = {} for λ > λ_min, else 0 ({}); here {}",
+                c.formula(),
+                c.source(),
+                crate::output::figures::curve_parameters_text(c)
             ),
-            "eq. (8); parameters Table 2".into(),
+            if chapter {
+                "eq. (8); parameters Table 2".into()
+            } else {
+                "not in the chapter".into()
+            },
         ));
         rows.push((
             "d, damage".into(),
             "loss of activation: the active stress becomes (1 − d) P_act".into(),
             "the chapter's loss of activation (Fig. 9)".into(),
         ));
+        if m.force_velocity.is_some() {
+            rows.push((
+                "f_v, force–velocity".into(),
+                "Böl & Reese (2008): the target becomes (1 − d)·a·f_v(λ̇)·P_act in activation-in-time studies, λ̇ by backward Euler over the time step (0 at the first step); quasi-static studies have λ̇ = 0, f_v = 1".into(),
+                "not in the chapter".into(),
+            ));
+        }
+    }
+    if !m.approach.has_law() {
+        return rows;
     }
     let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
     if constant {
@@ -342,6 +352,33 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
         ));
     }
     rows
+}
+
+/// The row of the scene's activation approach and map.
+fn approach_row(m: &crate::models::Models) -> ModelRow {
+    use crate::active::{ActiveStrainMap, Approach};
+    match (m.approach, m.map) {
+        (Approach::ActiveStress, _) => (
+            "active stress".into(),
+            "Ψ = W_pas(C) + (1 − d) ∫_{λ_min}^{λ_f} P_act, P = ∂W_pas/∂F + (1 − d) P_act(λ_f) F M/λ_f (FEBio, Blemker): no activation variable, no law; hyperelastic".into(),
+            "not in the chapter".into(),
+        ),
+        (Approach::Structural, _) => (
+            "ω, activation".into(),
+            "activation in the structural tensor (Ehret, Böl & Itskov 2011; 4C's MAT_Muscle_Weickenmeier): W with I = C:(L + ωM), L = (w0/3) I + (1 − w0) M, ω = g(λ_f)".into(),
+            "not in the chapter".into(),
+        ),
+        (Approach::ActiveStrain, ActiveStrainMap::VolumePreserving) => (
+            "γ, activation".into(),
+            "active strain F = F_e F_a with the volume-preserving F_a = (1 − γ) m⊗m + (1 − γ)^(−½)(I − m⊗m) (Weickenmeier et al. 2014; 4C's MAT_Muscle_Giantesio), Ŵ(F, γ) = W(C_e)".into(),
+            "eqs. (5)–(6) with another F_a".into(),
+        ),
+        (Approach::ActiveStrain, ActiveStrainMap::Chapter) => (
+            "γ, activation".into(),
+            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
+            "eqs. (5)–(6)".into(),
+        ),
+    }
 }
 
 /// The largest |P_FE − P_0D| over the points `keep` accepts, as (difference, λ, P_0D).

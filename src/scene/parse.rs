@@ -18,7 +18,12 @@ pub(super) fn parse(text: &str, file: &str) -> Result<SceneSpec, SceneError> {
     let error = |e: toml::de::Error| from_toml(text, file, &e, None);
     let mut doc = DeTable::parse(text).map_err(error)?;
     let studies = doc.get_mut().remove("study");
+    let curve_parameters = match doc.get_mut().get_mut("activation") {
+        Some(activation) => curve_parameters(activation.get_mut()).map_err(error)?,
+        None => Vec::new(),
+    };
     let mut spec = SceneSpec::deserialize(Deserializer::from(doc)).map_err(error)?;
+    spec.activation.curve_parameters = curve_parameters;
     if let Some(studies) = studies {
         let span = studies.span();
         let DeValue::Array(items) = studies.into_inner() else {
@@ -35,6 +40,26 @@ pub(super) fn parse(text: &str, file: &str) -> Result<SceneSpec, SceneError> {
         }
     }
     Ok(spec)
+}
+
+/// Takes the parameters of the shipped active curves out of `[activation]` (they sit flat beside
+/// `curve = "..."`, and which of them apply depends on the curve, checked when the models are
+/// built), each read as a number where it is written.
+fn curve_parameters(activation: &mut DeValue) -> Result<Vec<(String, f64)>, toml::de::Error> {
+    let DeValue::Table(table) = activation else {
+        return Ok(Vec::new());
+    };
+    let mut found: Vec<(usize, String, f64)> = Vec::new();
+    for name in crate::models::curve_parameter_names() {
+        if let Some(value) = table.remove(name) {
+            let at = value.span().start;
+            let v = f64::deserialize(ValueDeserializer::from(value))?;
+            found.push((at, name.to_string(), v));
+        }
+    }
+    // In the order written.
+    found.sort_by_key(|(at, _, _)| *at);
+    Ok(found.into_iter().map(|(_, n, v)| (n, v)).collect())
 }
 
 /// One `[[study]]`: its kind, then the spec of that kind from the rest of the table.

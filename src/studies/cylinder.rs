@@ -5,6 +5,7 @@
 use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::drive::Drive;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::fem::solver::MIN_TOLERANCE;
@@ -724,7 +725,7 @@ impl CylinderStudy {
                     .uniaxial(&passive, Direction::Along, r.stretch)
                     .ok()
                     .map(|p| p.stress),
-                active_0d: (1.0 - m.damage) * models.curve.value(r.stretch),
+                active_0d: Drive::from(m.damage).target(&models.curve, r.stretch),
             });
             if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
                 vtk_files.push(sub.join(file));

@@ -16,13 +16,14 @@
 
 use super::spec::{damages, fmt_list, optional_stretches, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::drive::Drive;
 use crate::active::{ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::{Energy, GiantesioMusesti, Parametric};
 use crate::fit::{
     active_from_total, default_passive_free, explicit_law_errors, fit_active_curve, fit_damage,
     fit_explicit_law, fit_passive, Bounds, Data, ExplicitTarget, FitError, FitOptions, FitReport,
-    FitSetup, Method, CURVE_PARAMETERS,
+    FitSetup, Method,
 };
 use crate::models::EnergySpec;
 use crate::random::Sampler;
@@ -373,9 +374,14 @@ impl Problem for ActiveCurveFit {
         let c = &self.curve;
         Model {
             kind: FitKind::ActiveCurve,
-            names: CURVE_PARAMETERS.to_vec(),
-            values: vec![c.lambda_min(), c.lambda_opt(), c.k(), c.p_opt()],
-            default_free: CURVE_PARAMETERS[..3].to_vec(),
+            names: c.parameters().iter().map(|p| p.name).collect(),
+            values: c.parameter_values(),
+            default_free: c
+                .parameters()
+                .iter()
+                .map(|p| p.name)
+                .filter(|n| *n != "p_opt")
+                .collect(),
             y_label: "P_act [kPa]",
             reference_label: "scene's active curve",
             unit: "kPa",
@@ -420,7 +426,7 @@ impl Problem for ActiveCurveFit {
             .and_then(|d| fit_active_curve(&self.curve, &d, setup).map(|f| (f.report, vec![])))
     }
     fn curve(&self, v: &[f64], _: &FitCase, grid: &[f64]) -> Vec<(f64, f64)> {
-        match ActiveCurve::new(v[0], v[1], v[2], v[3]) {
+        match self.curve.rebuilt(v) {
             Ok(c) => sample(grid, |l| Ok(c.value(l))),
             Err(_) => vec![],
         }
@@ -575,7 +581,8 @@ impl Problem for DamageFit {
                 let mut cases = Vec::with_capacity(ds.len());
                 for d in ds {
                     let data = source.synthetic(lambdas, |l| {
-                        Ok(along_fibres(&passive, l)?.stress + (1.0 - d) * self.curve.value(l))
+                        Ok(along_fibres(&passive, l)?.stress
+                            + Drive::from(d).target(&self.curve, l))
                     })?;
                     cases.push(FitCase {
                         label: format!("true d = {d}"),
@@ -602,7 +609,7 @@ impl Problem for DamageFit {
         let passive = Muscle::passive(self.energy.clone());
         let d = v[0];
         sample(grid, |l| {
-            Ok(along_fibres(&passive, l)?.stress + (1.0 - d) * self.curve.value(l))
+            Ok(along_fibres(&passive, l)?.stress + Drive::from(d).target(&self.curve, l))
         })
     }
 }

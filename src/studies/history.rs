@@ -1,8 +1,13 @@
 //! Activation-in-time studies (`kind = "activation-in-time"`): a homogeneous (0D) block along
-//! the fibres driven in time by an activation level a(t) ([`crate::active::time`]), quasi-static:
-//! at each time step the law is evaluated at the effective damage 1 − (1 − d)·a(t) and the state
-//! solved, either under a prescribed stretch λ(t) (the stress history) or under free contraction
-//! (zero axial load: the stretch history). One history per damage value, in parallel.
+//! the fibres driven in time by an activation level a(t) ([`crate::active::time`]): at each time
+//! step the law reproduces the target (1 − d)·a(t)·f_v(λ̇)·P_act and the state is solved, either
+//! under a prescribed stretch λ(t) (the stress history) or under free contraction (zero axial
+//! load: the stretch history). One history per damage value, in parallel.
+//!
+//! With `[activation] force_velocity` the factor f_v of the fibre stretch rate λ̇ enters
+//! ([`crate::active::ForceVelocity`]): λ̇ = (λ − λ_prev)/(t − t_prev) by backward Euler from the
+//! previous step's state, inside the step's solve with its exact derivative 1/Δt (λ̇ = 0 at the
+//! first step: the history starts at rest), so the result depends on the time steps.
 //!
 //! Exactly incompressible (the chapter's model, [`crate::uniaxial`]) or, with the scene's
 //! `[incompressibility]`, nearly incompressible: then the two lateral stretches are solved from
@@ -12,6 +17,7 @@
 use super::spec::{damages, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
+use crate::active::StretchRate;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
@@ -235,7 +241,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
     }
     for &t in &times {
         let a = activation.level(t);
-        if !(a.is_finite() && (0.0..=1.0).contains(&a)) {
+        if !(a.is_finite() && a >= 0.0) {
             let key = if activation.motor_units().is_some() {
                 "motor_units"
             } else {
@@ -244,7 +250,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             return Err(SpecError::new(
                 key,
                 format!("a({t} s) = {a}"),
-                "the activation level must stay in [0, 1]: a fused tetanus tends to e·F·G, lower twitch_force (F ≈ 1/e ≈ 0.368 gives a ≈ 1)",
+                "the activation level must be finite and >= 0",
             ));
         }
     }
@@ -458,6 +464,8 @@ impl HistoryStudy {
             points: Vec::with_capacity(self.times.len()),
         };
         let every = (self.times.len() / 20).max(1);
+        // The fibre stretch and time of the previous step, for the force–velocity rate.
+        let mut previous: Option<(f64, f64)> = None;
         for (i, &t) in self.times.iter().enumerate() {
             if let Some(reason) = ctx.stop.and_then(|s| s.reason()) {
                 let failure = Failure {
@@ -469,7 +477,16 @@ impl HistoryStudy {
                 return Ok((history, Some(failure)));
             }
             let level = self.activation.level(t);
+            let rate = match (models.force_velocity, previous) {
+                (Some(law), Some((t0, lambda0))) => Some(StretchRate {
+                    law,
+                    previous: lambda0,
+                    dt: t - t0,
+                }),
+                _ => None,
+            };
             let step = muscle.set_activation(level).and_then(|()| {
+                muscle.set_rate(rate)?;
                 let p = state(models, &muscle, &self.loading, t)?;
                 let passive = models
                     .uniaxial(&passive, Direction::Along, p.lambda)?
@@ -498,9 +515,10 @@ impl HistoryStudy {
                 cauchy: p.cauchy,
                 volume: p.lambda * p.lateral[0] * p.lateral[1],
                 passive: passive_stress,
-                active_target: (1.0 - m.damage) * level * models.curve.value(p.lambda),
+                active_target: muscle.drive().target(&models.curve, p.lambda),
             };
             history.points.push(point);
+            previous = Some((t, p.fibre_stretch));
             if i % every == 0 || i + 1 == self.times.len() {
                 ctx.progress.point(&format!(
                     "{}: {label}: t = {t} s ({}/{}), a = {level:.4}, lambda = {:.5}, P = {:.4} kPa",

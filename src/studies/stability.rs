@@ -7,7 +7,7 @@ use super::spec::{couplings_for, damages, optional_stretches, supported_laws, De
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
-use crate::models::{product, CouplingKind, LawKind, ModelChoice, Models};
+use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::along_fibres_stability;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -91,7 +91,7 @@ pub fn resolve(
         ));
     }
     let passive = spec.passive.unwrap_or(true);
-    let models = product(&laws, &couplings, &damage);
+    let models = d.models.choices(&laws, &couplings, &damage);
     if !passive && models.is_empty() {
         return Err(SpecError::new(
             "",

@@ -6,9 +6,10 @@ use super::spec::{
     couplings_for, damages, required_stretches, supported_laws, Defaults, StretchSpec,
 };
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::drive::Drive;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
-use crate::models::{product, CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
+use crate::models::{CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
 use crate::uniaxial::Direction;
 use crate::{Muscle, StrainEnergy};
 use rayon::prelude::*;
@@ -90,7 +91,7 @@ pub fn resolve(
             ));
         }
     }
-    let models = product(&laws, &couplings, &damage);
+    let models = d.models.choices(&laws, &couplings, &damage);
     let passive = spec.passive.unwrap_or(true);
     if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty() {
         return Err(SpecError::new(
@@ -319,7 +320,7 @@ impl UniaxialStudy {
             Ok(match (model, self.direction) {
                 (CurveModel::Active(m), Direction::Along) => Some((
                     models.uniaxial(&passive, self.direction, lambda)?.stress,
-                    (1.0 - m.damage) * models.curve.value(lambda),
+                    Drive::from(m.damage).target(&models.curve, lambda),
                 )),
                 _ => None,
             })

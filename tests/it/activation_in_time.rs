@@ -8,8 +8,7 @@ use activemuscle::active::time::{
     ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule,
 };
 use activemuscle::active::{
-    effective_damage, ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, FrozenTangent,
-    ImplicitLaw, Law,
+    ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, Drive, FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{Kinematics, FULL};
@@ -124,25 +123,39 @@ fn two_motor_unit_types_add_by_their_fractions() {
 fn activation_level_and_damage_are_one_scale_of_the_active_curve() {
     let law = ImplicitLaw::new(GiantesioMusesti::paper(), ActiveCurve::paper());
     // a = 1 leaves the damage as given and a = 0 is full loss, exactly, for any d.
+    let effective_damage = |d, a| Drive::new(d, a).map(|drive| drive.effective_damage());
     for d in [0.0, 0.1, 0.3, 0.7, 1.0] {
         assert_eq!(effective_damage(d, 1.0).unwrap(), d);
         assert_eq!(effective_damage(d, 0.0).unwrap(), 1.0);
     }
     // (a, d) = (0.5, 0) is d = 0.5 exactly; (0.8, 0.25) is (1 − d) a = 0.6, d = 0.4, to rounding.
     for lambda in [0.8, 1.0, 1.17, 1.4] {
-        let a = law
-            .evaluate(lambda, effective_damage(0.0, 0.5).unwrap())
-            .unwrap();
+        let a = law.evaluate(lambda, Drive::new(0.0, 0.5).unwrap()).unwrap();
         let b = law.evaluate(lambda, 0.5).unwrap();
         assert_eq!(a, b);
         let a = law
-            .activation(lambda, effective_damage(0.25, 0.8).unwrap())
+            .activation(lambda, Drive::new(0.25, 0.8).unwrap())
             .unwrap();
         let b = law.activation(lambda, 0.4).unwrap();
         assert!((a - b).abs() < 1e-14, "lambda = {lambda}: {a} vs {b}");
     }
-    assert!(effective_damage(0.0, 1.2).is_err());
-    assert!(effective_damage(0.0, -0.1).is_err());
+    // a > 1 (4C's twitch trains with P_opt = N_a) scales the curve beyond P_opt: the law at
+    // a = 1.2 is the law of the curve with 1.2 P_opt.
+    let paper = activemuscle::active::curve::ChapterCurve::PAPER;
+    let strong = ImplicitLaw::new(
+        GiantesioMusesti::paper(),
+        ActiveCurve::chapter(0.6243, paper.lambda_opt(), paper.k(), 1.2 * paper.p_opt()).unwrap(),
+    );
+    for lambda in [0.8, 1.0, 1.17] {
+        let a = law
+            .activation(lambda, Drive::new(0.0, 1.2).unwrap())
+            .unwrap();
+        let b = strong.activation(lambda, 0.0).unwrap();
+        assert!((a - b).abs() < 1e-13, "lambda = {lambda}: {a} vs {b}");
+    }
+    assert!(Drive::new(0.0, -0.1).is_err());
+    assert!(Drive::new(0.0, f64::INFINITY).is_err());
+    assert!(Drive::new(1.5, 1.0).is_err());
 }
 
 /// A muscle keeps d_eff = 1 − (1 − d)·a with its damage and level (`Muscle::effective`): however it
@@ -178,7 +191,7 @@ fn a_muscle_answers_at_its_current_activation_level_however_it_was_set() {
     check(&muscle, d, 1.0);
     muscle.set_activation(0.4).unwrap();
     check(&muscle, d, 0.4);
-    assert!(muscle.set_activation(1.5).is_err());
+    assert!(muscle.set_activation(-0.5).is_err());
     assert!(muscle.set_activation(f64::NAN).is_err());
     check(&muscle, d, 0.4);
     muscle.set_activation(1.0).unwrap();

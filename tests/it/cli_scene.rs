@@ -336,7 +336,10 @@ fn check_prints_the_parameters_of_the_energies_that_run() {
          reference = { energy = \"ehret-bol-itskov\", beta = 3.0 }\n",
     );
     let stdout = succeeds(&["check".as_ref(), path.as_ref()]);
-    let printed: SceneSpec = toml::from_str(&stdout).expect("check prints TOML");
+    // The printout is a scene the reader reads back.
+    let printed: SceneSpec = activemuscle::scene::Scene::parse(&stdout, "printed.toml")
+        .expect("check prints a scene")
+        .resolved;
     // Every parameter, by name (a TOML table has no order).
     let sorted = |mut p: Vec<(String, f64)>| {
         p.sort_by(|a, b| a.0.cmp(&b.0));

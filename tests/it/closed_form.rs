@@ -6,13 +6,13 @@
 //! the invariant calculus, the AD.
 
 #[path = "../../benches/closed_form/mod.rs"]
-mod closed_form;
+mod hand_derived;
 
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{axial_fibre, axisymmetric_f, Kinematics, AXISYMMETRIC, FULL};
 use activemuscle::oracle::full_response;
 use activemuscle::response::{active_response, Order};
-use closed_form::ClosedForm;
+use hand_derived::ClosedForm;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

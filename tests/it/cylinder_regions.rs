@@ -4,7 +4,7 @@
 //! lies between the undamaged and the uniformly damaged cylinder, VTK carries the fields, and
 //! the scene's errors name file:line and key.
 
-use activemuscle::active::{effective_damage, Coupling, ExplicitLaw, FrozenTangent, Law};
+use activemuscle::active::{Coupling, Drive, ExplicitLaw, FrozenTangent, Law};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::cylinder::CylinderResult;
@@ -85,7 +85,7 @@ fn regions_with_the_models_own_damage_give_the_uniform_cylinder() {
 #[test]
 fn one_region_over_the_sliding_cylinder_is_the_0d_curve_at_the_effective_damage() {
     let (d, a) = (0.2, 0.6);
-    let d_eff = effective_damage(d, a).unwrap();
+    let d_eff = Drive::new(d, a).unwrap().effective_damage();
     let regions = format!("[[study.regions]]\nactivation = {a}\n");
     let c = run(
         &scene(

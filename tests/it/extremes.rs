@@ -260,14 +260,16 @@ fn large_stretch_is_accurate_below_the_f64_limit_and_an_error_above() {
 }
 
 /// A finding about the chapter's explicit law: damage enters it only through (1 − d) P_act inside
-/// a logarithm fitted at d = 0, so at full damage it still activates the muscle (γ ≈ 0.18 at
-/// λ = 0.8 where the exact laws give 0). It extrapolates poorly in d; the stress barely shows it
-/// (≤ 0.7 kPa off P_pas on [0.7, 1.4]) because P_tot is nearly flat in γ at small stretch.
+/// a logarithm fitted at d = 0, so its formula alone still activates a fully damaged muscle
+/// (γ ≈ 0.18 at λ = 0.8, where the exact laws give 0). Where the target (1 − d)·a·P_act is 0 the
+/// law now gives γ = 0, as every law does (issue 24, item 1); just short of full damage the
+/// formula's offset remains, and is the approximation's error.
 #[test]
-fn the_explicit_law_keeps_spurious_activation_at_full_damage() {
+fn the_explicit_law_is_inactive_at_full_damage_and_keeps_its_offset_just_below() {
     let law = ExplicitLaw::paper();
-    let g = law.evaluate(0.8, 1.0).unwrap().gamma;
-    assert!(g > 0.15, "gamma_explicit(0.8, d = 1) = {g}");
+    assert_eq!(law.evaluate(0.8, 1.0).unwrap().gamma, 0.0);
+    let near = law.evaluate(0.8, 0.999).unwrap().gamma;
+    assert!(near > 0.15, "gamma_explicit(0.8, d = 0.999) = {near}");
     let exact = ImplicitLaw::new(GiantesioMusesti::paper(), ActiveCurve::paper())
         .evaluate(0.8, 1.0)
         .unwrap()

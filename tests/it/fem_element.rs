@@ -11,8 +11,8 @@ use activemuscle::fem::{
 };
 
 use crate::common;
-use common::NonSymmetric;
 use crate::scratch;
+use common::NonSymmetric;
 use scratch::scratch;
 
 fn q1p0() -> SolverOptions {

@@ -5,8 +5,8 @@ use activemuscle::fem::{
 };
 
 use crate::common;
-use common::NonSymmetric;
 use crate::scratch;
+use common::NonSymmetric;
 use scratch::scratch;
 
 #[test]

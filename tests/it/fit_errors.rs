@@ -149,7 +149,7 @@ fn a_fit_that_does_not_converge_is_an_error_with_the_best_point() {
     let truth = ActiveCurve::paper();
     let lambda: Vec<f64> = (0..30).map(|i| 0.7 + i as f64 * 0.03).collect();
     let data = Data::sampled(lambda, |l| Ok(truth.value(l))).unwrap();
-    let start = ActiveCurve::new(0.5, 1.0, 0.8, truth.p_opt()).unwrap();
+    let start = ActiveCurve::chapter(0.5, 1.0, 0.8, truth.parameter("p_opt").unwrap()).unwrap();
     let options = FitOptions {
         max_iterations: 1,
         ..FitOptions::default()

@@ -56,7 +56,7 @@ impl Residuals for Curve {
         Ok(self
             .0
             .iter()
-            .map(|&l| ActiveCurve::value_with(p[0], p[1], p[2], p[3], T::from(l)))
+            .map(|&l| ActiveCurve::paper().value_with(p, T::from(l)))
             .collect())
     }
 }
@@ -93,7 +93,12 @@ fn passive_jacobian_along_the_fibres_matches_central_differences() {
 #[test]
 fn active_curve_jacobian_matches_central_differences() {
     let c = ActiveCurve::paper();
-    let theta = [c.lambda_min(), c.lambda_opt(), c.k(), c.p_opt()];
+    let theta = [
+        c.lambda_min(),
+        c.parameter("lambda_opt").unwrap(),
+        c.parameter("k").unwrap(),
+        c.parameter("p_opt").unwrap(),
+    ];
     assert!(mismatch(&Curve(grid(0.65, 1.6, 20)), &theta) < 1.0);
 }
 

@@ -104,13 +104,15 @@ fn all_four_parameters_of_the_ebi_energy_come_back_from_tests_along_and_across()
 fn active_curve_is_recovered_from_exact_and_noisy_data() {
     let truth = ActiveCurve::paper();
     let data = Data::sampled(grid(0.7, 1.7, 41), |l| Ok(truth.value(l))).unwrap();
-    let start = ActiveCurve::new(0.55, 1.1, 0.6, truth.p_opt()).unwrap();
+    let start = ActiveCurve::chapter(0.55, 1.1, 0.6, truth.parameter("p_opt").unwrap()).unwrap();
     let fit = fit_active_curve(&start, &data, &FitSetup::new()).unwrap();
     println!("{}", fit.report);
     let c = fit.curve;
     assert!((c.lambda_min() - truth.lambda_min()).abs() < 1e-8);
-    assert!((c.lambda_opt() - truth.lambda_opt()).abs() < 1e-8);
-    assert!((c.k() - truth.k()).abs() < 1e-8);
+    assert!(
+        (c.parameter("lambda_opt").unwrap() - truth.parameter("lambda_opt").unwrap()).abs() < 1e-8
+    );
+    assert!((c.parameter("k").unwrap() - truth.parameter("k").unwrap()).abs() < 1e-8);
 
     let noisy = with_noise(&data, 11);
     let fit = fit_active_curve(&start, &noisy, &FitSetup::new()).unwrap();
@@ -118,8 +120,8 @@ fn active_curve_is_recovered_from_exact_and_noisy_data() {
     let r = &fit.report;
     for (name, t) in [
         ("lambda_min", truth.lambda_min()),
-        ("lambda_opt", truth.lambda_opt()),
-        ("k", truth.k()),
+        ("lambda_opt", truth.parameter("lambda_opt").unwrap()),
+        ("k", truth.parameter("k").unwrap()),
     ] {
         let (v, se) = (r.value(name).unwrap(), r.standard_error(name).unwrap());
         println!(

@@ -11,7 +11,9 @@ mod scratch;
 
 mod activation_in_time;
 mod activation_laws;
+mod active_curves;
 mod active_strain_map;
+mod approaches;
 mod bounded_loops;
 mod cauchy_stress;
 mod cli_end_to_end;
@@ -40,6 +42,7 @@ mod fit_extremes;
 mod fit_jacobian;
 mod fit_paper;
 mod fit_recovery;
+mod four_c_blocks;
 mod four_c_passive;
 mod golden_run;
 mod law_representation;

@@ -362,7 +362,7 @@ fn where_no_table_meets_the_tolerance_the_exact_law_answers_and_the_report_says_
 fn tables_on_other_materials_build_and_meet_the_spec_where_they_answer() {
     use activemuscle::energy::NeoHookean;
     let spec = TableSpec::default();
-    let weak = ActiveCurve::new(0.8, 1.05, 0.3, 20.0).unwrap();
+    let weak = ActiveCurve::chapter(0.8, 1.05, 0.3, 20.0).unwrap();
     let nh = SolvedLaw::Energy(EnergyLaw::new(
         NeoHookean::new(5.0).unwrap(),
         ActiveCurve::paper(),

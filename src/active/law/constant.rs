@@ -1,4 +1,5 @@
 use super::{ActivationLaw, LawValue};
+use crate::active::drive::Drive;
 use crate::active::strain::check_activation;
 use crate::Result;
 
@@ -18,7 +19,7 @@ impl ConstantLaw {
 }
 
 impl ActivationLaw for ConstantLaw {
-    fn evaluate(&self, _lambda: f64, _damage: f64) -> Result<LawValue> {
+    fn evaluate(&self, _lambda: f64, _drive: impl Into<Drive>) -> Result<LawValue> {
         Ok(LawValue {
             gamma: self.gamma,
             slope: 0.0,

@@ -1,9 +1,7 @@
-use super::{
-    check_damage, first_activation_root, implicit_derivatives, ActivationLaw, LawValue,
-    PathPartials,
-};
+use super::{first_activation_root, implicit_derivatives, ActivationLaw, LawValue, PathPartials};
 use crate::active::curve::ActiveCurve;
-use crate::active::strain::ActiveStrainMap;
+use crate::active::drive::Drive;
+use crate::active::map::ActivationMap;
 use crate::energy::{positive, StrainEnergy};
 use crate::Result;
 use num_dual::{first_derivative, second_derivative};
@@ -11,10 +9,12 @@ use num_dual::{first_derivative, second_derivative};
 /// The energy-consistent activation law (Giantesio & Musesti 2017, "Strain-dependent internal
 /// parameters in hyperelastic biological materials"): γ(λ) solves
 ///
-/// Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫_{λ_min}^{λ} P_act(s) ds
+/// Ŵ(λ, γ) = W_pas(λ) + (1 − d)·a·f_v ∫_{λ_min}^{λ} P_act(s) ds  ([`Drive::work`])
 ///
 /// along the uniaxial fibre path, so that the *consistent* model Ψ(F) = Ŵ(F, γ(λ_f)) reproduces
-/// P_pas + (1 − d) P_act exactly along the fibres (dΨ/dλ = P_pas + (1 − d) P_act there).
+/// P_pas + (1 − d)·a P_act exactly along the fibres (dΨ/dλ = P_pas + (1 − d)·a P_act there). With
+/// force–velocity, f_v at the current rate is a factor of the work, as 4C's MAT_Muscle_Giantesio
+/// writes its energy condition (the consistent stress then carries f_v′ ∫P_act too).
 ///
 /// For λ ≲ 0.95, Ŵ(λ, γ) − W_pas(λ) first dips below zero as γ
 /// grows (activation relieves the compression) and rises again; the law takes the first root
@@ -38,7 +38,7 @@ pub struct EnergyLaw<E> {
     energy: E,
     curve: ActiveCurve,
     below_minimum: BelowMinimum,
-    map: ActiveStrainMap,
+    map: ActivationMap,
 }
 
 /// What the energy-consistent law does at fibre stretches λ ≤ λ_min (in a scene:
@@ -72,14 +72,17 @@ impl<E> EnergyLaw<E> {
         self.below_minimum
     }
 
-    /// The active-strain map the law is solved with.
-    pub fn map(&self) -> ActiveStrainMap {
+    /// The activation map the law is solved with.
+    pub fn map(&self) -> ActivationMap {
         self.map
     }
 
-    /// The same law solved with the active-strain map `map`.
-    pub fn with_map(self, map: ActiveStrainMap) -> Self {
-        Self { map, ..self }
+    /// The same law solved with the activation map `map`.
+    pub fn with_map(self, map: impl Into<ActivationMap>) -> Self {
+        Self {
+            map: map.into(),
+            ..self
+        }
     }
 }
 
@@ -91,7 +94,7 @@ impl<E: StrainEnergy> EnergyLaw<E> {
             energy,
             curve,
             below_minimum: BelowMinimum::ZeroWork,
-            map: ActiveStrainMap::Chapter,
+            map: ActivationMap::Chapter,
         }
     }
 
@@ -103,24 +106,23 @@ impl<E: StrainEnergy> EnergyLaw<E> {
         }
     }
 
-    /// Residual in kPa (energy per volume): Ŵ(λ, γ) − W_pas(λ) − (1 − d) ∫ P_act.
-    pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
+    /// Residual in kPa (energy per volume): Ŵ(λ, γ) − W_pas(λ) − (1 − d)·a·f_v ∫ P_act.
+    pub fn residual(&self, lambda: f64, gamma: f64, drive: impl Into<Drive>) -> f64 {
         self.map.fibre_path_energy(&self.energy, lambda, gamma)
             - self.map.fibre_path_energy(&self.energy, lambda, 0.0)
-            - (1.0 - damage) * self.curve.integral(lambda)
+            - drive.into().work(&self.curve, lambda)
     }
 }
 
 impl<E: StrainEnergy> EnergyLaw<E> {
-    /// (1 − d) ∫ P_act, and whether γ is 0 there: no activation at all (d = 1), or λ ≤ λ_min
-    /// for [`BelowMinimum::Inactive`] (the jump is at λ_min itself, not where ∫P_act leaves 0
-    /// in f64, ≈ 6e-4 above it).
-    fn work(&self, lambda: f64, damage: f64) -> Result<(f64, bool)> {
-        check_damage(damage)?;
+    /// The active work ([`Drive::work`]), and whether γ is 0 there: no activation at all
+    /// (s = 0), or λ ≤ λ_min for [`BelowMinimum::Inactive`] (the jump is at λ_min itself, not
+    /// where ∫P_act leaves 0 in f64, ≈ 6e-4 above it).
+    fn work(&self, lambda: f64, drive: &Drive) -> Result<(f64, bool)> {
+        drive.check()?;
         positive("fibre stretch", lambda)?;
-        let scale = 1.0 - damage;
-        let work = scale * self.curve.integral(lambda);
-        let inactive = scale <= 0.0
+        let work = drive.work(&self.curve, lambda);
+        let inactive = drive.is_off()
             || (self.below_minimum == BelowMinimum::Inactive && lambda <= self.curve.lambda_min());
         Ok((work, inactive))
     }
@@ -131,6 +133,7 @@ impl<E: StrainEnergy> EnergyLaw<E> {
     fn root(&self, lambda: f64, damage: f64, work: f64) -> Result<f64> {
         let passive = self.map.fibre_path_energy(&self.energy, lambda, 0.0);
         first_activation_root(
+            self.map.upper_bound(),
             || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
             |g| {
                 let (w, w_g) = first_derivative(
@@ -147,21 +150,23 @@ impl<E: StrainEnergy> EnergyLaw<E> {
 }
 
 impl<E: StrainEnergy> ActivationLaw for EnergyLaw<E> {
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
-        match self.work(lambda, damage)? {
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        let drive = drive.into();
+        match self.work(lambda, &drive)? {
             (_, true) => Ok(0.0),
-            (work, false) => self.root(lambda, damage, work),
+            (work, false) => self.root(lambda, drive.damage(), work),
         }
     }
 
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
-        let (work, inactive) = self.work(lambda, damage)?;
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
+        let drive = drive.into();
+        let (work, inactive) = self.work(lambda, &drive)?;
         if inactive {
             return Ok(LawValue::default());
         }
-        let gamma = self.root(lambda, damage, work)?;
-        let scale = 1.0 - damage;
-        let (t, t_l, _) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+        let gamma = self.root(lambda, drive.damage(), work)?;
+        // dwork/dλ (the target, times f_v and plus f_v′ ∫P_act with a rate) and d²work/dλ².
+        let (_, t, t_l) = second_derivative(|l| drive.work(&self.curve, l), lambda);
         let at = PathPartials::at(&self.energy, self.map, lambda, gamma)?;
         let pas = PathPartials::at(&self.energy, self.map, lambda, 0.0)?;
         Ok(implicit_derivatives(

@@ -1,5 +1,6 @@
-use super::{check_damage, ActivationLaw, LawValue};
+use super::{ActivationLaw, LawValue};
 use crate::active::curve::ActiveCurve;
+use crate::active::drive::Drive;
 use crate::active::strain::check_activation;
 use crate::energy::{positive, GiantesioMusesti, ScalarWith};
 use crate::{Error, Result, Scalar};
@@ -13,8 +14,14 @@ use num_dual::second_derivative;
 /// g(λ) = ln α + α(1 − w0/λ) − ½ ln((1 − 2w0/3)/q) + ln{ b (2/μ)[(1 − d) P_act + P_pas]
 ///        + sqrt((1 − 2w0/3)/q) [ (1 − 2w0/3)²/q − λ w0/3 ] },  q = 1/α + w0/(3λ),
 ///
-/// with P_pas of eq. D:Ppas and the chapter's energy parameters (μ, α, w0). Defaults
+/// with P_pas of eq. D:Ppas and the chapter's energy parameters (μ, α, w0), and the target
+/// T = (1 − d)·a·f_v·P_act ([`Drive::target`]) in place of the printed (1 − d) P_act. Defaults
 /// a = 1.0133, b = 0.2050.
+///
+/// Where the target is 0 at every stretch (d = 1, a = 0) the law gives γ = 0, as every law does:
+/// the formula itself would give the approximation's own offset there (at d = 1, γ(0.8) ≈ 0.18 and
+/// at λ = 1.2 a stress 56 % above the passive one). Just above λ_min, where the chapter's P_act
+/// underflows to 0 but the drive is on, the formula is kept: it tends to 0 there continuously.
 ///
 /// Valid (within ≈ 1e-3 of the implicit law) on 0.8 ≲ λ ≲ 1.5; fast: one formula, derivatives by
 /// dual numbers. As printed, γ stays positive up to λ ≈ 1.73 (the chapter says 1.6); beyond its
@@ -83,8 +90,8 @@ impl ExplicitLaw {
 
     /// γ(λ) on any scalar, clamped at 0 beyond its zero crossing. Errors if the formula leaves
     /// its domain (a logarithm or square root of a non-positive number) or γ ≥ 1.
-    pub fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
-        self.gamma_with(self.a, self.b, lambda, damage)
+    pub fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
+        self.gamma_with(self.a, self.b, lambda, drive)
     }
 
     /// γ(λ) of eq. D:gamma, written once, with (a, b) as `f64` ([`gamma`](Self::gamma)) or dual
@@ -95,14 +102,19 @@ impl ExplicitLaw {
         a: P,
         b: P,
         lambda: T,
-        damage: f64,
+        drive: impl Into<Drive>,
     ) -> Result<T> {
-        check_damage(damage)?;
+        let drive = drive.into();
+        drive.check()?;
+        let damage = drive.damage();
         let lmin = self.curve.lambda_min();
         if lambda <= lmin {
             return Ok(T::zero());
         }
-        let active = self.curve.value(lambda) * (1.0 - damage);
+        if drive.is_off() {
+            return Ok(T::zero());
+        }
+        let active = drive.target(&self.curve, lambda);
         let lmin_p = P::from(lmin);
         let start = self.scaled_root(self.g(lmin_p, P::zero(), b), lmin_p);
         let gamma = (-self.scaled_root(self.g(lambda, active, b), lambda) + start) * a;
@@ -125,8 +137,9 @@ impl ExplicitLaw {
 }
 
 impl ActivationLaw for ExplicitLaw {
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
-        let (gamma, slope, curvature) = second_derivative(|l| self.gamma(l, damage), lambda)?;
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
+        let drive = drive.into();
+        let (gamma, slope, curvature) = second_derivative(|l| self.gamma(l, drive), lambda)?;
         Ok(LawValue {
             gamma,
             slope,
@@ -134,7 +147,7 @@ impl ActivationLaw for ExplicitLaw {
         })
     }
 
-    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
-        ExplicitLaw::gamma(self, lambda, damage)
+    fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
+        ExplicitLaw::gamma(self, lambda, drive)
     }
 }

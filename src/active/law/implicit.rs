@@ -1,20 +1,22 @@
 use super::{
-    check_damage, fibre_stress_and_slope, first_activation_root, implicit_derivatives,
-    ActivationLaw, LawValue, PathPartials,
+    fibre_stress_and_slope, first_activation_root, implicit_derivatives, ActivationLaw, LawValue,
+    PathPartials,
 };
 use crate::active::curve::ActiveCurve;
-use crate::active::strain::ActiveStrainMap;
+use crate::active::drive::Drive;
+use crate::active::map::ActivationMap;
 use crate::energy::{positive, StrainEnergy};
 use crate::Result;
 use num_dual::second_derivative;
 
 /// The chapter's activation law (eq. D:eqgammaesplicita): γ(λ) solves
 ///
-/// P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ),  P_tot = ∂Ŵ/∂λ along F = diag(λ, λ^-½, λ^-½),
+/// P_tot(λ, γ) = P_pas(λ) + T(λ),  P_tot = ∂Ŵ/∂λ along F = diag(λ, λ^-½, λ^-½),
 ///
-/// for any energy and either active-strain map (for the chapter's energy and map this is exactly
-/// the printed equation). γ = 0 for
-/// λ ≤ λ_min and wherever (1 − d) P_act = 0.
+/// with the target T = (1 − d)·a·f_v·P_act ([`Drive::target`]), for any energy and any
+/// activation map (for the chapter's energy and map at a = 1 this is exactly the printed
+/// equation; for the structural map the variable is ω, and for 4C's energy the root is 4C's
+/// closed form through the Lambert W function). γ = 0 for λ ≤ λ_min and wherever T = 0.
 ///
 /// Valid for λ > λ_min up to the stretch where P_tot overflows at the root (≈ 1.9 for the
 /// chapter's parameters). Ill-conditioned just above λ_min: P_tot is nearly flat in γ there, so
@@ -25,7 +27,7 @@ use num_dual::second_derivative;
 pub struct ImplicitLaw<E> {
     energy: E,
     curve: ActiveCurve,
-    map: ActiveStrainMap,
+    map: ActivationMap,
 }
 
 impl<E: StrainEnergy> ImplicitLaw<E> {
@@ -34,17 +36,20 @@ impl<E: StrainEnergy> ImplicitLaw<E> {
         Self {
             energy,
             curve,
-            map: ActiveStrainMap::Chapter,
+            map: ActivationMap::Chapter,
         }
     }
 
-    /// The same law solved with the active-strain map `map`.
-    pub fn with_map(self, map: ActiveStrainMap) -> Self {
-        Self { map, ..self }
+    /// The same law solved with the activation map `map`.
+    pub fn with_map(self, map: impl Into<ActivationMap>) -> Self {
+        Self {
+            map: map.into(),
+            ..self
+        }
     }
 
-    /// The active-strain map the law is solved with.
-    pub fn map(&self) -> ActiveStrainMap {
+    /// The activation map the law is solved with.
+    pub fn map(&self) -> ActivationMap {
         self.map
     }
 
@@ -58,24 +63,27 @@ impl<E: StrainEnergy> ImplicitLaw<E> {
         &self.energy
     }
 
-    /// Residual of eq. D:eqgammaesplicita in kPa: P_tot(λ, γ) − P_pas(λ) − (1 − d) P_act(λ).
-    pub fn residual(&self, lambda: f64, gamma: f64, damage: f64) -> f64 {
+    /// Residual of eq. D:eqgammaesplicita in kPa: P_tot(λ, γ) − P_pas(λ) − T(λ).
+    pub fn residual(&self, lambda: f64, gamma: f64, drive: impl Into<Drive>) -> f64 {
         let (p_tot, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, gamma);
         let (p_pas, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, 0.0);
-        p_tot - p_pas - (1.0 - damage) * self.curve.value(lambda)
+        p_tot - p_pas - drive.into().target(&self.curve, lambda)
     }
 }
 
 impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
-        check_damage(damage)?;
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        let drive = drive.into();
+        drive.check()?;
         positive("fibre stretch", lambda)?;
-        let t = self.curve.value(lambda) * (1.0 - damage);
+        let t = drive.target(&self.curve, lambda);
         if t <= 0.0 {
             return Ok(0.0);
         }
         let (p_pas, _) = fibre_stress_and_slope(&self.energy, self.map, lambda, 0.0);
+        let damage = drive.damage();
         first_activation_root(
+            self.map.upper_bound(),
             || format!("implicit activation law at lambda = {lambda}, d = {damage}"),
             |g| {
                 let (p, dp) = fibre_stress_and_slope(&self.energy, self.map, lambda, g);
@@ -84,10 +92,10 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         )
     }
 
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
-        let gamma = self.activation(lambda, damage)?;
-        let scale = 1.0 - damage;
-        let (t, t_l, t_ll) = second_derivative(|l| self.curve.value(l) * scale, lambda);
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
+        let drive = drive.into();
+        let gamma = self.activation(lambda, drive)?;
+        let (t, t_l, t_ll) = second_derivative(|l| drive.target(&self.curve, l), lambda);
         if t <= 0.0 {
             return Ok(LawValue::default());
         }

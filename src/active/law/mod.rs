@@ -26,7 +26,8 @@ pub use tabulated::{
     LawRepresentation, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw, MIN_WIDTH,
 };
 
-use crate::active::strain::ActiveStrainMap;
+use crate::active::drive::Drive;
+use crate::active::map::ActivationMap;
 use crate::energy::StrainEnergy;
 use crate::roots::newton_bisection;
 use crate::{Error, Result, Scalar};
@@ -43,21 +44,26 @@ pub struct LawValue {
     pub curvature: f64,
 }
 
-/// A map from fibre stretch (and damage) to activation.
+/// A map from fibre stretch (and what drives the activation) to activation.
+///
+/// The drive is a [`Drive`]: damage d, activation level a and, in a time study with
+/// force–velocity, the stretch-rate state; a plain `f64` is a damage d ∈ [0, 1] at a = 1,
+/// quasi-static. Every law reproduces the drive's target (1 − d)·a·f_v·P_act ([`Drive::target`]),
+/// and gives γ = 0 wherever that target is 0.
 pub trait ActivationLaw {
-    /// γ, dγ/dλ and d²γ/dλ² at fibre stretch `lambda` [-] and damage `damage` ∈ [0, 1].
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue>;
+    /// γ, dγ/dλ and d²γ/dλ² at fibre stretch `lambda` [-] under `drive`.
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue>;
 
     /// γ alone, without its derivatives (cheaper for the laws that solve for γ).
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
-        Ok(self.evaluate(lambda, damage)?.gamma)
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        Ok(self.evaluate(lambda, drive)?.gamma)
     }
 
     /// γ on a generic scalar: the second-order Taylor expansion of [`evaluate`](Self::evaluate)
     /// about the real part, which carries exact first and second derivatives through any dual
     /// number of order ≤ 2.
-    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
-        Ok(self.evaluate(lambda.re(), damage)?.lift(lambda))
+    fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
+        Ok(self.evaluate(lambda.re(), drive)?.lift(lambda))
     }
 }
 
@@ -121,9 +127,9 @@ impl<E> Law<E> {
 }
 
 impl<E: StrainEnergy> Law<E> {
-    /// The active-strain map the law is solved with (the implicit and energy laws, tabulated or
+    /// The activation map the law is solved with (the implicit and energy laws, tabulated or
     /// not); `None` for the laws that do not solve an equation of Ŵ.
-    pub fn map(&self) -> Option<ActiveStrainMap> {
+    pub fn map(&self) -> Option<ActivationMap> {
         match self {
             Law::Implicit(l) => Some(l.map()),
             Law::Energy(l) => Some(l.map()),
@@ -157,59 +163,37 @@ impl<E: StrainEnergy> Law<E> {
 }
 
 impl<E: StrainEnergy> ActivationLaw for Law<E> {
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
+        let drive = drive.into();
         match self {
             Law::Passive => Ok(LawValue::default()),
-            Law::Constant(l) => l.evaluate(lambda, damage),
-            Law::Implicit(l) => l.evaluate(lambda, damage),
-            Law::Explicit(l) => l.evaluate(lambda, damage),
-            Law::Energy(l) => l.evaluate(lambda, damage),
-            Law::Tabulated(l) => l.evaluate(lambda, damage),
+            Law::Constant(l) => l.evaluate(lambda, drive),
+            Law::Implicit(l) => l.evaluate(lambda, drive),
+            Law::Explicit(l) => l.evaluate(lambda, drive),
+            Law::Energy(l) => l.evaluate(lambda, drive),
+            Law::Tabulated(l) => l.evaluate(lambda, drive),
         }
     }
 
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        let drive = drive.into();
         match self {
             Law::Passive => Ok(0.0),
-            Law::Constant(l) => l.activation(lambda, damage),
-            Law::Implicit(l) => l.activation(lambda, damage),
-            Law::Explicit(l) => l.activation(lambda, damage),
-            Law::Energy(l) => l.activation(lambda, damage),
-            Law::Tabulated(l) => l.activation(lambda, damage),
+            Law::Constant(l) => l.activation(lambda, drive),
+            Law::Implicit(l) => l.activation(lambda, drive),
+            Law::Explicit(l) => l.activation(lambda, drive),
+            Law::Energy(l) => l.activation(lambda, drive),
+            Law::Tabulated(l) => l.activation(lambda, drive),
         }
     }
 
-    fn gamma<T: Scalar>(&self, lambda: T, damage: f64) -> Result<T> {
+    fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
+        let drive = drive.into();
         match self {
-            Law::Explicit(l) => l.gamma(lambda, damage),
-            _ => Ok(self.evaluate(lambda.re(), damage)?.lift(lambda)),
+            Law::Explicit(l) => l.gamma(lambda, drive),
+            _ => Ok(self.evaluate(lambda.re(), drive)?.lift(lambda)),
         }
     }
-}
-
-/// The damage a law sees when the active curve is scaled by s = (1 − d)·a: damage d ∈ [0, 1]
-/// (loss of activation) and activation level a ∈ [0, 1] (the recruited fraction of the optimal
-/// active stress, as 4C scales P_opt by its time-dependent factor) enter every law only through
-/// s P_act, so a law at (a, d) is the law at the effective damage
-///
-/// d_eff = 1 − s = d + (1 − d)(1 − a).
-///
-/// One concept, not two copies: the laws, their brackets and their exact derivatives serve
-/// both causes unchanged. Written so that a = 1 gives d_eff = d exactly (the chapter's runs are
-/// bit-for-bit unchanged) and a = 0 gives d_eff = 1 exactly, where every law returns γ = 0
-/// without a solve. A [`TabulatedLaw`] keeps its tables per damage: it answers a = 1 from the
-/// table of d and any other level from its exact law (no table is wrong for any scale, only
-/// slower). Rejects d or a outside [0, 1].
-pub fn effective_damage(damage: f64, activation: f64) -> Result<f64> {
-    check_damage(damage)?;
-    if !(0.0..=1.0).contains(&activation) {
-        return Err(Error::InvalidParameter {
-            name: "activation level",
-            value: activation,
-            rule: "must lie in [0, 1]",
-        });
-    }
-    Ok(damage + (1.0 - damage) * (1.0 - activation))
 }
 
 /// Rejects d ∉ [0, 1].
@@ -244,7 +228,7 @@ impl PathPartials {
     /// Three hyper-hyper-dual evaluations of Ŵ(λ, γ) with the active-strain map `map`.
     pub fn at<E: StrainEnergy>(
         energy: &E,
-        map: ActiveStrainMap,
+        map: ActivationMap,
         lambda: f64,
         gamma: f64,
     ) -> Result<Self> {
@@ -296,7 +280,7 @@ impl PathPartials {
 /// hyper-dual.
 pub(crate) fn fibre_path_derivatives<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: ActivationMap,
     lambda: f64,
     gamma: f64,
 ) -> [f64; 3] {
@@ -311,7 +295,7 @@ pub(crate) fn fibre_path_derivatives<E: StrainEnergy>(
 /// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path ([`fibre_path_derivatives`]).
 pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: ActivationMap,
     lambda: f64,
     gamma: f64,
 ) -> (f64, f64) {
@@ -319,11 +303,13 @@ pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
     (p, slope)
 }
 
-/// The smallest root γ ∈ (0, 1) of `residual` with residual(0) < 0, found by stepping up in
-/// steps of 0.05 until the sign changes (a non-finite value — exp overflow — counts as "past the
-/// root" and halves the step; at most 400 evaluations, ≈ 100 when the overflow is monotone),
-/// then safeguarded Newton to 1e-15 in γ.
+/// The smallest root γ ∈ (0, `upper`) of `residual` with residual(0) < 0, found by stepping up
+/// in steps of 0.05 until the sign changes (a non-finite value — exp overflow — counts as "past
+/// the root" and halves the step; at most 400 evaluations, ≈ 100 when the overflow is monotone;
+/// above 1, for the structural map's unbounded ω, the step doubles each time), then safeguarded
+/// Newton to 1e-15 in γ.
 pub(crate) fn first_activation_root(
+    upper: f64,
     equation: impl Fn() -> String,
     residual: impl Fn(f64) -> (f64, f64),
 ) -> Result<f64> {
@@ -332,7 +318,7 @@ pub(crate) fn first_activation_root(
     let mut evaluations = 0;
     while step > 1e-12 && evaluations < 400 {
         let trial = lo + step;
-        if trial >= 1.0 {
+        if trial >= upper {
             step *= 0.5;
             continue;
         }
@@ -345,12 +331,15 @@ pub(crate) fn first_activation_root(
             break;
         } else {
             lo = trial;
+            if lo >= 1.0 {
+                step *= 2.0;
+            }
         }
     }
     if hi.is_nan() {
         return Err(Error::NoSolution {
             equation: equation(),
-            reason: format!("no sign change of the residual for gamma in [0, {lo}] before exp overflow or gamma -> 1 ({evaluations} evaluations, last step {step:e})"),
+            reason: format!("no sign change of the residual for the activation in [0, {lo}] before exp overflow or the end of its range ({evaluations} evaluations, last step {step:e})"),
         });
     }
     newton_bisection(&residual, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {

@@ -52,7 +52,8 @@
 //! γ = 0. Outside [λ_lo, λ_hi] and for a damage without a table, the exact law is solved.
 
 use super::{ActivationLaw, BelowMinimum, EnergyLaw, ImplicitLaw, LawValue};
-use crate::active::strain::ActiveStrainMap;
+use crate::active::drive::Drive;
+use crate::active::map::ActivationMap;
 use crate::energy::StrainEnergy;
 use crate::{Error, Result};
 use std::fmt;
@@ -189,8 +190,8 @@ impl<E: StrainEnergy> SolvedLaw<E> {
         }
     }
 
-    /// The active-strain map the exact law is solved with.
-    pub fn map(&self) -> ActiveStrainMap {
+    /// The activation map the exact law is solved with.
+    pub fn map(&self) -> ActivationMap {
         match self {
             SolvedLaw::Implicit(l) => l.map(),
             SolvedLaw::Energy(l) => l.map(),
@@ -237,17 +238,17 @@ impl<E: StrainEnergy> SolvedLaw<E> {
 }
 
 impl<E: StrainEnergy> ActivationLaw for SolvedLaw<E> {
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
         match self {
-            SolvedLaw::Implicit(l) => l.evaluate(lambda, damage),
-            SolvedLaw::Energy(l) => l.evaluate(lambda, damage),
+            SolvedLaw::Implicit(l) => l.evaluate(lambda, drive),
+            SolvedLaw::Energy(l) => l.evaluate(lambda, drive),
         }
     }
 
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
         match self {
-            SolvedLaw::Implicit(l) => l.activation(lambda, damage),
-            SolvedLaw::Energy(l) => l.activation(lambda, damage),
+            SolvedLaw::Implicit(l) => l.activation(lambda, drive),
+            SolvedLaw::Energy(l) => l.activation(lambda, drive),
         }
     }
 }
@@ -452,6 +453,11 @@ impl<E: StrainEnergy> TabulatedLaw<E> {
         self.tables.iter().find(|t| t.damage == damage)
     }
 
+    /// The table of a quasi-static drive's effective damage, if there is one.
+    fn table_of(&self, drive: &Drive) -> Option<&Table> {
+        drive.table_damage().and_then(|d| self.table(d))
+    }
+
     /// The 0D measurement of the table of `damage` against the exact law at `stretches`: the
     /// largest errors (γ, frozen and consistent fibre stress) and the time per evaluation of
     /// each (γ, γ′, γ″; the smallest of `repeats` passes over all stretches), with the build's
@@ -518,18 +524,20 @@ pub struct TableComparison {
 
 impl<E: StrainEnergy> ActivationLaw for TabulatedLaw<E> {
     #[inline]
-    fn evaluate(&self, lambda: f64, damage: f64) -> Result<LawValue> {
-        match self.table(damage).and_then(|t| t.evaluate(lambda)) {
+    fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {
+        let drive = drive.into();
+        match self.table_of(&drive).and_then(|t| t.evaluate(lambda)) {
             Some(v) => Ok(v),
-            None => self.exact.evaluate(lambda, damage),
+            None => self.exact.evaluate(lambda, drive),
         }
     }
 
     #[inline]
-    fn activation(&self, lambda: f64, damage: f64) -> Result<f64> {
-        match self.table(damage).and_then(|t| t.evaluate(lambda)) {
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        let drive = drive.into();
+        match self.table_of(&drive).and_then(|t| t.evaluate(lambda)) {
             Some(v) => Ok(v.gamma),
-            None => self.exact.activation(lambda, damage),
+            None => self.exact.activation(lambda, drive),
         }
     }
 }

@@ -5,7 +5,6 @@ use std::process::{Command, Output};
 
 /// `activemuscle run [SCENE] --out OUT --quiet` (the embedded paper scene without `scene`);
 /// asserts that it succeeds and returns its output.
-
 pub fn run_quiet(scene: Option<&Path>, out: &Path) -> Output {
     let mut command = Command::new(env!("CARGO_BIN_EXE_activemuscle"));
     command.arg("run");
@@ -27,7 +26,6 @@ pub fn run_quiet(scene: Option<&Path>, out: &Path) -> Output {
 }
 
 /// `activemuscle ARGS…` without any assertion: its output, status included.
-
 pub fn run_args<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_activemuscle"))
         .args(args)

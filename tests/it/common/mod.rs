@@ -39,7 +39,6 @@ impl AxisymmetricMaterial for NonSymmetric {
 
 /// Load steps of `step` (the first and the largest), up to 60 Newton iterations each, to
 /// tolerance 1e-11: a large step that Newton must take whole.
-
 pub fn large_steps(step: f64) -> Stepping {
     Stepping {
         initial_step: step,
@@ -52,7 +51,6 @@ pub fn large_steps(step: f64) -> Stepping {
 
 /// One large load step 1 → 1.3 on a clamped cylinder (R = 1, L = 3) of `nr × nz` cells of
 /// `element`; returns the step's record.
-
 pub fn one_step(material: &NonSymmetric, element: Element, nr: usize, nz: usize) -> StepRecord {
     let mesh = Mesh::structured(1.0, 3.0, nr, nz, 1.0).unwrap();
     let options = SolverOptions {
@@ -71,7 +69,6 @@ pub fn one_step(material: &NonSymmetric, element: Element, nr: usize, nz: usize)
 }
 
 /// The scaled residuals of a load step: the initial one, then one per Newton iteration.
-
 pub fn residuals(step: &StepRecord) -> Vec<f64> {
     std::iter::once(step.initial_residual)
         .chain(step.iterations.iter().map(|i| i.residual))
@@ -79,14 +76,12 @@ pub fn residuals(step: &StepRecord) -> Vec<f64> {
 }
 
 /// Numbers in short scientific notation, for printing residual histories.
-
 pub fn sci(v: &[f64]) -> Vec<String> {
     v.iter().map(|x| format!("{x:.3e}")).collect()
 }
 
 /// Asserts that Newton converged quadratically in `step` (last observed order ≥ 1.8) with full
 /// steps; prints the residuals and the orders after `label`.
-
 pub fn assert_quadratic(step: &StepRecord, label: &str) {
     let r = residuals(step);
     println!("{label}, scaled residuals: {:?}", sci(&r));
@@ -101,7 +96,6 @@ pub fn assert_quadratic(step: &StepRecord, label: &str) {
 
 /// Observed orders of convergence p_k = ln(r_{k+1}/r_k) / ln(r_k/r_{k-1}) of a residual history,
 /// over the iterations above the round-off floor (1e-13).
-
 pub fn observed_orders(r: &[f64]) -> Vec<f64> {
     r.windows(3)
         .filter(|w| w[2] > 1e-13 && w.iter().all(|v| *v > 0.0))
@@ -111,7 +105,6 @@ pub fn observed_orders(r: &[f64]) -> Vec<f64> {
 
 /// Asserts that every cell of a VTU file's text holds the neo-Hookean uniaxial state of stretch λ:
 /// P_zz = μ(λ − λ⁻²) and p = μ/λ \[kPa\], to 1e-9 relative.
-
 pub fn assert_uniaxial_neo_hookean_cells(text: &str, mu: f64, lambda: f64) {
     let exact = mu * (lambda - lambda.powi(-2));
     let pzz = vtu_data_array(text, "P_zz");
@@ -128,7 +121,6 @@ pub fn assert_uniaxial_neo_hookean_cells(text: &str, mu: f64, lambda: f64) {
 }
 
 /// The numbers of the `<DataArray Name="name">` of a VTU file's text.
-
 pub fn vtu_data_array(text: &str, name: &str) -> Vec<f64> {
     let start = text.find(&format!("Name=\"{name}\"")).unwrap();
     let body = &text[start..];
