@@ -376,7 +376,7 @@ def test_energy_parameters_of_any_shipped_energy_are_keywords():
     (dict(curve="ehret-bol-itskov", k=0.4), "the ehret-bol-itskov curve has no parameter k"),
     (dict(curve="sine"), "unknown active curve"),
     (dict(approach="sideways"), 'approach = "sideways"'),
-    (dict(tau=1.0), "tau: unknown keyword"),
+    (dict(tau=1.0), "tau = (given): unknown keyword"),
     (dict(approach="structural", energy="neo-hookean", mu=1.0), "structural approach"),
     (dict(force_velocity={"min_rate": -17.0}), "force_velocity.ke"),
     (dict(force_velocity={"min_rate": 17.0, "ke": 5, "kc": 5, "de": 0.5, "dc": 1}), "min_rate"),

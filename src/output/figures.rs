@@ -268,6 +268,14 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
         out.extend(history_figure(name, h));
     }
     unique_stems(&mut out, &run);
+    // The figures are written with the active-strain γ; the structural approach's variable is ω.
+    if let Ok(map) = scene.models.activation_map() {
+        if map.variable() != "γ" {
+            for f in &mut out {
+                f.rename_symbol("γ", map.variable());
+            }
+        }
+    }
     out
 }
 

@@ -412,6 +412,22 @@ pub struct Figure {
 
 impl Figure {
     /// A figure whose caption ends with what its frames leave out ([`Panel::notes`]).
+    /// Every `from` in the figure's words (heading, caption, panel titles and axis labels,
+    /// series labels) replaced by `to`: the activation variable's symbol, γ or ω.
+    pub fn rename_symbol(&mut self, from: &str, to: &str) {
+        let swap = |t: &mut String| *t = t.replace(from, to);
+        swap(&mut self.heading);
+        swap(&mut self.caption);
+        for p in &mut self.panels {
+            swap(&mut p.title);
+            swap(&mut p.x_label);
+            swap(&mut p.y_label);
+            for s in &mut p.series {
+                swap(&mut s.label);
+            }
+        }
+    }
+
     pub fn new(
         stem: impl Into<String>,
         heading: impl Into<String>,

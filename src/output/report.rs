@@ -351,6 +351,12 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             "not in the chapter".into(),
         ));
     }
+    // The rows are written with the active-strain γ; the structural approach's variable is ω.
+    if let Ok(map) = m.activation_map() {
+        for row in rows.iter_mut().skip(1) {
+            row.1 = row.1.replace('γ', map.variable());
+        }
+    }
     rows
 }
 
