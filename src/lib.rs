@@ -11,7 +11,8 @@
 //! - [`response`]: the one place that seeds dual numbers.
 //! - [`active`]: active strain, active curve, activation laws, frozen/consistent coupling.
 //! - [`material`]: a muscle answering at a point.
-//! - [`uniaxial`]: homogeneous tests along and across the fibres.
+//! - [`uniaxial`]: homogeneous tests along and across the fibres; [`homogeneous`]: simple shear
+//!   and planar biaxial stretch.
 //! - [`oracle`]: the slow reference route (dual numbers over F's nine entries).
 //! - [`fem`]: the axisymmetric mixed finite-element solver.
 //! - [`fit`]: least squares with dual-number Jacobians.
@@ -27,6 +28,7 @@ pub mod energy;
 pub mod error;
 pub mod fem;
 pub mod fit;
+pub mod homogeneous;
 pub mod invariants;
 pub mod material;
 pub mod models;

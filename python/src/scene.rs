@@ -15,6 +15,7 @@ use activemuscle::studies::cylinder::{bases_name, CylinderResult};
 use activemuscle::studies::fit::FitOutcome;
 use activemuscle::studies::history::HistoryResult;
 use activemuscle::studies::stability::StabilityCurve;
+use activemuscle::studies::table::{Table, Values};
 use activemuscle::studies::tradeoff::TradeoffResults;
 use activemuscle::studies::uniaxial::{CurveModel, UniaxialResult};
 use activemuscle::studies::{Outcome, StudyResult};
@@ -234,6 +235,8 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
             tradeoff(&table, t)?;
             findings.clone_from(&t.findings);
         }
+        StudyResult::Shear(r) => own_table(&table, &r.table(&s.name))?,
+        StudyResult::Biaxial(r) => own_table(&table, &r.table(&s.name))?,
         // A study that stopped with an error: its failures say why, the table stays empty.
         StudyResult::Nothing => {}
     }
@@ -241,6 +244,25 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
     d.set_item("vtk", vtk)?;
     d.set_item("findings", findings)?;
     Ok(d)
+}
+
+/// A kind's own table, column by column, as its CSV file holds it (words as object arrays,
+/// numbers as float arrays, masked where a row has no value).
+fn own_table(t: &Columns, table: &Table) -> PyResult<()> {
+    for c in &table.columns {
+        match &c.values {
+            Values::Text(v) => {
+                t.names(c.name, v.clone())?;
+            }
+            Values::Number(v) if v.iter().all(Option::is_some) => {
+                t.numbers(c.name, v.iter().map(|x| x.unwrap_or_default()).collect())?;
+            }
+            Values::Number(v) => {
+                t.optional(c.name, v.clone())?;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// One row per point of every curve: direction, energy, law, coupling, d, λ, γ, P, P_pas,

@@ -14,6 +14,7 @@ MU, ALPHA, W0 = 0.1599, 19.35, 0.7335
 LAMBDA_MIN, LAMBDA_OPT, K, P_OPT = 0.6243, 1.1704, 0.4342, 73.52
 
 STRETCHES = [0.8, 0.95, 1.1, 1.25, 1.4]
+MU_NH = 2.0  # the neo-Hookean block of PLANAR [kPa]
 DAMAGE = [0.0, 0.3]
 
 TEXT = """title = "tiny"
@@ -293,3 +294,55 @@ def test_the_block_in_time_example_tends_to_the_exact_history_as_one_over_kappa(
     volume = [np.abs(h["J"] - 1).max() for h in (soft, stiff)]
     # O(1/κ): a hundredfold κ, a hundredfold closer (within 20 %).
     assert 80 < gap[0] / gap[1] < 120 and 80 < volume[0] / volume[1] < 120, (gap, volume)
+
+
+PLANAR = """title = "planar"
+
+[material]
+energy = "neo-hookean"
+mu = 2.0
+
+[[study]]
+kind = "shear"
+name = "shear"
+shear = [0.0, 0.2, 0.5]
+fibre_angles = [0.0, 30.0]
+approaches = ["active-stress"]
+damage = [0.0]
+
+[[study]]
+kind = "biaxial"
+name = "equibiaxial"
+path = "equibiaxial"
+stretch = [1.0, 1.1, 1.2]
+approaches = ["active-stress"]
+damage = [0.0]
+"""
+
+
+def test_shear_and_biaxial_tables_of_a_neo_hookean_block_are_the_closed_forms():
+    r = am.run_scene(PLANAR)
+    s = r["shear"].table
+    passive = s["law"] == "passive"
+    k = s["shear"][passive]
+    # σ = μ B − p I with σ₃₃ = 0: σ₁₂ = μk, σ₁₁ = μk², σ₂₂ = 0 for any fibre angle.
+    np.testing.assert_allclose(s["sigma_12"][passive], MU_NH * k, atol=1e-12)
+    np.testing.assert_allclose(s["sigma_11"][passive], MU_NH * k**2, atol=1e-12)
+    np.testing.assert_allclose(s["sigma_22"][passive], 0.0, atol=1e-12)
+    assert sorted(set(s["fibre_angle"].tolist())) == [0.0, 30.0]
+    assert set(s["approach"][~passive].tolist()) == {"active-stress"}
+    b = r["equibiaxial"].table
+    p = b["law"] == "passive"
+    lam = b["lambda_1"][p]
+    # Equibiaxial, isotropic: P₁₁ = P₂₂ = μ (λ − λ⁻⁵) with λ₃ = λ⁻².
+    np.testing.assert_allclose(b["lambda_3"][p], lam**-2, rtol=1e-14)
+    np.testing.assert_allclose(b["P_11"][p], MU_NH * (lam - lam**-5), rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(b["P_22"][p], b["P_11"][p], rtol=1e-12, atol=1e-12)
+    # Active stress adds (1 − d) P_act(λ₁) to P₁₁ alone, with the chapter's curve (eq. (8)).
+    a = ~p
+    np.testing.assert_allclose(
+        b["P_11"][a] - MU_NH * (b["lambda_1"][a] - b["lambda_1"][a] ** -5),
+        active_closed_form(b["lambda_1"][a]),
+        rtol=1e-10,
+    )
+    np.testing.assert_allclose(b["P_22"][a], b["P_22"][p], rtol=1e-12, atol=1e-12)

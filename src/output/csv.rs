@@ -12,6 +12,7 @@ use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
 use crate::studies::fit::FitOutcome;
 use crate::studies::history::HistoryResult;
 use crate::studies::stability::StabilityCurve;
+use crate::studies::table::{Table, Values};
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
 use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
@@ -545,7 +546,57 @@ pub fn tables(results: &Results) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     if histories.iter().any(|(_, h)| !h.histories.is_empty()) {
         out.push(("history.csv".into(), history_csv(&histories)?));
     }
+    // The kinds that own their table: one file per kind, the tables of its studies appended.
+    let mut own: Vec<(&str, Table)> = Vec::new();
+    for s in &results.studies {
+        let (file, table) = match &s.result {
+            StudyResult::Shear(r) => ("shear.csv", r.table(&s.name)),
+            StudyResult::Biaxial(r) => ("biaxial.csv", r.table(&s.name)),
+            _ => continue,
+        };
+        if table.rows() > 0 {
+            own.push((file, table));
+        }
+    }
+    for file in ["shear.csv", "biaxial.csv"] {
+        let tables: Vec<&Table> = own
+            .iter()
+            .filter(|(f, _)| *f == file)
+            .map(|(_, t)| t)
+            .collect();
+        if !tables.is_empty() {
+            out.push((file.to_string(), table_csv(file, &tables)?));
+        }
+    }
     Ok(out)
+}
+
+/// The CSV text of tables with the same columns (a kind's own table, one per study), the header
+/// once; empty cells for `None`, a non-finite number an error naming the column and row.
+pub fn table_csv(file: &str, tables: &[&Table]) -> Result<Vec<u8>, AppError> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let fail = csv_error(file);
+    let Some(first) = tables.first() else {
+        return finish(w, file);
+    };
+    w.write_record(first.columns.iter().map(|c| c.name))
+        .map_err(&fail)?;
+    for t in tables {
+        for row in 0..t.rows() {
+            let mut record = Vec::with_capacity(t.columns.len());
+            for c in &t.columns {
+                record.push(match &c.values {
+                    Values::Text(v) => v[row].clone().unwrap_or_default(),
+                    Values::Number(v) => match v[row] {
+                        None => String::new(),
+                        Some(x) => text(x, c.name, || format!("{file}, row {row}"))?,
+                    },
+                });
+            }
+            w.write_record(&record).map_err(&fail)?;
+        }
+    }
+    finish(w, file)
 }
 
 #[cfg(test)]

@@ -267,6 +267,13 @@ pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     for (name, h) in results.histories() {
         out.extend(history_figure(name, h));
     }
+    for s in &results.studies {
+        out.extend(match &s.result {
+            StudyResult::Shear(r) => super::planar_figures::shear_figure(&s.name, r),
+            StudyResult::Biaxial(r) => super::planar_figures::biaxial_figure(&s.name, r),
+            _ => None,
+        });
+    }
     unique_stems(&mut out, &run);
     // The figures are written with the active-strain γ; the structural approach's variable is ω.
     if let Ok(map) = scene.models.activation_map() {

@@ -6,6 +6,7 @@ pub mod atomic;
 pub mod base64;
 pub mod csv;
 pub mod figures;
+pub mod planar_figures;
 pub mod plot;
 pub mod report;
 pub mod tradeoff;

@@ -10,6 +10,7 @@ use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::scene::{Results, Scene};
 use crate::studies::cylinder::{bases_name, SweepPoint};
 use crate::studies::uniaxial::CurveModel;
+use crate::studies::StudyResult;
 use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
@@ -79,6 +80,8 @@ pub fn html(
     centre_note(&mut h, scene, results);
     fits_table(&mut h, results)?;
     stability_table(&mut h, results)?;
+    shear_section(&mut h, results);
+    biaxial_section(&mut h, results);
 
     figures_and_data(&mut h, figures, info);
     h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
@@ -182,6 +185,19 @@ fn used(scene: &Scene, results: &Results) -> Used {
     for (_, r) in results.histories() {
         chosen.extend(r.histories.iter().map(|h| h.model));
     }
+    for s in &results.studies {
+        let models: Vec<&crate::studies::spec::ApproachModel> = match &s.result {
+            StudyResult::Shear(r) => r.curves.iter().map(|c| &c.model).collect(),
+            StudyResult::Biaxial(r) => r.curves.iter().map(|c| &c.model).collect(),
+            _ => continue,
+        };
+        chosen.extend(
+            models
+                .iter()
+                .filter(|a| a.approach.has_law())
+                .filter_map(|a| a.model),
+        );
+    }
     Used {
         energies,
         chosen,
@@ -195,6 +211,24 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
+    // The approaches of shear and biaxial studies other than the scene's.
+    let mut approaches: Vec<crate::active::Approach> = vec![scene.models.approach];
+    for s in &results.studies {
+        let models: Vec<&crate::studies::spec::ApproachModel> = match &s.result {
+            StudyResult::Shear(r) => r.curves.iter().map(|c| &c.model).collect(),
+            StudyResult::Biaxial(r) => r.curves.iter().map(|c| &c.model).collect(),
+            _ => continue,
+        };
+        for m in models.iter().filter(|m| m.model.is_some()) {
+            if !approaches.contains(&m.approach) {
+                approaches.push(m.approach);
+                rows.push(approach_row(&crate::models::Models {
+                    approach: m.approach,
+                    ..scene.models.clone()
+                }));
+            }
+        }
+    }
     if let Some(v) = &scene.models.volumetric {
         let form = v.form().formula();
         rows.push((
@@ -696,4 +730,68 @@ fn stability_table(h: &mut String, results: &Results) -> Result<(), AppError> {
     }
     h.push_str("</table>\n");
     Ok(())
+}
+
+/// What differs in simple shear and why: σ₁₂ at the largest amount of shear per model and fibre
+/// angle, with the boundary conditions.
+fn shear_section(h: &mut String, results: &Results) {
+    for s in &results.studies {
+        let StudyResult::Shear(r) = &s.result else {
+            continue;
+        };
+        let _ = writeln!(
+            h,
+            "<h2>Simple shear (study \"{}\")</h2>\n<p>F = I + k e₁⊗e₂, incompressible; the faces normal to e₃ are traction free (σ₃₃ = 0 fixes the pressure), the others carry what the homogeneous state needs. The fibre lies in the shear plane at θ to e₁. Every approach is calibrated to the same uniaxial target along the fibres, so uniaxial tests cannot tell them apart; in shear they differ. With the fibre along the shear direction (θ = 0) the fibre stretch stays 1: active stress adds only a tension (1 − d) P_act(1) along e₁ (σ₁₁), while active strain (and the structural activation) stiffen or soften the shear response itself (Giantesio, Musesti &amp; Riccobelli 2019).</p>\n<table><tr><th>model</th><th>θ</th><th>k</th><th>σ₁₂ [kPa]</th><th>σ₁₁ [kPa]</th><th>σ₂₂ [kPa]</th></tr>",
+            escape(&s.name)
+        );
+        for c in &r.curves {
+            let Some(p) = c.points.last() else { continue };
+            let words = c.model.words();
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}°</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(&words),
+                c.angle,
+                p.k,
+                crate::text::significant(p.sigma[0], 6),
+                crate::text::significant(p.sigma[1], 6),
+                crate::text::significant(p.sigma[2], 6)
+            );
+        }
+        h.push_str("</table>\n");
+    }
+}
+
+/// Planar biaxial stretch: the boundary conditions, and both stresses at the last state of the
+/// path per model.
+fn biaxial_section(h: &mut String, results: &Results) {
+    for s in &results.studies {
+        let StudyResult::Biaxial(r) = &s.result else {
+            continue;
+        };
+        let _ = writeln!(
+            h,
+            "<h2>Planar biaxial stretch (study \"{}\", {} path)</h2>\n<p>F = diag(λ₁, λ₂, λ₃), λ₁ along the fibres and λ₂ across; the faces normal to e₃ are traction free, so λ₃ = 1/(λ₁λ₂) (incompressible) or solves P₃₃ = 0 with the volumetric energy. An isotropic material has P₁₁ = P₂₂ on the equibiaxial path; the fibres, and an activation along them, break that symmetry. Active stress adds (1 − d) P_act(λ₁) to P₁₁ alone; active strain changes the stiffness across the fibres too.</p>\n<table><tr><th>model</th><th>λ₁</th><th>λ₂</th><th>λ₃</th><th>P₁₁ [kPa]</th><th>P₂₂ [kPa]</th><th>σ₁₁ [kPa]</th><th>σ₂₂ [kPa]</th></tr>",
+            escape(&s.name),
+            r.path
+        );
+        let number = |x: f64| crate::text::significant(x, 6);
+        for c in &r.curves {
+            let Some(p) = c.points.last() else { continue };
+            let [l1, l2, l3] = p.stretches;
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(&c.model.words()),
+                number(l1),
+                number(l2),
+                number(l3),
+                number(p.nominal[0]),
+                number(p.nominal[1]),
+                number(p.cauchy[0]),
+                number(p.cauchy[1])
+            );
+        }
+        h.push_str("</table>\n");
+    }
 }

@@ -75,12 +75,16 @@ fn study(text: &str, file: &str, item: Spanned<DeValue>) -> Result<StudySpec, Sc
         ));
     };
     let Some(kind) = table.remove("kind") else {
+        let kinds: Vec<String> = StudyKind::ALL
+            .iter()
+            .map(|k| format!("\"{}\"", k.name()))
+            .collect();
         return Err(at(
             text,
             file,
             span,
             "kind",
-            "every study needs kind = \"uniaxial\" | \"cylinder\" | \"fit\" | \"stability\" | \"tradeoff\" | \"activation-in-time\"",
+            &format!("every study needs kind = {}", kinds.join(" | ")),
         ));
     };
     let kind = StudyKind::deserialize(ValueDeserializer::from(kind))

@@ -1,7 +1,7 @@
-//! The studies a scene can hold, one module each: its spec as written ([`StudySpec`], unknown
-//! keys rejected per kind), its validated form ([`Study`]), how it runs and what it returns
-//! ([`Outcome`], with a typed [`StudyResult`]). Studies build their models through
-//! [`crate::models`] and know nothing of scene files or outputs.
+//! The studies a scene can hold, one module each: its spec as written (unknown keys rejected per
+//! kind), its validated form, how it runs and what it returns ([`Outcome`], with a typed
+//! [`StudyResult`]). Studies build their models through [`crate::models`] and know nothing of
+//! scene files or outputs.
 //!
 //! | kind | module | result |
 //! |---|---|---|
@@ -11,15 +11,21 @@
 //! | `stability` | [`stability`] | softening and strong ellipticity along the fibres |
 //! | `tradeoff` | [`tradeoff`] | speed versus accuracy of every option |
 //! | `activation-in-time` | [`history`] | a 0D block driven in time by a(t) |
+//! | `shear` | [`shear`] | simple shear per approach and fibre angle |
+//! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
 //!
-//! Adding a kind: a module with its spec, `resolve`, study type and `run`, and one line in each
-//! of [`StudyKind`], [`StudySpec`], [`Study`] and the matches below.
+//! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
+//! and `impl KindStudy` for the study, and one line in `study_kinds!` below, which generates
+//! [`StudyKind`], [`StudySpec`], [`Study`], [`StudyResult`] and their dispatch.
 
+pub mod biaxial;
 pub mod cylinder;
 pub mod fit;
 pub mod history;
+pub mod shear;
 pub mod spec;
 pub mod stability;
+pub mod table;
 pub mod tradeoff;
 pub mod uniaxial;
 
@@ -33,205 +39,274 @@ use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
-/// Study kinds (`kind = "..."`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum StudyKind {
-    /// Homogeneous uniaxial tension (0D).
-    Uniaxial,
-    /// The axisymmetric FE cylinder.
-    Cylinder,
-    /// A least-squares fit of model parameters.
-    Fit,
-    /// Material stability along the uniaxial path along the fibres.
-    Stability,
-    /// Speed versus accuracy of every option that trades one for the other.
-    Tradeoff,
-    /// A homogeneous block driven in time by an activation level a(t).
-    ActivationInTime,
+/// A study kind's spec as written: it validates itself against the scene's defaults, returning
+/// the validated study and the spec with every default written out.
+pub trait KindSpec: Sized {
+    /// The validated study.
+    type Study;
+    /// Keys in errors are relative to the study.
+    fn resolve(&self, defaults: &Defaults) -> Result<(Self::Study, Self), SpecError>;
 }
 
-impl StudyKind {
-    /// Name in scene files and outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            StudyKind::Uniaxial => "uniaxial",
-            StudyKind::Cylinder => "cylinder",
-            StudyKind::Fit => "fit",
-            StudyKind::Stability => "stability",
-            StudyKind::Tradeoff => "tradeoff",
-            StudyKind::ActivationInTime => "activation-in-time",
-        }
-    }
-
-    /// What to say about a key this kind of study does not take (`" (it takes a list: ...)"`),
-    /// or nothing.
-    pub fn hint(self, key: &str) -> String {
-        let hints = match self {
-            StudyKind::Uniaxial => uniaxial::HINTS,
-            StudyKind::Cylinder => cylinder::HINTS,
-            StudyKind::Fit => fit::HINTS,
-            StudyKind::Stability => stability::HINTS,
-            StudyKind::Tradeoff => tradeoff::HINTS,
-            StudyKind::ActivationInTime => history::HINTS,
-        };
-        hints
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map_or(String::new(), |(_, h)| format!(" ({h})"))
-    }
-}
-
-/// One `[[study]]` as written, by kind.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case")]
-pub enum StudySpec {
-    /// `kind = "uniaxial"`.
-    Uniaxial(uniaxial::UniaxialSpec),
-    /// `kind = "cylinder"`.
-    Cylinder(cylinder::CylinderSpec),
-    /// `kind = "fit"`.
-    Fit(fit::FitSpec),
-    /// `kind = "stability"`.
-    Stability(stability::StabilitySpec),
-    /// `kind = "tradeoff"`.
-    Tradeoff(tradeoff::TradeoffSpec),
-    /// `kind = "activation-in-time"`.
-    ActivationInTime(history::HistorySpec),
-}
-
-impl StudySpec {
-    /// The spec of a study of `kind` from a table without its `kind` key, so that errors keep
-    /// their position in the file (serde's internally tagged enums lose it).
-    pub fn of_kind<'de, D: Deserializer<'de>>(kind: StudyKind, table: D) -> Result<Self, D::Error> {
-        Ok(match kind {
-            StudyKind::Uniaxial => StudySpec::Uniaxial(Deserialize::deserialize(table)?),
-            StudyKind::Cylinder => StudySpec::Cylinder(Deserialize::deserialize(table)?),
-            StudyKind::Fit => StudySpec::Fit(Deserialize::deserialize(table)?),
-            StudyKind::Stability => StudySpec::Stability(Deserialize::deserialize(table)?),
-            StudyKind::Tradeoff => StudySpec::Tradeoff(Deserialize::deserialize(table)?),
-            StudyKind::ActivationInTime => {
-                StudySpec::ActivationInTime(Deserialize::deserialize(table)?)
-            }
-        })
-    }
-
-    /// Its kind.
-    pub fn kind(&self) -> StudyKind {
-        match self {
-            StudySpec::Uniaxial(_) => StudyKind::Uniaxial,
-            StudySpec::Cylinder(_) => StudyKind::Cylinder,
-            StudySpec::Fit(_) => StudyKind::Fit,
-            StudySpec::Stability(_) => StudyKind::Stability,
-            StudySpec::Tradeoff(_) => StudyKind::Tradeoff,
-            StudySpec::ActivationInTime(_) => StudyKind::ActivationInTime,
-        }
-    }
-
-    /// Validates the spec against the scene's defaults; returns the study and the spec with
-    /// every default written out. Keys in errors are relative to the study.
-    pub fn resolve(&self, defaults: &Defaults) -> Result<(Study, StudySpec), SpecError> {
-        Ok(match self {
-            StudySpec::Uniaxial(s) => {
-                let (study, r) = uniaxial::resolve(s, defaults)?;
-                (Study::Uniaxial(study), StudySpec::Uniaxial(r))
-            }
-            StudySpec::Cylinder(s) => {
-                let (study, r) = cylinder::resolve(s, defaults)?;
-                (Study::Cylinder(study), StudySpec::Cylinder(r))
-            }
-            StudySpec::Fit(s) => {
-                let (study, r) = fit::resolve(s, defaults)?;
-                (Study::Fit(study), StudySpec::Fit(r))
-            }
-            StudySpec::Stability(s) => {
-                let (study, r) = stability::resolve(s, defaults)?;
-                (Study::Stability(study), StudySpec::Stability(r))
-            }
-            StudySpec::Tradeoff(s) => {
-                let (study, r) = tradeoff::resolve(s)?;
-                (Study::Tradeoff(study), StudySpec::Tradeoff(r))
-            }
-            StudySpec::ActivationInTime(s) => {
-                let (study, r) = history::resolve(s, defaults)?;
-                (
-                    Study::ActivationInTime(study),
-                    StudySpec::ActivationInTime(r),
-                )
-            }
-        })
-    }
-}
-
-/// A validated study, ready to run.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Study {
-    /// Homogeneous uniaxial tension.
-    Uniaxial(uniaxial::UniaxialStudy),
-    /// The FE cylinder.
-    Cylinder(cylinder::CylinderStudy),
-    /// A least-squares fit.
-    Fit(fit::FitStudy),
-    /// Material stability along the fibres.
-    Stability(stability::StabilityStudy),
-    /// Speed versus accuracy.
-    Tradeoff(tradeoff::TradeoffStudy),
-    /// A 0D block driven in time.
-    ActivationInTime(history::HistoryStudy),
-}
-
-impl Study {
-    /// The study's label.
-    pub fn name(&self) -> &str {
-        match self {
-            Study::Uniaxial(s) => &s.name,
-            Study::Cylinder(s) => &s.name,
-            Study::Fit(s) => &s.name,
-            Study::Stability(s) => &s.name,
-            Study::Tradeoff(s) => &s.name,
-            Study::ActivationInTime(s) => &s.name,
-        }
-    }
-
-    /// Its kind.
-    pub fn kind(&self) -> StudyKind {
-        match self {
-            Study::Uniaxial(_) => StudyKind::Uniaxial,
-            Study::Cylinder(_) => StudyKind::Cylinder,
-            Study::Fit(_) => StudyKind::Fit,
-            Study::Stability(_) => StudyKind::Stability,
-            Study::Tradeoff(_) => StudyKind::Tradeoff,
-            Study::ActivationInTime(_) => StudyKind::ActivationInTime,
-        }
-    }
-
+/// A validated study of some kind.
+pub trait KindStudy {
+    /// Its label.
+    fn name(&self) -> &str;
     /// What it will compute, in one line.
-    pub fn describe(&self) -> String {
-        match self {
-            Study::Uniaxial(s) => s.describe(),
-            Study::Cylinder(s) => s.describe(),
-            Study::Fit(s) => s.describe(),
-            Study::Stability(s) => s.describe(),
-            Study::Tradeoff(s) => s.describe(),
-            Study::ActivationInTime(s) => s.describe(),
-        }
-    }
+    fn describe(&self) -> String;
+    /// Runs it on `models`; `fallback` completes a trade-off study.
+    fn run(
+        &self,
+        models: &Models,
+        fallback: &tradeoff::Fallback,
+        ctx: &RunContext,
+    ) -> Result<Outcome, AppError>;
+}
 
-    /// Runs the study on `models`; `fallback` completes a trade-off study.
-    pub fn run(
+/// The study kinds: `study_kinds! { Variant("name", module::Spec, module::Study, Result, "doc"), ... }`
+/// generates the four enums and every dispatch over them.
+macro_rules! study_kinds {
+    ($($(#[$doc:meta])* $variant:ident($name:literal, $spec:ty, $study:ty, $result:ty, $hints:expr)),* $(,)?) => {
+        /// Study kinds (`kind = "..."`).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+        #[serde(rename_all = "kebab-case")]
+        pub enum StudyKind {
+            $($(#[$doc])* $variant,)*
+        }
+
+        impl StudyKind {
+            /// Every kind, in the order of the registry.
+            pub const ALL: &'static [StudyKind] = &[$(StudyKind::$variant,)*];
+
+            /// Name in scene files and outputs.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(StudyKind::$variant => $name,)*
+                }
+            }
+
+            /// What to say about a key this kind of study does not take (`" (it takes a list:
+            /// ...)"`), or nothing.
+            pub fn hint(self, key: &str) -> String {
+                let hints: &[(&str, &str)] = match self {
+                    $(StudyKind::$variant => $hints,)*
+                };
+                hints
+                    .iter()
+                    .find(|(k, _)| *k == key)
+                    .map_or(String::new(), |(_, h)| format!(" ({h})"))
+            }
+        }
+
+        /// One `[[study]]` as written, by kind.
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(tag = "kind", rename_all = "kebab-case")]
+        pub enum StudySpec {
+            $($(#[$doc])* $variant($spec),)*
+        }
+
+        impl StudySpec {
+            /// The spec of a study of `kind` from a table without its `kind` key, so that errors
+            /// keep their position in the file (serde's internally tagged enums lose it).
+            pub fn of_kind<'de, D: Deserializer<'de>>(kind: StudyKind, table: D) -> Result<Self, D::Error> {
+                Ok(match kind {
+                    $(StudyKind::$variant => StudySpec::$variant(Deserialize::deserialize(table)?),)*
+                })
+            }
+
+            /// Its kind.
+            pub fn kind(&self) -> StudyKind {
+                match self {
+                    $(StudySpec::$variant(_) => StudyKind::$variant,)*
+                }
+            }
+
+            /// Validates the spec against the scene's defaults; returns the study and the spec
+            /// with every default written out. Keys in errors are relative to the study.
+            pub fn resolve(&self, defaults: &Defaults) -> Result<(Study, StudySpec), SpecError> {
+                Ok(match self {
+                    $(StudySpec::$variant(s) => {
+                        let (study, r) = KindSpec::resolve(s, defaults)?;
+                        (Study::$variant(study), StudySpec::$variant(r))
+                    })*
+                })
+            }
+        }
+
+        /// A validated study, ready to run.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum Study {
+            $($(#[$doc])* $variant($study),)*
+        }
+
+        impl Study {
+            /// The study's label.
+            pub fn name(&self) -> &str {
+                match self {
+                    $(Study::$variant(s) => KindStudy::name(s),)*
+                }
+            }
+
+            /// Its kind.
+            pub fn kind(&self) -> StudyKind {
+                match self {
+                    $(Study::$variant(_) => StudyKind::$variant,)*
+                }
+            }
+
+            /// What it will compute, in one line.
+            pub fn describe(&self) -> String {
+                match self {
+                    $(Study::$variant(s) => KindStudy::describe(s),)*
+                }
+            }
+
+            /// Runs the study on `models`; `fallback` completes a trade-off study.
+            pub fn run(
+                &self,
+                models: &Models,
+                fallback: &tradeoff::Fallback,
+                ctx: &RunContext,
+            ) -> Result<Outcome, AppError> {
+                match self {
+                    $(Study::$variant(s) => KindStudy::run(s, models, fallback, ctx),)*
+                }
+            }
+        }
+
+        /// What a study computed.
+        #[derive(Debug, Clone, PartialEq)]
+        pub enum StudyResult {
+            $($(#[$doc])* $variant($result),)*
+            /// Nothing: the study stopped with an error before computing a result (the error is
+            /// its failure, [`Outcome::nothing`]).
+            Nothing,
+        }
+    };
+}
+
+// A new study kind: its module (spec, study, result; `impl KindSpec`, `impl KindStudy`) and one
+// line here.
+study_kinds! {
+    /// Homogeneous uniaxial tension (0D).
+    Uniaxial("uniaxial", uniaxial::UniaxialSpec, uniaxial::UniaxialStudy, uniaxial::UniaxialResult, uniaxial::HINTS),
+    /// The axisymmetric FE cylinder.
+    Cylinder("cylinder", cylinder::CylinderSpec, cylinder::CylinderStudy, cylinder::CylinderResult, cylinder::HINTS),
+    /// A least-squares fit of model parameters.
+    Fit("fit", fit::FitSpec, fit::FitStudy, Vec<fit::FitOutcome>, fit::HINTS),
+    /// Material stability along the uniaxial path along the fibres.
+    Stability("stability", stability::StabilitySpec, stability::StabilityStudy, Vec<stability::StabilityCurve>, stability::HINTS),
+    /// Speed versus accuracy of every option that trades one for the other.
+    Tradeoff("tradeoff", tradeoff::TradeoffSpec, tradeoff::TradeoffStudy, tradeoff::TradeoffResults, tradeoff::HINTS),
+    /// A homogeneous block driven in time by an activation level a(t).
+    ActivationInTime("activation-in-time", history::HistorySpec, history::HistoryStudy, history::HistoryResult, history::HINTS),
+    /// Homogeneous simple shear, per activation approach and fibre angle.
+    Shear("shear", shear::ShearSpec, shear::ShearStudy, shear::ShearResult, shear::HINTS),
+    /// Homogeneous planar biaxial stretch.
+    Biaxial("biaxial", biaxial::BiaxialSpec, biaxial::BiaxialStudy, biaxial::BiaxialResult, biaxial::HINTS),
+}
+
+/// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
+/// whose study has `name`, `describe()` and `run(models, ctx)`.
+macro_rules! plain_kind {
+    ($spec:ty, $study:ty, $resolve:path) => {
+        impl KindSpec for $spec {
+            type Study = $study;
+            fn resolve(&self, d: &Defaults) -> Result<($study, Self), SpecError> {
+                $resolve(self, d)
+            }
+        }
+        impl KindStudy for $study {
+            fn name(&self) -> &str {
+                &self.name
+            }
+            fn describe(&self) -> String {
+                <$study>::describe(self)
+            }
+            fn run(
+                &self,
+                models: &Models,
+                _: &tradeoff::Fallback,
+                ctx: &RunContext,
+            ) -> Result<Outcome, AppError> {
+                <$study>::run(self, models, ctx)
+            }
+        }
+    };
+}
+
+plain_kind!(
+    uniaxial::UniaxialSpec,
+    uniaxial::UniaxialStudy,
+    uniaxial::resolve
+);
+plain_kind!(
+    cylinder::CylinderSpec,
+    cylinder::CylinderStudy,
+    cylinder::resolve
+);
+plain_kind!(
+    stability::StabilitySpec,
+    stability::StabilityStudy,
+    stability::resolve
+);
+plain_kind!(
+    history::HistorySpec,
+    history::HistoryStudy,
+    history::resolve
+);
+plain_kind!(shear::ShearSpec, shear::ShearStudy, shear::resolve);
+plain_kind!(
+    biaxial::BiaxialSpec,
+    biaxial::BiaxialStudy,
+    biaxial::resolve
+);
+
+impl KindSpec for fit::FitSpec {
+    type Study = fit::FitStudy;
+    fn resolve(&self, d: &Defaults) -> Result<(fit::FitStudy, Self), SpecError> {
+        fit::resolve(self, d)
+    }
+}
+
+impl KindStudy for fit::FitStudy {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn describe(&self) -> String {
+        fit::FitStudy::describe(self)
+    }
+    fn run(
+        &self,
+        _: &Models,
+        _: &tradeoff::Fallback,
+        ctx: &RunContext,
+    ) -> Result<Outcome, AppError> {
+        fit::FitStudy::run(self, ctx)
+    }
+}
+
+impl KindSpec for tradeoff::TradeoffSpec {
+    type Study = tradeoff::TradeoffStudy;
+    fn resolve(&self, _: &Defaults) -> Result<(tradeoff::TradeoffStudy, Self), SpecError> {
+        tradeoff::resolve(self)
+    }
+}
+
+impl KindStudy for tradeoff::TradeoffStudy {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn describe(&self) -> String {
+        tradeoff::TradeoffStudy::describe(self)
+    }
+    fn run(
         &self,
         models: &Models,
         fallback: &tradeoff::Fallback,
         ctx: &RunContext,
     ) -> Result<Outcome, AppError> {
-        match self {
-            Study::Uniaxial(s) => s.run(models, ctx),
-            Study::Cylinder(s) => s.run(models, ctx),
-            Study::Fit(s) => s.run(ctx),
-            Study::Stability(s) => s.run(models, ctx),
-            Study::Tradeoff(s) => s.run(models, fallback, ctx),
-            Study::ActivationInTime(s) => s.run(models, ctx),
-        }
+        tradeoff::TradeoffStudy::run(self, models, fallback, ctx)
     }
 }
 
@@ -343,26 +418,6 @@ pub struct Failure {
     pub model: String,
     /// What happened.
     pub message: String,
-}
-
-/// What a study computed.
-#[derive(Debug, Clone, PartialEq)]
-pub enum StudyResult {
-    /// Uniaxial curves.
-    Uniaxial(uniaxial::UniaxialResult),
-    /// FE sweeps.
-    Cylinder(cylinder::CylinderResult),
-    /// Fits, converged or not.
-    Fit(Vec<fit::FitOutcome>),
-    /// Stability curves.
-    Stability(Vec<stability::StabilityCurve>),
-    /// Trade-off measurements.
-    Tradeoff(tradeoff::TradeoffResults),
-    /// Histories in time.
-    ActivationInTime(history::HistoryResult),
-    /// Nothing: the study stopped with an error before computing a result (the error is its
-    /// failure, [`Outcome::nothing`]).
-    Nothing,
 }
 
 /// One study's outcome: its result, its failures and its summary.

@@ -3,7 +3,7 @@
 //! relative to the study (`stretch.step`, `damage[1]`).
 
 use crate::app_error::SpecError;
-use crate::models::{CouplingKind, LawKind, Models};
+use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 use std::fmt;
@@ -95,15 +95,21 @@ impl StretchSpec {
     /// The stretches: finite, > 0, ascending without duplicates, at most 100 000; errors name
     /// `key` (`stretch`, `stretch.step`).
     pub fn resolve(&self, key: &str) -> Result<Vec<f64>, SpecError> {
-        self.grid(key, false)
+        self.grid(key, Grid::Stretch)
     }
 
     /// The same list read as times t \[s\]: finite, ≥ 0, ascending without duplicates.
     pub fn resolve_times(&self, key: &str) -> Result<Vec<f64>, SpecError> {
-        self.grid(key, true)
+        self.grid(key, Grid::Time)
     }
 
-    fn grid(&self, key: &str, times: bool) -> Result<Vec<f64>, SpecError> {
+    /// The same list read as amounts of shear k [-]: finite, any sign, ascending without
+    /// duplicates.
+    pub fn resolve_amounts(&self, key: &str) -> Result<Vec<f64>, SpecError> {
+        self.grid(key, Grid::Amount)
+    }
+
+    fn grid(&self, key: &str, grid: Grid) -> Result<Vec<f64>, SpecError> {
         const MAX: usize = 100_000;
         let mut v = match self {
             StretchSpec::List(v) => v.clone(),
@@ -150,17 +156,24 @@ impl StretchSpec {
                 v
             }
         };
-        let (what, rule) = if times {
-            ("time", "every time must be finite and ≥ 0")
-        } else {
-            ("stretch", "every stretch must be finite and > 0")
+        let (what, rule) = match grid {
+            Grid::Time => ("time", "every time must be finite and ≥ 0"),
+            Grid::Stretch => ("stretch", "every stretch must be finite and > 0"),
+            Grid::Amount => ("amount of shear", "every amount of shear must be finite"),
         };
         non_empty(
             key,
             &v,
             &format!("the {what} list is empty: give at least one {what}"),
         )?;
-        let admissible = |x: f64| x.is_finite() && (x > 0.0 || (times && x == 0.0));
+        let admissible = |x: f64| {
+            x.is_finite()
+                && match grid {
+                    Grid::Stretch => x > 0.0,
+                    Grid::Time => x >= 0.0,
+                    Grid::Amount => true,
+                }
+        };
         if let Some(bad) = v.iter().find(|x| !admissible(**x)) {
             return Err(SpecError::new(key, bad, rule));
         }
@@ -168,6 +181,14 @@ impl StretchSpec {
         v.dedup();
         Ok(v)
     }
+}
+
+/// What a [`StretchSpec`] lists.
+#[derive(Clone, Copy)]
+enum Grid {
+    Stretch,
+    Time,
+    Amount,
 }
 
 /// The stretches of an optional `stretch` key; errors name `stretch`.
@@ -272,4 +293,93 @@ pub fn couplings_for(laws: &[LawKind], couplings: &[CouplingKind]) -> Result<(),
     } else {
         Ok(())
     }
+}
+
+/// One model of a study that compares activation approaches: the scene's models with the
+/// approach set, and the model choice (law × coupling × damage; for active stress the law and
+/// coupling are unused). `None`: the passive material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ApproachModel {
+    /// The approach.
+    pub approach: crate::active::Approach,
+    /// The model (`None`: passive).
+    pub model: Option<ModelChoice>,
+}
+
+impl ApproachModel {
+    /// Its (approach, law, coupling) table cells: the passive material has law `passive` and
+    /// no approach; active stress has no law or coupling.
+    pub fn cells(&self) -> [Option<String>; 3] {
+        match (self.model, self.approach.has_law()) {
+            (None, _) => [None, Some("passive".into()), None],
+            (Some(_), false) => [Some(self.approach.name().into()), None, None],
+            (Some(c), true) => [
+                Some(self.approach.name().into()),
+                Some(c.law.name().into()),
+                Some(c.coupling.name().into()),
+            ],
+        }
+    }
+
+    /// The model in words without the energy, for legends and tables: `passive`,
+    /// `active-stress, d = 0`, `active-strain, implicit law, frozen coupling, d = 0`.
+    pub fn words(&self) -> String {
+        match (self.cells(), self.model) {
+            ([None, ..], _) | (_, None) => "passive".into(),
+            ([Some(a), Some(l), Some(k)], Some(m)) => {
+                format!("{a}, {l} law, {k} coupling, d = {}", m.damage)
+            }
+            ([Some(a), ..], Some(m)) => format!("{a}, d = {}", m.damage),
+        }
+    }
+
+    /// The model in words: `…, passive`, `…, active stress, d = 0`, `…, implicit law, frozen
+    /// coupling, d = 0`.
+    pub fn label(&self, models: &Models) -> String {
+        match self.model {
+            None => format!("{}, passive", crate::StrainEnergy::name(&models.energy)),
+            Some(c) => Models {
+                approach: self.approach,
+                ..models.clone()
+            }
+            .label(&c),
+        }
+    }
+}
+
+/// Every approach × law × coupling × damage a study asks for, each approach checked against
+/// the material (`approaches[j]`, `laws[j]` name the offending entry).
+pub fn approach_models(
+    models: &Models,
+    approaches: &[crate::active::Approach],
+    laws: &[LawKind],
+    couplings: &[CouplingKind],
+    damages: &[f64],
+) -> Result<Vec<ApproachModel>, SpecError> {
+    let mut out = Vec::new();
+    for (j, &approach) in approaches.iter().enumerate() {
+        let m = Models {
+            approach,
+            ..models.clone()
+        };
+        m.activation_map().map_err(|rule| {
+            SpecError::new(
+                format!("approaches[{j}]"),
+                format!("{:?}", approach.name()),
+                rule,
+            )
+        })?;
+        if approach.has_law() {
+            supported_laws("laws", laws, &m)?;
+        }
+        out.extend(
+            m.choices(laws, couplings, damages)
+                .into_iter()
+                .map(|c| ApproachModel {
+                    approach,
+                    model: Some(c),
+                }),
+        );
+    }
+    Ok(out)
 }

@@ -56,6 +56,7 @@ mod scene_incompressibility;
 mod scene_specs;
 mod scene_tradeoff;
 mod scratch_dirs;
+mod shear_biaxial;
 mod stability;
 mod tabulated_law;
 mod tangents;

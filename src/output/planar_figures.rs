@@ -1,0 +1,257 @@
+//! The figures of the homogeneous studies beyond uniaxial tension: simple shear (σ₁₂ against k
+//! per approach and fibre angle, the difference between active strain and active stress, and the
+//! normal stresses) and planar biaxial stretch (both nominal stresses along the path).
+
+use super::plot::{Figure, Panel, Series, Stroke};
+use crate::studies::biaxial::BiaxialResult;
+use crate::studies::shear::{ShearCurve, ShearResult};
+use crate::studies::slug;
+
+const SHEAR: &str = "amount of shear k [-]";
+const CAUCHY: &str = "Cauchy stress [kPa]";
+
+fn strokes(i: usize) -> Stroke {
+    [Stroke::Solid, Stroke::Dashed, Stroke::Dotted][i % 3]
+}
+
+/// The model of a curve in words.
+fn model_words(c: &ShearCurve) -> String {
+    c.model.words()
+}
+
+fn stem(kind: &str, study: &str) -> String {
+    let s = slug(study);
+    if s.starts_with(kind) {
+        format!("fig_{s}")
+    } else {
+        format!("fig_{kind}_{s}")
+    }
+}
+
+/// A panel of the series that have points, or `None`.
+fn panel(title: &str, x: &str, y: &str, series: Vec<Series>) -> Option<Panel> {
+    let series: Vec<Series> = series
+        .into_iter()
+        .filter(|s| !s.points.is_empty())
+        .collect();
+    (!series.is_empty()).then(|| Panel::new(title, x, y, series))
+}
+
+/// Simple shear: σ₁₂(k) of every model and fibre angle, active strain minus active stress at
+/// the same damage and angle, and the normal stresses σ₁₁, σ₂₂.
+pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
+    let mut angles: Vec<f64> = Vec::new();
+    for c in &r.curves {
+        if !angles.contains(&c.angle) {
+            angles.push(c.angle);
+        }
+    }
+    let mut models: Vec<String> = Vec::new();
+    for c in &r.curves {
+        let w = model_words(c);
+        if !models.contains(&w) {
+            models.push(w);
+        }
+    }
+    let style = |c: &ShearCurve| {
+        let colour = models
+            .iter()
+            .position(|m| *m == model_words(c))
+            .unwrap_or(0);
+        let stroke = strokes(angles.iter().position(|a| *a == c.angle).unwrap_or(0));
+        (stroke, colour % 6)
+    };
+    let of = |y: fn(&[f64; 4]) -> f64| -> Vec<Series> {
+        r.curves
+            .iter()
+            .map(|c| {
+                let (stroke, colour) = style(c);
+                Series::new(
+                    format!("{}, θ = {}°", model_words(c), c.angle),
+                    c.points.iter().map(|p| (p.k, y(&p.sigma))).collect(),
+                    stroke,
+                    colour,
+                )
+            })
+            .collect()
+    };
+    // Active strain (and structural) minus active stress, at the same damage and angle.
+    let mut difference = Vec::new();
+    for c in r
+        .curves
+        .iter()
+        .filter(|c| c.model.approach.has_law() && c.model.model.is_some())
+    {
+        let d = c.model.model.map(|m| m.damage);
+        let Some(s) = r.curves.iter().find(|s| {
+            !s.model.approach.has_law()
+                && s.model.model.map(|m| m.damage) == d
+                && s.angle == c.angle
+        }) else {
+            continue;
+        };
+        let points: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .filter_map(|p| {
+                s.points
+                    .iter()
+                    .find(|q| q.k == p.k)
+                    .map(|q| (p.k, p.sigma[0] - q.sigma[0]))
+            })
+            .collect();
+        let (stroke, colour) = style(c);
+        difference.push(Series::new(
+            format!("{} − active stress, θ = {}°", model_words(c), c.angle),
+            points,
+            stroke,
+            colour,
+        ));
+    }
+    let hidden = coinciding(r);
+    let panels: Vec<Panel> = [
+        panel("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
+        panel(
+            "σ₁₂ of each activated approach minus that of active stress (same d, same θ)",
+            SHEAR,
+            "Δσ₁₂ [kPa]",
+            difference,
+        ),
+        panel(
+            "Normal stress σ₁₁ (along the shear direction)",
+            SHEAR,
+            CAUCHY,
+            of(|s| s[1]),
+        ),
+        panel(
+            "Normal stress σ₂₂ (across the shear plane's normal)",
+            SHEAR,
+            CAUCHY,
+            of(|s| s[2]),
+        ),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    (!panels.is_empty()).then(|| {
+        Figure::new(
+            stem("shear", study),
+            format!("Simple shear: the activation approaches compared (study \"{study}\")"),
+            format!(
+                "Homogeneous simple shear F = I + k e₁⊗e₂ of the {} energy, incompressible, the faces normal to e₃ traction free (σ₃₃ = 0 gives the pressure), the fibre in the shear plane at θ to the shear direction e₁ (solid, dashed, dotted: θ = {} in order). Every approach is calibrated to the same uniaxial target along the fibres, P_pas + (1 − d) P_act, and agrees there; in shear they differ. At θ = 0 the fibre stretch stays 1: active stress adds only σ₁₁ = (1 − d) P_act(1), while active strain changes the shear stiffness itself (Giantesio, Musesti & Riccobelli 2019).{hidden} Values in shear.csv.",
+                r.energy,
+                angles.iter().map(|a| format!("{a}°")).collect::<Vec<_>>().join(", ")
+            ),
+            panels,
+        )
+    })
+}
+
+/// A caption sentence for the activated curves that σ₁₂ cannot tell apart at the figure's scale
+/// (largest |Δσ₁₂| within 2 % of the larger curve's largest |σ₁₂|, same d and θ), since the
+/// curve drawn later hides the other; empty if there are none.
+fn coinciding(r: &ShearResult) -> String {
+    let active: Vec<&ShearCurve> = r
+        .curves
+        .iter()
+        .filter(|c| c.model.model.is_some())
+        .collect();
+    let mut pairs: Vec<(String, String, f64, f64, Vec<f64>)> = Vec::new();
+    for (i, a) in active.iter().enumerate() {
+        for b in &active[i + 1..] {
+            let damage = |c: &ShearCurve| c.model.model.map(|m| m.damage);
+            if a.angle != b.angle || damage(a) != damage(b) {
+                continue;
+            }
+            let (mut diff, mut scale) = (0.0_f64, 0.0_f64);
+            for p in &a.points {
+                if let Some(q) = b.points.iter().find(|q| q.k == p.k) {
+                    diff = diff.max((p.sigma[0] - q.sigma[0]).abs());
+                    scale = scale.max(p.sigma[0].abs()).max(q.sigma[0].abs());
+                }
+            }
+            if scale > 0.0 && diff <= 0.02 * scale {
+                let (wa, wb) = (model_words(a), model_words(b));
+                match pairs.iter_mut().find(|p| p.0 == wa && p.1 == wb) {
+                    Some(p) => {
+                        p.2 = p.2.max(diff);
+                        p.3 = p.3.max(diff / scale);
+                        p.4.push(a.angle);
+                    }
+                    None => pairs.push((wa, wb, diff, diff / scale, vec![a.angle])),
+                }
+            }
+        }
+    }
+    pairs
+        .iter()
+        .map(|(a, b, diff, rel, angles)| {
+            format!(
+                " In σ₁₂, \"{a}\" and \"{b}\" coincide to within {} kPa ({} % of the larger curve) at θ = {}, so the curve drawn later hides the other.",
+                crate::text::significant(*diff, 2),
+                crate::text::significant(rel * 100.0, 2),
+                angles.iter().map(|a| format!("{a}°")).collect::<Vec<_>>().join(", ")
+            )
+        })
+        .collect()
+}
+
+/// Planar biaxial stretch: P₁₁ and P₂₂ along the path, per model.
+pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
+    let x = if r.path == "pairs" {
+        "state (index of the (λ₁, λ₂) pair) [-]"
+    } else {
+        "stretch along the fibres λ₁ [-]"
+    };
+    let series = |i: usize| -> Vec<Series> {
+        r.curves
+            .iter()
+            .enumerate()
+            .map(|(j, c)| {
+                let words = c.model.words();
+                let points = c
+                    .points
+                    .iter()
+                    .enumerate()
+                    .map(|(n, p)| {
+                        let at = if r.path == "pairs" {
+                            n as f64
+                        } else {
+                            p.stretches[0]
+                        };
+                        (at, p.nominal[i])
+                    })
+                    .collect();
+                Series::new(words, points, Stroke::Solid, j % 6)
+            })
+            .collect()
+    };
+    let panels: Vec<Panel> = [
+        panel(
+            "Nominal stress along the fibres P₁₁",
+            x,
+            "P₁₁ [kPa]",
+            series(0),
+        ),
+        panel(
+            "Nominal stress across the fibres P₂₂",
+            x,
+            "P₂₂ [kPa]",
+            series(1),
+        ),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    (!panels.is_empty()).then(|| {
+        Figure::new(
+            stem("biaxial", study),
+            format!("Planar biaxial stretch, {} (study \"{study}\")", r.path),
+            format!(
+                "Homogeneous planar biaxial stretch F = diag(λ₁, λ₂, λ₃) of the {} energy, λ₁ along the fibres and λ₂ across, the faces normal to e₃ traction free (λ₃ from incompressibility or the volumetric energy). Cauchy stresses and λ₃ in biaxial.csv.",
+                r.energy
+            ),
+            panels,
+        )
+    })
+}

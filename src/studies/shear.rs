@@ -1,0 +1,383 @@
+//! Simple-shear studies (`kind = "shear"`): homogeneous simple shear F = I + k e₁⊗e₂ of an
+//! incompressible block, the fibre in the shear plane at an angle θ to e₁, the faces normal to
+//! e₃ traction free (σ₃₃ = 0 gives the pressure; [`crate::homogeneous`]). Every approach × law ×
+//! coupling × damage the scene asks for, all calibrated to the same uniaxial target along the
+//! fibres (P_pas + (1 − d) P_act): they agree there and differ here. With the fibre along the
+//! shear direction (θ = 0) the fibre stretch stays 1, so active stress adds only
+//! σ₁₁ = T(1) while active strain changes the shear stiffness itself (Giantesio, Musesti &
+//! Riccobelli 2019).
+
+use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
+use super::table::Table;
+use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::Approach;
+use crate::app_error::{AppError, SpecError};
+use crate::homogeneous::simple_shear;
+use crate::models::{CouplingKind, LawKind, Models};
+use crate::StrainEnergy;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// `[[study]] kind = "shear"` as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShearSpec {
+    /// Label (default `simple shear`).
+    pub name: Option<String>,
+    /// Amounts of shear k [-] (required): a list or `{ from, to, step }`.
+    pub shear: Option<StretchSpec>,
+    /// Fibre angles θ to the shear direction e₁, in degrees (default `[0, 45, 90]`).
+    pub fibre_angles: Option<Vec<f64>>,
+    /// Approaches (default `["active-strain", "active-stress"]`).
+    pub approaches: Option<Vec<Approach>>,
+    /// Activation laws of the approaches that have one (default `[activation.law]`).
+    pub laws: Option<Vec<LawKind>>,
+    /// Couplings (default `[activation.coupling]`).
+    pub couplings: Option<Vec<CouplingKind>>,
+    /// Damage values (default `activation.damage`).
+    pub damage: Option<Vec<f64>>,
+    /// Include the passive material (default true).
+    pub passive: Option<bool>,
+}
+
+/// Keys a shear study does not take, and what to write instead.
+pub const HINTS: &[(&str, &str)] = &[
+    (
+        "stretch",
+        "a shear study takes amounts of shear: shear = [...]",
+    ),
+    ("approach", "it takes a list: approaches = [...]"),
+    ("law", "it takes a list: laws = [...]"),
+    ("coupling", "it takes a list: couplings = [...]"),
+];
+
+/// A validated shear study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShearStudy {
+    /// Label.
+    pub name: String,
+    /// Amounts of shear, ascending.
+    pub shear: Vec<f64>,
+    /// Fibre angles [degrees].
+    pub angles: Vec<f64>,
+    /// The models, passive first if asked.
+    pub models: Vec<ApproachModel>,
+}
+
+/// Validates `spec`; returns the study and the spec with every default written out.
+pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec), SpecError> {
+    let shear = spec
+        .shear
+        .as_ref()
+        .ok_or_else(|| {
+            SpecError::new(
+                "shear",
+                "(missing)",
+                "give the amounts of shear k: shear = { from = 0, to = 0.5, step = 0.05 } or a list",
+            )
+        })?
+        .resolve_amounts("shear")?;
+    let angles = spec
+        .fibre_angles
+        .clone()
+        .unwrap_or_else(|| vec![0.0, 45.0, 90.0]);
+    if angles.is_empty() {
+        return Err(SpecError::new(
+            "fibre_angles",
+            "[]",
+            "give at least one fibre angle in degrees",
+        ));
+    }
+    if let Some((j, a)) = angles.iter().enumerate().find(|(_, a)| !a.is_finite()) {
+        return Err(SpecError::new(
+            format!("fibre_angles[{j}]"),
+            a,
+            "must be finite (degrees)",
+        ));
+    }
+    if d.models.volumetric.is_some() {
+        return Err(SpecError::new(
+            "kind",
+            "\"shear\"",
+            "simple shear is computed exactly incompressible (σ₃₃ = 0 by the pressure); the scene's [incompressibility] is nearly incompressible",
+        ));
+    }
+    let approaches = spec
+        .approaches
+        .clone()
+        .unwrap_or_else(|| vec![Approach::ActiveStrain, Approach::ActiveStress]);
+    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
+    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
+    couplings_for(&laws, &couplings)?;
+    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let passive = spec.passive.unwrap_or(true);
+    let mut models = Vec::new();
+    if passive {
+        models.push(ApproachModel {
+            approach: d.models.approach,
+            model: None,
+        });
+    }
+    models.extend(approach_models(
+        d.models,
+        &approaches,
+        &laws,
+        &couplings,
+        &damage,
+    )?);
+    if models.is_empty() {
+        return Err(SpecError::new(
+            "",
+            "(nothing to compute)",
+            "a shear study needs passive = true or approaches",
+        ));
+    }
+    let name = spec.name.clone().unwrap_or_else(|| "simple shear".into());
+    let resolved = ShearSpec {
+        name: Some(name.clone()),
+        shear: spec.shear.clone(),
+        fibre_angles: Some(angles.clone()),
+        approaches: Some(approaches),
+        laws: Some(laws),
+        couplings: Some(couplings),
+        damage: Some(damage),
+        passive: Some(passive),
+    };
+    Ok((
+        ShearStudy {
+            name,
+            shear,
+            angles,
+            models,
+        },
+        resolved,
+    ))
+}
+
+/// One state of simple shear.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShearPoint {
+    /// Amount of shear k [-].
+    pub k: f64,
+    /// Activation γ (ω for the structural approach; 0 for active stress) [-].
+    pub gamma: f64,
+    /// Fibre stretch λ_f [-].
+    pub fibre_stretch: f64,
+    /// Cauchy stresses σ₁₂, σ₁₁, σ₂₂, σ₃₃ \[kPa\].
+    pub sigma: [f64; 4],
+}
+
+/// One curve: a model at one fibre angle.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShearCurve {
+    /// The model.
+    pub model: ApproachModel,
+    /// Fibre angle θ [degrees].
+    pub angle: f64,
+    /// The amounts of shear that could be computed.
+    pub points: Vec<ShearPoint>,
+}
+
+/// What a shear study computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShearResult {
+    /// The energy's name.
+    pub energy: String,
+    /// One curve per model and fibre angle.
+    pub curves: Vec<ShearCurve>,
+}
+
+impl ShearStudy {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "{}: {} amounts of shear in [{}, {}], fibre angles {:?}°, {} model(s)",
+            self.name,
+            self.shear.len(),
+            self.shear.first().copied().unwrap_or(f64::NAN),
+            self.shear.last().copied().unwrap_or(f64::NAN),
+            self.angles,
+            self.models.len()
+        )
+    }
+
+    /// Every curve, in parallel; a state that cannot be computed is counted in a failure.
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        ctx.progress.log(&self.describe());
+        let jobs: Vec<(&ApproachModel, f64)> = self
+            .models
+            .iter()
+            .flat_map(|m| self.angles.iter().map(move |&a| (m, a)))
+            .collect();
+        ctx.progress
+            .start(&self.name, jobs.len() * self.shear.len());
+        let computed: Vec<Result<(ShearCurve, Option<Failure>), AppError>> = jobs
+            .par_iter()
+            .map(|&(m, angle)| self.curve(models, m, angle, ctx))
+            .collect();
+        ctx.progress.finish();
+        let mut curves = Vec::with_capacity(computed.len());
+        let mut failures = Vec::new();
+        for c in computed {
+            let (curve, failure) = c?;
+            curves.push(curve);
+            failures.extend(failure);
+        }
+        let points = curves.iter().map(|c| c.points.len()).sum();
+        Ok(Outcome {
+            name: self.name.clone(),
+            kind: StudyKind::Shear,
+            models: curves.len(),
+            points,
+            requested: jobs.len() * self.shear.len(),
+            elapsed: Default::default(),
+            details: vec![self.describe()],
+            failures,
+            result: StudyResult::Shear(ShearResult {
+                energy: models.energy.name().to_string(),
+                curves,
+            }),
+        })
+    }
+
+    fn curve(
+        &self,
+        models: &Models,
+        m: &ApproachModel,
+        angle: f64,
+        ctx: &RunContext,
+    ) -> Result<(ShearCurve, Option<Failure>), AppError> {
+        let label = m.label(models);
+        let muscle = match m.model {
+            None => models.passive(),
+            Some(c) => Models {
+                approach: m.approach,
+                ..models.clone()
+            }
+            .muscle(c)
+            .map_err(|e| AppError::from(e).within(format!("{}: {label}", self.name)))?,
+        };
+        let mut points = Vec::with_capacity(self.shear.len());
+        let mut first: Option<(f64, String)> = None;
+        let mut failed = 0usize;
+        for &k in &self.shear {
+            ctx.progress.advance(1);
+            match simple_shear(&muscle, None, k, angle) {
+                Ok(s) => points.push(ShearPoint {
+                    k,
+                    gamma: s.gamma,
+                    fibre_stretch: s.fibre_stretch,
+                    sigma: [
+                        s.cauchy[(0, 1)],
+                        s.cauchy[(0, 0)],
+                        s.cauchy[(1, 1)],
+                        s.cauchy[(2, 2)],
+                    ],
+                }),
+                Err(e) => {
+                    failed += 1;
+                    first.get_or_insert((k, e.to_string()));
+                }
+            }
+        }
+        let failure = first.map(|(k, why)| Failure {
+            model: format!("{label}, θ = {angle}°"),
+            message: format!(
+                "{failed} of {} amounts of shear failed; first at k = {k}: {why}",
+                self.shear.len()
+            ),
+        });
+        Ok((
+            ShearCurve {
+                model: m.clone(),
+                angle,
+                points,
+            },
+            failure,
+        ))
+    }
+}
+
+impl ShearResult {
+    /// The study's table (`shear.csv` and Python's table): one row per curve point.
+    pub fn table(&self, study: &str) -> Table {
+        let rows: Vec<(&ShearCurve, &ShearPoint)> = self
+            .curves
+            .iter()
+            .flat_map(|c| c.points.iter().map(move |p| (c, p)))
+            .collect();
+        let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
+        Table::default()
+            .text(
+                "study",
+                "the study's name",
+                rows.iter().map(|_| Some(study.to_string())),
+            )
+            .text(
+                "energy",
+                "the passive energy",
+                rows.iter().map(|_| Some(self.energy.clone())),
+            )
+            .text("approach", "activation approach (empty: passive)", cell(0))
+            .text(
+                "law",
+                "activation law (passive for the passive material)",
+                cell(1),
+            )
+            .text("coupling", "coupling", cell(2))
+            .number(
+                "d",
+                "-",
+                "damage",
+                rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)),
+            )
+            .number(
+                "fibre_angle",
+                "degree",
+                "fibre angle θ to the shear direction e₁",
+                rows.iter().map(|(c, _)| Some(c.angle)),
+            )
+            .number(
+                "shear",
+                "-",
+                "amount of shear k, F = I + k e₁⊗e₂",
+                rows.iter().map(|(_, p)| Some(p.k)),
+            )
+            .number(
+                "gamma",
+                "-",
+                "activation γ (ω for the structural approach)",
+                rows.iter().map(|(_, p)| Some(p.gamma)),
+            )
+            .number(
+                "fibre_stretch",
+                "-",
+                "fibre stretch λ_f = |F m|",
+                rows.iter().map(|(_, p)| Some(p.fibre_stretch)),
+            )
+            .number(
+                "sigma_12",
+                "kPa",
+                "Cauchy shear stress σ₁₂",
+                rows.iter().map(|(_, p)| Some(p.sigma[0])),
+            )
+            .number(
+                "sigma_11",
+                "kPa",
+                "Cauchy normal stress σ₁₁",
+                rows.iter().map(|(_, p)| Some(p.sigma[1])),
+            )
+            .number(
+                "sigma_22",
+                "kPa",
+                "Cauchy normal stress σ₂₂",
+                rows.iter().map(|(_, p)| Some(p.sigma[2])),
+            )
+            .number(
+                "sigma_33",
+                "kPa",
+                "Cauchy normal stress σ₃₃ (0: traction free)",
+                rows.iter().map(|(_, p)| Some(p.sigma[3])),
+            )
+    }
+}
