@@ -62,57 +62,9 @@ impl Data {
     /// at most [`MAX_DATA_BYTES`] + 1 bytes and refuses more than [`MAX_DATA_POINTS`] points
     /// ([`FitError::DataTooLarge`]).
     pub fn from_csv_reader(reader: impl Read, source_name: &str) -> Result<Self, FitError> {
-        let csv_error = |line: u64, message: String| FitError::Csv {
-            source_name: source_name.to_string(),
-            line,
-            message,
-        };
-        let too_large = |what: String| FitError::DataTooLarge {
-            source_name: source_name.to_string(),
-            what,
-        };
-        let mut bytes = Vec::new();
-        reader
-            .take(MAX_DATA_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| csv_error(0, e.to_string()))?;
-        if bytes.len() as u64 > MAX_DATA_BYTES {
-            return Err(too_large(format!("more than {MAX_DATA_BYTES} bytes")));
-        }
-        let mut rdr = csv::ReaderBuilder::new()
-            .has_headers(true)
-            .trim(csv::Trim::All)
-            .from_reader(bytes.as_slice());
-        let header = rdr
-            .headers()
-            .map_err(|e| csv_error(1, e.to_string()))?
-            .clone();
-        let names: Vec<&str> = header.iter().collect();
-        if names.len() != 2 || names[0] != "lambda" || !names[1].eq_ignore_ascii_case("p") {
-            return Err(csv_error(
-                1,
-                format!("header must be `lambda,P`, found `{}`", names.join(",")),
-            ));
-        }
-        let (mut lambda, mut stress, mut locations) = (Vec::new(), Vec::new(), Vec::new());
-        for record in rdr.records() {
-            if lambda.len() == MAX_DATA_POINTS {
-                return Err(too_large(format!("more than {MAX_DATA_POINTS} points")));
-            }
-            let record = record.map_err(|e| {
-                let line = e.position().map_or(0, |p| p.line());
-                csv_error(line, e.to_string())
-            })?;
-            let line = record.position().map_or(0, |p| p.line());
-            let field = |i: usize, column: &str| -> Result<f64, FitError> {
-                let text = record.get(i).unwrap_or("");
-                text.parse::<f64>()
-                    .map_err(|_| csv_error(line, format!("{column} = {text:?} is not a number")))
-            };
-            lambda.push(field(0, "lambda")?);
-            stress.push(field(1, "P")?);
-            locations.push(format!("{source_name}, line {line}"));
-        }
+        let (mut columns, locations) = read_columns(reader, source_name, &["lambda", "P"])?;
+        let stress = columns.pop().unwrap_or_default();
+        let lambda = columns.pop().unwrap_or_default();
         validate(&lambda, &stress, &locations)?;
         Ok(Self { lambda, stress })
     }
@@ -159,6 +111,78 @@ impl Data {
     pub(crate) fn with_stress(&self, stress: Vec<f64>) -> Result<Self, FitError> {
         Self::new(self.lambda.clone(), stress)
     }
+}
+
+/// The columns of a CSV file whose header is `header` (names compared without regard to ASCII
+/// case), as numbers, with the location of each row ("FILE, line n"). Reads at most
+/// [`MAX_DATA_BYTES`] + 1 bytes and refuses more than [`MAX_DATA_POINTS`] rows.
+pub(crate) fn read_columns(
+    reader: impl Read,
+    source_name: &str,
+    header: &[&str],
+) -> Result<(Vec<Vec<f64>>, Vec<String>), FitError> {
+    let csv_error = |line: u64, message: String| FitError::Csv {
+        source_name: source_name.to_string(),
+        line,
+        message,
+    };
+    let too_large = |what: String| FitError::DataTooLarge {
+        source_name: source_name.to_string(),
+        what,
+    };
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_DATA_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| csv_error(0, e.to_string()))?;
+    if bytes.len() as u64 > MAX_DATA_BYTES {
+        return Err(too_large(format!("more than {MAX_DATA_BYTES} bytes")));
+    }
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .from_reader(bytes.as_slice());
+    let found = rdr
+        .headers()
+        .map_err(|e| csv_error(1, e.to_string()))?
+        .clone();
+    let names: Vec<&str> = found.iter().collect();
+    if names.len() != header.len()
+        || names
+            .iter()
+            .zip(header)
+            .any(|(n, h)| !n.eq_ignore_ascii_case(h))
+    {
+        return Err(csv_error(
+            1,
+            format!(
+                "header must be `{}`, found `{}`",
+                header.join(","),
+                names.join(",")
+            ),
+        ));
+    }
+    let mut columns = vec![Vec::new(); header.len()];
+    let mut locations = Vec::new();
+    for record in rdr.records() {
+        if locations.len() == MAX_DATA_POINTS {
+            return Err(too_large(format!("more than {MAX_DATA_POINTS} points")));
+        }
+        let record = record.map_err(|e| {
+            let line = e.position().map_or(0, |p| p.line());
+            csv_error(line, e.to_string())
+        })?;
+        let line = record.position().map_or(0, |p| p.line());
+        for (i, column) in header.iter().enumerate() {
+            let text = record.get(i).unwrap_or("");
+            let value = text
+                .parse::<f64>()
+                .map_err(|_| csv_error(line, format!("{column} = {text:?} is not a number")))?;
+            columns[i].push(value);
+        }
+        locations.push(format!("{source_name}, line {line}"));
+    }
+    Ok((columns, locations))
 }
 
 fn validate(lambda: &[f64], stress: &[f64], locations: &[String]) -> Result<(), FitError> {

@@ -19,6 +19,7 @@
 //! ([`FitError::NotConverged`]) carrying the best point found, never a result.
 
 mod active;
+mod biaxial;
 mod damage;
 mod data;
 mod error;
@@ -30,6 +31,7 @@ pub mod solver;
 
 pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit};
+pub use biaxial::{biaxial_stress_with, fit_passive_biaxial, BiaxialData, BIAXIAL_HEADER};
 pub use damage::{fit_damage, DamageFit};
 pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
 pub use error::{FitError, NotConverged};

@@ -4,6 +4,7 @@
 //! `cargo test --test it tangents::`).
 
 // Helpers shared by the modules.
+mod biaxial_fit;
 mod binary;
 mod common;
 mod deadline;
