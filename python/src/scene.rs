@@ -294,7 +294,8 @@ fn uniaxial(t: &Columns, u: &UniaxialResult) -> PyResult<()> {
     .numbers("P", rows.iter().map(|(_, p)| p.stress).collect())?
     .numbers("cauchy", rows.iter().map(|(_, p)| p.cauchy).collect())?
     .optional("P_pas", rows.iter().map(|(_, p)| p.passive).collect())?
-    .optional("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?;
+    .optional("P_act", rows.iter().map(|(_, p)| p.active_target).collect())?
+    .optional("J", rows.iter().map(|(_, p)| p.volume).collect())?;
     Ok(())
 }
 

@@ -18,7 +18,7 @@ use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
 
 /// The header of `curves.csv`.
-pub const COLUMNS: [&str; 15] = [
+pub const COLUMNS: [&str; 16] = [
     "study",
     "model",
     "direction",
@@ -34,6 +34,7 @@ pub const COLUMNS: [&str; 15] = [
     "P_act",
     "newton_iterations",
     "cauchy",
+    "J",
 ];
 
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
@@ -69,6 +70,8 @@ pub struct Row<'a> {
     pub newton_iterations: Option<usize>,
     /// Cauchy stress along the stretch σ = J⁻¹ P Fᵀ \[kPa\] (uniaxial).
     pub cauchy: Option<f64>,
+    /// Volume ratio J [-] (uniaxial rows of a nearly incompressible scene; empty: J = 1).
+    pub volume: Option<f64>,
 }
 
 /// What tells one curve of `curves.csv` from the others: every column but the point's values,
@@ -126,6 +129,7 @@ fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &Curv
         p_act: p.active_target,
         newton_iterations: None,
         cauchy: Some(p.cauchy),
+        volume: p.volume,
     }
 }
 
@@ -148,6 +152,7 @@ fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &Sweep
         p_act: None,
         newton_iterations: Some(p.newton_iterations),
         cauchy: None,
+        volume: None,
     }
 }
 
@@ -163,6 +168,7 @@ pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
         cauchy: 0.0,
         passive: None,
         active_target: None,
+        volume: None,
     });
     uniaxial_row(study, direction, c, &p).curve()
 }
@@ -260,6 +266,7 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
                 .map(|n| n.to_string())
                 .unwrap_or_default(),
             optional(r.cauchy, "cauchy", r)?,
+            optional(r.volume, "J", r)?,
         ];
         w.write_record(&record).map_err(&fail)?;
     }

@@ -36,6 +36,7 @@ use crate::studies::slug;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
 use crate::studies::StudyResult;
+use crate::text;
 use crate::uniaxial::Direction;
 use crate::StrainEnergy;
 
@@ -569,8 +570,15 @@ fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
             if d == 0.0 { chapter(8, &c.energy, u.chapter_material) } else { String::new() }
         ),
         format!(
-            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas.",
-            run.material
+            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas{}.",
+            run.material,
+            match target_gap(c) {
+                Some(g) if g.2 > 1e-8 => format!(
+                    ". The law solves that equation under exact incompressibility; in this scene P_tot is not their sum: it misses it by up to {}",
+                    distance(g)
+                ),
+                _ => String::new(),
+            }
         ),
         vec![
             panel(format!("Activation γ, implicit law, d = {d}"), GAMMA, vec![u.series(c, "γ, implicit law", gamma, Stroke::Solid, 0)]),
@@ -749,7 +757,7 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
             "Uniaxial tension {} the fibres, energy {}, d = {d}. {}",
             u.dir(),
             run.material,
-            laws_caption(&pairs)
+            laws_caption(u, &pairs, d)
         ),
         vec![
             panel(
@@ -763,7 +771,7 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
 }
 
 /// What the strokes and the laws of [`laws`] mean, for the pairs drawn only.
-fn laws_caption(pairs: &[(LawKind, CouplingKind)]) -> String {
+fn laws_caption(u: &Uniaxial, pairs: &[(LawKind, CouplingKind)], d: f64) -> String {
     let has_law = |l: LawKind| pairs.iter().any(|p| p.0 == l);
     let has_coupling = |c: CouplingKind| pairs.iter().any(|p| p.1 == c);
     const FROZEN: &str = "frozen coupling, P = ∂Ŵ/∂F at γ = g(λ_f) held (the chapter's model)";
@@ -778,15 +786,55 @@ fn laws_caption(pairs: &[(LawKind, CouplingKind)]) -> String {
         (false, false) => Vec::new(),
     };
     if has_law(LawKind::Implicit) {
-        words.push("The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres.".into());
+        words.push(format!(
+            "The implicit law is built so that its frozen model reproduces the target P_pas + (1 − d) P_act along the fibres{}.",
+            gap_words(u.model(LawKind::Implicit, CouplingKind::Frozen, d))
+        ));
     }
     if has_law(LawKind::Explicit) {
         words.push("The explicit law is the chapter's closed-form approximation of the implicit one (eq. (14)).".into());
     }
     if has_law(LawKind::Energy) {
-        words.push("The energy law is built so that its consistent model reproduces the target along the fibres.".into());
+        words.push(format!(
+            "The energy law is built so that its consistent model reproduces the target along the fibres{}.",
+            gap_words(u.model(LawKind::Energy, CouplingKind::Consistent, d))
+        ));
     }
     words.join(" ")
+}
+
+/// The largest |P − (P_pas + (1 − d) P_act)| of `curve` \[kPa\], where, and relative to the
+/// target there.
+fn target_gap(curve: &Curve) -> Option<(f64, f64, f64)> {
+    curve
+        .points
+        .iter()
+        .filter_map(|p| target(p).map(|t| ((p.stress - t).abs(), p.lambda, t.abs())))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(gap, at, t)| (gap, at, if t > 0.0 { gap / t } else { f64::INFINITY }))
+}
+
+/// How far `curve` (a law in the coupling it is built for) is from its target, in words for a
+/// caption: nothing if it is on it to 1e-8 relative, or not along the fibres. The laws are built
+/// for exact incompressibility; with a volumetric energy the curve leaves the target.
+fn gap_words(curve: Option<&Curve>) -> String {
+    match curve.and_then(target_gap) {
+        Some(g) if g.2 > 1e-8 => format!(
+            " under exact incompressibility; in this scene it misses it by up to {}",
+            distance(g)
+        ),
+        _ => String::new(),
+    }
+}
+
+/// `X kPa at λ = Y (Z % of the target there)` of a [`target_gap`].
+fn distance((gap, at, rel): (f64, f64, f64)) -> String {
+    format!(
+        "{} kPa at λ = {} ({} % of the target there)",
+        text::significant(gap, 3),
+        text::significant(at, 6),
+        text::significant(100.0 * rel, 3)
+    )
 }
 
 /// One panel per law × coupling of study `u`, a curve per damage (two or more damages).
@@ -823,7 +871,21 @@ fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
         format!(
             "Nominal stress in uniaxial tension {} the fibres for each damage d, a panel per law and coupling{}.",
             u.dir(),
-            if u.along() { "; dotted in the same colour: the target P_pas + (1 − d) P_act" } else { "" }
+            if u.along() {
+                let worst = u
+                    .active()
+                    .filter_map(|(_, c)| target_gap(c))
+                    .max_by(|a, b| a.2.total_cmp(&b.2));
+                match worst {
+                    Some(g) if g.2 > 1e-8 => format!(
+                        "; dotted in the same colour: the target P_pas + (1 − d) P_act, which the laws are built to reproduce under exact incompressibility (the explicit law approximately); the largest distance from it here is {}",
+                        distance(g)
+                    ),
+                    _ => "; dotted in the same colour: the target P_pas + (1 − d) P_act".into(),
+                }
+            } else {
+                String::new()
+            }
         ),
         panels,
     )

@@ -11,6 +11,7 @@ use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
 use crate::uniaxial::Direction;
+use crate::volumetric::Volumetric;
 use crate::{Muscle, StrainEnergy};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -156,6 +157,8 @@ pub struct CurvePoint {
     pub passive: Option<f64>,
     /// Target active stress (1 − d) P_act(λ) \[kPa\] (the same curves).
     pub active_target: Option<f64>,
+    /// Volume ratio J = λ λ₂ λ₃ [-] of a nearly incompressible scene (`None`: J = 1 exactly).
+    pub volume: Option<f64>,
 }
 
 /// One computed curve.
@@ -183,7 +186,7 @@ impl UniaxialStudy {
     /// `target` where it has them; stretches that cannot be computed are counted in a message.
     fn points(
         &self,
-        models: &Models,
+        volumetric: Option<&Volumetric>,
         muscle: &Muscle<Energy>,
         target: impl Fn(f64) -> crate::Result<Option<(f64, f64)>>,
         ctx: &RunContext,
@@ -193,8 +196,7 @@ impl UniaxialStudy {
         let mut first: Option<(f64, String)> = None;
         for &lambda in &self.stretches {
             ctx.progress.advance(1);
-            let point = models
-                .uniaxial(muscle, self.direction, lambda)
+            let point = crate::uniaxial::point(muscle, volumetric, self.direction, lambda)
                 .and_then(|p| {
                     let extra = target(lambda)?;
                     Ok(CurvePoint {
@@ -204,6 +206,7 @@ impl UniaxialStudy {
                         cauchy: p.cauchy,
                         passive: extra.map(|e| e.0),
                         active_target: extra.map(|e| e.1),
+                        volume: volumetric.map(|_| lambda * p.lateral[0] * p.lateral[1]),
                     })
                 });
             match point {
@@ -314,6 +317,17 @@ impl UniaxialStudy {
                 AppError::from(e).within(format!("{}: {}", self.name, models.label(&m)))
             })?,
         };
+        // A compared energy gets the scene's volumetric form with its own reference stress, so
+        // that it too is stress free at F = I (the material's linear term is the material's).
+        let volumetric = match (model, models.volumetric.as_ref()) {
+            (CurveModel::Passive, Some(v)) => {
+                let own = crate::uniaxial::reference_stress(energy)
+                    .and_then(|s0| Volumetric::new(v.form(), s0))
+                    .map_err(|e| AppError::from(e).within(&self.name))?;
+                Some(own)
+            }
+            _ => models.volumetric,
+        };
         let passive = models.passive();
         // Along the fibres an active curve is shown with its target P_pas + (1 − d) P_act.
         let target = |lambda: f64| -> crate::Result<Option<(f64, f64)>> {
@@ -325,7 +339,7 @@ impl UniaxialStudy {
                 _ => None,
             })
         };
-        let (points, failure) = self.points(models, &muscle, target, ctx);
+        let (points, failure) = self.points(volumetric.as_ref(), &muscle, target, ctx);
         let failure = failure.map(|message| Failure {
             model: match model {
                 CurveModel::Constant(g) => format!("constant gamma = {g}"),

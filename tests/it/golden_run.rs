@@ -54,9 +54,9 @@ use crate::scratch;
 use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
-/// curves.csv, issue 15 the Cauchy stress `cauchy`).
+/// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
-    ("curves.csv", &["study", "cauchy"]),
+    ("curves.csv", &["study", "cauchy", "J"]),
     ("stability.csv", &["cauchy"]),
 ];
 

@@ -63,3 +63,4 @@ mod tabulated_law;
 mod tangents;
 mod tradeoff_machinery;
 mod uniaxial;
+mod volumetric_outputs;
