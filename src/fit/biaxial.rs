@@ -11,9 +11,9 @@
 //! parameter scalar, so the same formula gives P and ∂P/∂θ. Residuals: P₁₁ − P₁₁ᵢ and
 //! P₂₂ − P₂₂ᵢ for every row \[kPa\].
 
-use super::data::read_columns;
-use super::passive::default_passive_free;
-use super::{parameter_bounds, FitError, FitSetup, Parametric, PassiveFit, Residuals, Selection};
+use super::data::{open, read_columns};
+use super::passive::fit_energy;
+use super::{FitError, FitSetup, Parametric, PassiveFit, Residuals, Selection};
 use crate::energy::Invariants;
 use crate::Scalar;
 use num_dual::Dual;
@@ -78,12 +78,7 @@ impl BiaxialData {
     /// Reads a CSV file with header `lambda1,lambda2,P11,P22`.
     pub fn from_csv_path(path: impl AsRef<Path>) -> Result<Self, FitError> {
         let path = path.as_ref();
-        let file = std::fs::File::open(path).map_err(|e| FitError::Csv {
-            source_name: path.display().to_string(),
-            line: 0,
-            message: e.to_string(),
-        })?;
-        Self::from_csv_reader(file, &path.display().to_string())
+        Self::from_csv_reader(open(path)?, &path.display().to_string())
     }
 
     /// Reads CSV with header `lambda1,lambda2,P11,P22` from any reader, within the limits of
@@ -172,19 +167,12 @@ pub fn fit_passive_biaxial<E: Parametric>(
     data: &BiaxialData,
     setup: &FitSetup,
 ) -> Result<PassiveFit<E>, FitError> {
-    let names = energy.parameter_names();
-    let selection = setup.resolve(
-        &names,
-        &energy.parameter_values(),
-        &parameter_bounds(energy),
-        &default_passive_free(&names),
-    )?;
-    let problem = BiaxialProblem {
-        energy,
-        selection: &selection,
-        data,
-    };
-    let report = selection.solve(&problem, &setup.options)?;
-    let energy = energy.rebuilt(&selection.assemble_values(&report.values))?;
-    Ok(PassiveFit { energy, report })
+    fit_energy(energy, setup, |selection| {
+        let problem = BiaxialProblem {
+            energy,
+            selection,
+            data,
+        };
+        selection.solve(&problem, &setup.options)
+    })
 }

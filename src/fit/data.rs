@@ -50,12 +50,7 @@ impl Data {
     /// Reads a CSV file with header `lambda,P` (λ [-], P \[kPa\]).
     pub fn from_csv_path(path: impl AsRef<Path>) -> Result<Self, FitError> {
         let path = path.as_ref();
-        let file = std::fs::File::open(path).map_err(|e| FitError::Csv {
-            source_name: path.display().to_string(),
-            line: 0,
-            message: e.to_string(),
-        })?;
-        Self::from_csv_reader(file, &path.display().to_string())
+        Self::from_csv_reader(open(path)?, &path.display().to_string())
     }
 
     /// Reads CSV with header `lambda,P` from any reader; `source_name` appears in errors. Reads
@@ -111,6 +106,15 @@ impl Data {
     pub(crate) fn with_stress(&self, stress: Vec<f64>) -> Result<Self, FitError> {
         Self::new(self.lambda.clone(), stress)
     }
+}
+
+/// Opens a data file; an error names it (line 0: the file as a whole).
+pub(crate) fn open(path: &Path) -> Result<std::fs::File, FitError> {
+    std::fs::File::open(path).map_err(|e| FitError::Csv {
+        source_name: path.display().to_string(),
+        line: 0,
+        message: e.to_string(),
+    })
 }
 
 /// The columns of a CSV file whose header is `header` (names compared without regard to ASCII

@@ -126,6 +126,23 @@ pub fn fit_passive<E: Parametric>(
     sets: &[(Direction, &Data)],
     setup: &FitSetup,
 ) -> Result<PassiveFit<E>, FitError> {
+    fit_energy(energy, setup, |selection| {
+        let problem = PassiveProblem {
+            energy,
+            selection,
+            sets,
+        };
+        selection.solve(&problem, &setup.options)
+    })
+}
+
+/// The frame of every passive fit: the parameters of `energy` chosen in `setup` (default: all
+/// but μ), solved by `solve` on that selection, and the energy rebuilt at the fitted values.
+pub(crate) fn fit_energy<E: Parametric>(
+    energy: &E,
+    setup: &FitSetup,
+    solve: impl FnOnce(&Selection) -> Result<super::FitReport, FitError>,
+) -> Result<PassiveFit<E>, FitError> {
     let names = energy.parameter_names();
     let selection = setup.resolve(
         &names,
@@ -133,12 +150,7 @@ pub fn fit_passive<E: Parametric>(
         &parameter_bounds(energy),
         &default_passive_free(&names),
     )?;
-    let problem = PassiveProblem {
-        energy,
-        selection: &selection,
-        sets,
-    };
-    let report = selection.solve(&problem, &setup.options)?;
+    let report = solve(&selection)?;
     let energy = energy.rebuilt(&selection.assemble_values(&report.values))?;
     Ok(PassiveFit { energy, report })
 }
