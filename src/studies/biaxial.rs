@@ -8,6 +8,7 @@ use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaul
 use super::table::Table;
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
+use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::planar_biaxial;
 use crate::models::{CouplingKind, LawKind, Models};
@@ -91,7 +92,7 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
                 if !p.iter().all(|x| x.is_finite() && *x > 0.0) {
                     return Err(SpecError::new(
                         format!("pairs[{j}]"),
-                        format!("[{}, {}]", p[0], p[1]),
+                        format!("[{}, {}]", shortest(p[0]), shortest(p[1])),
                         "stretches must be finite and > 0",
                     ));
                 }

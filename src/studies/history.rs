@@ -18,6 +18,7 @@ use super::spec::{damages, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
 use crate::active::StretchRate;
+use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
@@ -249,7 +250,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             };
             return Err(SpecError::new(
                 key,
-                format!("a({t} s) = {a}"),
+                format!("a({} s) = {}", shortest(t), shortest(a)),
                 "the activation level must be finite and >= 0",
             ));
         }

@@ -38,6 +38,7 @@ pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
 use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::models::Models;
 use groups::{Resolved, Runner};
@@ -508,7 +509,7 @@ fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
                 format!(
                     "tolerances go from loose to tight (the last is the reference): \
                      not below the {} before it",
-                    v[j - 1]
+                    shortest(v[j - 1])
                 ),
             ));
         }
