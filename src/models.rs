@@ -8,9 +8,9 @@ use crate::active::{
     CurveEntry, EnergyLaw, ExplicitLaw, ForceVelocity, FrozenTangent, ImplicitLaw, Law,
     LawRepresentation, TableSpec, CURVES,
 };
-use crate::text::shortest;
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
+use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::{Muscle, StrainEnergy};

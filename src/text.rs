@@ -74,7 +74,11 @@ mod tests {
         assert_eq!(significant(1.25e-20, 4), "1.25e-20");
         for x in [1e300, -3.75e-200, 6.02214076e23, 1e-300] {
             let back: f64 = significant(x, 10).parse().unwrap();
-            assert!((back - x).abs() <= 1e-9 * x.abs(), "{x}: {}", significant(x, 10));
+            assert!(
+                (back - x).abs() <= 1e-9 * x.abs(),
+                "{x}: {}",
+                significant(x, 10)
+            );
             assert!(significant(x, 10).len() < 20, "{x}: {}", significant(x, 10));
         }
         for x in [

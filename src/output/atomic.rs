@@ -103,7 +103,10 @@ fn user_directory(root: &Path) -> Option<&'static str> {
 
 /// Whether `name` is one of the run's own bookkeeping entries.
 fn bookkeeping(name: &str) -> bool {
-    name == LOCK || Writer::ALL.iter().any(|w| name == w.manifest()) || name.starts_with(PARTIAL) || name.starts_with(OLD)
+    name == LOCK
+        || Writer::ALL.iter().any(|w| name == w.manifest())
+        || name.starts_with(PARTIAL)
+        || name.starts_with(OLD)
 }
 
 /// The files `writer`'s last run wrote into `root`, from its manifest (`None`: no manifest).

@@ -8,10 +8,10 @@ use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaul
 use super::table::Table;
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
-use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::planar_biaxial;
 use crate::models::{CouplingKind, LawKind, Models};
+use crate::text::shortest;
 use crate::StrainEnergy;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};

@@ -6,7 +6,6 @@ use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
-use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::fem::solver::MIN_TOLERANCE;
@@ -16,6 +15,7 @@ use crate::fem::{
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
+use crate::text::shortest;
 use crate::uniaxial::Direction;
 use crate::Muscle;
 use rayon::prelude::*;

@@ -572,7 +572,10 @@ fn run_and_tradeoff_into_one_directory_keep_each_others_outputs() {
     for expected in ["curves.csv", "report.html", "scene.toml"] {
         assert!(run_files.iter().any(|n| n == expected), "{run_files:?}");
     }
-    assert!(run_files.iter().any(|n| n.ends_with(".png")), "{run_files:?}");
+    assert!(
+        run_files.iter().any(|n| n.ends_with(".png")),
+        "{run_files:?}"
+    );
     let curves = read(&out.join("curves.csv"));
     let report = read(&out.join("report.html"));
     let trade = tradeoff_into(&dir, "t", TINY_TRADEOFF, &out);

@@ -324,6 +324,10 @@ fn extreme_values_are_written_short_in_messages() {
             message.contains(&format!("{key} = {shown}")),
             "{key} = {shown}: {message}"
         );
-        assert!(message.len() < 200, "{} characters: {message}", message.len());
+        assert!(
+            message.len() < 200,
+            "{} characters: {message}",
+            message.len()
+        );
     }
 }

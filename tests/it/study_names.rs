@@ -10,13 +10,13 @@ use activemuscle::studies::slug;
 
 const FILE: &str = "names.toml";
 
-/// A fit and a stability study (small), both named `name`.
-fn fit_and_stability(name: &str) -> String {
+/// A fit study named `name` and a stability study named `other` (both small).
+fn fit_and_stability(name: &str, other: &str) -> String {
     format!(
         "[[study]]\nkind = \"fit\"\nname = \"{name}\"\nfit = \"passive\"\n\
          reference = {{ energy = \"ehret-bol-itskov\" }}\nstretch = {{ from = 1.0, to = 1.5, step = 0.1 }}\n\
          free = [\"alpha\", \"w0\"]\n\n\
-         [[study]]\nkind = \"stability\"\nname = \"{name} stability\"\nstretch = [1.0, 1.1]\n\
+         [[study]]\nkind = \"stability\"\nname = \"{other}\"\nstretch = [1.0, 1.1]\n\
          laws = [\"implicit\"]\nnormals = 10\n"
     )
 }
@@ -24,7 +24,8 @@ fn fit_and_stability(name: &str) -> String {
 #[test]
 fn a_name_too_long_for_a_file_name_is_refused_when_the_scene_is_read() {
     let name = "a".repeat(250);
-    let e = Scene::parse(&fit_and_stability(&name), FILE).expect_err("a 250-character name");
+    let e = Scene::parse(&fit_and_stability(&name, "stability"), FILE)
+        .expect_err("a 250-character name");
     let shown = e.to_string();
     assert!(
         shown.starts_with(&format!("{FILE}:3: study[0].name")),
@@ -38,7 +39,7 @@ fn a_name_too_long_for_a_file_name_is_refused_when_the_scene_is_read() {
     // `check` says so too, and `run` computes nothing and writes nothing.
     let dir = scratch("long-name");
     let scene = dir.join("long.toml");
-    std::fs::write(&scene, fit_and_stability(&name)).expect("write scene");
+    std::fs::write(&scene, fit_and_stability(&name, "stability")).expect("write scene");
     let check = run_args(&["check".as_ref(), scene.as_os_str()]);
     assert_eq!(check.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&check.stderr).contains("study[0].name"));
@@ -59,9 +60,9 @@ fn a_name_too_long_for_a_file_name_is_refused_when_the_scene_is_read() {
 /// (68 bytes) pass, 51 (102 bytes) do not.
 #[test]
 fn the_cap_counts_the_bytes_of_the_file_name() {
-    assert!(Scene::parse(&fit_and_stability(&"b".repeat(100)), FILE).is_ok());
-    assert!(Scene::parse(&fit_and_stability(&"б".repeat(34)), FILE).is_ok());
-    let e = Scene::parse(&fit_and_stability(&"б".repeat(51)), FILE).expect_err("102 bytes");
+    assert!(Scene::parse(&fit_and_stability(&"b".repeat(100), &"c".repeat(100)), FILE).is_ok());
+    assert!(Scene::parse(&fit_and_stability(&"б".repeat(34), "s"), FILE).is_ok());
+    let e = Scene::parse(&fit_and_stability(&"б".repeat(51), "s"), FILE).expect_err("102 bytes");
     assert!(e.to_string().contains("102 bytes"), "{e}");
 }
 
@@ -70,9 +71,10 @@ fn the_cap_counts_the_bytes_of_the_file_name() {
 #[test]
 fn the_longest_name_allowed_runs_and_writes_its_files() {
     let name = "n".repeat(100);
+    let other = "s".repeat(100);
     let dir = scratch("longest-name");
     let scene = dir.join("longest.toml");
-    std::fs::write(&scene, fit_and_stability(&name)).expect("write scene");
+    std::fs::write(&scene, fit_and_stability(&name, &other)).expect("write scene");
     let out = dir.join("out");
     let run = run_args(&[
         "run".as_ref(),
@@ -91,7 +93,7 @@ fn the_longest_name_allowed_runs_and_writes_its_files() {
         .expect("list")
         .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
         .collect();
-    for stem in [format!("fig_fit_{name}"), format!("fig_stability_{name}_stability")] {
+    for stem in [format!("fig_fit_{name}"), format!("fig_stability_{other}")] {
         for ext in ["png", "svg"] {
             let file = format!("{stem}.{ext}");
             assert!(files.contains(&file), "{file} missing: {files:?}");
@@ -103,9 +105,15 @@ fn the_longest_name_allowed_runs_and_writes_its_files() {
 /// or digit"); ASCII names keep the file names they had.
 #[test]
 fn names_in_any_script_are_names() {
-    for (name, file) in [("Мышца", "мышца"), ("筋肉", "筋肉"), ("μ", "μ"), ("Muskel ß 2", "muskel_ß_2")] {
+    for (name, file) in [
+        ("Мышца", "мышца"),
+        ("筋肉", "筋肉"),
+        ("μ", "μ"),
+        ("Muskel ß 2", "muskel_ß_2"),
+    ] {
         assert_eq!(slug(name), file, "{name}");
-        let text = format!("[[study]]\nkind = \"uniaxial\"\nname = \"{name}\"\nstretch = [1.0, 1.1]\n");
+        let text =
+            format!("[[study]]\nkind = \"uniaxial\"\nname = \"{name}\"\nstretch = [1.0, 1.1]\n");
         let scene = Scene::parse(&text, FILE).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(scene.studies[0].name(), name);
     }

@@ -38,9 +38,9 @@ pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
 use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
-use crate::text::shortest;
 use crate::app_error::{AppError, SpecError};
 use crate::models::Models;
+use crate::text::shortest;
 use groups::{Resolved, Runner};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
