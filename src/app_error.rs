@@ -141,12 +141,55 @@ pub struct SpecError {
     pub rule: String,
 }
 
+/// A value as a message shows it: a number written exactly and short
+/// ([`crate::text::shortest`]: `1e300`, not the 301 digits of Rust's `Display`), text as it is.
+pub trait Shown {
+    /// The value as text.
+    fn shown(&self) -> String;
+}
+
+impl Shown for f64 {
+    fn shown(&self) -> String {
+        crate::text::shortest(*self)
+    }
+}
+
+impl Shown for str {
+    fn shown(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl Shown for String {
+    fn shown(&self) -> String {
+        self.clone()
+    }
+}
+
+/// Integers and other values whose `Display` is short.
+macro_rules! shown_by_display {
+    ($($t:ty),*) => {$(
+        impl Shown for $t {
+            fn shown(&self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+shown_by_display!(usize, u32, u64, i32, i64, bool, char);
+
+impl<T: Shown + ?Sized> Shown for &T {
+    fn shown(&self) -> String {
+        (**self).shown()
+    }
+}
+
 impl SpecError {
     /// `key = value` breaks `rule`.
-    pub fn new(key: impl Into<String>, value: impl fmt::Display, rule: impl Into<String>) -> Self {
+    pub fn new(key: impl Into<String>, value: impl Shown, rule: impl Into<String>) -> Self {
         Self {
             key: key.into(),
-            value: value.to_string(),
+            value: value.shown(),
             rule: rule.into(),
         }
     }

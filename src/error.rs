@@ -6,7 +6,7 @@ use thiserror::Error;
 #[derive(Debug, Clone, Error, PartialEq)]
 pub enum Error {
     /// A model parameter is outside its admissible range.
-    #[error("parameter {name} = {value} is invalid: {rule}")]
+    #[error("parameter {name} = {} is invalid: {rule}", crate::text::shortest(*.value))]
     InvalidParameter {
         /// Parameter name as written in the docs (e.g. `mu`, `w0`).
         name: &'static str,
@@ -16,7 +16,7 @@ pub enum Error {
         rule: &'static str,
     },
     /// The deformation gradient does not describe an admissible deformation.
-    #[error("deformation gradient has det F = {det} (must be > 0); F = {f:?}")]
+    #[error("deformation gradient has det F = {} (must be > 0); F = {f:?}", crate::text::shortest(*.det))]
     NonPositiveJacobian {
         /// det F.
         det: f64,
@@ -25,7 +25,7 @@ pub enum Error {
     },
     /// The activation variable left its range: γ ∉ [0, 1) (active strain) or ω < 0
     /// (structural).
-    #[error("activation gamma = {gamma} is outside its range ([0, 1) for active strain, [0, inf) for the structural omega)")]
+    #[error("activation gamma = {} is outside its range ([0, 1) for active strain, [0, inf) for the structural omega)", crate::text::shortest(*.gamma))]
     ActivationOutOfRange {
         /// The offending γ (or ω).
         gamma: f64,

@@ -1,7 +1,7 @@
 //! `activemuscle`: runs scene files (TOML) of active skeletal-muscle studies and writes the
 //! curves, the figures and a report. Without arguments it runs the chapter's whole study.
 
-use activemuscle::output::{tradeoff, write_run, RunMeta, Staging};
+use activemuscle::output::{tradeoff, write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
 use activemuscle::studies::tradeoff::run_until as run_tradeoff;
 use activemuscle::studies::{Silent, Stop, StudyResult};
@@ -52,8 +52,8 @@ enum Command {
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
     /// committed all or nothing: a run that fails leaves the previous outputs as they were. DIR
     /// belongs to one run at a time (.activemuscle.lock); a re-run replaces its own files and
-    /// removes those it no longer writes (.activemuscle-manifest); a non-empty directory that no
-    /// run wrote is refused without --force; /, your home, . and its ancestors always.
+    /// removes those it no longer writes (.activemuscle-manifest), never the files `tradeoff`
+    /// wrote into DIR; a non-empty directory that no run wrote is refused without --force; /, your home, . and its ancestors always.
     #[command(after_help = EXIT_STATUS)]
     Run {
         /// Scene file (TOML). Omit to run the chapter's study (scenes/paper.toml, embedded).
@@ -78,7 +78,8 @@ enum Command {
     /// Activation law (0D and FE), derivative route, frozen tangent, mesh, Newton tolerance and 0D
     /// vs FE, each timed (wall time) and compared with a reference at its accurate end. Writes
     /// into DIR: tradeoff.csv, tradeoff.md, tradeoff_*.png/svg (log–log error vs time, Pareto
-    /// front) and tradeoff.html (self-contained). Uses the scene's material and activation; the
+    /// front) and tradeoff.html (self-contained), listed in .activemuscle-manifest-tradeoff: a
+    /// re-run replaces and removes only those, a run's outputs in DIR stay. Uses the scene's material and activation; the
     /// options of its `kind = "tradeoff"` study if it has one (see scenes/tradeoff.toml), else
     /// every option on its first cylinder study's geometry.
     Tradeoff {
@@ -288,19 +289,25 @@ fn on_interrupt(stop: &Stop) {
     });
 }
 
-/// Stops `stop` once `seconds` of wall time have passed (a detached timer thread).
+/// Stops `stop` once `seconds` of wall time have passed (a detached timer thread). `seconds`
+/// must be finite and > 0; a limit beyond what a [`Duration`] holds (about 5.8e11 years) is no
+/// limit.
 fn time_limit(stop: &Stop, seconds: f64) -> Result<(), AppError> {
     if !(seconds.is_finite() && seconds > 0.0) {
         return Err(AppError::Invalid(format!(
-            "--max-seconds {seconds}: must be a finite number of seconds > 0"
+            "--max-seconds {}: must be a finite number of seconds > 0",
+            activemuscle::text::significant(seconds, 6)
         )));
     }
+    let Ok(limit) = Duration::try_from_secs_f64(seconds) else {
+        return Ok(());
+    };
     let stop = stop.clone();
-    let limit = Duration::from_secs_f64(seconds);
     std::thread::spawn(move || {
         std::thread::sleep(limit);
         stop.stop(&format!(
-            "time limit of {seconds} s (--max-seconds) reached"
+            "time limit of {} s (--max-seconds) reached",
+            activemuscle::text::significant(seconds, 6)
         ));
     });
     Ok(())
@@ -319,7 +326,7 @@ fn run_command(
     if let Some(seconds) = max_seconds {
         time_limit(&stop, seconds)?;
     }
-    let mut staging = Staging::open(out, force)?;
+    let mut staging = Staging::open(out, Writer::Run, force)?;
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
@@ -368,7 +375,7 @@ fn tradeoff_command(
     let started = Instant::now();
     let scene = load(scene)?;
     // The output directory is taken before computing: a refusal costs nothing.
-    let mut staging = Staging::open(out, force)?;
+    let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
     let options = scene.tradeoff_options().cloned().unwrap_or_default();
     let printing = Printing::new(true, false);

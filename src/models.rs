@@ -10,6 +10,7 @@ use crate::active::{
 };
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
+use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::{Muscle, StrainEnergy};
@@ -658,7 +659,7 @@ impl MaterialSpec {
         let fibre = self.fibre.unwrap_or([1.0, 0.0, 0.0]);
         let norm = fibre.iter().map(|x| x * x).sum::<f64>().sqrt();
         if !(norm.is_finite() && norm > 1e-12) {
-            let shown: Vec<String> = fibre.iter().map(|x| x.to_string()).collect();
+            let shown: Vec<String> = fibre.iter().map(|x| shortest(*x)).collect();
             return Err(SpecError::new(
                 "fibre",
                 format!("[{}]", shown.join(", ")),

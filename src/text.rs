@@ -1,9 +1,11 @@
 //! Numbers as text for people (messages, figure labels): a fixed count of significant digits,
 //! trailing zeros dropped. (The CSV files write every digit: [`crate::output::csv::shortest`].)
 
-/// `x` in fixed notation with `digits` significant digits, trailing zeros (and a trailing point)
-/// dropped: `significant(1.1070312500000001, 10)` = `1.10703125`, `significant(73.5201, 4)` =
-/// `73.52`; ±0 is `0`, a non-finite value as Rust writes it.
+/// `x` with `digits` significant digits, trailing zeros (and a trailing point) dropped:
+/// `significant(1.1070312500000001, 10)` = `1.10703125`, `significant(73.5201, 4)` = `73.52`;
+/// ±0 is `0`, a non-finite value as Rust writes it. Fixed notation, except where it would
+/// print digits f64 does not hold (|x| ≥ 1e16: `1e300`, not 301 digits) or need more than 17
+/// decimals (`significant(1e-300, 4)` = `1e-300`, not `0`): there `<mantissa>e<exponent>`.
 pub fn significant(x: f64, digits: usize) -> String {
     if x == 0.0 {
         return "0".into();
@@ -11,8 +13,30 @@ pub fn significant(x: f64, digits: usize) -> String {
     if !x.is_finite() {
         return x.to_string();
     }
-    let decimals = (digits as i32 - 1 - x.abs().log10().floor() as i32).clamp(0, 17) as usize;
+    let digits = digits.max(1);
+    let exponent = x.abs().log10().floor() as i32;
+    let decimals = digits as i32 - 1 - exponent;
+    if exponent >= 16 || decimals > 17 {
+        let s = format!("{x:.*e}", digits - 1);
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        return format!("{}e{exponent}", trim_zeros(mantissa));
+    }
+    let decimals = decimals.clamp(0, 17) as usize;
     trim_zeros(&format!("{x:.decimals$}"))
+}
+
+/// `x` with the fewest digits that read back to the same f64 (−0 as 0), in scientific notation
+/// outside 1e-4 ≤ |x| < 1e15 (Rust's plain `Display` writes 1e300 as 301 digits and 6e-16 with
+/// fifteen leading zeros): a value a user gave, written back exactly and short.
+pub fn shortest(x: f64) -> String {
+    if x == 0.0 {
+        // −0 (a symmetry-axis displacement) is written 0.
+        "0".to_string()
+    } else if (1e-4..1e15).contains(&x.abs()) || !x.is_finite() {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
 }
 
 /// `1.2500` → `1.25`, `2.000` → `2`; a number without a decimal point as it is.
@@ -36,6 +60,27 @@ mod tests {
         assert_eq!(significant(-0.0, 4), "0");
         assert_eq!(significant(0.62430001, 4), "0.6243");
         assert_eq!(significant(15134.2, 4), "15134");
+        assert_eq!(significant(1e15, 4), "1000000000000000");
+    }
+
+    #[test]
+    fn extreme_magnitudes_are_written_short_with_an_exponent() {
+        assert_eq!(significant(1e300, 10), "1e300");
+        assert_eq!(significant(-2.5e300, 4), "-2.5e300");
+        assert_eq!(significant(1.7976931348623157e308, 4), "1.798e308");
+        assert_eq!(significant(1e16, 4), "1e16");
+        assert_eq!(significant(1e-300, 10), "1e-300");
+        assert_eq!(significant(5e-324, 1), "5e-324");
+        assert_eq!(significant(1.25e-20, 4), "1.25e-20");
+        for x in [1e300, -3.75e-200, 6.02214076e23, 1e-300] {
+            let back: f64 = significant(x, 10).parse().unwrap();
+            assert!(
+                (back - x).abs() <= 1e-9 * x.abs(),
+                "{x}: {}",
+                significant(x, 10)
+            );
+            assert!(significant(x, 10).len() < 20, "{x}: {}", significant(x, 10));
+        }
         for x in [
             0.123_456_789_123,
             1.000_000_000_1,

@@ -96,7 +96,7 @@ pub enum FemError {
     },
     /// The sweep was cancelled ([`super::SolverOptions::cancel`]); the stretches solved before
     /// are kept in [`super::Sweep::results`].
-    #[error("sweep cancelled on the way to stretch {target}")]
+    #[error("sweep cancelled on the way to stretch {}", crate::text::shortest(*.target))]
     Cancelled {
         /// The target being solved for when the sweep stopped.
         target: f64,

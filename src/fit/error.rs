@@ -21,7 +21,7 @@ pub enum FitError {
         message: String,
     },
     /// A number of the data is NaN or infinite.
-    #[error("{location}: {column} = {value} is not a finite number")]
+    #[error("{location}: {column} = {} is not a finite number", crate::text::shortest(*.value))]
     NonFiniteData {
         /// "line n" (from a CSV file) or "point i" (data built in memory, 1-based).
         location: String,
@@ -31,7 +31,7 @@ pub enum FitError {
         value: f64,
     },
     /// A stretch is zero or negative.
-    #[error("{location}: lambda = {lambda} must be > 0")]
+    #[error("{location}: lambda = {} must be > 0", crate::text::shortest(*.lambda))]
     NonPositiveStretch {
         /// Where.
         location: String,
@@ -39,7 +39,7 @@ pub enum FitError {
         lambda: f64,
     },
     /// The same stretch appears twice.
-    #[error("{location}: lambda = {lambda} repeats the previous point")]
+    #[error("{location}: lambda = {} repeats the previous point", crate::text::shortest(*.lambda))]
     DuplicateStretch {
         /// Where.
         location: String,
@@ -47,7 +47,7 @@ pub enum FitError {
         lambda: f64,
     },
     /// Stretches must be strictly increasing.
-    #[error("{location}: lambda = {lambda} is below the previous lambda = {previous} (stretches must increase)")]
+    #[error("{location}: lambda = {} is below the previous lambda = {} (stretches must increase)", crate::text::shortest(*.lambda), crate::text::shortest(*.previous))]
     DecreasingStretch {
         /// Where.
         location: String,
@@ -84,7 +84,7 @@ pub enum FitError {
     #[error("no free parameter selected")]
     NoFreeParameter,
     /// A starting value outside its bounds, or bounds with lower ≥ upper.
-    #[error("parameter {name}: start {start} is not inside the bounds [{lower}, {upper}]")]
+    #[error("parameter {name}: start {} is not inside the bounds [{}, {}]", crate::text::shortest(*.start), crate::text::shortest(*.lower), crate::text::shortest(*.upper))]
     StartOutOfBounds {
         /// Parameter name.
         name: String,

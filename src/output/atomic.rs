@@ -2,14 +2,19 @@
 //!
 //! - **One run at a time**: a run holds `.activemuscle.lock` (its pid) from [`Staging::open`] to
 //!   the end; a second run refuses while that pid lives, a lock left by a dead run is taken over.
-//! - **Ownership**: `.activemuscle-manifest` lists the files the last run wrote. A non-empty
-//!   directory without it is not ours and is refused unless forced; `/`, the home directory, the
+//! - **Ownership**: each command keeps its own manifest of the files its last run wrote
+//!   (`.activemuscle-manifest` for `run`, `.activemuscle-manifest-tradeoff` for `tradeoff`), and
+//!   a commit replaces and removes only the files in its own: `run` and `tradeoff` into one
+//!   directory keep each other's outputs. A file of the other command's that a commit writes
+//!   again (a run's `tradeoff.csv`) becomes the committing command's. A non-empty directory
+//!   without any manifest is not ours and is refused unless forced; `/`, the home directory, the
 //!   working directory and its ancestors are always refused (they hold user files).
 //! - **All or nothing**: every file is written into a staging directory
 //!   `.activemuscle-partial-<pid>` inside the output directory, then [`Staging::commit`] moves
 //!   the previous run's files aside, renames the new ones into place (a rename within one file
 //!   system is atomic) and, if any rename fails, puts everything back as it was. Files of the
-//!   previous run that this run did not write are removed: no stale file survives a re-run.
+//!   command's previous run that this run did not write are removed: no stale file survives a
+//!   re-run.
 //! - **Cleaning**: staging directories of dead runs are removed when a run opens the directory;
 //!   a run that fails before its commit removes its own.
 
@@ -18,16 +23,41 @@ use std::path::{Path, PathBuf};
 
 /// The lock file (content: the pid of the run holding it).
 pub const LOCK: &str = ".activemuscle.lock";
-/// The list of the files the last run wrote, one relative path a line.
+/// The list of the files the last `run` wrote, one relative path a line (the prefix of every
+/// command's manifest: [`Writer::manifest`]).
 pub const MANIFEST: &str = ".activemuscle-manifest";
 /// Prefix of staging directories.
 pub const PARTIAL: &str = ".activemuscle-partial-";
 /// Prefix of the directory a commit moves the previous run's files to.
 const OLD: &str = ".activemuscle-old-";
 
+/// The command that writes into an output directory. Each owns the files in its own manifest and
+/// removes no other.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Writer {
+    /// `activemuscle run`: curves.csv, the tables, the figures, report.html, vtk/.
+    Run,
+    /// `activemuscle tradeoff`: tradeoff.csv, tradeoff.md, the tradeoff figures, tradeoff.html.
+    Tradeoff,
+}
+
+impl Writer {
+    /// Every command that writes outputs.
+    pub const ALL: [Writer; 2] = [Writer::Run, Writer::Tradeoff];
+
+    /// The file that lists what this command's last run wrote into a directory.
+    pub fn manifest(self) -> &'static str {
+        match self {
+            Writer::Run => MANIFEST,
+            Writer::Tradeoff => ".activemuscle-manifest-tradeoff",
+        }
+    }
+}
+
 /// The staging area of one run, holding its output directory's lock.
 #[derive(Debug)]
 pub struct Staging {
+    writer: Writer,
     dir: PathBuf,
     root: PathBuf,
     files: Vec<PathBuf>,
@@ -73,12 +103,15 @@ fn user_directory(root: &Path) -> Option<&'static str> {
 
 /// Whether `name` is one of the run's own bookkeeping entries.
 fn bookkeeping(name: &str) -> bool {
-    name == LOCK || name == MANIFEST || name.starts_with(PARTIAL) || name.starts_with(OLD)
+    name == LOCK
+        || Writer::ALL.iter().any(|w| name == w.manifest())
+        || name.starts_with(PARTIAL)
+        || name.starts_with(OLD)
 }
 
-/// The files the last run wrote, from the manifest (`None`: no manifest).
-fn manifest(root: &Path) -> Option<Vec<PathBuf>> {
-    let text = std::fs::read_to_string(root.join(MANIFEST)).ok()?;
+/// The files `writer`'s last run wrote into `root`, from its manifest (`None`: no manifest).
+fn manifest(root: &Path, writer: Writer) -> Option<Vec<PathBuf>> {
+    let text = std::fs::read_to_string(root.join(writer.manifest())).ok()?;
     Some(
         text.lines()
             .filter(|l| !l.is_empty() && !l.starts_with('#'))
@@ -90,6 +123,26 @@ fn manifest(root: &Path) -> Option<Vec<PathBuf>> {
             })
             .collect(),
     )
+}
+
+/// Whether some command of ours has written into `dir` (it holds a manifest).
+fn ours(dir: &Path) -> bool {
+    Writer::ALL.iter().any(|w| dir.join(w.manifest()).is_file())
+}
+
+/// Writes `writer`'s manifest of `files` into `root`.
+fn write_manifest(root: &Path, writer: Writer, files: &[PathBuf]) -> Result<(), AppError> {
+    let command = match writer {
+        Writer::Run => "run",
+        Writer::Tradeoff => "tradeoff",
+    };
+    let mut text =
+        format!("# files written by the last `activemuscle {command}` into this directory\n");
+    for rel in files {
+        text.push_str(&format!("{}\n", rel.display()));
+    }
+    let manifest = root.join(writer.manifest());
+    std::fs::write(&manifest, text).map_err(|e| AppError::io("write", &manifest, e))
 }
 
 /// Takes `root`'s lock for this process, or says which live run holds it.
@@ -136,15 +189,15 @@ fn lock(root: &Path) -> Result<PathBuf, AppError> {
 
 impl Staging {
     /// [`Self::open`] without forcing.
-    pub fn new(root: &Path) -> Result<Self, AppError> {
-        Self::open(root, false)
+    pub fn new(root: &Path, writer: Writer) -> Result<Self, AppError> {
+        Self::open(root, writer, false)
     }
 
-    /// Takes `root` for this run (created if needed; see the module's rules): refuses a
+    /// Takes `root` for this run of `writer` (created if needed; see the module's rules): refuses a
     /// directory of user files, a directory another live run holds, and a non-empty directory
     /// that no run of ours wrote unless `force`; removes dead runs' staging directories; creates
     /// this run's staging directory.
-    pub fn open(root: &Path, force: bool) -> Result<Self, AppError> {
+    pub fn open(root: &Path, writer: Writer, force: bool) -> Result<Self, AppError> {
         if let Some(what) = user_directory(root) {
             return Err(refuse(
                 root,
@@ -162,6 +215,7 @@ impl Staging {
             .map_err(|e| AppError::io("create the output directory", root, e))?;
         let lock = lock(root)?;
         let staging = Self {
+            writer,
             dir: root.join(format!("{PARTIAL}{}", std::process::id())),
             root: root.to_path_buf(),
             files: Vec::new(),
@@ -177,9 +231,9 @@ impl Staging {
         // Another output directory inside (e.g. `tradeoff --out out/tradeoff`) is ours too.
         let foreign = entries
             .iter()
-            .filter(|n| !bookkeeping(n) && !root.join(n).join(MANIFEST).is_file())
+            .filter(|n| !bookkeeping(n) && !ours(&root.join(n)))
             .count();
-        if foreign > 0 && manifest(root).is_none() && !force {
+        if foreign > 0 && !ours(root) && !force {
             return Err(refuse(
                 root,
                 format!(
@@ -243,17 +297,26 @@ impl Staging {
     }
 
     /// Replaces the previous run's files by the staged ones, all or nothing: the previous files
-    /// (from the manifest) are moved aside, the staged ones renamed into place in the order
-    /// registered (the report last); if a rename fails, the new files go back and the old ones
-    /// return. Then the manifest is written, the old files and the staging directory removed,
-    /// and the lock released.
+    /// (from this command's manifest, and those of another command's that this run writes
+    /// again) are moved aside, the staged ones renamed into place in the order registered (the
+    /// report last); if a rename fails, the new files go back and the old ones return. Then the
+    /// manifests are written (a file taken over leaves the other command's), the old files and
+    /// the staging directory removed, and the lock released. Files in another command's
+    /// manifest that this run does not write are not touched.
     pub fn commit(mut self) -> Result<Vec<PathBuf>, AppError> {
         let old_dir = self.root.join(format!("{OLD}{}", std::process::id()));
-        let old: Vec<PathBuf> = manifest(&self.root)
-            .unwrap_or_default()
+        let others: Vec<(Writer, Vec<PathBuf>)> = Writer::ALL
             .into_iter()
-            .filter(|f| self.root.join(f).is_file())
+            .filter(|w| *w != self.writer)
+            .filter_map(|w| manifest(&self.root, w).map(|files| (w, files)))
             .collect();
+        let mut old: Vec<PathBuf> = manifest(&self.root, self.writer).unwrap_or_default();
+        for (_, files) in &others {
+            old.extend(files.iter().filter(|f| self.files.contains(f)).cloned());
+        }
+        old.sort();
+        old.dedup();
+        old.retain(|f| self.root.join(f).is_file());
         let mut aside = Vec::new();
         let mut placed = Vec::new();
         let result = (|| -> Result<(), AppError> {
@@ -280,13 +343,17 @@ impl Staging {
                 e.within("nothing of this run was committed; the previous outputs are unchanged")
             );
         }
-        let mut text =
-            String::from("# files written by the last activemuscle run into this directory\n");
-        for rel in &self.files {
-            text.push_str(&format!("{}\n", rel.display()));
+        write_manifest(&self.root, self.writer, &self.files)?;
+        for (w, files) in &others {
+            if files.iter().any(|f| self.files.contains(f)) {
+                let kept: Vec<PathBuf> = files
+                    .iter()
+                    .filter(|f| !self.files.contains(f))
+                    .cloned()
+                    .collect();
+                write_manifest(&self.root, *w, &kept)?;
+            }
         }
-        let manifest = self.root.join(MANIFEST);
-        std::fs::write(&manifest, text).map_err(|e| AppError::io("write", &manifest, e))?;
         self.committed = true;
         // Directories the old files left empty (e.g. vtk/<sweep>/ of a study now gone).
         for rel in old.iter().filter(|r| !self.files.contains(r)) {

@@ -312,18 +312,9 @@ fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, A
     finite(x, quantity, origin).map(shortest)
 }
 
-/// `x` with the fewest digits that read back to the same f64 (−0 as 0), in scientific notation outside
-/// 1e-4 ≤ |x| < 1e15 (Rust's plain `Display` writes 2.85e266 as 267 digits and 6e-16 with
-/// fifteen leading zeros).
+/// `x` with the fewest digits that read back to the same f64: [`crate::text::shortest`].
 pub fn shortest(x: f64) -> String {
-    if x == 0.0 {
-        // −0 (a symmetry-axis displacement) is written 0.
-        "0".to_string()
-    } else if (1e-4..1e15).contains(&x.abs()) {
-        x.to_string()
-    } else {
-        format!("{x:e}")
-    }
+    crate::text::shortest(x)
 }
 
 /// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`

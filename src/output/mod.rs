@@ -11,7 +11,7 @@ pub mod plot;
 pub mod report;
 pub mod tradeoff;
 
-pub use atomic::Staging;
+pub use atomic::{Staging, Writer};
 
 use crate::app_error::AppError;
 use crate::scene::{Results, Scene};

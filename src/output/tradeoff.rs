@@ -4,7 +4,7 @@
 use super::base64;
 use super::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use super::report::escape;
-use super::Staging;
+use super::{Staging, Writer};
 use crate::app_error::AppError;
 use crate::studies::slug;
 use crate::studies::tradeoff::measure::{cell, ratio};
@@ -398,7 +398,7 @@ pub fn write_all(
     command: &str,
     wall_s: f64,
 ) -> Result<Vec<String>, AppError> {
-    let mut staging = Staging::new(out)?;
+    let mut staging = Staging::new(out, Writer::Tradeoff)?;
     let (files, _) = stage(results, &mut staging, title, command, wall_s)?;
     staging.commit()?;
     Ok(files)

@@ -7,7 +7,7 @@ use super::{ActivationSpec, ExplicitSpec, Scene, SceneSpec};
 use crate::app_error::{SceneError, SpecError};
 use crate::models::{EnergySpec, IncompressibilitySpec, MaterialSpec, Models};
 use crate::studies::spec::{damages, Defaults};
-use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec};
+use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec, MAX_SLUG_BYTES};
 use std::path::Path;
 
 pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -125,7 +125,9 @@ fn studies(
 }
 
 /// Output files and directories are named by [`slug`] of a study's name: it must have a letter
-/// or a digit and differ from every earlier study's (`"cyl A"` and `"cyl-a"` are both `cyl_a`).
+/// or a digit (of any script), be at most [`MAX_SLUG_BYTES`] long as a file name (a longer one
+/// would make the run fail when it writes, after computing) and differ from every earlier
+/// study's (`"cyl A"` and `"cyl-a"` are both `cyl_a`).
 fn unique_name(study: &Study, before: &[Study]) -> Result<(), SpecError> {
     let name = study.name();
     let file = slug(name);
@@ -134,6 +136,20 @@ fn unique_name(study: &Study, before: &[Study]) -> Result<(), SpecError> {
             "name",
             format!("{name:?}"),
             "a study's name names its output files: it needs at least one letter or digit",
+        ));
+    }
+    if file.len() > MAX_SLUG_BYTES {
+        let shown: String = name.chars().take(40).collect();
+        return Err(SpecError::new(
+            "name",
+            format!("{shown:?}… ({} characters)", name.chars().count()),
+            format!(
+                "a study's name names its output files (fig_…_<name>.png, points_<name>.csv), and \
+                 a file name has at most 255 bytes: as a file name this one has {} bytes, at most \
+                 {MAX_SLUG_BYTES} (about {MAX_SLUG_BYTES} ASCII letters or digits) are allowed; \
+                 give it a shorter name",
+                file.len()
+            ),
         ));
     }
     match before.iter().position(|s| slug(s.name()) == file) {

@@ -11,6 +11,7 @@ use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::planar_biaxial;
 use crate::models::{CouplingKind, LawKind, Models};
+use crate::text::shortest;
 use crate::StrainEnergy;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -91,7 +92,7 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
                 if !p.iter().all(|x| x.is_finite() && *x > 0.0) {
                     return Err(SpecError::new(
                         format!("pairs[{j}]"),
-                        format!("[{}, {}]", p[0], p[1]),
+                        format!("[{}, {}]", shortest(p[0]), shortest(p[1])),
                         "stretches must be finite and > 0",
                     ));
                 }

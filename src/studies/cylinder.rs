@@ -15,6 +15,7 @@ use crate::fem::{
 };
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::stability::diagnose_axisymmetric;
+use crate::text::shortest;
 use crate::uniaxial::Direction;
 use crate::Muscle;
 use rayon::prelude::*;
@@ -140,7 +141,7 @@ fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
             if !(unit(v[0]) && unit(v[1]) && v[0] < v[1]) {
                 return Err(SpecError::new(
                     key(k),
-                    format!("[{}, {}]", v[0], v[1]),
+                    format!("[{}, {}]", shortest(v[0]), shortest(v[1])),
                     format!(
                         "must be [{k}0, {k}1] with 0 ≤ {k}0 < {k}1 ≤ 1 (in units of {unit_of})"
                     ),
@@ -155,7 +156,13 @@ fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
         if g.damage.is_none() && g.activation.is_none() {
             return Err(SpecError::new(
                 format!("regions[{i}]"),
-                format!("r = [{}, {}], z = [{}, {}]", r[0], r[1], z[0], z[1]),
+                format!(
+                    "r = [{}, {}], z = [{}, {}]",
+                    shortest(r[0]),
+                    shortest(r[1]),
+                    shortest(z[0]),
+                    shortest(z[1])
+                ),
                 "a region needs damage and/or activation",
             ));
         }
@@ -198,7 +205,7 @@ fn named_points(
     let mut out = Vec::with_capacity(points.len());
     for (name, at) in points {
         let key = format!("points.{name}");
-        let shown = format!("[{}, {}]", at[0], at[1]);
+        let shown = format!("[{}, {}]", shortest(at[0]), shortest(at[1]));
         if !(at[0].is_finite() && at[1].is_finite()) {
             return Err(SpecError::new(key, shown, "coordinates must be finite"));
         }
@@ -222,7 +229,8 @@ fn named_points(
                     shown,
                     format!(
                         "a named point must be a mesh node on the boundary (r = 0, r = R, z = 0 or z = L) of the {cells} mesh: the nearest is node {node} at [{}, {}], {d:.3e} away",
-                        x[0], x[1]
+                        shortest(x[0]),
+                        shortest(x[1])
                     ),
                 ));
             }
@@ -660,7 +668,12 @@ impl CylinderStudy {
     ) -> Result<(Sweep, Vec<Failure>), AppError> {
         let muscle = models.muscle(*m)?;
         let mesh = Mesh::structured(self.radius, self.length, self.nr, self.nz, self.grading)?;
-        let sub = PathBuf::from(format!("{}_d{}", slug(&self.name), m.damage));
+        // The damage written short: 1e-300 is not 302 characters of a directory name.
+        let sub = PathBuf::from(format!(
+            "{}_d{}",
+            slug(&self.name),
+            crate::text::shortest(m.damage)
+        ));
         let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
             (Some(dir), false) => Some(VtkOutput {
                 directory: dir.join(&sub),

@@ -21,6 +21,7 @@ use crate::active::StretchRate;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
+use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::Muscle;
@@ -249,7 +250,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             };
             return Err(SpecError::new(
                 key,
-                format!("a({t} s) = {a}"),
+                format!("a({} s) = {}", shortest(t), shortest(a)),
                 "the activation level must be finite and >= 0",
             ));
         }

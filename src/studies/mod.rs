@@ -470,20 +470,28 @@ impl Outcome {
     }
 }
 
-/// A file-name-safe lower-case form of `text` (runs of other characters become one `_`).
+/// A file-name-safe lower-case form of `text`: its letters and digits (any script:
+/// [`char::is_alphanumeric`], so `"Мышца"` is `мышца` and `"筋肉"` stays `筋肉`), lower-cased;
+/// every run of other characters (spaces, punctuation, path separators, control characters)
+/// becomes one `_`, none at either end. ASCII names give what they always gave (`"cyl A"` →
+/// `cyl_a`); a slug never holds a path separator, a control character or a leading dot.
 pub fn slug(text: &str) -> String {
-    let mut s: String = text
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() {
-                c.to_ascii_lowercase()
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    while s.contains("__") {
-        s = s.replace("__", "_");
+    let mut s = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_alphanumeric() {
+            s.extend(c.to_lowercase());
+        } else if !s.is_empty() && !s.ends_with('_') {
+            s.push('_');
+        }
     }
-    s.trim_matches('_').to_string()
+    let trimmed = s.trim_end_matches('_').len();
+    s.truncate(trimmed);
+    s
 }
+
+/// The longest [`slug`] of a study's name, in bytes (UTF-8), so that every file name derived
+/// from it stays within the 255 bytes a file name may have: `points_<slug>.csv`,
+/// `vtk/<slug>_d<damage>/` (damage written short: at most 24 bytes more), `fig_<kind>_<slug>.svg`
+/// and, where two studies' figures share a stem, `fig_history_<slug₁>_<slug₂>_<n>.png`
+/// (2 × 100 + 20 bytes).
+pub const MAX_SLUG_BYTES: usize = 100;

@@ -428,6 +428,36 @@ fn a_time_limit_keeps_the_solved_stretches_and_exits_3() {
     assert_eq!(bad.status.code(), Some(1));
 }
 
+/// A time limit beyond what the clock holds (1e20 s; issue 24, item 5: a panic, exit 101) is no
+/// limit: the run completes, exit 0. A limit that is no number of seconds is refused (exit 1)
+/// with the value written short.
+#[test]
+fn a_huge_time_limit_is_no_limit_and_never_panics() {
+    let dir = temp_dir("huge-limit");
+    for limit in ["1e20", "1.7976931348623157e308"] {
+        let out = dir.join(format!("out-{limit}"));
+        let output = run_into(&dir, "a", SMALL, &out, &["--max-seconds", limit]);
+        assert_eq!(
+            output.status.code(),
+            Some(0),
+            "{limit}: {}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        assert!(out.join("curves.csv").is_file(), "{limit}");
+    }
+    for (limit, shown) in [("-1e300", "-1e300"), ("NaN", "NaN"), ("0", "0")] {
+        // `=`: clap would take a bare `-1e300` for an option.
+        let arg = format!("--max-seconds={limit}");
+        let output = run_into(&dir, "a", SMALL, &dir.join("refused"), &[&arg]);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(1), "{limit}: {stderr}");
+        assert!(
+            stderr.contains(&format!("--max-seconds {shown}:")) && stderr.len() < 200,
+            "{limit}: {stderr}"
+        );
+    }
+}
+
 const SMALL: &str = "title = \"small\"\n[[study]]\nkind = \"uniaxial\"\nname = \"along\"\nstretch = [0.9, 1.0, 1.1]\n";
 const ACROSS: &str = "title = \"small\"\n[[study]]\nkind = \"uniaxial\"\nname = \"across\"\ndirection = \"across\"\nstretch = [0.9, 1.0, 1.1]\n";
 
@@ -508,6 +538,71 @@ fn a_second_run_refuses_a_directory_a_live_run_holds() {
             .any(|n| n.starts_with(".activemuscle-partial") || n == ".activemuscle.lock"),
         "{left:?}"
     );
+}
+
+/// A trade-off that measures little (one option, two tolerances, a 1 × 4 mesh): about a second.
+const TINY_TRADEOFF: &str = "[[study]]\nkind = \"tradeoff\"\noptions = [\"newton-tolerance\"]\n\
+                             stretch = [1.0, 1.1]\nnr = 1\nnz = 4\ntolerances = [1e-6, 1e-10]\n";
+
+/// `tradeoff dir/name.toml --out OUT --quiet` with `text` written as the scene.
+fn tradeoff_into(dir: &Path, name: &str, text: &str, out: &Path) -> Output {
+    let scene = dir.join(format!("{name}.toml"));
+    std::fs::write(&scene, text).expect("write scene");
+    run_args(&[
+        "tradeoff".as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ])
+}
+
+/// `run` and `tradeoff` into one directory (issue 24, item 4): each command replaces only its own
+/// files, so the run's curves.csv, report.html and figures survive a trade-off written beside
+/// them (they were deleted, exit 0), and the trade-off's files survive a re-run.
+#[test]
+fn run_and_tradeoff_into_one_directory_keep_each_others_outputs() {
+    let dir = temp_dir("mixed");
+    let out = dir.join("mixed");
+    assert_eq!(run_into(&dir, "a", SMALL, &out, &[]).status.code(), Some(0));
+    let run_files: Vec<String> = listing(&out)
+        .into_iter()
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    for expected in ["curves.csv", "report.html", "scene.toml"] {
+        assert!(run_files.iter().any(|n| n == expected), "{run_files:?}");
+    }
+    assert!(
+        run_files.iter().any(|n| n.ends_with(".png")),
+        "{run_files:?}"
+    );
+    let curves = read(&out.join("curves.csv"));
+    let report = read(&out.join("report.html"));
+    let trade = tradeoff_into(&dir, "t", TINY_TRADEOFF, &out);
+    assert_eq!(
+        trade.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&trade.stderr)
+    );
+    let after = listing(&out);
+    for f in &run_files {
+        assert!(after.contains(f), "{f} of the run is gone: {after:?}");
+    }
+    assert_eq!(read(&out.join("curves.csv")), curves);
+    assert_eq!(read(&out.join("report.html")), report);
+    for f in ["tradeoff.csv", "tradeoff.md", "tradeoff.html"] {
+        assert!(out.join(f).is_file(), "{f}: {after:?}");
+    }
+    // A re-run of each replaces its own files and leaves the other's.
+    assert_eq!(run_into(&dir, "a", SMALL, &out, &[]).status.code(), Some(0));
+    assert_eq!(listing(&out), after, "a re-run of `run`");
+    assert_eq!(
+        tradeoff_into(&dir, "t", TINY_TRADEOFF, &out).status.code(),
+        Some(0)
+    );
+    assert_eq!(listing(&out), after, "a re-run of `tradeoff`");
+    assert_eq!(read(&out.join("curves.csv")), curves);
 }
 
 /// A non-empty directory no run of ours wrote is refused (`tradeoff` too, before computing)

@@ -59,6 +59,7 @@ mod scene_tradeoff;
 mod scratch_dirs;
 mod shear_biaxial;
 mod stability;
+mod study_names;
 mod tabulated_law;
 mod tangents;
 mod tradeoff_machinery;

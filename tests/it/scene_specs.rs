@@ -283,3 +283,51 @@ fn a_misspelt_material_key_is_named() {
     assert!(e.to_string().contains("engery is not a number"), "{e}");
     assert!(e.to_string().contains("misspelt"), "{e}");
 }
+
+/// Values far out of range are written back short in the message, as the scene gives them
+/// (issue 24, item 10: `1e300` was printed as its 301 digits).
+#[test]
+fn extreme_values_are_written_short_in_messages() {
+    const STUDY: &str = "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, 1.1]\n";
+    for (text, key, shown) in [
+        (
+            "[[study]]\nkind = \"uniaxial\"\nstretch = [1.0, -1e300]\n".to_string(),
+            "study[0].stretch",
+            "-1e300",
+        ),
+        (
+            format!("[activation]\ndamage = [1e300]\n{STUDY}"),
+            "activation.damage[0]",
+            "1e300",
+        ),
+        (
+            format!("[material]\nmu = -1e300\n{STUDY}"),
+            "material.mu",
+            "-1e300",
+        ),
+        (
+            format!("[material]\nmu = 1e-300\nalpha = -2.5e-300\n{STUDY}"),
+            "material.alpha",
+            "-2.5e-300",
+        ),
+        (
+            "[[study]]\nkind = \"cylinder\"\nnr = 1\nnz = 2\nstretch = [1.1]\n\
+             regions = [{ r = [0.0, 1e300], damage = 0.5 }]\n"
+                .to_string(),
+            "study[0].regions[0].r",
+            "[0, 1e300]",
+        ),
+    ] {
+        let e = rejected(&text);
+        let message = e.to_string();
+        assert!(
+            message.contains(&format!("{key} = {shown}")),
+            "{key} = {shown}: {message}"
+        );
+        assert!(
+            message.len() < 200,
+            "{} characters: {message}",
+            message.len()
+        );
+    }
+}

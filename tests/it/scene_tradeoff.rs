@@ -131,7 +131,8 @@ fn bad_tradeoff_options_are_named_with_line_key_value_and_rule() {
         &e,
         6,
         "study[0].tolerances[1]",
-        "0.000001",
+        // As the scene writes it (issue 24, item 10: numbers in messages are written short).
+        "= 1e-6",
         "loose to tight",
     );
     let e = rejected(&format!("{head}tolerances = [1.5]\n"));

@@ -40,6 +40,7 @@ use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, 
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::models::Models;
+use crate::text::shortest;
 use groups::{Resolved, Runner};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -508,7 +509,7 @@ fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
                 format!(
                     "tolerances go from loose to tight (the last is the reference): \
                      not below the {} before it",
-                    v[j - 1]
+                    shortest(v[j - 1])
                 ),
             ));
         }
