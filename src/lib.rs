@@ -45,6 +45,7 @@ pub mod studies;
 pub mod testing;
 pub mod text;
 pub mod uniaxial;
+pub mod user_file;
 pub mod volumetric;
 
 pub use app_error::AppError;

@@ -108,9 +108,9 @@ impl Data {
     }
 }
 
-/// Opens a data file; an error names it (line 0: the file as a whole).
+/// Opens a data file (a regular file: a FIFO would block); an error names it (line 0: the file as a whole).
 pub(crate) fn open(path: &Path) -> Result<std::fs::File, FitError> {
-    std::fs::File::open(path).map_err(|e| FitError::Csv {
+    crate::user_file::open(path).map_err(|e| FitError::Csv {
         source_name: path.display().to_string(),
         line: 0,
         message: e.to_string(),

@@ -411,7 +411,6 @@ pub struct Figure {
 }
 
 impl Figure {
-    /// A figure whose caption ends with what its frames leave out ([`Panel::notes`]).
     /// Every `from` in the figure's words (heading, caption, panel titles and axis labels,
     /// series labels) replaced by `to`: the activation variable's symbol, γ or ω.
     pub fn rename_symbol(&mut self, from: &str, to: &str) {
@@ -428,6 +427,7 @@ impl Figure {
         }
     }
 
+    /// A figure whose caption ends with what its frames leave out ([`Panel::notes`]).
     pub fn new(
         stem: impl Into<String>,
         heading: impl Into<String>,
@@ -496,9 +496,43 @@ const LEGEND_FONT: u32 = 15;
 const LEGEND_ROW: u32 = 21;
 const LEGEND_GLYPH: u32 = 34;
 
-/// The legend entries of a panel: the labelled series.
-fn entries(panel: &Panel) -> impl Iterator<Item = &Series> {
-    panel.series.iter().filter(|s| !s.label.is_empty())
+/// Columns a legend may take: a wider one would make the figure wider than a screen.
+const MAX_LEGEND_COLUMNS: usize = 3;
+
+/// The legend of a panel of height `h`: its labelled series, at most [`MAX_LEGEND_COLUMNS`]
+/// columns of them; when there are more, the last place says how many are left out.
+struct Legend<'a> {
+    shown: Vec<&'a Series>,
+    left_out: usize,
+}
+
+impl<'a> Legend<'a> {
+    fn of(panel: &'a Panel, h: u32) -> Self {
+        let mut shown: Vec<&Series> = panel
+            .series
+            .iter()
+            .filter(|s| !s.label.is_empty())
+            .collect();
+        let room = MAX_LEGEND_COLUMNS * legend_rows(h);
+        let left_out = if shown.len() > room {
+            let n = shown.len() - (room - 1);
+            shown.truncate(room - 1);
+            n
+        } else {
+            0
+        };
+        Self { shown, left_out }
+    }
+
+    /// The entry that stands for the series left out.
+    fn more(&self) -> Option<String> {
+        (self.left_out > 0).then(|| format!("… {} more (in the CSV)", self.left_out))
+    }
+
+    /// Entries, the "more" line counted.
+    fn len(&self) -> usize {
+        self.shown.len() + usize::from(self.left_out > 0)
+    }
 }
 
 /// Rows of a legend column in a panel of height `h`.
@@ -509,17 +543,21 @@ fn legend_rows(h: u32) -> usize {
 /// Width \[px\] of the legend of `panel` (0 without entries), in columns of at most
 /// [`legend_rows`] entries.
 fn legend_width(panel: &Panel, h: u32) -> u32 {
-    let widest = entries(panel)
-        .map(|s| {
+    let legend = Legend::of(panel, h);
+    let widest = legend
+        .shown
+        .iter()
+        .map(|s| s.label.clone())
+        .chain(legend.more())
+        .map(|label| {
             ("sans-serif", LEGEND_FONT)
                 .into_font()
-                .box_size(&s.label)
-                .map_or(8 * s.label.chars().count() as u32, |b| b.0)
+                .box_size(&label)
+                .map_or(8 * label.chars().count() as u32, |b| b.0)
         })
         .max();
-    let n = entries(panel).count();
     widest.map_or(0, |w| {
-        let columns = n.div_ceil(legend_rows(h)) as u32;
+        let columns = legend.len().div_ceil(legend_rows(h)) as u32;
         columns * (w + LEGEND_GLYPH + 16) + 8
     })
 }
@@ -729,15 +767,27 @@ fn draw_legend<DB: DrawingBackend>(
     let (_, h) = area.dim_in_pixel();
     let rows = legend_rows(h);
     let width = legend_width(panel, h);
-    let n = entries(panel).count();
+    let legend = Legend::of(panel, h);
+    let n = legend.len();
     if n == 0 {
         return Ok(());
     }
     let column = ((width - 8) / n.div_ceil(rows) as u32) as i32;
     let font = ("sans-serif", LEGEND_FONT).into_font().color(&BLACK);
-    for (k, s) in entries(panel).enumerate() {
-        let x = 4 + (k / rows) as i32 * column;
-        let y = 52 + (k % rows) as i32 * LEGEND_ROW as i32;
+    let place = |k: usize| {
+        (
+            4 + (k / rows) as i32 * column,
+            52 + (k % rows) as i32 * LEGEND_ROW as i32,
+        )
+    };
+    if let Some(more) = legend.more() {
+        let (x, y) = place(n - 1);
+        let at = (x + LEGEND_GLYPH as i32, y);
+        area.draw_text(&more, &font.pos(Pos::new(HPos::Left, VPos::Center)), at)
+            .map_err(e)?;
+    }
+    for (k, s) in legend.shown.iter().enumerate() {
+        let (x, y) = place(k);
         let c = colour(s.colour);
         let line =
             |a: i32, b: i32| PathElement::new(vec![(x + a, y), (x + b, y)], c.stroke_width(2));

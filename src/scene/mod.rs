@@ -29,6 +29,11 @@ use crate::studies::{Study, StudySpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+/// The largest scene file \[bytes\] (the paper's is 9 kB).
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+const SCENE_CAP_REASON: &str =
+    "a scene is a page of settings; lists of values are written as ranges";
+
 /// The chapter's whole study (`scenes/paper.toml`), compiled into the binary.
 pub const PAPER_SCENE: &str = include_str!("../../scenes/paper.toml");
 
@@ -76,12 +81,20 @@ impl Scene {
     /// Reads, validates and resolves the scene file at `path`.
     pub fn load(path: &Path) -> Result<Self, SceneError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let unreadable = |rule: String| SceneError {
             file: file.clone(),
             key: "(file)".into(),
             value: String::new(),
-            rule: format!("cannot read the scene file: {e}"),
+            rule: format!("cannot read the scene file: {rule}"),
             line: None,
+        };
+        let bytes = crate::user_file::read(path, MAX_SCENE_BYTES, SCENE_CAP_REASON)
+            .map_err(|e| unreadable(e.to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|e| {
+            unreadable(format!(
+                "not UTF-8 text (byte {} is not valid UTF-8)",
+                e.utf8_error().valid_up_to()
+            ))
         })?;
         Self::parse(&text, &file)
     }

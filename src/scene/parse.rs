@@ -17,6 +17,18 @@ use toml::Spanned;
 pub(super) fn parse(text: &str, file: &str) -> Result<SceneSpec, SceneError> {
     let error = |e: toml::de::Error| from_toml(text, file, &e, None);
     let mut doc = DeTable::parse(text).map_err(error)?;
+    if let Some((span, n)) = doc.get_ref().values().find_map(too_long) {
+        return Err(at(
+            text,
+            file,
+            span,
+            "",
+            &format!(
+                "a list of {n} values: at most {MAX_ARRAY} (the outputs of longer lists are \
+                 larger than a reader can use; write a range with a coarser step)"
+            ),
+        ));
+    }
     let studies = doc.get_mut().remove("study");
     let curve_parameters = match doc.get_mut().get_mut("activation") {
         Some(activation) => curve_parameters(activation.get_mut()).map_err(error)?,
@@ -40,6 +52,20 @@ pub(super) fn parse(text: &str, file: &str) -> Result<SceneSpec, SceneError> {
         }
     }
     Ok(spec)
+}
+
+/// The most values one array of a scene may hold: a backstop for every list (the lists of
+/// stretches and damages have their own, smaller caps).
+pub(crate) const MAX_ARRAY: usize = 10_000;
+
+/// The first array in `value` longer than [`MAX_ARRAY`]: its span and length.
+fn too_long(value: &Spanned<DeValue>) -> Option<(std::ops::Range<usize>, usize)> {
+    match value.get_ref() {
+        DeValue::Array(items) if items.len() > MAX_ARRAY => Some((value.span(), items.len())),
+        DeValue::Array(items) => items.iter().find_map(too_long),
+        DeValue::Table(table) => table.values().find_map(too_long),
+        _ => None,
+    }
 }
 
 /// Takes the parameters of the shipped active curves out of `[activation]` (they sit flat beside
@@ -75,16 +101,12 @@ fn study(text: &str, file: &str, item: Spanned<DeValue>) -> Result<StudySpec, Sc
         ));
     };
     let Some(kind) = table.remove("kind") else {
-        let kinds: Vec<String> = StudyKind::ALL
-            .iter()
-            .map(|k| format!("\"{}\"", k.name()))
-            .collect();
         return Err(at(
             text,
             file,
             span,
             "kind",
-            &format!("every study needs kind = {}", kinds.join(" | ")),
+            &format!("every study needs kind = {}", StudyKind::names()),
         ));
     };
     let kind = StudyKind::deserialize(ValueDeserializer::from(kind))

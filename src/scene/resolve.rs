@@ -89,7 +89,10 @@ fn studies(
         return Err(SpecError::new(
             "study",
             "(none)",
-            "a scene needs at least one [[study]] (kind = \"uniaxial\", \"cylinder\", \"fit\", \"stability\", \"tradeoff\" or \"activation-in-time\")",
+            format!(
+                "a scene needs at least one [[study]] (kind = {})",
+                StudyKind::names()
+            ),
         ));
     }
     let mut studies: Vec<Study> = Vec::with_capacity(specs.len());

@@ -85,6 +85,15 @@ macro_rules! study_kinds {
                 }
             }
 
+            /// Every kind's name, quoted, joined with `|` (for messages).
+            pub fn names() -> String {
+                let names: Vec<String> = Self::ALL
+                    .iter()
+                    .map(|k| format!("\"{}\"", k.name()))
+                    .collect();
+                names.join(" | ")
+            }
+
             /// What to say about a key this kind of study does not take (`" (it takes a list:
             /// ...)"`), or nothing.
             pub fn hint(self, key: &str) -> String {

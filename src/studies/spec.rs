@@ -92,7 +92,7 @@ pub fn fmt_list(v: &[f64]) -> String {
 }
 
 impl StretchSpec {
-    /// The stretches: finite, > 0, ascending without duplicates, at most 100 000; errors name
+    /// The stretches: finite, > 0, ascending without duplicates, at most [`MAX_GRID_POINTS`]; errors name
     /// `key` (`stretch`, `stretch.step`).
     pub fn resolve(&self, key: &str) -> Result<Vec<f64>, SpecError> {
         self.grid(key, Grid::Stretch)
@@ -110,7 +110,7 @@ impl StretchSpec {
     }
 
     fn grid(&self, key: &str, grid: Grid) -> Result<Vec<f64>, SpecError> {
-        const MAX: usize = 100_000;
+        const MAX: usize = MAX_GRID_POINTS;
         let mut v = match self {
             StretchSpec::List(v) => v.clone(),
             StretchSpec::Range {
@@ -145,7 +145,7 @@ impl StretchSpec {
                     return Err(SpecError::new(
                         format!("{key}.step"),
                         step,
-                        format!("gives more than {MAX} values"),
+                        format!("gives more than {MAX} values ({GRID_CAP_REASON})"),
                     ));
                 }
                 // Rounded to 10 decimals so that 0.65 + 0.01 i prints as the decimal it means.
@@ -156,6 +156,13 @@ impl StretchSpec {
                 v
             }
         };
+        if v.len() > MAX {
+            return Err(SpecError::new(
+                key,
+                format!("[… {} values]", v.len()),
+                format!("at most {MAX} values ({GRID_CAP_REASON})"),
+            ));
+        }
         let (what, rule) = match grid {
             Grid::Time => ("time", "every time must be finite and ≥ 0"),
             Grid::Stretch => ("stretch", "every stretch must be finite and > 0"),
@@ -183,6 +190,14 @@ impl StretchSpec {
     }
 }
 
+/// The most stretches, times or amounts of shear one list may give.
+pub const MAX_GRID_POINTS: usize = 10_000;
+const GRID_CAP_REASON: &str =
+    "each is a solve and a CSV row; a curve of more points is no smoother on a figure";
+
+/// The most damages a study may list.
+pub const MAX_DAMAGES: usize = 16;
+
 /// What a [`StretchSpec`] lists.
 #[derive(Clone, Copy)]
 enum Grid {
@@ -209,6 +224,16 @@ pub fn damages(key: &str, v: &[f64]) -> Result<Vec<f64>, SpecError> {
         v,
         "the damage list is empty: give at least one d ∈ [0, 1]",
     )?;
+    if v.len() > MAX_DAMAGES {
+        return Err(SpecError::new(
+            key,
+            format!("[… {} values]", v.len()),
+            format!(
+                "at most {MAX_DAMAGES} damages: each is a model solved at every stretch and a \
+                 curve in every figure, and more curves than that cannot be told apart"
+            ),
+        ));
+    }
     for (i, d) in v.iter().enumerate() {
         if !(0.0..=1.0).contains(d) {
             return Err(SpecError::new(
