@@ -281,9 +281,10 @@ fn an_endless_data_stream_is_refused_after_the_byte_limit() {
     }
     if std::path::Path::new("/dev/zero").exists() {
         let e = within(60, || Data::from_csv_path("/dev/zero").map(|d| d.len()));
+        // A device is refused before it is read (issue 24.6), not after the byte limit.
         let text = e.expect_err("read /dev/zero").to_string();
         assert!(
-            text.contains("/dev/zero") && text.contains("67108864"),
+            text.contains("/dev/zero") && text.contains("a character device"),
             "{text}"
         );
     }
