@@ -404,8 +404,9 @@ fn tradeoff_command(
         out.display(),
         started.elapsed().as_secs_f64()
     );
-    // A group or variant that could not be measured is a failure of what was asked.
-    let failed = results.unmeasured();
+    // A group or a reference that could not be measured is a failure of what was asked; a
+    // variant that did not converge is a measured result (its row says so).
+    let failed = results.failed();
     for f in &failed {
         say!("FAILED: {}: {}", f.model, f.message);
     }

@@ -356,6 +356,16 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         Self { n, dn, m, w }
     }
 
+    /// The positions (r, z) = Σ N_a(ξ_q) x_a of the quadrature points in the cell with nodal
+    /// coordinates `x`.
+    pub fn positions(&self, x: &[[f64; 2]; NN]) -> [[f64; 2]; NQ] {
+        std::array::from_fn(|q| {
+            x.iter()
+                .zip(&self.n[q])
+                .fold([0.0, 0.0], |[r, z], (xa, na)| [r + na * xa[0], z + na * xa[1]])
+        })
+    }
+
     /// Maps the reference point `q` to the cell with nodal coordinates `x`: with the
     /// isoparametric map (r, z) = Σ N_a(ξ, η) x_a and its Jacobian J = ∂(r, z)/∂(ξ, η),
     /// (∂N_a/∂r, ∂N_a/∂z) = J⁻ᵀ (∂N_a/∂ξ, ∂N_a/∂η) and dV = 2π r det J w_q. Returns `None`

@@ -50,7 +50,7 @@ fn positive(name: &'static str, v: f64) -> FemResult<f64> {
     } else {
         Err(FemError::InvalidInput {
             name,
-            value: v.to_string(),
+            value: crate::text::shortest(v),
             rule: "must be finite and > 0",
         })
     }
@@ -133,7 +133,7 @@ impl Mesh {
         if !(grading.is_finite() && grading >= 1.0) {
             return Err(FemError::InvalidInput {
                 name: "grading",
-                value: grading.to_string(),
+                value: crate::text::shortest(grading),
                 rule: "must be finite and ≥ 1",
             });
         }
@@ -293,6 +293,32 @@ impl Mesh {
     /// The cells, each as its [`Element::nodes`] node indices.
     pub fn elements(&self) -> std::slice::ChunksExact<'_, u32> {
         self.connectivity.chunks_exact(self.element.nodes())
+    }
+
+    /// The reference positions (r, z) of every quadrature point, cell by cell: where the
+    /// assembly evaluates the material (a region that holds none of them has no effect). Cells
+    /// with a node index out of range are left out (the assembly refuses them).
+    pub fn quadrature_positions(&self) -> Vec<[f64; 2]> {
+        use super::element::{Q1P0Reference, Q2Q1Reference, ReferenceElement};
+        fn all<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>(
+            mesh: &Mesh,
+            re: &ReferenceElement<NN, NU, NP, ND, NQ>,
+        ) -> Vec<[f64; 2]> {
+            mesh.elements()
+                .filter_map(|conn| {
+                    let mut x = [[0.0; 2]; NN];
+                    for (xa, &node) in x.iter_mut().zip(conn) {
+                        *xa = *mesh.nodes.get(node as usize)?;
+                    }
+                    Some(re.positions(&x))
+                })
+                .flatten()
+                .collect()
+        }
+        match self.element {
+            Element::Q2Q1 => all(self, &Q2Q1Reference::new()),
+            Element::Q1P0 => all(self, &Q1P0Reference::new()),
+        }
     }
 
     /// Number of cells.

@@ -98,7 +98,7 @@ impl SolverOptions {
         if stepping.tolerance < MIN_TOLERANCE {
             return Err(FemError::InvalidInput {
                 name: "tolerance",
-                value: stepping.tolerance.to_string(),
+                value: crate::text::shortest(stepping.tolerance),
                 rule:
                     "must be ≥ 4 ε ≈ 8.9e-16: a scaled residual of f64 numbers does not go below \
                        its round-off",
@@ -110,7 +110,7 @@ impl SolverOptions {
         if !(self.stress_floor.is_finite() && self.stress_floor >= 0.0) {
             return Err(FemError::InvalidInput {
                 name: "stress_floor",
-                value: self.stress_floor.to_string(),
+                value: crate::text::shortest(self.stress_floor),
                 rule: "must be finite and ≥ 0",
             });
         }
@@ -212,7 +212,7 @@ fn check_positive(name: &'static str, v: f64) -> FemResult<()> {
     } else {
         Err(FemError::InvalidInput {
             name,
-            value: v.to_string(),
+            value: crate::text::shortest(v),
             rule: "must be finite and > 0",
         })
     }
@@ -378,7 +378,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             if (t - 1.0).abs() / stepping.max_step > stepping.max_steps as f64 {
                 return Err(FemError::InvalidInput {
                     name: "target stretch",
-                    value: t.to_string(),
+                    value: crate::text::shortest(t),
                     rule: "needs more load steps of max_step from λ = 1 than max_steps allows",
                 });
             }

@@ -117,11 +117,11 @@ fn studies(
         resolved.push(r);
     }
     let fallback = crate::studies::fallback(&studies);
-    for ((study, given), r) in studies.iter_mut().zip(specs).zip(&mut resolved) {
+    for (i, ((study, given), r)) in studies.iter_mut().zip(specs).zip(&mut resolved).enumerate() {
         if let (Study::Tradeoff(t), StudySpec::Tradeoff(given), StudySpec::Tradeoff(r)) =
             (study, given, r)
         {
-            tradeoff::complete(t, given, r, &fallback);
+            tradeoff::complete(t, given, r, &fallback).map_err(|e| e.within(&format!("study[{i}]")))?;
         }
     }
     Ok((studies, resolved))

@@ -176,6 +176,48 @@ fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
     Ok(out)
 }
 
+/// Refuses a region that governs no quadrature point of `mesh` (none lies inside it, or later
+/// regions cover all that do): its damage and activation would have no effect on the solve.
+fn regions_take_effect(
+    regions: &[StudyRegion],
+    mesh: &Mesh,
+    mesh_name: &str,
+) -> Result<(), SpecError> {
+    let (radius, length) = (mesh.radius, mesh.length);
+    let inside = |g: &StudyRegion, [r, z]: [f64; 2]| {
+        g.r[0] * radius <= r && r <= g.r[1] * radius && g.z[0] * length <= z && z <= g.z[1] * length
+    };
+    let positions = mesh.quadrature_positions();
+    let mut governs = vec![false; regions.len()];
+    for &at in &positions {
+        if let Some(i) = regions.iter().rposition(|g| inside(g, at)) {
+            governs[i] = true;
+        }
+    }
+    match governs.iter().position(|&g| !g) {
+        None => Ok(()),
+        Some(i) => {
+            let g = &regions[i];
+            let holds_any = positions.iter().any(|&at| inside(g, at));
+            Err(SpecError::new(
+                format!("regions[{i}]"),
+                format!(
+                    "r = [{}, {}], z = [{}, {}]",
+                    shortest(g.r[0]),
+                    shortest(g.r[1]),
+                    shortest(g.z[0]),
+                    shortest(g.z[1])
+                ),
+                if holds_any {
+                    format!("later regions cover every quadrature point of the {mesh_name} mesh inside it (the last region holding a point governs it), so it has no effect: remove it or reorder")
+                } else {
+                    format!("holds no quadrature point of the {mesh_name} mesh, so it would have no effect: widen it or refine the mesh")
+                },
+            ))
+        }
+    }
+}
+
 /// A named boundary node of a cylinder study.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NamedPoint {
@@ -378,13 +420,20 @@ pub fn resolve(
     )
     .check(crate::fem::memory::default_limit())
     .map_err(|e| SpecError::new("nr", nr, e.to_string()))?;
-    let points = match &spec.points {
-        Some(p) if !p.is_empty() => {
-            let mesh = Mesh::structured(radius, length, nr, nz, grading)
-                .map_err(|e| SpecError::new("nr", nr, e.to_string()))?
-                .with_element(spec.element);
-            named_points(p, &mesh, &format!("{nr} × {nz} {}", spec.element))?
-        }
+    let wanted = spec.points.as_ref().is_some_and(|p| !p.is_empty()) || !regions.is_empty();
+    let mesh = wanted
+        .then(|| {
+            Mesh::structured(radius, length, nr, nz, grading)
+                .map(|m| m.with_element(spec.element))
+                .map_err(|e| SpecError::new("nr", nr, e.to_string()))
+        })
+        .transpose()?;
+    let mesh_name = format!("{nr} × {nz} {}", spec.element);
+    if let Some(mesh) = &mesh {
+        regions_take_effect(&regions, mesh, &mesh_name)?;
+    }
+    let points = match (&spec.points, &mesh) {
+        (Some(p), Some(mesh)) if !p.is_empty() => named_points(p, mesh, &mesh_name)?,
         _ => Vec::new(),
     };
     Ok((

@@ -27,6 +27,7 @@ use crate::fit::{
 };
 use crate::models::EnergySpec;
 use crate::random::Sampler;
+use crate::text::shortest;
 use crate::uniaxial::{along_fibres, Direction};
 use crate::{Muscle, StrainEnergy};
 use serde::{Deserialize, Serialize};
@@ -669,7 +670,7 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
     let problem = problem(spec, kind, d)?;
     let model = problem.model();
     let free = free_parameters(spec, &model.names, &model.default_free)?;
-    let setup = setup(spec, &free, options)?;
+    let setup = setup(spec, &model, &free, options)?;
     let (cases, source) = problem.cases(spec, stretches.as_deref(), &mut source)?;
     enough_points(spec, kind, &cases, free.len())?;
     let name = spec
@@ -861,8 +862,14 @@ fn free_parameters(
     Ok(free)
 }
 
-/// Bounds and starts of the free parameters, checked.
-fn setup(spec: &FitSpec, free: &[String], options: FitOptions) -> Result<FitSetup, SpecError> {
+/// Bounds and starts of the free parameters, checked: every start, given or the model's own
+/// value, lies within its bounds (the fit would refuse it only when it runs).
+fn setup(
+    spec: &FitSpec,
+    model: &Model,
+    free: &[String],
+    options: FitOptions,
+) -> Result<FitSetup, SpecError> {
     let mut setup = FitSetup::new()
         .free(&free.iter().map(String::as_str).collect::<Vec<_>>())
         .options(options);
@@ -884,6 +891,21 @@ fn setup(spec: &FitSpec, free: &[String], options: FitOptions) -> Result<FitSetu
             ));
         }
         setup = setup.bounds(name, Bounds::new(b[0], b[1]));
+        let given = spec.start.as_ref().is_some_and(|s| s.contains_key(name));
+        let own = model.names.iter().position(|n| n == name).map(|i| model.values[i]);
+        if let (false, Some(v)) = (given, own) {
+            if !(b[0] <= v && v <= b[1]) {
+                return Err(SpecError::new(
+                    key,
+                    fmt_list(b),
+                    format!(
+                        "the start of {name}, the model's value {}, lies outside: \
+                         widen the bounds or give start.{name} within them",
+                        shortest(v)
+                    ),
+                ));
+            }
+        }
     }
     for (name, &v) in spec.start.iter().flatten() {
         let key = format!("start.{name}");

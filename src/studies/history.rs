@@ -205,6 +205,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
     let interpolation = spec.interpolation.unwrap_or_default();
     let schedule = Schedule::new(points(&written), interpolation)
         .map_err(|e| SpecError::new(format!("schedule[{}]", e.index), e.value, e.rule))?;
+    starts_in_time(&schedule, &times, "schedule[0]", "[0, 0] for a muscle at rest")?;
     let motor_units = match &spec.motor_units {
         None => None,
         Some(units) => {
@@ -261,7 +262,11 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         LoadingSpec::Constant(l) => {
             Loading::Prescribed(stretch_schedule(vec![(0.0, *l)], "stretch")?)
         }
-        LoadingSpec::Schedule(p) => Loading::Prescribed(stretch_schedule(points(p), "stretch")?),
+        LoadingSpec::Schedule(p) => {
+            let schedule = stretch_schedule(points(p), "stretch")?;
+            starts_in_time(&schedule, &times, "stretch[0]", "[0, 1] for the resting length")?;
+            Loading::Prescribed(schedule)
+        }
     };
     let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let law = spec.law.unwrap_or(d.law);
@@ -296,6 +301,32 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         },
         resolved,
     ))
+}
+
+/// Refuses a schedule whose first point comes after the study's first time `times[0]`: before
+/// its first point a schedule holds that point's value, so `[[5, 1]]` would mean fully active
+/// from t = 0 without saying so. `start` is the point to suggest.
+fn starts_in_time(
+    schedule: &Schedule,
+    times: &[f64],
+    key: &str,
+    start: &str,
+) -> Result<(), SpecError> {
+    let (first, _) = schedule.points()[0];
+    match times.first() {
+        Some(&t0) if first > t0 => Err(SpecError::new(
+            key,
+            format!("[{}, …]", shortest(first)),
+            format!(
+                "the schedule starts at t = {} s, after the study's first time {} s, and would \
+                 hold its first value before it: begin it at or before {} s (e.g. {start})",
+                shortest(first),
+                shortest(t0),
+                shortest(t0)
+            ),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// A stretch schedule: positive stretches, linear between points.

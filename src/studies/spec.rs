@@ -87,7 +87,7 @@ impl<'de> Deserialize<'de> for StretchSpec {
 
 /// `[a, b, c]`.
 pub fn fmt_list(v: &[f64]) -> String {
-    let items: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+    let items: Vec<String> = v.iter().map(|&x| crate::text::shortest(x)).collect();
     format!("[{}]", items.join(", "))
 }
 

@@ -694,15 +694,17 @@ fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     let text = format!(
         "{HEAD}{UNIAXIAL}\n[[study]]\nkind = \"tradeoff\"\nname = \"huge tradeoff\"\nmeshes = [[2, 8], [5000, 10000]]\n"
     );
+    // A tradeoff mesh beyond the limit is refused when the scene is read, as `check` does.
     let (output, out) = run_scene(&dir, "huge", &text);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert_eq!(output.status.code(), Some(3), "{output:?}");
-    assert_eq!(rows_of(&read(&out.join("curves.csv")), "uniaxial").len(), 8);
-    let line = stdout
-        .lines()
-        .find(|l| l.starts_with("FAILED: huge tradeoff —"))
-        .unwrap_or_else(|| panic!("{stdout}"));
-    assert!(line.contains("5000 × 10000") && line.contains("of memory, above the limit"));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{output:?}");
+    assert!(
+        stderr.contains("study[1].meshes")
+            && stderr.contains("5000 × 10000")
+            && stderr.contains("of memory, above the limit"),
+        "{stderr}"
+    );
+    assert!(!out.join("curves.csv").exists());
     let tradeoff = run_args(&[
         "tradeoff".as_ref(),
         dir.join("huge.toml").as_os_str(),
@@ -712,7 +714,7 @@ fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     ]);
     let stderr = String::from_utf8_lossy(&tradeoff.stderr);
     assert_eq!(tradeoff.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("before computing") && stderr.contains("of memory"));
+    assert!(stderr.contains("study[1].meshes") && stderr.contains("of memory"), "{stderr}");
     assert!(
         !dir.join("tr").exists(),
         "an output directory created for nothing"

@@ -46,6 +46,7 @@ mod fit_recovery;
 mod four_c_blocks;
 mod four_c_passive;
 mod golden_run;
+mod check_passes_run;
 mod input_caps;
 mod law_representation;
 mod library_run;

@@ -136,7 +136,7 @@ fn bad_tradeoff_options_are_named_with_line_key_value_and_rule() {
         "loose to tight",
     );
     let e = rejected(&format!("{head}tolerances = [1.5]\n"));
-    names(&e, 5, "study[0].tolerances[0]", "1.5", "(0, 1)");
+    names(&e, 5, "study[0].tolerances[0]", "1.5", "[4 ε, 1)");
     let e = rejected(&format!("{head}nz = -3\n"));
     names(&e, 5, "study[0].nz", "-3", "[1, 10000]");
     let e = rejected(&format!("{head}grading = 0.5\n"));

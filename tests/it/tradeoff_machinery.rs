@@ -618,7 +618,7 @@ fn a_reference_that_stopped_short_is_failed_and_the_others_are_compared_where_it
     for (run, is_reference) in [(&reference, true), (&short, false)] {
         let r = row(run, is_reference);
         assert!(!r.error.max_rel.is_finite(), "{}", r.note);
-        assert!(r.note.starts_with("failed: stopped at 1."), "{}", r.note);
+        assert!(r.note.starts_with("did not converge: stopped at 1."), "{}", r.note);
     }
 }
 
@@ -674,4 +674,54 @@ fn the_chapter_s_explicit_fit_serves_the_other_groups_only_on_the_chapter_s_mate
     assert!(implicit_said(&softer(None)));
     assert!(!implicit_said(&softer(Some((1.02, 0.21)))));
     assert!(!implicit_said(&Models::paper()));
+}
+
+/// Issue 24, item 11: a variant that does not converge is a measured result; only an option
+/// group or a reference that fails is a failure of the study (exit 3 at the command line).
+#[test]
+fn a_variant_that_does_not_converge_is_a_result_and_a_failed_reference_a_failure() {
+    let failed = |v: &str, reference: bool| {
+        let mut m = row(v, reference, &mut [1.0], 0.0);
+        m.error = CurveError::FAILED;
+        m.note = "did not converge: λ = 1.05".into();
+        m
+    };
+    let mut results = activemuscle::studies::tradeoff::TradeoffResults {
+        rows: vec![row("ref", true, &mut [1.0], 0.0), failed("symmetric", false)],
+        findings: Vec::new(),
+        failures: Vec::new(),
+    };
+    assert!(results.failed().is_empty(), "{:?}", results.failed());
+    assert!(results.rows[1].line().contains("did not converge: λ = 1.05"));
+    results.rows.push(failed("ref2", true));
+    results.failures.push(("mesh".into(), "out of memory".into()));
+    let f = results.failed();
+    assert_eq!(f.len(), 2, "{f:?}");
+    assert!(f[0].model.contains("mesh") && f[0].message == "out of memory");
+    assert!(f[1].model.contains("ref2 (reference)") && f[1].message.contains("λ = 1.05"));
+}
+
+/// The frozen-tangent group on a small clamped cylinder: its reference converges, the
+/// symmetric variants either converge or stop at their first failed step and say so; either
+/// way the study has no failure.
+#[test]
+fn the_frozen_tangent_group_has_no_failure_when_only_its_symmetric_variants_fail() {
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::FrozenTangent],
+        geometry: Some(geometry()),
+        fe_mesh: Some((1, 4)),
+        fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
+        ..TradeoffOptions::default()
+    };
+    let results = run(&Models::paper(), &options, &Fallback::default(), &Silent).unwrap();
+    assert_eq!(results.rows.len(), 3);
+    assert!(results.rows[0].reference && results.rows[0].measured());
+    for r in &results.rows[1..] {
+        assert!(
+            r.measured() || r.note.starts_with("did not converge"),
+            "{}",
+            r.line()
+        );
+    }
+    assert!(results.failed().is_empty(), "{:?}", results.failed());
 }

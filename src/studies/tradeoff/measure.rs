@@ -416,6 +416,9 @@ impl Measurement {
         if self.pareto {
             s.push_str(", Pareto");
         }
+        if !self.measured() && !self.note.is_empty() {
+            let _ = write!(s, "; {}", self.note);
+        }
         s
     }
 }

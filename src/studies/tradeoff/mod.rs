@@ -40,6 +40,7 @@ use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, 
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::models::Models;
+use crate::fem::solver::MIN_TOLERANCE;
 use crate::text::shortest;
 use groups::{Resolved, Runner};
 use serde::{Deserialize, Serialize};
@@ -204,18 +205,24 @@ pub struct TradeoffResults {
 }
 
 impl TradeoffResults {
-    /// What was asked and not measured, each with its reason: whole option groups
-    /// ([`Self::failures`]) and the variants that failed (rows without a finite error).
-    pub fn unmeasured(&self) -> Vec<Failure> {
+    /// What failed of what was asked, each with its reason: whole option groups
+    /// ([`Self::failures`]) and references that did not run to the end (nothing of their option
+    /// can be compared). A variant other than the reference that does not converge is a measured
+    /// result (its row says so), not a failure.
+    pub fn failed(&self) -> Vec<Failure> {
         let groups = self.failures.iter().map(|(group, why)| Failure {
             model: format!("option group {group}"),
             message: why.clone(),
         });
-        let variants = self.rows.iter().filter(|r| !r.measured()).map(|r| Failure {
-            model: format!("{} · {}", r.option, r.variant),
-            message: r.note.clone(),
-        });
-        groups.chain(variants).collect()
+        let references = self
+            .rows
+            .iter()
+            .filter(|r| r.reference && !r.measured())
+            .map(|r| Failure {
+                model: format!("{} · {} (reference)", r.option, r.variant),
+                message: r.note.clone(),
+            });
+        groups.chain(references).collect()
     }
 }
 
@@ -261,7 +268,8 @@ pub fn run_until(
             .and_then(|()| models.explicit_fit_applies()),
         explicit,
     };
-    check_memory(plan, &o.groups)?;
+    check_memory(plan.fe_mesh, &plan.meshes, &o.groups)
+        .map_err(|e| AppError::from(e).within("before computing"))?;
     let mut runner = Runner {
         progress,
         rows: Vec::new(),
@@ -333,28 +341,30 @@ pub fn run_until(
 }
 
 /// Checks every mesh the chosen groups solve against the memory limit
-/// ([`crate::fem::memory::default_limit`]) before anything is computed: the FE mesh, the mesh
-/// option's meshes, and the element option's Q2/Q1 reference on twice the FE mesh's cells and
-/// its finest Q1/P0 mesh on four times.
-fn check_memory(plan: &Resolved, groups: &[OptionGroup]) -> Result<(), AppError> {
+/// ([`crate::fem::memory::default_limit`]) before anything is computed: the FE mesh `fe_mesh`,
+/// the mesh option's `meshes`, and the element option's Q2/Q1 reference on twice the FE mesh's
+/// cells and its finest Q1/P0 mesh on four times. Run when the scene is resolved (so `check`
+/// refuses what could not run) and again before a run of [`TradeoffOptions`] built in code.
+fn check_memory(
+    fe_mesh: (usize, usize),
+    meshes: &[(usize, usize)],
+    groups: &[OptionGroup],
+) -> crate::fem::FemResult<()> {
     use crate::fem::{Element, MemoryEstimate, SolverOptions};
-    let (nr, nz) = plan.fe_mesh;
-    let mut meshes = vec![(nr, nz, Element::Q2Q1)];
+    let (nr, nz) = fe_mesh;
+    let mut solved = vec![(nr, nz, Element::Q2Q1)];
     if groups.contains(&OptionGroup::Mesh) {
-        meshes.extend(plan.meshes.iter().map(|&(r, z)| (r, z, Element::Q2Q1)));
+        solved.extend(meshes.iter().map(|&(r, z)| (r, z, Element::Q2Q1)));
     }
     if groups.contains(&OptionGroup::Element) {
-        meshes.push((2 * nr, 2 * nz, Element::Q2Q1));
-        meshes.push((4 * nr, 4 * nz, Element::Q1P0));
+        solved.push((2 * nr, 2 * nz, Element::Q2Q1));
+        solved.push((4 * nr, 4 * nz, Element::Q1P0));
     }
     let limit = crate::fem::memory::default_limit();
     let linear = SolverOptions::default().linear_solver;
-    for (r, z, element) in meshes {
-        MemoryEstimate::structured(r, z, element, linear)
-            .check(limit)
-            .map_err(|e| AppError::from(e).within("before computing"))?;
-    }
-    Ok(())
+    solved
+        .into_iter()
+        .try_for_each(|(r, z, element)| MemoryEstimate::structured(r, z, element, linear).check(limit))
 }
 
 /// `[[study]] kind = "tradeoff"` as written; `None` is a key left to its default.
@@ -495,11 +505,14 @@ fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
     )?;
     for (j, t) in v.iter().enumerate() {
         let at = format!("tolerances[{j}]");
-        if !(t.is_finite() && *t > 0.0 && *t < 1.0) {
+        if !(t.is_finite() && *t >= MIN_TOLERANCE && *t < 1.0) {
             return Err(SpecError::new(
                 at,
-                t,
-                "a Newton tolerance must lie in (0, 1)",
+                shortest(*t),
+                format!(
+                    "a Newton tolerance must lie in [4 ε, 1) = [{MIN_TOLERANCE:.1e}, 1): \
+                     a scaled residual of f64 numbers does not go below its round-off"
+                ),
             ));
         }
         if j > 0 && *t >= v[j - 1] {
@@ -518,13 +531,14 @@ fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
 }
 
 /// Fills what `spec` left out from the scene's first cylinder study (`fallback`), in the study
-/// and in its resolved spec.
+/// and in its resolved spec, and refuses meshes that would exceed the memory limit (so `check`
+/// refuses what `run` could not solve).
 pub fn complete(
     study: &mut TradeoffStudy,
     spec: &TradeoffSpec,
     resolved: &mut TradeoffSpec,
     fallback: &Fallback,
-) {
+) -> Result<(), SpecError> {
     let g = Geometry {
         radius: spec.radius.unwrap_or(fallback.geometry.radius),
         length: spec.length.unwrap_or(fallback.geometry.length),
@@ -543,6 +557,14 @@ pub fn complete(
     resolved.grading = Some(g.grading);
     resolved.nr = Some(fe_mesh.0 as i64);
     resolved.nz = Some(fe_mesh.1 as i64);
+    check_memory(fe_mesh, &study.options.meshes, &study.options.groups).map_err(|e| {
+        let key = if spec.meshes.is_some() && study.options.groups.contains(&OptionGroup::Mesh) {
+            "meshes"
+        } else {
+            "nr"
+        };
+        SpecError::new(key, format!("{:?}", study.options.meshes), e.to_string())
+    })
 }
 
 impl TradeoffStudy {
@@ -577,7 +599,7 @@ impl TradeoffStudy {
         let measured = results.rows.iter().filter(|r| r.measured()).count();
         let mut details = results.findings.clone();
         details.extend(results.rows.iter().map(Measurement::line));
-        let failures = results.unmeasured();
+        let failures = results.failed();
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Tradeoff,
