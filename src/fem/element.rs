@@ -362,7 +362,9 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         std::array::from_fn(|q| {
             x.iter()
                 .zip(&self.n[q])
-                .fold([0.0, 0.0], |[r, z], (xa, na)| [r + na * xa[0], z + na * xa[1]])
+                .fold([0.0, 0.0], |[r, z], (xa, na)| {
+                    [r + na * xa[0], z + na * xa[1]]
+                })
         })
     }
 

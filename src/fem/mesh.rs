@@ -300,7 +300,13 @@ impl Mesh {
     /// with a node index out of range are left out (the assembly refuses them).
     pub fn quadrature_positions(&self) -> Vec<[f64; 2]> {
         use super::element::{Q1P0Reference, Q2Q1Reference, ReferenceElement};
-        fn all<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>(
+        fn all<
+            const NN: usize,
+            const NU: usize,
+            const NP: usize,
+            const ND: usize,
+            const NQ: usize,
+        >(
             mesh: &Mesh,
             re: &ReferenceElement<NN, NU, NP, ND, NQ>,
         ) -> Vec<[f64; 2]> {

@@ -892,7 +892,11 @@ fn setup(
         }
         setup = setup.bounds(name, Bounds::new(b[0], b[1]));
         let given = spec.start.as_ref().is_some_and(|s| s.contains_key(name));
-        let own = model.names.iter().position(|n| n == name).map(|i| model.values[i]);
+        let own = model
+            .names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| model.values[i]);
         if let (false, Some(v)) = (given, own) {
             if !(b[0] <= v && v <= b[1]) {
                 return Err(SpecError::new(

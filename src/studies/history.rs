@@ -205,7 +205,12 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
     let interpolation = spec.interpolation.unwrap_or_default();
     let schedule = Schedule::new(points(&written), interpolation)
         .map_err(|e| SpecError::new(format!("schedule[{}]", e.index), e.value, e.rule))?;
-    starts_in_time(&schedule, &times, "schedule[0]", "[0, 0] for a muscle at rest")?;
+    starts_in_time(
+        &schedule,
+        &times,
+        "schedule[0]",
+        "[0, 0] for a muscle at rest",
+    )?;
     let motor_units = match &spec.motor_units {
         None => None,
         Some(units) => {
@@ -264,7 +269,12 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         }
         LoadingSpec::Schedule(p) => {
             let schedule = stretch_schedule(points(p), "stretch")?;
-            starts_in_time(&schedule, &times, "stretch[0]", "[0, 1] for the resting length")?;
+            starts_in_time(
+                &schedule,
+                &times,
+                "stretch[0]",
+                "[0, 1] for the resting length",
+            )?;
             Loading::Prescribed(schedule)
         }
     };

@@ -74,11 +74,11 @@ fn bounds_that_exclude_the_default_start_are_refused() {
     let e = refused(&scene("bounds = { d = [0.1, 1.0] }\n"));
     assert_has(&e, &["bounds.d", "[0.1, 1]", "start", "0"]);
     accepted(&scene("bounds = { d = [0.0, 1.0] }\n"));
-    accepted(&scene(
-        "bounds = { d = [0.1, 1.0] }\nstart = { d = 0.5 }\n",
-    ));
+    accepted(&scene("bounds = { d = [0.1, 1.0] }\nstart = { d = 0.5 }\n"));
     // A start given outside its bounds was refused before; it still is.
-    let e = refused(&scene("bounds = { d = [0.1, 1.0] }\nstart = { d = 0.05 }\n"));
+    let e = refused(&scene(
+        "bounds = { d = [0.1, 1.0] }\nstart = { d = 0.05 }\n",
+    ));
     assert_has(&e, &["start.d", "0.05"]);
 }
 
@@ -104,15 +104,11 @@ fn a_schedule_that_starts_after_the_first_time_is_refused() {
 #[test]
 fn a_region_that_governs_no_quadrature_point_is_refused() {
     let scene = |regions: &str| {
-        format!(
-            "[[study]]\nkind = \"cylinder\"\nstretch = [1.1]\nnr = 2\nnz = 4\n{regions}"
-        )
+        format!("[[study]]\nkind = \"cylinder\"\nstretch = [1.1]\nnr = 2\nnz = 4\n{regions}")
     };
     // nr = 2: the first column of cells is r ∈ [0, 0.5] R, its first Gauss points at
     // r = 0.25 (1 − √0.6) R = 0.056 R; a shell r ∈ [0, 0.05] R holds none of them.
-    let e = refused(&scene(
-        "[[study.regions]]\nr = [0.0, 0.05]\ndamage = 0.5\n",
-    ));
+    let e = refused(&scene("[[study.regions]]\nr = [0.0, 0.05]\ndamage = 0.5\n"));
     assert_has(&e, &["regions[0]", "no quadrature point", "2 × 4"]);
     accepted(&scene("[[study.regions]]\nr = [0.0, 0.06]\ndamage = 0.5\n"));
     // A region every point of which a later region takes over has no effect either.
@@ -121,4 +117,27 @@ fn a_region_that_governs_no_quadrature_point_is_refused() {
          [[study.regions]]\nr = [0.4, 1.0]\ndamage = 0.2\n",
     ));
     assert_has(&e, &["regions[0]", "later regions"]);
+}
+
+#[test]
+fn a_table_range_the_exact_law_cannot_meet_is_refused() {
+    let scene = |range: &str| {
+        format!(
+            "[activation]\nrepresentation = \"tabulated\"\ntable_stretches = {range}\n\
+             [[study]]\nkind = \"uniaxial\"\nstretch = [0.8, 1.2]\n"
+        )
+    };
+    // The chapter's exp(α(I₄ − 1)²) overflows near λ = 8.5: a table up to 10 cannot be built,
+    // and every study using it failed at run time.
+    let e = refused(&scene("[0.3, 10.0]"));
+    assert_has(
+        &e,
+        &[
+            "activation.table_stretches",
+            "[0.3, 10]",
+            "narrow the range",
+        ],
+    );
+    assert!(!e.contains("0000000000"), "{e}");
+    accepted(&scene("[0.3, 3.0]"));
 }

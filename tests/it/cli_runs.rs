@@ -714,7 +714,10 @@ fn meshes_beyond_the_memory_limit_are_refused_before_allocating() {
     ]);
     let stderr = String::from_utf8_lossy(&tradeoff.stderr);
     assert_eq!(tradeoff.status.code(), Some(1), "{stderr}");
-    assert!(stderr.contains("study[1].meshes") && stderr.contains("of memory"), "{stderr}");
+    assert!(
+        stderr.contains("study[1].meshes") && stderr.contains("of memory"),
+        "{stderr}"
+    );
     assert!(
         !dir.join("tr").exists(),
         "an output directory created for nothing"

@@ -618,7 +618,11 @@ fn a_reference_that_stopped_short_is_failed_and_the_others_are_compared_where_it
     for (run, is_reference) in [(&reference, true), (&short, false)] {
         let r = row(run, is_reference);
         assert!(!r.error.max_rel.is_finite(), "{}", r.note);
-        assert!(r.note.starts_with("did not converge: stopped at 1."), "{}", r.note);
+        assert!(
+            r.note.starts_with("did not converge: stopped at 1."),
+            "{}",
+            r.note
+        );
     }
 }
 
@@ -687,14 +691,21 @@ fn a_variant_that_does_not_converge_is_a_result_and_a_failed_reference_a_failure
         m
     };
     let mut results = activemuscle::studies::tradeoff::TradeoffResults {
-        rows: vec![row("ref", true, &mut [1.0], 0.0), failed("symmetric", false)],
+        rows: vec![
+            row("ref", true, &mut [1.0], 0.0),
+            failed("symmetric", false),
+        ],
         findings: Vec::new(),
         failures: Vec::new(),
     };
     assert!(results.failed().is_empty(), "{:?}", results.failed());
-    assert!(results.rows[1].line().contains("did not converge: λ = 1.05"));
+    assert!(results.rows[1]
+        .line()
+        .contains("did not converge: λ = 1.05"));
     results.rows.push(failed("ref2", true));
-    results.failures.push(("mesh".into(), "out of memory".into()));
+    results
+        .failures
+        .push(("mesh".into(), "out of memory".into()));
     let f = results.failed();
     assert_eq!(f.len(), 2, "{f:?}");
     assert!(f[0].model.contains("mesh") && f[0].message == "out of memory");

@@ -270,7 +270,11 @@ impl PathPartials {
                     .copied()
                     .find(|x| !x.is_finite())
                     .unwrap_or(f64::NAN),
-                context: format!("at lambda = {lambda}, gamma = {gamma} (exp overflow?)"),
+                context: format!(
+                    "at lambda = {}, gamma = {} (exp overflow?)",
+                    crate::text::significant(lambda, 6),
+                    crate::text::significant(gamma, 6)
+                ),
             })
         }
     }

@@ -39,8 +39,8 @@ pub use routes::{FiniteDifferenceTangent, OracleRoute};
 use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
-use crate::models::Models;
 use crate::fem::solver::MIN_TOLERANCE;
+use crate::models::Models;
 use crate::text::shortest;
 use groups::{Resolved, Runner};
 use serde::{Deserialize, Serialize};
@@ -362,9 +362,9 @@ fn check_memory(
     }
     let limit = crate::fem::memory::default_limit();
     let linear = SolverOptions::default().linear_solver;
-    solved
-        .into_iter()
-        .try_for_each(|(r, z, element)| MemoryEstimate::structured(r, z, element, linear).check(limit))
+    solved.into_iter().try_for_each(|(r, z, element)| {
+        MemoryEstimate::structured(r, z, element, linear).check(limit)
+    })
 }
 
 /// `[[study]] kind = "tradeoff"` as written; `None` is a key left to its default.
