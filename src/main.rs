@@ -185,6 +185,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             }
         }
     }
+    for (study, fits) in results.fits() {
+        for f in fits {
+            say!("{study} — {}", f.summary());
+        }
+    }
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
     }

@@ -6,6 +6,7 @@
 //! in one readable cell (`w0: 0.99988`). `stability.csv`: one row per model and stretch.
 //! `history.csv`: one row per activation-in-time model and time step.
 
+use super::datapackage::{names, table_fields, Field, Resource};
 use crate::app_error::{finite, AppError};
 use crate::scene::Results;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
@@ -17,25 +18,32 @@ use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
 use crate::studies::StudyResult;
 use crate::uniaxial::Direction;
 
-/// The header of `curves.csv`.
-pub const COLUMNS: [&str; 16] = [
-    "study",
-    "model",
-    "direction",
-    "bases",
-    "energy",
-    "law",
-    "coupling",
-    "d",
-    "lambda",
-    "gamma",
-    "P",
-    "P_pas",
-    "P_act",
-    "newton_iterations",
-    "cauchy",
-    "J",
+/// The columns of `curves.csv`.
+pub const CURVE_FIELDS: [Field; 20] = [
+    Field::text("study", "the study's name"),
+    Field::text("model", "uniaxial (homogeneous 0D tension) or cylinder (axisymmetric FE)"),
+    Field::text("direction", "along or across the fibres (uniaxial rows)"),
+    Field::text("bases", "sliding or clamped (cylinder rows)"),
+    Field::text("energy", "the strain energy's name"),
+    Field::text("law", "passive, constant, implicit, explicit or energy"),
+    Field::text("coupling", "frozen or consistent (active rows)"),
+    Field::number("d", "-", "damage d (active rows); in a cylinder with regions, the body's outside its regions (see regions)"),
+    Field::number("lambda", "-", "stretch λ along the loading (cylinder: the imposed L/L₀)"),
+    Field::number("gamma", "-", "γ at the point (uniaxial), at the quadrature point nearest the centre (cylinder)"),
+    Field::number("P", "kPa", "nominal (first Piola–Kirchhoff) stress along the stretch; cylinder: axial reaction / πR²"),
+    Field::number("P_pas", "kPa", "passive stress of the material at λ (active uniaxial rows along the fibres)"),
+    Field::number("P_act", "kPa", "target active stress (1 − d) P_act(λ) (same rows)"),
+    Field::count("newton_iterations", "Newton iterations from the previous stretch to this one (cylinder rows)"),
+    Field::number("cauchy", "kPa", "Cauchy stress along the stretch, σ = J⁻¹ P Fᵀ (uniaxial rows)"),
+    Field::number("J", "-", "volume ratio (uniaxial rows of a nearly incompressible scene; empty: J = 1)"),
+    Field::number("P_0d", "kPa", "homogeneous uniaxial (0D) stress of the same model at λ (cylinder rows; with regions, the uniform model's at d)"),
+    Field::count("dofs", "free degrees of freedom of the FE solve (cylinder rows)"),
+    Field::text("element", "finite element, Q2/Q1 or Q1/P0 (cylinder rows)"),
+    Field::text("regions", "the cylinder's regions with their own damage or activation, '; '-separated (empty: a uniform body)"),
 ];
+
+/// The header of `curves.csv`.
+pub const COLUMNS: [&str; 20] = names(&CURVE_FIELDS);
 
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
 #[derive(Debug, Clone, PartialEq)]
@@ -72,6 +80,14 @@ pub struct Row<'a> {
     pub cauchy: Option<f64>,
     /// Volume ratio J [-] (uniaxial rows of a nearly incompressible scene; empty: J = 1).
     pub volume: Option<f64>,
+    /// The 0D stress of the same model at λ \[kPa\] (cylinder).
+    pub p_0d: Option<f64>,
+    /// Free dofs of the FE solve (cylinder).
+    pub dofs: Option<usize>,
+    /// `Q2/Q1` | `Q1/P0` (cylinder).
+    pub element: Option<&'static str>,
+    /// The cylinder's regions in words (cylinder with regions).
+    pub regions: Option<String>,
 }
 
 /// What tells one curve of `curves.csv` from the others: every column but the point's values,
@@ -130,6 +146,10 @@ fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &Curv
         newton_iterations: None,
         cauchy: Some(p.cauchy),
         volume: p.volume,
+        p_0d: None,
+        dofs: None,
+        element: None,
+        regions: None,
     }
 }
 
@@ -153,6 +173,10 @@ fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &Sweep
         newton_iterations: Some(p.newton_iterations),
         cauchy: None,
         volume: None,
+        p_0d: p.stress_0d,
+        dofs: Some(sweep.dofs),
+        element: Some(c.element.name()),
+        regions: c.regions_in_words(),
     }
 }
 
@@ -267,45 +291,67 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
                 .unwrap_or_default(),
             optional(r.cauchy, "cauchy", r)?,
             optional(r.volume, "J", r)?,
+            optional(r.p_0d, "P_0d", r)?,
+            r.dofs.map(|n| n.to_string()).unwrap_or_default(),
+            r.element.unwrap_or("").to_string(),
+            r.regions.clone().unwrap_or_default(),
         ];
         w.write_record(&record).map_err(&fail)?;
     }
     finish(w, "curves.csv")
 }
 
-/// The header of `fits.csv`: one row per fitted parameter.
-pub const FIT_COLUMNS: [&str; 14] = [
-    "study",
-    "fit",
-    "case",
-    "parameter",
-    "value",
-    "standard_error",
-    "reference",
-    "correlation",
-    "converged",
-    "rms",
-    "rms_unit",
-    "residual_norm",
-    "iterations",
-    "points",
+/// The columns of `fits.csv`: one row per fitted parameter.
+pub const FIT_FIELDS: [Field; 14] = [
+    Field::text("study", "the study's name"),
+    Field::text("fit", "what was fitted (the fit kind)"),
+    Field::text("case", "the data set or case fitted"),
+    Field::text("parameter", "the fitted parameter's name"),
+    Field::number("value", "the parameter's unit", "fitted value, in the parameter's own unit (kPa for moduli and stresses, - for exponents and fractions)"),
+    Field::number("standard_error", "the parameter's unit", "standard error of the value from the Jacobian at the optimum (empty: not estimable)"),
+    Field::number("reference", "the parameter's unit", "the chapter's (or the scene's) value for comparison (empty: none)"),
+    Field::text("correlation", "correlations with the other parameters, 'name: value; …' (n/a: not estimable)"),
+    Field::flag("converged", "whether the least-squares solver met its tolerance"),
+    Field::number("rms", "see rms_unit", "root-mean-square residual of the fit"),
+    Field::text("rms_unit", "the unit of rms (kPa for stresses)"),
+    Field::number("residual_norm", "see rms_unit", "Euclidean norm of the residual vector"),
+    Field::count("iterations", "iterations of the least-squares solver"),
+    Field::count("points", "data points fitted"),
 ];
 
-/// The header of `stability.csv`: one row per model and stretch.
-pub const STABILITY_COLUMNS: [&str; 12] = [
-    "study",
-    "law",
-    "coupling",
-    "d",
-    "lambda",
-    "P",
-    "dP_dlambda",
-    "ellipticity_min",
-    "ellipticity_relative",
-    "strongly_elliptic",
-    "softening",
-    "cauchy",
+/// The header of `fits.csv`.
+pub const FIT_COLUMNS: [&str; 14] = names(&FIT_FIELDS);
+
+/// The columns of `stability.csv`: one row per model and stretch.
+pub const STABILITY_FIELDS: [Field; 12] = [
+    Field::text("study", "the study's name"),
+    Field::text("law", "passive, implicit, explicit or energy"),
+    Field::text("coupling", "frozen or consistent (active rows)"),
+    Field::number("d", "-", "damage d (active rows)"),
+    Field::number(
+        "lambda",
+        "-",
+        "stretch λ of homogeneous uniaxial tension along the fibres",
+    ),
+    Field::number("P", "kPa", "nominal stress"),
+    Field::number("dP_dlambda", "kPa", "slope of the nominal stress, dP/dλ"),
+    Field::number(
+        "ellipticity_min",
+        "kPa",
+        "min a·Q(N)a of the acoustic tensor over the sampled normals (strong ellipticity: > 0)",
+    ),
+    Field::number(
+        "ellipticity_relative",
+        "-",
+        "ellipticity_min relative to the tangent's norm",
+    ),
+    Field::flag("strongly_elliptic", "whether ellipticity_relative > −1e-12"),
+    Field::flag("softening", "whether dP/dλ < 0"),
+    Field::number("cauchy", "kPa", "Cauchy stress along the stretch"),
 ];
+
+/// The header of `stability.csv`.
+pub const STABILITY_COLUMNS: [&str; 12] = names(&STABILITY_FIELDS);
 
 /// `x` as text if finite, else an error naming the quantity and where it came from.
 fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, AppError> {
@@ -417,25 +463,31 @@ pub fn stability_csv(studies: &[(&str, &[StabilityCurve])]) -> Result<Vec<u8>, A
     finish(w, "stability.csv")
 }
 
-/// The header of `history.csv`: one row per activation-in-time study, model and time step.
-pub const HISTORY_COLUMNS: [&str; 16] = [
-    "study",
-    "loading",
-    "energy",
-    "law",
-    "coupling",
-    "d",
-    "t",
-    "a_schedule",
-    "a",
-    "lambda",
-    "gamma",
-    "P",
-    "cauchy",
-    "J",
-    "P_pas",
-    "P_act",
+/// The columns of `history.csv`: one row per activation-in-time study, model and time step.
+pub const HISTORY_FIELDS: [Field; 16] = [
+    Field::text("study", "the study's name"),
+    Field::text(
+        "loading",
+        "prescribed (the stretch as scheduled) or free (no load)",
+    ),
+    Field::text("energy", "the strain energy's name"),
+    Field::text("law", "implicit, explicit or energy"),
+    Field::text("coupling", "frozen or consistent"),
+    Field::number("d", "-", "damage d"),
+    Field::number("t", "s", "time"),
+    Field::number("a_schedule", "-", "the activation schedule at t"),
+    Field::number("a", "-", "the activation level used at t"),
+    Field::number("lambda", "-", "stretch λ"),
+    Field::number("gamma", "-", "γ"),
+    Field::number("P", "kPa", "nominal stress along the stretch"),
+    Field::number("cauchy", "kPa", "Cauchy stress σ₁₁ = P λ / J"),
+    Field::number("J", "-", "volume ratio"),
+    Field::number("P_pas", "kPa", "passive stress at λ"),
+    Field::number("P_act", "kPa", "target active stress (1 − d) a P_act(λ)"),
 ];
+
+/// The header of `history.csv`.
+pub const HISTORY_COLUMNS: [&str; 16] = names(&HISTORY_FIELDS);
 
 /// `history.csv` of the activation-in-time studies (name, result): t [s], the schedule a_s and
 /// the activation level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-],
@@ -479,10 +531,22 @@ pub fn history_csv(studies: &[(&str, &HistoryResult)]) -> Result<Vec<u8>, AppErr
     finish(w, "history.csv")
 }
 
-/// Columns of a cylinder study's `points_<study>.csv`.
-pub const POINT_COLUMNS: [&str; 10] = [
-    "study", "point", "r", "z", "law", "coupling", "d", "lambda", "u_r", "u_z",
+/// The columns of a cylinder study's `points_<study>.csv`.
+pub const POINT_FIELDS: [Field; 10] = [
+    Field::text("study", "the study's name"),
+    Field::text("point", "the point's name ([study.points])"),
+    Field::number("r", "the mesh's length unit", "reference radial position"),
+    Field::number("z", "the mesh's length unit", "reference axial position"),
+    Field::text("law", "implicit, explicit or energy"),
+    Field::text("coupling", "frozen or consistent"),
+    Field::number("d", "-", "damage d"),
+    Field::number("lambda", "-", "imposed stretch L/L₀"),
+    Field::number("u_r", "the mesh's length unit", "radial displacement"),
+    Field::number("u_z", "the mesh's length unit", "axial displacement"),
 ];
+
+/// The header of a `points_<study>.csv`.
+pub const POINT_COLUMNS: [&str; 10] = names(&POINT_FIELDS);
 
 /// `points_<study>.csv` of a cylinder study with named points: the displacement (u_r, u_z) of
 /// each point (reference r, z; the mesh's length unit, e.g. mm) per stretch per model.
@@ -595,6 +659,60 @@ pub fn table_csv(file: &str, tables: &[&Table]) -> Result<Vec<u8>, AppError> {
         }
     }
     finish(w, file)
+}
+
+/// The schema of each CSV file in `files` that a run of `results` wrote (`curves.csv`, the
+/// tables of [`tables`], `tradeoff.csv`), for `datapackage.json`; other files are skipped.
+pub fn resources(results: &Results, files: &[String]) -> Vec<Resource> {
+    let own = |kind: &str| {
+        results
+            .studies
+            .iter()
+            .find_map(|s| match (&s.result, kind) {
+                (StudyResult::Shear(r), "shear") => Some(table_fields(&r.table(&s.name))),
+                (StudyResult::Biaxial(r), "biaxial") => Some(table_fields(&r.table(&s.name))),
+                _ => None,
+            })
+    };
+    files
+        .iter()
+        .filter_map(|file| {
+            let (description, fields) = match file.as_str() {
+                "curves.csv" => (
+                    "one row per computed point of a uniaxial curve or a cylinder sweep",
+                    CURVE_FIELDS.to_vec(),
+                ),
+                "fits.csv" => ("one row per fitted parameter", FIT_FIELDS.to_vec()),
+                "stability.csv" => ("one row per model and stretch", STABILITY_FIELDS.to_vec()),
+                "history.csv" => (
+                    "one row per activation-in-time model and time step",
+                    HISTORY_FIELDS.to_vec(),
+                ),
+                "shear.csv" => (
+                    "one row per shear study, approach and amount of shear",
+                    own("shear")?,
+                ),
+                "biaxial.csv" => (
+                    "one row per biaxial study, model and stretch pair",
+                    own("biaxial")?,
+                ),
+                "tradeoff.csv" => (
+                    "one row per measured variant of an option",
+                    super::tradeoff::FIELDS.to_vec(),
+                ),
+                f if f.starts_with("points_") && f.ends_with(".csv") => (
+                    "the displacement of each named point per model and stretch",
+                    POINT_FIELDS.to_vec(),
+                ),
+                _ => return None,
+            };
+            Some(Resource {
+                path: file.clone(),
+                description: description.into(),
+                fields,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]

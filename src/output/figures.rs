@@ -894,6 +894,10 @@ fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
 /// A cylinder study: γ and λ_f at the centre, and the nominal stress (FE solid, the homogeneous
 /// 0D curve of the same model dashed), a curve per damage.
 fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
+    // A study none of whose sweeps converged at a stretch has nothing to draw.
+    if c.sweeps.iter().all(|s| s.points.is_empty()) {
+        return None;
+    }
     let by_damage = |y: fn(&SweepPoint) -> f64| -> Vec<Option<Series>> {
         c.sweeps
             .iter()
@@ -960,8 +964,15 @@ fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
             if like_fig_12 { chapter(12, &c.energy, run.chapter_material) } else { String::new() }
         ),
         format!(
-            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: the homogeneous uniaxial (0D) curve of the same model.",
-            c.energy
+            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: {}.",
+            c.energy,
+            match c.regions_in_words() {
+                None => "the homogeneous uniaxial (0D) curve of the same model".to_string(),
+                Some(regions) => format!(
+                    "the homogeneous uniaxial (0D) curve of the uniform model at the sweep's d, \
+                     without the regions ({regions}): a reference, not the same body"
+                ),
+            }
         ),
         vec![
             panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre)),
@@ -973,8 +984,18 @@ fn cylinder(run: &Run, study: &str, c: &CylinderResult) -> Option<Figure> {
 
 /// P_FE − P_0D of every sweep, a panel per cylinder study.
 fn fe_vs_0d(results: &Results) -> Option<Figure> {
-    let panels = results
-        .cylinders()
+    let drawn = || {
+        results
+            .cylinders()
+            .filter(|(_, c)| c.sweeps.iter().any(|s| !s.points.is_empty()))
+    };
+    let regions: Vec<String> = drawn()
+        .filter_map(|(study, c)| {
+            c.regions_in_words()
+                .map(|r| format!("\"{study}\" has regions ({r})"))
+        })
+        .collect();
+    let panels = drawn()
         .map(|(study, c)| {
             let s = c
                 .sweeps
@@ -999,7 +1020,17 @@ fn fe_vs_0d(results: &Results) -> Option<Figure> {
     figure(
         "fig_fe_vs_0d",
         "FE cylinder against homogeneous (0D) tension (ours)".into(),
-        "Nominal stress of the FE cylinder (axial reaction / πR²) minus the homogeneous uniaxial curve of the same model, per damage. Sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect. The table \"FE vs homogeneous (0D) tension\" gives the largest difference where the active stress dominates.".into(),
+        format!(
+            "Nominal stress of the FE cylinder (axial reaction / πR²) minus the homogeneous uniaxial curve of the same model, per damage. For a uniform body, sliding bases must match the 0D curve to solver tolerance (the built-in verification); clamped bases do not, the difference is the end effect.{} The table \"FE vs homogeneous (0D) tension\" gives the largest difference where the active stress dominates.",
+            if regions.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " {}: its 0D curve is the uniform model's at the sweep's d, so the difference is mostly the regions' own damage or activation, with the end effect of clamped bases on top.",
+                    regions.join("; ")
+                )
+            }
+        ),
         panels,
     )
 }

@@ -5,6 +5,7 @@
 pub mod atomic;
 pub mod base64;
 pub mod csv;
+pub mod datapackage;
 pub mod figures;
 pub mod planar_figures;
 pub mod plot;
@@ -76,6 +77,10 @@ pub fn write_run(
         files.extend(staged);
         rendered.extend(figures);
     }
+    // Every column's type and unit, for the CSV files written above.
+    let package = datapackage::descriptor(&scene.title, &csv::resources(results, &files))?;
+    staging.write("datapackage.json", &package)?;
+    files.push("datapackage.json".to_string());
     let info = RunInfo {
         command: meta.command.clone(),
         wall: meta.started.elapsed(),

@@ -489,13 +489,23 @@ fn fe_table(h: &mut String, results: &Results) {
     let e = escape;
     let sweeps: Vec<_> = results
         .cylinders()
-        .flat_map(|(study, c)| c.sweeps.iter().map(move |s| (study, c.bases, s)))
+        .flat_map(|(study, c)| c.sweeps.iter().map(move |s| (study, c, s)))
         .collect();
     if sweeps.is_empty() {
         return;
     }
-    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive stress dominates, and with it the end effect of clamped bases.</p>\n<table><tr><th>study</th><th>bases</th><th>free dofs</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
-    for (study, bases, s) in sweeps {
+    let regions = results.cylinders().any(|(_, c)| !c.regions.is_empty());
+    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive stress dominates, and with it the end effect of clamped bases. The last column is the number the studies table gives per sweep.");
+    if regions {
+        h.push_str(" A study with regions (their own damage or activation, listed under the model) is compared with the uniform model at the sweep's d: there the difference is mostly the regions', not the end effect.");
+    }
+    h.push_str("</p>\n<table><tr><th>study</th><th>bases</th><th>free dofs</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
+    for (study, c, s) in sweeps {
+        let bases = c.bases;
+        let model = match c.regions_in_words() {
+            None => e(&s.label),
+            Some(r) => format!("{}<br><small>regions: {}</small>", e(&s.label), e(&r)),
+        };
         let range: Vec<f64> = s
             .points
             .iter()
@@ -512,7 +522,7 @@ fn fe_table(h: &mut String, results: &Results) {
             e(study),
             bases_name(bases),
             s.dofs,
-            e(&s.label),
+            model,
             s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
             difference(largest(&s.points, active)),
             difference(largest(&s.points, |_| true)),

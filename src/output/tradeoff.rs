@@ -2,6 +2,7 @@
 //! (PNG + SVG, the Pareto front marked) and a self-contained `tradeoff.html`.
 
 use super::base64;
+use super::datapackage::{names, Field};
 use super::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use super::report::escape;
 use super::{Staging, Writer};
@@ -12,28 +13,31 @@ use crate::studies::tradeoff::{Measurement, TradeoffResults};
 use std::fmt::Write;
 use std::path::Path;
 
-/// Columns of `tradeoff.csv`.
-pub const COLUMNS: [&str; 19] = [
-    "option",
-    "variant",
-    "reference",
-    "quantity",
-    "time_s",
-    "time_low_s",
-    "time_high_s",
-    "runs",
-    "time_differs",
-    "error_abs",
-    "error_rel",
-    "gamma_error",
-    "speedup",
-    "error_ratio",
-    "pareto",
-    "newton_iterations",
-    "time_per_iteration_s",
-    "dofs",
-    "note",
+/// The columns of `tradeoff.csv`: one row per measured variant.
+pub const FIELDS: [Field; 19] = [
+    Field::text("option", "the option traded (activation law, element, mesh, …)"),
+    Field::text("variant", "the option's variant"),
+    Field::flag("reference", "whether this variant is the option's reference"),
+    Field::text("quantity", "what is compared with the reference, with its unit"),
+    Field::number("time_s", "s", "median time of the runs"),
+    Field::number("time_low_s", "s", "10th percentile of the runs' times"),
+    Field::number("time_high_s", "s", "90th percentile of the runs' times"),
+    Field::count("runs", "timed runs"),
+    Field::flag("time_differs", "whether the time differs measurably from the reference's (spreads do not overlap)"),
+    Field::number("error_abs", "see quantity", "largest absolute difference from the reference, in the quantity's unit"),
+    Field::number("error_rel", "-", "largest relative difference from the reference"),
+    Field::number("gamma_error", "-", "largest |γ − γ_reference|"),
+    Field::number("speedup", "-", "reference time / time (medians)"),
+    Field::number("error_ratio", "-", "relative error / the option's smallest positive non-reference relative error"),
+    Field::flag("pareto", "whether on the option's Pareto front of (time, relative error)"),
+    Field::count("newton_iterations", "Newton iterations of the FE sweep"),
+    Field::number("time_per_iteration_s", "s", "time per Newton iteration"),
+    Field::count("dofs", "free degrees of freedom of the FE solve"),
+    Field::text("note", "what else the measurement says (where the error is largest, why a variant did not converge)"),
 ];
+
+/// The header of `tradeoff.csv`.
+pub const COLUMNS: [&str; 19] = names(&FIELDS);
 
 /// A CSV cell: non-finite values (an error that does not exist because the variant failed, a
 /// ratio without a reference) are written as empty cells, never as NaN or inf.

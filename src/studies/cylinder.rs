@@ -128,6 +128,22 @@ pub struct StudyRegion {
     pub activation: f64,
 }
 
+impl StudyRegion {
+    /// `r/R ∈ [0.8, 1], z/L ∈ [0, 1], d = 0.5, a = 1` (`d = the sweep's` without its own damage).
+    pub fn describe(&self) -> String {
+        format!(
+            "r/R ∈ [{}, {}], z/L ∈ [{}, {}], d = {}, a = {}",
+            self.r[0],
+            self.r[1],
+            self.z[0],
+            self.z[1],
+            self.damage
+                .map_or("the sweep's".to_string(), |d| d.to_string()),
+            self.activation
+        )
+    }
+}
+
 /// Validates the regions: ranges finite, ordered and inside [0, 1], values in [0, 1], at least
 /// one of damage and activation; errors name `regions[i].key`.
 fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
@@ -500,15 +516,16 @@ pub struct Sweep {
 }
 
 impl Sweep {
-    /// max |P_FE − P_0D| / max(|P_0D|, 1 kPa) over the stretches with a 0D value.
-    pub fn max_relative_to_0d(&self) -> f64 {
+    /// |P_FE − P_0D| / |P_0D| at stretch `lambda` (0 where there is no such point or 0D value).
+    fn relative_at(&self, lambda: f64) -> f64 {
         self.points
             .iter()
-            .filter_map(|p| {
+            .find(|p| p.lambda == lambda)
+            .and_then(|p| {
                 p.stress_0d
-                    .map(|zero| (p.stress - zero).abs() / zero.abs().max(1.0))
+                    .map(|z| (p.stress - z).abs() / z.abs().max(1e-300))
             })
-            .fold(0.0f64, f64::max)
+            .unwrap_or(0.0)
     }
 
     /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs; `None` when no stretch has
@@ -534,6 +551,36 @@ pub struct CylinderResult {
     pub sweeps: Vec<Sweep>,
     /// The named boundary points, name and reference (r, z).
     pub points: Vec<(String, [f64; 2])>,
+    /// The regions with their own damage or activation (empty: a uniform body). With regions
+    /// the 0D curve of a sweep is the uniform model's at the sweep's d, a reference only.
+    pub regions: Vec<StudyRegion>,
+}
+
+impl CylinderResult {
+    /// The regions in words, `; `-separated (`None` for a uniform body).
+    pub fn regions_in_words(&self) -> Option<String> {
+        (!self.regions.is_empty()).then(|| {
+            self.regions
+                .iter()
+                .map(StudyRegion::describe)
+                .collect::<Vec<_>>()
+                .join("; ")
+        })
+    }
+}
+
+/// How far a sweep is from its 0D curve, in words: the largest |P_FE − P_0D| in kPa and where,
+/// the same number the report's table "FE vs homogeneous (0D) tension" gives over all
+/// stretches; "no stretch converged" when there is nothing to compare.
+fn against_0d(sweep: &Sweep) -> String {
+    match sweep.worst_against_0d() {
+        None => "no stretch converged: nothing to compare with the 0D curve".into(),
+        Some((difference, lambda)) => format!(
+            "largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
+            crate::text::significant(difference, 4),
+            crate::text::significant(100.0 * sweep.relative_at(lambda), 4)
+        ),
+    }
 }
 
 /// A sweep that stopped, in words: how far it got and why.
@@ -609,6 +656,7 @@ impl CylinderStudy {
             element: self.element,
             sweeps: Vec::with_capacity(sweeps.len()),
             points: self.points.iter().map(|p| (p.name.clone(), p.at)).collect(),
+            regions: self.regions.clone(),
         };
         let mut failures = Vec::new();
         let mut details = vec![format!(
@@ -627,17 +675,7 @@ impl CylinderStudy {
                 self.regions.len()
             ));
             for (i, g) in self.regions.iter().enumerate() {
-                details.push(format!(
-                    "region {}: r/R ∈ [{}, {}], z/L ∈ [{}, {}], d = {}, a = {}",
-                    i + 1,
-                    g.r[0],
-                    g.r[1],
-                    g.z[0],
-                    g.z[1],
-                    g.damage
-                        .map_or("the sweep's".to_string(), |d| d.to_string()),
-                    g.activation
-                ));
+                details.push(format!("region {}: {}", i + 1, g.describe()));
             }
         }
         for (s, m) in sweeps.into_iter().zip(&choices) {
@@ -657,13 +695,17 @@ impl CylinderStudy {
                 }
             };
             details.push(format!(
-                "d = {}: {}/{} stretches, {} dofs, max |P_FE − P_0D| / max(|P_0D|, 1 kPa) = {:.2e}{}",
+                "d = {}: {}/{} stretches, {} dofs, {}{}",
                 sweep.model.damage,
                 sweep.points.len(),
                 self.stretches.len(),
                 sweep.dofs,
-                sweep.max_relative_to_0d(),
-                if stops.is_empty() { "" } else { " (stopped: see \"Where a model stopped\")" }
+                against_0d(&sweep),
+                if stops.is_empty() {
+                    ""
+                } else {
+                    " (stopped: see \"Where a model stopped\")"
+                }
             ));
             failures.extend(stops);
             result.sweeps.push(sweep);

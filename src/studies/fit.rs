@@ -977,6 +977,41 @@ pub struct FitOutcome {
     pub plot: FitCurves,
 }
 
+impl FitOutcome {
+    /// The fitted values with their standard errors, for the console: `chapter's data: mu =
+    /// 0.1599 ± 0.0021, w0 = 0.7335 ± 0.0034 (RMS 0.118 kPa, converged)`; `± n/a` where the
+    /// error could not be estimated. Four significant digits.
+    pub fn summary(&self) -> String {
+        let digits = |x: f64| crate::text::significant(x, 4);
+        let values: Vec<String> = self
+            .names
+            .iter()
+            .zip(&self.values)
+            .enumerate()
+            .map(|(j, (name, v))| {
+                let error = self.standard_errors.get(j).copied().flatten();
+                format!(
+                    "{name} = {} ± {}",
+                    digits(*v),
+                    error.map_or("n/a".into(), digits)
+                )
+            })
+            .collect();
+        format!(
+            "{}: {} (RMS {} {}, {})",
+            self.case,
+            values.join(", "),
+            digits(self.rms),
+            self.unit,
+            if self.converged {
+                "converged"
+            } else {
+                "NOT converged"
+            }
+        )
+    }
+}
+
 /// What the data-vs-fit figure of one case shows.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FitCurves {

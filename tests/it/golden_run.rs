@@ -54,9 +54,13 @@ use crate::scratch;
 use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
-/// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J`).
+/// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
+/// cylinder's `P_0d`, `dofs`, `element` and `regions`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
-    ("curves.csv", &["study", "cauchy", "J"]),
+    (
+        "curves.csv",
+        &["study", "cauchy", "J", "P_0d", "dofs", "element", "regions"],
+    ),
     ("stability.csv", &["cauchy"]),
 ];
 
@@ -123,8 +127,44 @@ fn same(file: &str, out: &Path) {
 fn the_default_run_writes_the_golden_numbers() {
     let dir = scratch("golden");
     let out = dir.join("out");
-    binary::run_quiet(None, &out);
+    let output = binary::run_quiet(None, &out);
     for file in ["curves.csv", "fits.csv", "stability.csv"] {
         same(file, &out);
+    }
+    // The console gives each fitted value with its standard error, as fits.csv has them.
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    let (head, rows) = read(&out.join("fits.csv"));
+    let col = |name: &str| head.iter().position(|c| c == name).unwrap();
+    for r in &rows {
+        let value: f64 = r[col("value")].parse().unwrap();
+        // `STUDY — CASE: name = value ± error, … (RMS …)`
+        let start = format!("{} — {}: ", r[col("study")], r[col("case")]);
+        let line = stdout
+            .lines()
+            .find_map(|l| l.strip_prefix(start.as_str()))
+            .unwrap_or_else(|| panic!("no console line {start:?}: {stdout}"));
+        let at = line
+            .find(&format!("{} = ", r[col("parameter")]))
+            .expect("the parameter");
+        let rest = &line[at..];
+        let shown: Vec<&str> = rest.split([' ', ',', ')']).collect();
+        // `name = value ± error`
+        let printed: f64 = shown[2].parse().unwrap();
+        assert!((printed - value).abs() <= 5e-4 * value.abs(), "{line}");
+        match r[col("standard_error")].parse::<f64>() {
+            Ok(se) => {
+                let printed: f64 = shown[4].parse().unwrap();
+                assert!((printed - se).abs() <= 5e-4 * se.abs(), "{line}");
+            }
+            Err(_) => assert_eq!(shown[4], "n/a", "{line}"),
+        }
+    }
+    // Every CSV of the default run is described, and its data obey the description.
+    let described = crate::datapackage::the_data_obey_their_package(&out);
+    for file in ["curves.csv", "fits.csv", "stability.csv"] {
+        assert!(
+            described.iter().any(|d| d == file),
+            "{file} not in {described:?}"
+        );
     }
 }
