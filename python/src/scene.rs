@@ -9,7 +9,7 @@
 //! the command line uses ([`output::write_run`]).
 
 use activemuscle::app_error::{finite, AppError};
-use activemuscle::output::{self, RunMeta, Staging};
+use activemuscle::output::{self, RunMeta, Staging, Writer};
 use activemuscle::scene::{Results, RunOptions, Scene};
 use activemuscle::studies::cylinder::{bases_name, CylinderResult};
 use activemuscle::studies::fit::FitOutcome;
@@ -101,7 +101,7 @@ fn run_and_write(scene: &Scene, out: Option<&Path>, started: Instant) -> Result<
     let Some(out) = out else {
         return Ok(scene.run(&RunOptions::default()));
     };
-    let mut staging = Staging::new(out)?;
+    let mut staging = Staging::new(out, Writer::Run)?;
     let options = RunOptions {
         vtk_dir: Some(staging.dir().join("vtk")),
         ..RunOptions::default()
