@@ -177,7 +177,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             continue;
         }
         for s in &c.sweeps {
-            if let Some((worst, _)) = s.worst_against_0d() {
+            if let Some((worst, _, _)) = s.worst_against_0d() {
                 say!(
                     "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
                     s.label

@@ -516,24 +516,15 @@ pub struct Sweep {
 }
 
 impl Sweep {
-    /// |P_FE − P_0D| / |P_0D| at stretch `lambda` (0 where there is no such point or 0D value).
-    fn relative_at(&self, lambda: f64) -> f64 {
+    /// max |P_FE − P_0D| \[kPa\], the stretch where it occurs and P_0D there; `None` when no
+    /// stretch has a 0D value (e.g. a sweep that reached no stretch).
+    pub fn worst_against_0d(&self) -> Option<(f64, f64, f64)> {
         self.points
             .iter()
-            .find(|p| p.lambda == lambda)
-            .and_then(|p| {
+            .filter_map(|p| {
                 p.stress_0d
-                    .map(|z| (p.stress - z).abs() / z.abs().max(1e-300))
+                    .map(|zero| ((p.stress - zero).abs(), p.lambda, zero))
             })
-            .unwrap_or(0.0)
-    }
-
-    /// max |P_FE − P_0D| \[kPa\] and the stretch where it occurs; `None` when no stretch has
-    /// a 0D value (e.g. a sweep that reached no stretch).
-    pub fn worst_against_0d(&self) -> Option<(f64, f64)> {
-        self.points
-            .iter()
-            .filter_map(|p| p.stress_0d.map(|zero| ((p.stress - zero).abs(), p.lambda)))
             .max_by(|a, b| a.0.total_cmp(&b.0))
     }
 }
@@ -575,10 +566,10 @@ impl CylinderResult {
 fn against_0d(sweep: &Sweep) -> String {
     match sweep.worst_against_0d() {
         None => "no stretch converged: nothing to compare with the 0D curve".into(),
-        Some((difference, lambda)) => format!(
+        Some((difference, lambda, zero)) => format!(
             "largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
             crate::text::significant(difference, 4),
-            crate::text::significant(100.0 * sweep.relative_at(lambda), 4)
+            crate::text::significant(100.0 * difference / zero.abs().max(1e-300), 4)
         ),
     }
 }
