@@ -17,7 +17,7 @@ use activemuscle::fit::{
     fit_passive, Data, Direction, ExplicitTarget, FitSetup,
 };
 use activemuscle::material::Muscle;
-use activemuscle::output::plot::{render, Figure, Panel, Scale, Series, Stroke};
+use activemuscle::plot::{render, Figure, Panel, Scale, Series, Stroke};
 use activemuscle::uniaxial::along_fibres;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

@@ -35,6 +35,7 @@ pub mod models;
 pub mod oracle;
 pub mod output;
 pub mod parameter;
+pub mod plot;
 pub mod random;
 pub mod response;
 pub mod roots;

@@ -8,6 +8,7 @@
 
 use super::datapackage::{names, table_fields, Field, Resource};
 use crate::app_error::{finite, AppError};
+use crate::plot::CurveId;
 use crate::scene::Results;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
 use crate::studies::fit::FitOutcome;
@@ -89,12 +90,6 @@ pub struct Row<'a> {
     /// The cylinder's regions in words (cylinder with regions).
     pub regions: Option<String>,
 }
-
-/// What tells one curve of `curves.csv` from the others: every column but the point's values,
-/// and γ for a constant-γ curve (`study | model | direction | bases | energy | law | coupling | d
-/// | γ`, empty cells empty). The figures mark the series that draw a curve with it.
-#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct CurveId(pub String);
 
 impl Row<'_> {
     /// The curve this point belongs to.

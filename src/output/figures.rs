@@ -1,6 +1,6 @@
 //! The figures of a run, built from what each study computed: every curve of `curves.csv` is
 //! drawn in some figure with a legend entry (the series carry its
-//! [`CurveId`](super::csv::CurveId)), headings and captions name the scene's energy, laws,
+//! [`CurveId`](crate::plot::CurveId)), headings and captions name the scene's energy, laws,
 //! couplings and damages, axes follow the data (clipped where a curve blows up, and the caption
 //! says so: [`Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
 //! heading says which.
@@ -23,11 +23,11 @@
 //! A stem that two studies would share gets the study's name appended.
 
 use super::csv::{sweep_curve, uniaxial_curve};
-use super::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
 use crate::active::drive::Drive;
 use crate::active::ActiveCurve;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
+use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
 use crate::scene::{Results, Scene};
 use crate::studies::cylinder::{bases_name, CylinderResult, SweepPoint};
 use crate::studies::fit::{FitKind, FitOutcome};

@@ -8,7 +8,7 @@ pub mod csv;
 pub mod datapackage;
 pub mod figures;
 pub mod planar_figures;
-pub mod plot;
+
 pub mod report;
 pub mod tradeoff;
 
@@ -55,7 +55,7 @@ pub fn write_run(
     for f in figures::figures(scene, results) {
         let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
         let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
-        plot::render(&f, &png, &svg)?;
+        crate::plot::render(&f, &png, &svg)?;
         let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
         files.push(format!("{}.png", f.stem));
         files.push(format!("{}.svg", f.stem));

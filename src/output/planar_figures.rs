@@ -2,7 +2,7 @@
 //! per approach and fibre angle, the difference between active strain and active stress, and the
 //! normal stresses) and planar biaxial stretch (both nominal stresses along the path).
 
-use super::plot::{Figure, Panel, Series, Stroke};
+use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::biaxial::BiaxialResult;
 use crate::studies::shear::{ShearCurve, ShearResult};
 use crate::studies::slug;

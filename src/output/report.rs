@@ -3,14 +3,15 @@
 
 use super::base64;
 use super::csv::{correlations, COLUMNS, HISTORY_COLUMNS};
-use super::plot::{short, Rendered};
 use crate::app_error::{finite, AppError};
 use crate::energy::Parametric;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
+use crate::plot::{short, Rendered};
 use crate::scene::{Results, Scene};
 use crate::studies::cylinder::{bases_name, SweepPoint};
 use crate::studies::uniaxial::CurveModel;
 use crate::studies::StudyResult;
+use crate::text::escape_html as escape;
 use crate::StrainEnergy;
 use std::fmt::Write;
 use std::time::Duration;
@@ -31,14 +32,6 @@ pub struct RunInfo {
     pub files: Vec<String>,
     /// Rows of `curves.csv`.
     pub rows: usize,
-}
-
-/// Escapes text for HTML.
-pub fn escape(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
 
 /// The report page. `pngs` holds the PNG bytes of each figure, in the same order. A non-finite

@@ -3,13 +3,13 @@
 
 use super::base64;
 use super::datapackage::{names, Field};
-use super::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
-use super::report::escape;
 use super::{Staging, Writer};
 use crate::app_error::AppError;
+use crate::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use crate::studies::slug;
 use crate::studies::tradeoff::measure::{cell, ratio};
 use crate::studies::tradeoff::{Measurement, TradeoffResults};
+use crate::text::escape_html as escape;
 use std::fmt::Write;
 use std::path::Path;
 

@@ -5,7 +5,7 @@
 //! figure wider than a screen (a 566 148-pixel-wide PNG).
 
 use crate::scratch::scratch;
-use activemuscle::output::plot::{render, Figure, Panel, Series, Stroke};
+use activemuscle::plot::{render, Figure, Panel, Series, Stroke};
 use activemuscle::scene::{Scene, MAX_SCENE_BYTES};
 use activemuscle::studies::spec::{MAX_DAMAGES, MAX_GRID_POINTS};
 use std::sync::mpsc;

@@ -6,10 +6,11 @@
 //! `scenes/examples/*.toml` and a small chapter-like scene.
 
 use activemuscle::active::{ActiveCurve, ExplicitLaw};
-use activemuscle::output::csv::{correlations, rows, CurveId};
+use activemuscle::output::csv::{correlations, rows};
 use activemuscle::output::figures::figures;
-use activemuscle::output::plot::{Figure, Panel, Series, Stroke};
 use activemuscle::output::report::{html, RunInfo};
+use activemuscle::plot::CurveId;
+use activemuscle::plot::{Figure, Panel, Series, Stroke};
 use activemuscle::scene::{Results, RunOptions, Scene};
 use activemuscle::uniaxial::along_fibres;
 use std::collections::BTreeSet;
@@ -179,10 +180,7 @@ fn every_curve_of_an_across_and_clamped_scene_is_drawn() {
         .lines()
         .find(|l| l.contains(&at_zero.label))
         .expect("a row for d = 0");
-    let cell = format!(
-        "{} kPa at λ = {at} ",
-        activemuscle::output::plot::short(largest)
-    );
+    let cell = format!("{} kPa at λ = {at} ", activemuscle::plot::short(largest));
     assert!(row.contains(&cell), "{cell:?} not in {row}");
     let one = page
         .lines()
@@ -269,7 +267,7 @@ stretch = [0.7, 1.0]
     let clamped_p = &clamped.sweeps[0].points[0];
     assert!(page.contains(&format!(
         "λ = 0.7: λ_f = {}, γ = 0",
-        activemuscle::output::plot::short(clamped_p.fibre_stretch_centre)
+        activemuscle::plot::short(clamped_p.fibre_stretch_centre)
     )));
 }
 

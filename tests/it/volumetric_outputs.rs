@@ -13,7 +13,7 @@ fn curves(
 ) -> (
     Vec<String>,
     Vec<Vec<String>>,
-    Vec<activemuscle::output::plot::Figure>,
+    Vec<activemuscle::plot::Figure>,
 ) {
     let results = scene.run(&RunOptions::default());
     let failures: Vec<_> = results.failures().collect();
@@ -116,7 +116,7 @@ fn largest_gap(h: &[String], rows: &[Vec<String>]) -> f64 {
 #[test]
 fn the_laws_caption_says_how_far_a_nearly_incompressible_curve_is_from_its_target() {
     let study = "[[study]]\nkind = \"uniaxial\"\nname = \"u\"\nstretch = [0.9, 1.0, 1.2]\nlaws = [\"implicit\"]\ncouplings = [\"frozen\"]\n";
-    let caption = |figures: &[activemuscle::output::plot::Figure]| {
+    let caption = |figures: &[activemuscle::plot::Figure]| {
         figures
             .iter()
             .find(|f| f.stem.starts_with("fig_laws"))

@@ -2,7 +2,6 @@
 //! the one drawing routine of the crate (the report's figures, the trade-off figures, the fit
 //! example's).
 
-use super::csv::CurveId;
 use crate::app_error::AppError;
 use crate::text::{significant, trim_zeros};
 use plotters::coord::ranged1d::ValueFormatter;
@@ -13,6 +12,12 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use plotters::style::FontStyle;
 use std::path::Path;
 use std::sync::Once;
+
+/// What tells one curve of `curves.csv` from the others: every column but the point's values,
+/// and γ for a constant-γ curve (`study | model | direction | bases | energy | law | coupling | d
+/// | γ`, empty cells empty). The figures mark the series that draw a curve with it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CurveId(pub String);
 
 /// How a series is drawn.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -478,7 +483,7 @@ fn colour(index: usize) -> RGBColor {
     }
 }
 
-static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+static FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
 /// Registers the embedded font as "sans-serif" (once per process).
