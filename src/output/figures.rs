@@ -22,7 +22,7 @@
 //!
 //! A stem that two studies would share gets the study's name appended.
 
-use super::csv::{sweep_curve, uniaxial_curve};
+use crate::studies::curves::{sweep_curve, uniaxial_curve};
 use crate::active::drive::Drive;
 use crate::active::ActiveCurve;
 use crate::fem::Bases;

@@ -19,6 +19,7 @@
 //! [`StudyKind`], [`StudySpec`], [`Study`], [`StudyResult`] and their dispatch.
 
 pub mod biaxial;
+pub mod curves;
 pub mod cylinder;
 pub mod fit;
 pub mod history;
