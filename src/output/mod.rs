@@ -7,7 +7,6 @@ pub mod base64;
 pub mod csv;
 pub mod datapackage;
 pub mod figures;
-pub mod planar_figures;
 
 pub mod report;
 pub mod tradeoff;

@@ -2,13 +2,12 @@
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
 use super::base64;
-use super::csv::{correlations, COLUMNS, HISTORY_COLUMNS};
-use crate::app_error::{finite, AppError};
+use super::csv::{COLUMNS, HISTORY_COLUMNS};
+use crate::app_error::AppError;
 use crate::energy::Parametric;
 use crate::models::{CouplingKind, LawKind, ModelChoice};
-use crate::plot::{short, Rendered};
+use crate::plot::Rendered;
 use crate::scene::{Results, Scene};
-use crate::studies::cylinder::{bases_name, SweepPoint};
 use crate::studies::uniaxial::CurveModel;
 use crate::studies::StudyResult;
 use crate::text::escape_html as escape;
@@ -68,13 +67,7 @@ pub fn html(
     studies_table(&mut h, results);
     failures(&mut h, results);
     models_table(&mut h, scene, results);
-    fe_table(&mut h, results);
-    points_table(&mut h, results);
-    centre_note(&mut h, scene, results);
-    fits_table(&mut h, results)?;
-    stability_table(&mut h, results)?;
-    shear_section(&mut h, results);
-    biaxial_section(&mut h, results);
+    StudyResult::report(&results.studies, &super::figures::context(scene), &mut h)?;
 
     figures_and_data(&mut h, figures, info);
     h.push_str("<h2>Scene as resolved (every default written out)</h2>\n<pre>");
@@ -309,7 +302,7 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
                 "P_act(λ) = {} for λ > λ_min, else 0 ({}); here {}",
                 c.formula(),
                 c.source(),
-                crate::output::figures::curve_parameters_text(c)
+                crate::studies::outputs::curve_parameters_text(c)
             ),
             if chapter {
                 "eq. (8); parameters Table 2".into()
@@ -414,158 +407,6 @@ fn approach_row(m: &crate::models::Models) -> ModelRow {
     }
 }
 
-/// The largest |P_FE − P_0D| over the points `keep` accepts, as (difference, λ, P_0D).
-fn largest(points: &[SweepPoint], keep: impl Fn(&SweepPoint) -> bool) -> Option<(f64, f64, f64)> {
-    points
-        .iter()
-        .filter(|p| keep(p))
-        .filter_map(|p| p.stress_0d.map(|z| ((p.stress - z).abs(), p.lambda, z)))
-        .filter(|d| d.0.is_finite())
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-}
-
-/// Where the activation shows: the target active stress exceeds the passive one,
-/// (1 − d) P_act(λ) > max(P_pas(λ), 0).
-fn active(p: &SweepPoint) -> bool {
-    p.passive_0d.is_some_and(|pas| p.active_0d > pas.max(0.0))
-}
-
-/// `2.95 kPa at λ = 1.3 (3.6 % of P_0D)`.
-fn difference(d: Option<(f64, f64, f64)>) -> String {
-    d.map_or("–".into(), |(d, l, z)| {
-        format!(
-            "{} kPa at λ = {l} ({} % of P_0D)",
-            short(d),
-            short(100.0 * d / z.abs().max(1e-300))
-        )
-    })
-}
-
-/// The displacements of the named boundary points of each cylinder study (`[study.points]`),
-/// one row per point, model and stretch (also in `points_<study>.csv`).
-fn points_table(h: &mut String, results: &Results) {
-    let e = escape;
-    let studies: Vec<_> = results
-        .cylinders()
-        .filter(|(_, c)| !c.points.is_empty())
-        .collect();
-    if studies.is_empty() {
-        return;
-    }
-    h.push_str("<h2>Named points</h2>\n<p>Nodal displacements of the boundary points named in the scene (reference coordinates r, z; lengths in the mesh's unit), per model and stretch (<code>points_&lt;study&gt;.csv</code>).</p>\n<table><tr><th>study</th><th>point</th><th>(r, z)</th><th>model</th><th>λ</th><th>u_r</th><th>u_z</th></tr>\n");
-    for (study, c) in studies {
-        for sweep in &c.sweeps {
-            for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
-                for ((name, at), u) in c.points.iter().zip(u) {
-                    let _ = writeln!(
-                        h,
-                        "<tr><td>{}</td><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{:.6e}</td><td>{:.6e}</td></tr>",
-                        e(study),
-                        e(name),
-                        at[0],
-                        at[1],
-                        e(&sweep.label),
-                        p.lambda,
-                        u[0],
-                        u[1]
-                    );
-                }
-            }
-        }
-    }
-    h.push_str("</table>\n");
-}
-
-/// Each FE sweep against the homogeneous (0D) curve of the same model: the largest difference
-/// where the activation shows (the active range) and over every stretch.
-fn fe_table(h: &mut String, results: &Results) {
-    let e = escape;
-    let sweeps: Vec<_> = results
-        .cylinders()
-        .flat_map(|(study, c)| c.sweeps.iter().map(move |s| (study, c, s)))
-        .collect();
-    if sweeps.is_empty() {
-        return;
-    }
-    let regions = results.cylinders().any(|(_, c)| !c.regions.is_empty());
-    h.push_str("<h2>FE vs homogeneous (0D) tension</h2>\n<p>P_FE: the nominal axial stress of the FE cylinder (axial reaction / πR²); P_0D: homogeneous uniaxial tension of the same model. The <i>active range</i> is where the target active stress exceeds the passive one, (1 − d) P_act(λ) &gt; max(P_pas(λ), 0): there the activation shows. Beyond it the passive stress dominates, and with it the end effect of clamped bases. The last column is the number the studies table gives per sweep.");
-    if regions {
-        h.push_str(" A study with regions (their own damage or activation, listed under the model) is compared with the uniform model at the sweep's d: there the difference is mostly the regions', not the end effect.");
-    }
-    h.push_str("</p>\n<table><tr><th>study</th><th>bases</th><th>free dofs</th><th>model</th><th>stretches</th><th>active range</th><th>max |P_FE − P_0D| in the active range</th><th>max |P_FE − P_0D| over all stretches</th></tr>\n");
-    for (study, c, s) in sweeps {
-        let bases = c.bases;
-        let model = match c.regions_in_words() {
-            None => e(&s.label),
-            Some(r) => format!("{}<br><small>regions: {}</small>", e(&s.label), e(&r)),
-        };
-        let range: Vec<f64> = s
-            .points
-            .iter()
-            .filter(|p| active(p))
-            .map(|p| p.lambda)
-            .collect();
-        let range = match (range.first(), range.last()) {
-            (Some(a), Some(b)) => format!("λ = {a} … {b} ({} stretches)", range.len()),
-            _ => "none".into(),
-        };
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{range}</td><td>{}</td><td>{}</td></tr>",
-            e(study),
-            bases_name(bases),
-            s.dofs,
-            model,
-            s.points.iter().filter(|p| p.stress_0d.is_some()).count(),
-            difference(largest(&s.points, active)),
-            difference(largest(&s.points, |_| true)),
-        );
-    }
-    h.push_str("</table>\n");
-}
-
-/// Why γ at the centre of a cylinder is 0 at some stretches: the fibre stretch there is at or
-/// below λ_min (the laws' γ = 0 region), shown with the numbers of every such stretch.
-fn centre_note(h: &mut String, scene: &Scene, results: &Results) {
-    let lmin = scene.models.curve.lambda_min();
-    let mut rows = String::new();
-    for (study, c) in results.cylinders() {
-        for s in &c.sweeps {
-            let below: Vec<&SweepPoint> = s
-                .points
-                .iter()
-                .filter(|p| p.fibre_stretch_centre <= lmin)
-                .collect();
-            if below.is_empty() {
-                continue;
-            }
-            let _ = writeln!(
-                rows,
-                "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
-                escape(study),
-                escape(&s.label),
-                below
-                    .iter()
-                    .map(|p| format!(
-                        "λ = {}: λ_f = {}, γ = {}",
-                        p.lambda,
-                        short(p.fibre_stretch_centre),
-                        short(p.gamma_centre)
-                    ))
-                    .collect::<Vec<_>>()
-                    .join("<br>")
-            );
-        }
-    }
-    if rows.is_empty() {
-        return;
-    }
-    let _ = writeln!(
-        h,
-        "<h2>γ at the centre of the cylinder</h2>\n<p>At these applied stretches the fibre stretch λ_f at the centre of the cylinder is at or below λ_min = {lmin}, where the active curve vanishes (P_act = 0 for λ ≤ λ_min, eq. (8)): the implicit and explicit laws give γ = 0 there, for every d. In compression a cylinder with clamped bases cannot widen at its ends, so the ends shorten less and the middle more than the applied stretch; with sliding bases the deformation is homogeneous and λ_f = λ. The energy law continued below λ_min on its zero-work branch (<code>below_minimum = \"zero-work\"</code>) keeps γ &gt; 0 there. The middle panel of each cylinder figure shows λ_f at the centre against λ_min.</p>\n<table><tr><th>study</th><th>model</th><th>stretches with λ_f ≤ λ_min at the centre</th></tr>\n{rows}</table>"
-    );
-}
-
 /// The figures (embedded) and the list of data files.
 fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
     let e = escape;
@@ -614,187 +455,4 @@ fn code_list<'a>(items: impl IntoIterator<Item = &'a str>) -> String {
         .map(|c| format!("<code>{}</code>", escape(c)))
         .collect::<Vec<_>>()
         .join(", ")
-}
-
-/// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
-fn fits_table(h: &mut String, results: &Results) -> Result<(), AppError> {
-    let studies = results.fits();
-    if studies.iter().all(|(_, f)| f.is_empty()) {
-        return Ok(());
-    }
-    let e = escape;
-    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
-    for (study, f) in studies
-        .iter()
-        .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
-    {
-        let origin = || format!("report: fit {study:?}, {}", f.case);
-        let n = f.names.len();
-        for j in 0..n {
-            let value = finite(f.values[j], "fitted value", origin)?;
-            let se = match f.standard_errors.get(j).copied().flatten() {
-                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
-                None => " ± (n/a)".into(),
-            };
-            let reference = match f.reference.get(j).copied().flatten() {
-                Some(r) => finite(r, "reference value", origin)?.to_string(),
-                None => String::new(),
-            };
-            let corr = match f.correlation.get(j) {
-                Some(row) => correlations(row, &f.names, j, |c| {
-                    finite(c, "correlation", origin).map(|c| format!("{c:.4}"))
-                })?,
-                None => String::new(),
-            };
-            if j == 0 {
-                let mut status = if f.converged {
-                    "converged".to_string()
-                } else {
-                    format!("<b>NOT converged</b> ({})", e(&f.termination))
-                };
-                for x in &f.extra {
-                    status.push_str(&format!("<br>{}", e(x)));
-                }
-                let _ = write!(
-                    h,
-                    "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
-                    e(study),
-                    e(&f.case),
-                    f.points
-                );
-                let _ = writeln!(
-                    h,
-                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
-                    e(&f.names[j]),
-                    e(&corr),
-                    finite(f.rms, "RMS error", origin)?,
-                    f.unit,
-                    f.iterations,
-                );
-            } else {
-                let _ = writeln!(
-                    h,
-                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td></tr>",
-                    e(&f.names[j]),
-                    e(&corr),
-                );
-            }
-        }
-    }
-    h.push_str("</table>\n");
-    Ok(())
-}
-
-/// Intervals of softening and of lost strong ellipticity, per model.
-fn stability_table(h: &mut String, results: &Results) -> Result<(), AppError> {
-    let studies = results.stability();
-    if studies.iter().all(|(_, c)| c.is_empty()) {
-        return Ok(());
-    }
-    let e = escape;
-    let fmt = |v: Vec<(f64, f64)>| {
-        if v.is_empty() {
-            "none".to_string()
-        } else {
-            v.iter()
-                .map(|(a, b)| format!("{a:.3}–{b:.3}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        }
-    };
-    h.push_str("<h2>Material stability along the fibres</h2>\n<p>Uniaxial path along the fibres: intervals of the stretch grid where dP/dλ &lt; 0 and where strong ellipticity (incompressible, a ⊥ F⁻ᵀN) is lost; per-point values in <code>stability.csv</code>.</p>\n<table><tr><th>study</th><th>model</th><th>d</th><th>stretches</th><th>dP/dλ &lt; 0 on</th><th>not strongly elliptic on</th><th>least relative a·Q(N)a</th></tr>\n");
-    for (name, c) in studies
-        .iter()
-        .flat_map(|&(s, cs)| cs.iter().map(move |c| (s, c)))
-    {
-        let least = c
-            .points
-            .iter()
-            .map(|p| p.relative)
-            .fold(f64::INFINITY, f64::min);
-        let least = if c.points.is_empty() {
-            "n/a".to_string()
-        } else {
-            let least = finite(least, "relative ellipticity", || {
-                format!("report: {name}, {}, d = {:?}", c.label(), c.damage())
-            })?;
-            format!("{least:.3e}")
-        };
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{least}</td></tr>",
-            e(name),
-            e(&c.label()),
-            c.damage().map_or(String::new(), |d| d.to_string()),
-            c.points.len(),
-            fmt(c.intervals(|p| p.slope < 0.0)),
-            fmt(c.intervals(|p| !p.elliptic)),
-        );
-    }
-    h.push_str("</table>\n");
-    Ok(())
-}
-
-/// What differs in simple shear and why: σ₁₂ at the largest amount of shear per model and fibre
-/// angle, with the boundary conditions.
-fn shear_section(h: &mut String, results: &Results) {
-    for s in &results.studies {
-        let StudyResult::Shear(r) = &s.result else {
-            continue;
-        };
-        let _ = writeln!(
-            h,
-            "<h2>Simple shear (study \"{}\")</h2>\n<p>F = I + k e₁⊗e₂, incompressible; the faces normal to e₃ are traction free (σ₃₃ = 0 fixes the pressure), the others carry what the homogeneous state needs. The fibre lies in the shear plane at θ to e₁. Every approach is calibrated to the same uniaxial target along the fibres, so uniaxial tests cannot tell them apart; in shear they differ. With the fibre along the shear direction (θ = 0) the fibre stretch stays 1: active stress adds only a tension (1 − d) P_act(1) along e₁ (σ₁₁), while active strain (and the structural activation) stiffen or soften the shear response itself (Giantesio, Musesti &amp; Riccobelli 2019).</p>\n<table><tr><th>model</th><th>θ</th><th>k</th><th>σ₁₂ [kPa]</th><th>σ₁₁ [kPa]</th><th>σ₂₂ [kPa]</th></tr>",
-            escape(&s.name)
-        );
-        for c in &r.curves {
-            let Some(p) = c.points.last() else { continue };
-            let words = c.model.words();
-            let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td>{}°</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                escape(&words),
-                c.angle,
-                p.k,
-                crate::text::significant(p.sigma[0], 6),
-                crate::text::significant(p.sigma[1], 6),
-                crate::text::significant(p.sigma[2], 6)
-            );
-        }
-        h.push_str("</table>\n");
-    }
-}
-
-/// Planar biaxial stretch: the boundary conditions, and both stresses at the last state of the
-/// path per model.
-fn biaxial_section(h: &mut String, results: &Results) {
-    for s in &results.studies {
-        let StudyResult::Biaxial(r) = &s.result else {
-            continue;
-        };
-        let _ = writeln!(
-            h,
-            "<h2>Planar biaxial stretch (study \"{}\", {} path)</h2>\n<p>F = diag(λ₁, λ₂, λ₃), λ₁ along the fibres and λ₂ across; the faces normal to e₃ are traction free, so λ₃ = 1/(λ₁λ₂) (incompressible) or solves P₃₃ = 0 with the volumetric energy. An isotropic material has P₁₁ = P₂₂ on the equibiaxial path; the fibres, and an activation along them, break that symmetry. Active stress adds (1 − d) P_act(λ₁) to P₁₁ alone; active strain changes the stiffness across the fibres too.</p>\n<table><tr><th>model</th><th>λ₁</th><th>λ₂</th><th>λ₃</th><th>P₁₁ [kPa]</th><th>P₂₂ [kPa]</th><th>σ₁₁ [kPa]</th><th>σ₂₂ [kPa]</th></tr>",
-            escape(&s.name),
-            r.path
-        );
-        let number = |x: f64| crate::text::significant(x, 6);
-        for c in &r.curves {
-            let Some(p) = c.points.last() else { continue };
-            let [l1, l2, l3] = p.stretches;
-            let _ = writeln!(
-                h,
-                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                escape(&c.model.words()),
-                number(l1),
-                number(l2),
-                number(l3),
-                number(p.nominal[0]),
-                number(p.nominal[1]),
-                number(p.cauchy[0]),
-                number(p.cauchy[1])
-            );
-        }
-        h.push_str("</table>\n");
-    }
 }

@@ -4,6 +4,8 @@
 //! paths of soft-tissue labs: equibiaxial (λ₂ = λ₁), strip biaxial (λ₂ = 1), or a list of
 //! (λ₁, λ₂) pairs; nominal and Cauchy stresses in both directions for every approach and law.
 
+mod output;
+
 use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
 use super::table::Table;
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};

@@ -84,7 +84,12 @@ fn law_cells(model: CurveModel) -> (&'static str, Option<&'static str>, Option<f
 }
 
 /// The row of point `p` of curve `c` of uniaxial study `study`.
-pub fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &CurvePoint) -> Row<'a> {
+pub fn uniaxial_row<'a>(
+    study: &'a str,
+    direction: Direction,
+    c: &'a Curve,
+    p: &CurvePoint,
+) -> Row<'a> {
     let (law, coupling, d) = law_cells(c.model);
     Row {
         study,
@@ -111,7 +116,12 @@ pub fn uniaxial_row<'a>(study: &'a str, direction: Direction, c: &'a Curve, p: &
 }
 
 /// The row of point `p` of sweep `sweep` of cylinder study `study`.
-pub fn sweep_row<'a>(study: &'a str, c: &'a CylinderResult, sweep: &Sweep, p: &SweepPoint) -> Row<'a> {
+pub fn sweep_row<'a>(
+    study: &'a str,
+    c: &'a CylinderResult,
+    sweep: &Sweep,
+    p: &SweepPoint,
+) -> Row<'a> {
     let m = sweep.model;
     Row {
         study,

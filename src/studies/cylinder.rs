@@ -2,6 +2,8 @@
 //! numerical validation ([`crate::fem`]), one load sweep per damage value (in parallel), each
 //! next to the homogeneous (0D) curve of the same model.
 
+mod output;
+
 use super::spec::StretchSpec;
 use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};

@@ -14,6 +14,8 @@
 //! fit one data set, and the model's curve at any parameter values; resolution and the run are
 //! the same for all four.
 
+mod output;
+
 use super::spec::{damages, fmt_list, optional_stretches, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;

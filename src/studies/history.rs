@@ -14,6 +14,8 @@
 //! zero lateral traction at every step ([`crate::uniaxial::nearly_incompressible`]) and the volume
 //! ratio J = λ λ₂ λ₃ is reported.
 
+mod output;
+
 use super::spec::{damages, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};

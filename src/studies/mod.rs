@@ -23,6 +23,7 @@ pub mod curves;
 pub mod cylinder;
 pub mod fit;
 pub mod history;
+pub mod outputs;
 pub mod shear;
 pub mod spec;
 pub mod stability;
@@ -192,6 +193,45 @@ macro_rules! study_kinds {
             /// its failure, [`Outcome::nothing`]).
             Nothing,
         }
+
+        impl StudyResult {
+            /// Every kind's figures ([`outputs::KindOutput::figures`]), kind by kind in the
+            /// order of the registry, each given its studies of `outcomes` in scene order.
+            pub fn figures(outcomes: &[Outcome], cx: &outputs::Context) -> Vec<crate::plot::Figure> {
+                let mut figures = Vec::new();
+                $(
+                    let of: Vec<outputs::Of<$result>> = outcomes
+                        .iter()
+                        .filter_map(|o| match &o.result {
+                            StudyResult::$variant(r) => Some(outputs::Of { name: &o.name, details: &o.details, result: r }),
+                            _ => None,
+                        })
+                        .collect();
+                    if !of.is_empty() {
+                        figures.extend(<$result as outputs::KindOutput>::figures(&of, cx));
+                    }
+                )*
+                figures
+            }
+
+            /// Every kind's report section ([`outputs::KindOutput::report`]), in the order of
+            /// [`Self::figures`], appended to `h`.
+            pub fn report(outcomes: &[Outcome], cx: &outputs::Context, h: &mut String) -> Result<(), AppError> {
+                $(
+                    let of: Vec<outputs::Of<$result>> = outcomes
+                        .iter()
+                        .filter_map(|o| match &o.result {
+                            StudyResult::$variant(r) => Some(outputs::Of { name: &o.name, details: &o.details, result: r }),
+                            _ => None,
+                        })
+                        .collect();
+                    if !of.is_empty() {
+                        <$result as outputs::KindOutput>::report(&of, cx, h)?;
+                    }
+                )*
+                Ok(())
+            }
+        }
     };
 }
 
@@ -319,6 +359,9 @@ impl KindStudy for tradeoff::TradeoffStudy {
         tradeoff::TradeoffStudy::run(self, models, fallback, ctx)
     }
 }
+
+/// A trade-off study's page and figures are its own (`output/tradeoff.rs`).
+impl outputs::KindOutput for tradeoff::TradeoffResults {}
 
 /// What a trade-off study takes from the other studies: the first cylinder study's cylinder and
 /// mesh, the first uniaxial study along the fibres' stretches (or the defaults).

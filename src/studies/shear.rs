@@ -7,6 +7,8 @@
 //! σ₁₁ = T(1) while active strain changes the shear stiffness itself (Giantesio, Musesti &
 //! Riccobelli 2019).
 
+mod output;
+
 use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
 use super::table::Table;
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};

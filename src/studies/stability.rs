@@ -2,6 +2,8 @@
 //! law × coupling × d, where the curve softens (dP/dλ < 0) and where strong ellipticity is lost
 //! ([`crate::stability::along_fibres_stability`]).
 
+mod output;
+
 use super::spec::StretchSpec;
 use super::spec::{couplings_for, damages, optional_stretches, supported_laws, Defaults};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};

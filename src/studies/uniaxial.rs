@@ -2,6 +2,8 @@
 //! ([`crate::uniaxial`]) of the material's passive curve, other passive energies, constant
 //! activations and every law × coupling × damage, the curves in parallel.
 
+mod figures;
+
 use super::spec::{
     couplings_for, damages, required_stretches, supported_laws, Defaults, StretchSpec,
 };

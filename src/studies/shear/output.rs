@@ -1,40 +1,33 @@
-//! The figures of the homogeneous studies beyond uniaxial tension: simple shear (σ₁₂ against k
-//! per approach and fibre angle, the difference between active strain and active stress, and the
-//! normal stresses) and planar biaxial stretch (both nominal stresses along the path).
+//! The shear kind's figure (σ₁₂ against k per approach and fibre angle, active strain minus
+//! active stress, the normal stresses) and its report section (what differs and why).
 
-use crate::plot::{Figure, Panel, Series, Stroke};
-use crate::studies::biaxial::BiaxialResult;
-use crate::studies::shear::{ShearCurve, ShearResult};
-use crate::studies::slug;
+use super::{ShearCurve, ShearResult};
+use crate::app_error::AppError;
+use crate::plot::{Figure, Panel, Series};
+use crate::studies::outputs::{panel_of, prefixed, strokes, Context, KindOutput, Of};
+use crate::text::escape_html as escape;
+use std::fmt::Write;
 
 const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
-fn strokes(i: usize) -> Stroke {
-    [Stroke::Solid, Stroke::Dashed, Stroke::Dotted][i % 3]
+impl KindOutput for ShearResult {
+    fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
+        studies
+            .iter()
+            .filter_map(|s| shear_figure(s.name, s.result))
+            .collect()
+    }
+
+    fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
+        shear_section(h, studies);
+        Ok(())
+    }
 }
 
 /// The model of a curve in words.
 fn model_words(c: &ShearCurve) -> String {
     c.model.words()
-}
-
-fn stem(kind: &str, study: &str) -> String {
-    let s = slug(study);
-    if s.starts_with(kind) {
-        format!("fig_{s}")
-    } else {
-        format!("fig_{kind}_{s}")
-    }
-}
-
-/// A panel of the series that have points, or `None`.
-fn panel(title: &str, x: &str, y: &str, series: Vec<Series>) -> Option<Panel> {
-    let series: Vec<Series> = series
-        .into_iter()
-        .filter(|s| !s.points.is_empty())
-        .collect();
-    (!series.is_empty()).then(|| Panel::new(title, x, y, series))
 }
 
 /// Simple shear: σ₁₂(k) of every model and fibre angle, active strain minus active stress at
@@ -110,20 +103,20 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
     }
     let hidden = coinciding(r);
     let panels: Vec<Panel> = [
-        panel("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
-        panel(
+        panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
+        panel_of(
             "σ₁₂ of each activated approach minus that of active stress (same d, same θ)",
             SHEAR,
             "Δσ₁₂ [kPa]",
             difference,
         ),
-        panel(
+        panel_of(
             "Normal stress σ₁₁ (along the shear direction)",
             SHEAR,
             CAUCHY,
             of(|s| s[1]),
         ),
-        panel(
+        panel_of(
             "Normal stress σ₂₂ (across the shear plane's normal)",
             SHEAR,
             CAUCHY,
@@ -135,7 +128,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
     .collect();
     (!panels.is_empty()).then(|| {
         Figure::new(
-            stem("shear", study),
+            prefixed("shear", study),
             format!("Simple shear: the activation approaches compared (study \"{study}\")"),
             format!(
                 "Homogeneous simple shear F = I + k e₁⊗e₂ of the {} energy, incompressible, the faces normal to e₃ traction free (σ₃₃ = 0 gives the pressure), the fibre in the shear plane at θ to the shear direction e₁ (solid, dashed, dotted: θ = {} in order). Every approach is calibrated to the same uniaxial target along the fibres, P_pas + (1 − d) P_act, and agrees there; in shear they differ. At θ = 0 the fibre stretch stays 1: active stress adds only σ₁₁ = (1 − d) P_act(1), while active strain changes the shear stiffness itself (Giantesio, Musesti & Riccobelli 2019).{hidden} Values in shear.csv.",
@@ -196,62 +189,30 @@ fn coinciding(r: &ShearResult) -> String {
         .collect()
 }
 
-/// Planar biaxial stretch: P₁₁ and P₂₂ along the path, per model.
-pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
-    let x = if r.path == "pairs" {
-        "state (index of the (λ₁, λ₂) pair) [-]"
-    } else {
-        "stretch along the fibres λ₁ [-]"
-    };
-    let series = |i: usize| -> Vec<Series> {
-        r.curves
-            .iter()
-            .enumerate()
-            .map(|(j, c)| {
-                let words = c.model.words();
-                let points = c
-                    .points
-                    .iter()
-                    .enumerate()
-                    .map(|(n, p)| {
-                        let at = if r.path == "pairs" {
-                            n as f64
-                        } else {
-                            p.stretches[0]
-                        };
-                        (at, p.nominal[i])
-                    })
-                    .collect();
-                Series::new(words, points, Stroke::Solid, j % 6)
-            })
-            .collect()
-    };
-    let panels: Vec<Panel> = [
-        panel(
-            "Nominal stress along the fibres P₁₁",
-            x,
-            "P₁₁ [kPa]",
-            series(0),
-        ),
-        panel(
-            "Nominal stress across the fibres P₂₂",
-            x,
-            "P₂₂ [kPa]",
-            series(1),
-        ),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    (!panels.is_empty()).then(|| {
-        Figure::new(
-            stem("biaxial", study),
-            format!("Planar biaxial stretch, {} (study \"{study}\")", r.path),
-            format!(
-                "Homogeneous planar biaxial stretch F = diag(λ₁, λ₂, λ₃) of the {} energy, λ₁ along the fibres and λ₂ across, the faces normal to e₃ traction free (λ₃ from incompressibility or the volumetric energy). Cauchy stresses and λ₃ in biaxial.csv.",
-                r.energy
-            ),
-            panels,
-        )
-    })
+/// What differs in simple shear and why: σ₁₂ at the largest amount of shear per model and fibre
+/// angle, with the boundary conditions.
+fn shear_section(h: &mut String, studies: &[Of<ShearResult>]) {
+    for s in studies {
+        let r = s.result;
+        let _ = writeln!(
+            h,
+            "<h2>Simple shear (study \"{}\")</h2>\n<p>F = I + k e₁⊗e₂, incompressible; the faces normal to e₃ are traction free (σ₃₃ = 0 fixes the pressure), the others carry what the homogeneous state needs. The fibre lies in the shear plane at θ to e₁. Every approach is calibrated to the same uniaxial target along the fibres, so uniaxial tests cannot tell them apart; in shear they differ. With the fibre along the shear direction (θ = 0) the fibre stretch stays 1: active stress adds only a tension (1 − d) P_act(1) along e₁ (σ₁₁), while active strain (and the structural activation) stiffen or soften the shear response itself (Giantesio, Musesti &amp; Riccobelli 2019).</p>\n<table><tr><th>model</th><th>θ</th><th>k</th><th>σ₁₂ [kPa]</th><th>σ₁₁ [kPa]</th><th>σ₂₂ [kPa]</th></tr>",
+            escape(s.name)
+        );
+        for c in &r.curves {
+            let Some(p) = c.points.last() else { continue };
+            let words = c.model.words();
+            let _ = writeln!(
+                h,
+                "<tr><td>{}</td><td>{}°</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(&words),
+                c.angle,
+                p.k,
+                crate::text::significant(p.sigma[0], 6),
+                crate::text::significant(p.sigma[1], 6),
+                crate::text::significant(p.sigma[2], 6)
+            );
+        }
+        h.push_str("</table>\n");
+    }
 }

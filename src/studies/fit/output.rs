@@ -1,0 +1,186 @@
+//! The fit kind's figures (data, the fitted model, the model at the reference values) and its
+//! report table (values ± standard errors, correlations, RMS, convergence).
+
+use super::{FitKind, FitOutcome};
+use crate::app_error::{finite, AppError};
+use crate::output::csv::correlations;
+use crate::plot::{Figure, Stroke};
+use crate::studies::outputs::{derived, figure, panel, prefixed, Context, KindOutput, Of};
+use crate::text::escape_html as escape;
+use std::fmt::Write;
+
+impl KindOutput for Vec<FitOutcome> {
+    fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
+        studies
+            .iter()
+            .filter_map(|s| fit_figure(s.name, s.result))
+            .collect()
+    }
+
+    fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
+        fits_table(h, studies)
+    }
+}
+
+/// `Fit: chapter's energy …` for a study called `fit: chapter's energy …` or `chapter's energy …`.
+fn fit_heading(study: &str) -> String {
+    let rest = study
+        .strip_prefix("fit:")
+        .or_else(|| study.strip_prefix("Fit:"))
+        .unwrap_or(study)
+        .trim();
+    format!("Fit: {rest}")
+}
+
+/// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or
+/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
+fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
+    let first = fits.first()?;
+    let mut panels = Vec::new();
+    let status = |f: &FitOutcome| {
+        let values: Vec<String> = f
+            .names
+            .iter()
+            .zip(&f.values)
+            .map(|(n, v)| format!("{n} = {v:.4}"))
+            .collect();
+        format!(
+            "fit: {}{}",
+            values.join(", "),
+            if f.converged { "" } else { " (NOT converged)" }
+        )
+    };
+    let start = |f: &FitOutcome, colour| {
+        f.plot.start.as_ref().and_then(|(label, points)| {
+            derived(label.clone(), points.clone(), Stroke::Dashed, colour)
+        })
+    };
+    if first.kind == FitKind::Damage {
+        let mut s = Vec::new();
+        for (i, f) in fits.iter().enumerate() {
+            s.push(derived(
+                f.case.clone(),
+                f.plot.data.clone(),
+                Stroke::Markers,
+                i,
+            ));
+            s.push(derived(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+        }
+        s.push(start(first, 7));
+        panels.push(panel(fit_heading(study), &first.plot.y_label, s));
+    } else {
+        for f in fits {
+            let s = vec![
+                derived(
+                    f.plot.data_label.clone(),
+                    f.plot.data.clone(),
+                    Stroke::Markers,
+                    1,
+                ),
+                derived(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
+                start(f, 2),
+            ];
+            panels.push(panel(
+                format!("{}: {}", fit_heading(study), f.case),
+                &f.plot.y_label,
+                s,
+            ));
+        }
+    }
+    figure(
+        &prefixed("fit", study),
+        fit_heading(study),
+        format!(
+            "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
+            first.kind.name(),
+            first.source
+        ),
+        panels,
+    )
+}
+
+/// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
+fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), AppError> {
+    let studies: Vec<(&str, &[FitOutcome])> = studies
+        .iter()
+        .map(|s| (s.name, s.result.as_slice()))
+        .collect();
+    if studies.iter().all(|(_, f)| f.is_empty()) {
+        return Ok(());
+    }
+    let e = escape;
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    for (study, f) in studies
+        .iter()
+        .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
+    {
+        let origin = || format!("report: fit {study:?}, {}", f.case);
+        let n = f.names.len();
+        for j in 0..n {
+            let value = finite(f.values[j], "fitted value", origin)?;
+            let se = match f.standard_errors.get(j).copied().flatten() {
+                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
+                None => " ± (n/a)".into(),
+            };
+            let reference = match f.reference.get(j).copied().flatten() {
+                Some(r) => finite(r, "reference value", origin)?.to_string(),
+                None => String::new(),
+            };
+            let corr = match f.correlation.get(j) {
+                Some(row) => correlations(row, &f.names, j, |c| {
+                    finite(c, "correlation", origin).map(|c| format!("{c:.4}"))
+                })?,
+                None => String::new(),
+            };
+            if j == 0 {
+                let mut status = if f.converged {
+                    "converged".to_string()
+                } else {
+                    format!("<b>NOT converged</b> ({})", e(&f.termination))
+                };
+                for x in &f.extra {
+                    status.push_str(&format!("<br>{}", e(x)));
+                }
+                let _ = write!(
+                    h,
+                    "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
+                    e(study),
+                    e(&f.case),
+                    f.points
+                );
+                let _ = writeln!(
+                    h,
+                    "<td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td><td rowspan=\"{n}\">{:.3e} {}</td><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{status}</td></tr>",
+                    e(&f.names[j]),
+                    e(&corr),
+                    finite(f.rms, "RMS error", origin)?,
+                    f.unit,
+                    f.iterations,
+                );
+            } else {
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}</td><td>{value:.6}{se}</td><td>{reference}</td><td>{}</td></tr>",
+                    e(&f.names[j]),
+                    e(&corr),
+                );
+            }
+        }
+    }
+    h.push_str("</table>\n");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_headings_say_fit_once() {
+        assert_eq!(
+            fit_heading("fit: damage of weakened muscles"),
+            "Fit: damage of weakened muscles"
+        );
+        assert_eq!(fit_heading("my damage"), "Fit: my damage");
+    }
+}

@@ -1,0 +1,119 @@
+//! The activation-in-time kind's figure: a(t) with its schedule, the stress or stretch history
+//! and γ(t) per damage (and J(t) for a nearly incompressible block).
+
+use super::{HistoryPoint, HistoryResult};
+use crate::plot::{Figure, Panel, Series, Stroke, GREY};
+use crate::studies::outputs::{
+    derived, figure, prefixed, Context, KindOutput, Of, GAMMA, LAMBDA, STRESS,
+};
+
+impl KindOutput for HistoryResult {
+    fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
+        studies
+            .iter()
+            .filter_map(|s| history_figure(s.name, s.result))
+            .collect()
+    }
+}
+
+/// The figure of an activation-in-time study: a(t) with its schedule, then per damage value the
+/// stress history (prescribed stretch) or the stretch history (free contraction), and γ(t).
+fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
+    const TIME: &str = "time t [s]";
+    let over = |title: String, y: &str, series: Vec<Option<Series>>| -> Option<Panel> {
+        let series: Vec<Series> = series.into_iter().flatten().collect();
+        series
+            .iter()
+            .any(|s| !s.points.is_empty())
+            .then(|| Panel::new(title, TIME, y, series))
+    };
+    let first = r.histories.first()?;
+    let level = vec![
+        derived(
+            "activation level a(t)",
+            first.points.iter().map(|p| (p.t, p.level)).collect(),
+            Stroke::Solid,
+            0,
+        ),
+        derived(
+            "schedule a_s(t)",
+            first.points.iter().map(|p| (p.t, p.schedule)).collect(),
+            Stroke::Dashed,
+            GREY,
+        ),
+    ];
+    let free = r.loading == "free";
+    let per_damage = |y: fn(&HistoryPoint) -> f64| -> Vec<Option<Series>> {
+        r.histories
+            .iter()
+            .enumerate()
+            .map(|(i, h)| {
+                derived(
+                    format!("d = {}", h.model.damage),
+                    h.points.iter().map(|p| (p.t, y(p))).collect(),
+                    Stroke::Solid,
+                    i % 6,
+                )
+            })
+            .collect()
+    };
+    let (title, y_label, response): (&str, &str, Vec<Option<Series>>) = if free {
+        (
+            "Free contraction: stretch along the fibres",
+            LAMBDA,
+            per_damage(|p| p.lambda),
+        )
+    } else {
+        (
+            "Prescribed stretch: nominal stress along the fibres",
+            STRESS,
+            per_damage(|p| p.stress),
+        )
+    };
+    let mut response = over(title.into(), y_label, response);
+    if let (true, Some(p)) = (free, response.as_mut()) {
+        // λ = 1 wherever a = 0: the whole range, from the deepest shortening to rest.
+        let low = p
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(|q| q.1))
+            .fold(1.0, f64::min);
+        let pad = 0.05 * (1.0 - low).max(1e-3);
+        p.y_range = Some((low - pad, 1.0 + pad));
+    }
+    let m = first.model;
+    let block = match &r.volumetric {
+        None => "A homogeneous incompressible block".to_string(),
+        Some(v) => format!(
+            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
+            v.formula()
+        ),
+    };
+    let mut panels = vec![
+        over("Activation level".into(), "activation level a [-]", level),
+        response,
+        over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
+    ];
+    if r.volumetric.is_some() {
+        panels.push(over(
+            "Volume ratio".into(),
+            "volume ratio J = λ λ₂ λ₃ [-]",
+            per_damage(|p| p.volume),
+        ));
+    }
+    figure(
+        &prefixed("history", study),
+        format!("Activation in time (study \"{study}\")"),
+        format!(
+            "{block} along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+            m.law.name(),
+            m.coupling.name(),
+            if free {
+                "Zero axial load: the stretch solves P(λ) = 0 at each step."
+            } else {
+                "Prescribed stretch λ(t): the stress history."
+            }
+        ),
+        panels,
+    )
+}

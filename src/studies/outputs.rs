@@ -1,0 +1,200 @@
+//! What a study kind gives a run's outputs: its figures and its report section ([`KindOutput`]),
+//! drawn from every study of the kind at once, so that a figure may compare them (FE against 0D
+//! over every cylinder study). The drivers in `output/` iterate over the kinds through the
+//! dispatch that `study_kinds!` generates ([`super::StudyResult::figures`],
+//! [`super::StudyResult::report`]); a kind's own figures and section live in its module. The
+//! helpers below are the vocabulary the kinds' figures share (axis labels, the chapter's figure
+//! numbers, colours per law and strokes per coupling).
+
+use crate::active::ActiveCurve;
+use crate::app_error::AppError;
+use crate::models::{CouplingKind, LawKind};
+use crate::plot::{Figure, Panel, Series, Stroke, GREY};
+use crate::studies::slug;
+
+/// One study of a kind, as the outputs see it.
+#[derive(Debug, Clone, Copy)]
+pub struct Of<'a, R> {
+    /// The study's name.
+    pub name: &'a str,
+    /// Its summary lines ([`super::Outcome::details`]: mesh, dofs, verification).
+    pub details: &'a [String],
+    /// What it computed.
+    pub result: &'a R,
+}
+
+/// What the kinds' figures and sections take from the scene.
+#[derive(Debug, Clone)]
+pub struct Context {
+    /// The material's energy (its name).
+    pub material: String,
+    /// The active curve.
+    pub curve: ActiveCurve,
+    /// The scene's energy and active curve are the chapter's (see [`chapter`]).
+    pub chapter_material: bool,
+}
+
+/// A kind's part of a run's outputs. Both hooks get every study of the kind, in scene order (at
+/// least one); the defaults draw and write nothing.
+pub trait KindOutput: Sized {
+    /// The kind's figures.
+    fn figures(_studies: &[Of<Self>], _cx: &Context) -> Vec<Figure> {
+        Vec::new()
+    }
+
+    /// The kind's section of the report (HTML appended to `h`). A non-finite number is an error
+    /// naming it, never written.
+    fn report(_studies: &[Of<Self>], _cx: &Context, _h: &mut String) -> Result<(), AppError> {
+        Ok(())
+    }
+}
+
+/// x label of a curve over the stretch.
+pub const LAMBDA: &str = "stretch λ [-]";
+/// y label of a nominal stress.
+pub const STRESS: &str = "nominal stress P [kPa]";
+/// y label of the activation.
+pub const GAMMA: &str = "activation γ [-]";
+
+/// `0, 0.1, 0.5`.
+pub fn list(values: &[f64]) -> String {
+    values
+        .iter()
+        .map(f64::to_string)
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `v` sorted, each value once.
+pub fn sorted_unique(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    v
+}
+
+/// ` — the chapter's Fig. n` for a figure of the chapter's energy and parameters
+/// (`chapter_material`: the scene's energy and active curve are the chapter's); with other
+/// parameters or another energy, ` — as the chapter's Fig. n` and what differs.
+pub fn chapter(n: u32, energy: &str, chapter_material: bool) -> String {
+    if energy != "giantesio-musesti" {
+        format!(" — as the chapter's Fig. {n}, with the {energy} energy")
+    } else if chapter_material {
+        format!(" — the chapter's Fig. {n}")
+    } else {
+        format!(" — as the chapter's Fig. {n}, with this scene's parameters")
+    }
+}
+
+/// `implicit law, frozen coupling`.
+pub fn words(law: LawKind, coupling: CouplingKind) -> String {
+    format!("{} law, {} coupling", law.name(), coupling.name())
+}
+
+/// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.
+pub fn derived(
+    label: impl Into<String>,
+    points: Vec<(f64, f64)>,
+    stroke: Stroke,
+    colour: usize,
+) -> Option<Series> {
+    (!points.is_empty()).then(|| Series::new(label, points, stroke, colour))
+}
+
+/// A legend entry without points, in grey: what a stroke means.
+pub fn key(label: &str, stroke: Stroke) -> Option<Series> {
+    Some(Series::new(label, Vec::new(), stroke, GREY))
+}
+
+/// A panel over λ, or `None` if none of its series has points.
+pub fn panel(
+    title: impl Into<String>,
+    y_label: &str,
+    series: Vec<Option<Series>>,
+) -> Option<Panel> {
+    panel_over(title, LAMBDA, y_label, series)
+}
+
+/// A panel over `x_label`, or `None` if none of its series has points.
+pub fn panel_over(
+    title: impl Into<String>,
+    x_label: &str,
+    y_label: &str,
+    series: Vec<Option<Series>>,
+) -> Option<Panel> {
+    let series: Vec<Series> = series.into_iter().flatten().collect();
+    series
+        .iter()
+        .any(|s| !s.points.is_empty())
+        .then(|| Panel::new(title, x_label, y_label, series))
+}
+
+/// A figure of the panels that have data, or `None` if none has.
+pub fn figure(
+    stem: &str,
+    heading: String,
+    caption: String,
+    panels: Vec<Option<Panel>>,
+) -> Option<Figure> {
+    let panels: Vec<Panel> = panels.into_iter().flatten().collect();
+    (!panels.is_empty()).then(|| Figure::new(stem, heading, caption, panels))
+}
+
+/// `fig_<kind>_<name>`, without repeating the kind when the name starts with it.
+pub fn prefixed(kind: &str, name: &str) -> String {
+    let s = slug(name);
+    if s.starts_with(kind) {
+        format!("fig_{s}")
+    } else {
+        format!("fig_{kind}_{s}")
+    }
+}
+
+/// The colour of a law, the same in every figure.
+pub fn law_colour(law: LawKind) -> usize {
+    match law {
+        LawKind::Implicit => 0,
+        LawKind::Explicit => 1,
+        LawKind::Energy => 2,
+    }
+}
+
+/// The stroke of a coupling: solid frozen, dashed consistent.
+pub fn coupling_stroke(c: CouplingKind) -> Stroke {
+    match c {
+        CouplingKind::Frozen => Stroke::Solid,
+        CouplingKind::Consistent => Stroke::Dashed,
+    }
+}
+
+/// `λ_min = 0.6243, λ_opt = 1.1704, k = 0.4342, P_opt = 73.52 kPa`: a curve's parameters as the
+/// figures and the report print them.
+pub fn curve_parameters_text(curve: &ActiveCurve) -> String {
+    let v: Vec<String> = curve
+        .parameters()
+        .iter()
+        .zip(curve.parameter_values())
+        .map(|(p, v)| {
+            let unit = if p.unit == "-" {
+                String::new()
+            } else {
+                format!(" {}", p.unit)
+            };
+            format!("{} = {v}{unit}", p.symbol)
+        })
+        .collect();
+    v.join(", ")
+}
+
+/// A panel of the series that have points over `x_label`, or `None` if none has.
+pub fn panel_of(title: &str, x_label: &str, y_label: &str, series: Vec<Series>) -> Option<Panel> {
+    let series: Vec<Series> = series
+        .into_iter()
+        .filter(|s| !s.points.is_empty())
+        .collect();
+    (!series.is_empty()).then(|| Panel::new(title, x_label, y_label, series))
+}
+
+/// Solid, dashed, dotted, in turn.
+pub fn strokes(i: usize) -> Stroke {
+    [Stroke::Solid, Stroke::Dashed, Stroke::Dotted][i % 3]
+}
