@@ -1,0 +1,213 @@
+//! A fit study's settings, checked against its spec: solver options and noise, the keys each kind
+//! of fit takes, enough data points, the free parameters, their starts and bounds.
+
+use super::source::DataSource;
+use super::{FitCase, FitKind, FitSpec, Model};
+use crate::app_error::SpecError;
+use crate::fit::{Bounds, FitOptions, FitSetup};
+use crate::random::Sampler;
+use crate::studies::spec::fmt_list;
+use crate::text::shortest;
+use std::path::Path;
+
+/// The solver settings and the noise of synthetic data, checked.
+pub(super) fn solver<'a>(
+    spec: &FitSpec,
+    base: &'a Path,
+) -> Result<(FitOptions, DataSource<'a>), SpecError> {
+    let noise = spec.noise.unwrap_or(0.0);
+    if !(noise.is_finite() && noise >= 0.0) {
+        return Err(SpecError::new(
+            "noise",
+            noise,
+            "must be finite and ≥ 0 [kPa]",
+        ));
+    }
+    let seed = spec.seed.unwrap_or(1);
+    if seed < 0 {
+        return Err(SpecError::new("seed", seed, "must be ≥ 0"));
+    }
+    let max_iterations = spec.max_iterations.unwrap_or(1000);
+    if !(1..=100_000).contains(&max_iterations) {
+        return Err(SpecError::new(
+            "max_iterations",
+            max_iterations,
+            "must be an integer in [1, 100000]",
+        ));
+    }
+    let options = FitOptions {
+        method: spec.method.unwrap_or_default(),
+        max_iterations: max_iterations as u64,
+        ..FitOptions::default()
+    };
+    let source = DataSource {
+        base,
+        noise: (noise > 0.0).then(|| (noise, Sampler::new(seed as u64))),
+        noise_text: if noise > 0.0 {
+            format!(", Gaussian noise σ = {noise} kPa (seed {seed})")
+        } else {
+            String::new()
+        },
+    };
+    Ok((options, source))
+}
+
+/// Every data set has more points than free parameters.
+pub(super) fn enough_points(
+    spec: &FitSpec,
+    kind: FitKind,
+    cases: &[FitCase],
+    free: usize,
+) -> Result<(), SpecError> {
+    let Some(c) = cases.iter().find(|c| c.data.len() <= free) else {
+        return Ok(());
+    };
+    let (key, what) = match &spec.data {
+        Some(file) if kind != FitKind::ExplicitLaw => ("data", format!("data file {file:?}")),
+        _ => ("stretch", "stretch".to_string()),
+    };
+    Err(SpecError::new(
+        key,
+        format!("{} points", c.data.len()),
+        format!(
+            "{what}: {} points for {free} free parameters: need at least {}",
+            c.data.len(),
+            free + 1
+        ),
+    ))
+}
+
+/// Rejects the keys of other kinds of fit (`reference` in a damage fit).
+pub(super) fn check_keys(spec: &FitSpec, kind: FitKind) -> Result<(), SpecError> {
+    let given = [
+        ("data", spec.data.is_some()),
+        ("reference", spec.reference.is_some()),
+        ("direction", spec.direction.is_some()),
+        ("stress", spec.stress.is_some()),
+        ("residual", spec.residual.is_some()),
+        ("damage", spec.damage.is_some()),
+        ("true_damage", spec.true_damage.is_some()),
+    ];
+    for (key, present) in given {
+        if present && !kind.own_keys().contains(&key) {
+            let rule = if key == "damage" {
+                "damage is a key of fit = \"explicit-law\" only (damage fits take true_damage for synthetic data)".to_string()
+            } else {
+                format!("not a key of a fit = \"{}\" study", kind.name())
+            };
+            return Err(SpecError::new(key, "(given)", rule));
+        }
+    }
+    Ok(())
+}
+
+/// The free parameters: given or the fit's default, each a parameter of the model, once.
+pub(super) fn free_parameters(
+    spec: &FitSpec,
+    names: &[&str],
+    default_free: &[&str],
+) -> Result<Vec<String>, SpecError> {
+    let free: Vec<String> = match &spec.free {
+        Some(f) => f.clone(),
+        None => default_free.iter().map(|n| n.to_string()).collect(),
+    };
+    if free.is_empty() {
+        return Err(SpecError::new(
+            "free",
+            "[]",
+            format!("free at least one parameter of {names:?}"),
+        ));
+    }
+    for (j, f) in free.iter().enumerate() {
+        if !names.contains(&f.as_str()) {
+            return Err(SpecError::new(
+                format!("free[{j}]"),
+                format!("{f:?}"),
+                format!("not a parameter of this fit; it has {names:?}"),
+            ));
+        }
+        if free[..j].contains(f) {
+            return Err(SpecError::new(
+                format!("free[{j}]"),
+                format!("{f:?}"),
+                "freed twice",
+            ));
+        }
+    }
+    Ok(free)
+}
+
+/// Bounds and starts of the free parameters, checked: every start, given or the model's own
+/// value, lies within its bounds (the fit would refuse it only when it runs).
+pub(super) fn setup(
+    spec: &FitSpec,
+    model: &Model,
+    free: &[String],
+    options: FitOptions,
+) -> Result<FitSetup, SpecError> {
+    let mut setup = FitSetup::new()
+        .free(&free.iter().map(String::as_str).collect::<Vec<_>>())
+        .options(options);
+    let bounds = spec.bounds.clone().unwrap_or_default();
+    for (name, b) in &bounds {
+        let key = format!("bounds.{name}");
+        if !free.contains(name) {
+            return Err(SpecError::new(
+                key,
+                fmt_list(b),
+                format!("not a free parameter; free = {free:?}"),
+            ));
+        }
+        if b[0].is_nan() || b[1].is_nan() || b[0] >= b[1] {
+            return Err(SpecError::new(
+                key,
+                fmt_list(b),
+                "bounds must be [lower, upper] with lower < upper (± inf allowed)",
+            ));
+        }
+        setup = setup.bounds(name, Bounds::new(b[0], b[1]));
+        let given = spec.start.as_ref().is_some_and(|s| s.contains_key(name));
+        let own = model
+            .names
+            .iter()
+            .position(|n| n == name)
+            .map(|i| model.values[i]);
+        if let (false, Some(v)) = (given, own) {
+            if !(b[0] <= v && v <= b[1]) {
+                return Err(SpecError::new(
+                    key,
+                    fmt_list(b),
+                    format!(
+                        "the start of {name}, the model's value {}, lies outside: \
+                         widen the bounds or give start.{name} within them",
+                        shortest(v)
+                    ),
+                ));
+            }
+        }
+    }
+    for (name, &v) in spec.start.iter().flatten() {
+        let key = format!("start.{name}");
+        if !free.contains(name) {
+            return Err(SpecError::new(
+                key,
+                v,
+                format!("not a free parameter; free = {free:?}"),
+            ));
+        }
+        if !v.is_finite() {
+            return Err(SpecError::new(key, v, "a starting value must be finite"));
+        }
+        if let Some(b) = bounds.get(name) {
+            if !(b[0] <= v && v <= b[1]) {
+                return Err(SpecError::new(
+                    key,
+                    v,
+                    format!("must lie within bounds.{name} = {}", fmt_list(b)),
+                ));
+            }
+        }
+        setup = setup.start(name, v);
+    }
+    Ok(setup)
+}
