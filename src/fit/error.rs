@@ -83,6 +83,16 @@ pub enum FitError {
     /// Nothing to fit.
     #[error("no free parameter selected")]
     NoFreeParameter,
+    /// Data of another test than the fit takes (biaxial rows given to an active-curve fit).
+    #[error("a {fit} fit takes {takes} data, not {given}")]
+    WrongTest {
+        /// The fit.
+        fit: &'static str,
+        /// The data it takes.
+        takes: &'static str,
+        /// The data it was given.
+        given: &'static str,
+    },
     /// A starting value outside its bounds, or bounds with lower ≥ upper.
     #[error("parameter {name}: start {} is not inside the bounds [{}, {}]", crate::text::shortest(*.start), crate::text::shortest(*.lower), crate::text::shortest(*.upper))]
     StartOutOfBounds {

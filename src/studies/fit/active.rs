@@ -1,7 +1,7 @@
 //! `fit = "active-curve"`: the active curve's parameters (eq. (8)) to active or total stresses.
 
 use super::source::{case, need, sample, DataSource};
-use super::{FitCase, FitKind, FitSpec, Model, Problem, StressKind};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model, Problem, Shown, StressKind};
 use crate::active::ActiveCurve;
 use crate::app_error::SpecError;
 use crate::energy::Energy;
@@ -20,9 +20,10 @@ pub(super) struct ActiveCurveFit {
 impl ActiveCurveFit {
     /// The active stresses of a case: as given, or total minus the model's passive stress.
     fn active(&self, case: &FitCase) -> Result<Data, FitError> {
+        let data = case.data.uniaxial(FitKind::ActiveCurve)?;
         match self.stress {
-            StressKind::Active => Ok(case.data.clone()),
-            StressKind::Total => active_from_total(&self.energy, &case.data),
+            StressKind::Active => Ok(data.clone()),
+            StressKind::Total => active_from_total(&self.energy, data),
         }
     }
 }
@@ -56,7 +57,7 @@ impl Problem for ActiveCurveFit {
                 StressKind::Active => " (active stress)",
                 StressKind::Total => " (total stress)",
             };
-            return source.file(file, stretches, None, what);
+            return source.file(FitKind::ActiveCurve, file, stretches, None, what);
         }
         let lambdas = need(stretches, "a synthetic active curve")?;
         let passive = Muscle::passive(self.energy.clone());
@@ -70,7 +71,7 @@ impl Problem for ActiveCurveFit {
         Ok((
             vec![case(
                 "synthetic active curve",
-                data,
+                CaseData::Uniaxial(data),
                 Some(self.model().values),
             )],
             format!(
@@ -83,19 +84,20 @@ impl Problem for ActiveCurveFit {
         self.active(case)
             .and_then(|d| fit_active_curve(&self.curve, &d, setup).map(|f| (f.report, vec![])))
     }
-    fn curve(&self, v: &[f64], _: &FitCase, grid: &[f64]) -> Vec<(f64, f64)> {
+    fn curves(&self, v: &[f64], _: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>> {
         match self.curve.rebuilt(v) {
-            Ok(c) => sample(grid, |l| Ok(c.value(l))),
+            Ok(c) => vec![sample(grid, |l| Ok(c.value(l)))],
             Err(_) => vec![],
         }
     }
-    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
-        (
-            self.active(case).map(|d| d.points()).unwrap_or_default(),
+    fn shown(&self, case: &FitCase) -> Vec<Shown> {
+        Shown::curve(
+            &self.model(),
             match self.stress {
                 StressKind::Active => case.label.clone(),
                 StressKind::Total => format!("{} − P_pas", case.label),
             },
+            self.active(case).map(|d| d.points()).unwrap_or_default(),
         )
     }
 }

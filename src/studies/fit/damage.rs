@@ -1,7 +1,7 @@
 //! `fit = "damage"`: the damage d of a weakened total curve.
 
 use super::source::{need, one_source, sample, DataSource};
-use super::{FitCase, FitKind, FitSpec, Model, Problem};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model, Problem};
 use crate::active::drive::Drive;
 use crate::active::ActiveCurve;
 use crate::app_error::SpecError;
@@ -37,9 +37,13 @@ impl Problem for DamageFit {
         source: &mut DataSource,
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         match (&spec.data, &spec.true_damage) {
-            (Some(file), None) => {
-                source.file(file, stretches, None, " (total stress along the fibres)")
-            }
+            (Some(file), None) => source.file(
+                FitKind::Damage,
+                file,
+                stretches,
+                None,
+                " (total stress along the fibres)",
+            ),
             (None, Some(ds)) => {
                 let ds = damages("true_damage", ds)?;
                 let lambdas = need(stretches, "a synthetic weakened curve")?;
@@ -52,7 +56,7 @@ impl Problem for DamageFit {
                     })?;
                     cases.push(FitCase {
                         label: format!("true d = {d}"),
-                        data,
+                        data: CaseData::Uniaxial(data),
                         damage: Some(d),
                         reference: Some(vec![d]),
                     });
@@ -69,13 +73,14 @@ impl Problem for DamageFit {
         }
     }
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
-        fit_damage(&self.energy, &self.curve, &case.data, setup).map(|f| (f.report, vec![]))
+        let data = case.data.uniaxial(FitKind::Damage)?;
+        fit_damage(&self.energy, &self.curve, data, setup).map(|f| (f.report, vec![]))
     }
-    fn curve(&self, v: &[f64], _: &FitCase, grid: &[f64]) -> Vec<(f64, f64)> {
+    fn curves(&self, v: &[f64], _: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>> {
         let passive = Muscle::passive(self.energy.clone());
         let d = v[0];
-        sample(grid, |l| {
+        vec![sample(grid, |l| {
             Ok(along_fibres(&passive, l)?.stress + Drive::from(d).target(&self.curve, l))
-        })
+        })]
     }
 }

@@ -1,7 +1,7 @@
 //! `fit = "explicit-law"`: the explicit law's (a, b) (eq. (14)) against the implicit law (eq. (13)).
 
 use super::source::{need, sample, DataSource};
-use super::{FitCase, FitKind, FitSpec, Model, Problem};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model, Problem, Shown};
 use crate::active::{ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use crate::app_error::SpecError;
 use crate::energy::GiantesioMusesti;
@@ -61,8 +61,10 @@ impl Problem for ExplicitLawFit {
         for d in ds {
             cases.push(FitCase {
                 label: format!("d = {d}"),
-                data: Data::new(lambdas.to_vec(), vec![0.0; lambdas.len()])
-                    .map_err(|e| SpecError::new("stretch", "", e.to_string()))?,
+                data: CaseData::Uniaxial(
+                    Data::new(lambdas.to_vec(), vec![0.0; lambdas.len()])
+                        .map_err(|e| SpecError::new("stretch", "", e.to_string()))?,
+                ),
                 damage: Some(d),
                 reference: Some(self.model().values),
             });
@@ -79,7 +81,7 @@ impl Problem for ExplicitLawFit {
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
         let (gm, curve) = (&self.energy, &self.curve);
         let d = case.damage.unwrap_or(0.0);
-        let lambdas = case.data.lambda();
+        let lambdas = case.data.uniaxial(FitKind::ExplicitLaw)?.lambda();
         fit_explicit_law(gm, curve, lambdas, d, self.residual, setup).map(|f| {
             let mut extra = vec![format!(
                 "fitted (a, b): max |Δγ| = {:.3e}, max |ΔP| = {:.4} kPa",
@@ -96,19 +98,23 @@ impl Problem for ExplicitLawFit {
             (f.report, extra)
         })
     }
-    fn curve(&self, v: &[f64], case: &FitCase, grid: &[f64]) -> Vec<(f64, f64)> {
+    fn curves(&self, v: &[f64], case: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>> {
         let d = case.damage.unwrap_or(0.0);
         match ExplicitLaw::new(v[0], v[1], self.energy, self.curve) {
-            Ok(law) => sample(grid, |l| law.gamma(l, d)),
+            Ok(law) => vec![sample(grid, |l| law.gamma(l, d))],
             Err(_) => vec![],
         }
     }
-    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
+    fn shown(&self, case: &FitCase) -> Vec<Shown> {
         let implicit = ImplicitLaw::new(self.energy, self.curve);
         let d = case.damage.unwrap_or(0.0);
-        (
-            sample(case.data.lambda(), |l| Ok(implicit.evaluate(l, d)?.gamma)),
+        let lambdas = case.data.uniaxial(FitKind::ExplicitLaw).map(Data::lambda);
+        Shown::curve(
+            &self.model(),
             "implicit γ (eq. (13))".into(),
+            sample(lambdas.unwrap_or_default(), |l| {
+                Ok(implicit.evaluate(l, d)?.gamma)
+            }),
         )
     }
 }

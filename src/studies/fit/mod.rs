@@ -29,7 +29,7 @@ use super::spec::{optional_stretches, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
-use crate::fit::{Data, ExplicitTarget, FitError, FitReport, FitSetup, Method};
+use crate::fit::{BiaxialData, Data, ExplicitTarget, FitError, FitReport, FitSetup, Method};
 use crate::models::EnergySpec;
 use crate::uniaxial::Direction;
 use active::ActiveCurveFit;
@@ -139,12 +139,91 @@ pub struct FitCase {
     /// Label in the report (e.g. `true d = 0.3`, or the data file).
     pub label: String,
     /// The data (for `explicit-law`: the stretches, stresses unused).
-    pub data: Data,
+    pub data: CaseData,
     /// Damage of the model (explicit-law) or the true damage of synthetic data (damage).
     pub damage: Option<f64>,
     /// Reference values of all the model's parameters, if the data have any (the chapter's, or
     /// the truth of synthetic data).
     pub reference: Option<Vec<f64>>,
+}
+
+/// The data of one case: a uniaxial curve, or the rows of a planar biaxial test.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CaseData {
+    /// (λ, P) along one direction.
+    Uniaxial(Data),
+    /// (λ₁, λ₂, P₁₁, P₂₂), λ₁ along the fibres, λ₂ across (passive fits).
+    Biaxial(BiaxialData),
+}
+
+impl CaseData {
+    /// Number of data points (rows).
+    pub fn points(&self) -> usize {
+        match self {
+            CaseData::Uniaxial(d) => d.len(),
+            CaseData::Biaxial(b) => b.len(),
+        }
+    }
+
+    /// Number of residuals a fit to them has (two per biaxial row).
+    pub fn residuals(&self) -> usize {
+        match self {
+            CaseData::Uniaxial(d) => d.len(),
+            CaseData::Biaxial(b) => 2 * b.len(),
+        }
+    }
+
+    /// The uniaxial curve; biaxial rows are an error naming the fit that got them.
+    pub fn uniaxial(&self, fit: FitKind) -> Result<&Data, FitError> {
+        match self {
+            CaseData::Uniaxial(d) => Ok(d),
+            CaseData::Biaxial(_) => Err(FitError::WrongTest {
+                fit: fit.name(),
+                takes: "uniaxial (lambda,P)",
+                given: "planar biaxial (lambda1,lambda2,P11,P22)",
+            }),
+        }
+    }
+
+    /// The stretches at which a fit's curves are drawn: 201 evenly spaced over a uniaxial
+    /// curve's stretches; none for biaxial rows (the model is drawn at the rows).
+    fn grid(&self) -> Vec<f64> {
+        match self {
+            CaseData::Uniaxial(d) => {
+                let (a, b) = (d.lambda()[0], d.lambda()[d.len() - 1]);
+                (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect()
+            }
+            CaseData::Biaxial(_) => Vec::new(),
+        }
+    }
+}
+
+/// One stress of a case as its figure shows it: the data, their label and the axes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Shown {
+    /// What the panel shows (empty for a case with one stress; `P₁₁, along the fibres`).
+    pub what: String,
+    /// x-axis label with unit.
+    pub x_label: &'static str,
+    /// y-axis label with unit.
+    pub y_label: String,
+    /// Label of the data.
+    pub label: String,
+    /// The data points.
+    pub data: Vec<(f64, f64)>,
+}
+
+impl Shown {
+    /// The one stress of a uniaxial case: `data` over λ, labelled `label`.
+    pub fn curve(model: &Model, label: String, data: Vec<(f64, f64)>) -> Vec<Shown> {
+        vec![Shown {
+            what: String::new(),
+            x_label: crate::studies::outputs::LAMBDA,
+            y_label: model.y_label.to_string(),
+            label,
+            data,
+        }]
+    }
 }
 
 /// What a kind of fit is: its model's parameters and how its figure and table show it.
@@ -179,12 +258,14 @@ pub trait Problem: fmt::Debug + Send + Sync {
     ) -> Result<(Vec<FitCase>, String), SpecError>;
     /// Fits one data set; the report and extra lines for the report.
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError>;
-    /// The model over `grid` with all parameters at `values` (points that cannot be computed
-    /// left out; none if the values are not a valid model).
-    fn curve(&self, values: &[f64], case: &FitCase, grid: &[f64]) -> Vec<(f64, f64)>;
-    /// The data as the figure shows them, and their label.
-    fn shown(&self, case: &FitCase) -> (Vec<(f64, f64)>, String) {
-        (case.data.points(), case.label.clone())
+    /// The model over `grid` with all parameters at `values`, one curve per stress of
+    /// [`Problem::shown`] (points that cannot be computed left out; none if the values are not a
+    /// valid model).
+    fn curves(&self, values: &[f64], case: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>>;
+    /// The data as the figure shows them: one stress, a uniaxial curve over λ.
+    fn shown(&self, case: &FitCase) -> Vec<Shown> {
+        let data = case.data.uniaxial(self.model().kind).map(Data::points);
+        Shown::curve(&self.model(), case.label.clone(), data.unwrap_or_default())
     }
 }
 
@@ -261,7 +342,12 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
             .map(|r| r.build().map(|e| EnergySpec::written(&e)))
             .transpose()
             .map_err(|e| e.within("reference"))?,
-        direction: (kind == FitKind::Passive).then(|| spec.direction.unwrap_or_default()),
+        // Biaxial data load both directions: a passive fit to them has no direction.
+        direction: (kind == FitKind::Passive
+            && cases
+                .iter()
+                .all(|c| matches!(c.data, CaseData::Uniaxial(_))))
+        .then(|| spec.direction.unwrap_or_default()),
         stress: (kind == FitKind::ActiveCurve).then(|| spec.stress.unwrap_or_default()),
         residual: (kind == FitKind::ExplicitLaw).then(|| spec.residual.unwrap_or_default()),
         damage: (kind == FitKind::ExplicitLaw)
@@ -347,8 +433,8 @@ pub struct FitOutcome {
     pub termination: String,
     /// Further facts (e.g. the explicit law's max stress error), one line each.
     pub extra: Vec<String>,
-    /// Data and curves for the figure.
-    pub plot: FitCurves,
+    /// Data and curves for the figure, one per stress of the data.
+    pub plot: Vec<FitCurves>,
 }
 
 impl FitOutcome {
@@ -386,9 +472,13 @@ impl FitOutcome {
     }
 }
 
-/// What the data-vs-fit figure of one case shows.
+/// What the data-vs-fit figure of one case shows, for one of its stresses.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct FitCurves {
+    /// What the panel shows (empty for a case with one stress).
+    pub what: String,
+    /// x-axis label with unit.
+    pub x_label: String,
     /// y-axis label with unit.
     pub y_label: String,
     /// Data points.
@@ -399,16 +489,13 @@ pub struct FitCurves {
     pub fitted: Vec<(f64, f64)>,
     /// The model at the reference values (label, points).
     pub start: Option<(String, Vec<(f64, f64)>)>,
+    /// The model is evaluated at the data's rows (a biaxial path, which may turn back), so it
+    /// is drawn as points, not as a curve.
+    pub at_rows: bool,
 }
 
 fn finite(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
-}
-
-/// A dense grid over the data's stretches for the curves.
-fn dense(data: &Data) -> Vec<f64> {
-    let (a, b) = (data.lambda()[0], data.lambda()[data.len() - 1]);
-    (0..=200).map(|i| a + (b - a) * i as f64 / 200.0).collect()
 }
 
 impl FitStudy {
@@ -503,9 +590,11 @@ impl FitStudy {
         extra: Vec<String>,
         converged: bool,
     ) -> FitOutcome {
-        let grid = dense(&case.data);
-        let curve =
-            |free_values: &[f64]| self.problem.curve(&self.assemble(free_values), case, &grid);
+        let grid = case.data.grid();
+        let curves = |free_values: &[f64]| {
+            self.problem
+                .curves(&self.assemble(free_values), case, &grid)
+        };
         // The reference values of the free parameters.
         let reference: Vec<Option<f64>> = match &case.reference {
             Some(all) => self
@@ -520,12 +609,35 @@ impl FitStudy {
             FitKind::Damage => Some(self.model.values.clone()),
             _ => reference.iter().copied().collect(),
         };
-        let (data, data_label) = self.problem.shown(case);
+        let fitted = curves(&report.values);
+        let start = start.map(|s| curves(&s));
+        let at_rows = matches!(case.data, CaseData::Biaxial(_));
+        let plot = self
+            .problem
+            .shown(case)
+            .into_iter()
+            .enumerate()
+            .map(|(k, shown)| FitCurves {
+                what: shown.what,
+                x_label: shown.x_label.to_string(),
+                y_label: shown.y_label,
+                data: shown.data,
+                data_label: shown.label,
+                fitted: fitted.get(k).cloned().unwrap_or_default(),
+                start: start.as_ref().map(|s| {
+                    (
+                        self.model.reference_label.to_string(),
+                        s.get(k).cloned().unwrap_or_default(),
+                    )
+                }),
+                at_rows,
+            })
+            .collect();
         FitOutcome {
             kind: self.model.kind,
             case: case.label.clone(),
             source: self.source.clone(),
-            points: case.data.len(),
+            points: case.data.points(),
             standard_errors: report.standard_errors.iter().map(|&x| finite(x)).collect(),
             reference,
             correlation: report
@@ -539,13 +651,7 @@ impl FitStudy {
             iterations: report.iterations,
             converged,
             extra,
-            plot: FitCurves {
-                y_label: self.model.y_label.into(),
-                data,
-                data_label,
-                fitted: curve(&report.values),
-                start: start.map(|s| (self.model.reference_label.to_string(), curve(&s))),
-            },
+            plot,
             names: report.names,
             values: report.values,
             termination: report.termination,

@@ -1,11 +1,11 @@
 //! The fit kind's figures (data, the fitted model, the model at the reference values) and its
 //! report table (values ± standard errors, correlations, RMS, convergence).
 
-use super::{FitKind, FitOutcome};
+use super::{FitCurves, FitKind, FitOutcome};
 use crate::app_error::{finite, AppError};
 use crate::output::csv::correlations;
 use crate::plot::{Figure, Stroke};
-use crate::studies::outputs::{derived, figure, panel, prefixed, Context, KindOutput, Of};
+use crate::studies::outputs::{derived, figure, panel_over, prefixed, Context, KindOutput, Of};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -50,53 +50,86 @@ fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
             if f.converged { "" } else { " (NOT converged)" }
         )
     };
-    let start = |f: &FitOutcome, colour| {
-        f.plot.start.as_ref().and_then(|(label, points)| {
-            derived(label.clone(), points.clone(), Stroke::Dashed, colour)
-        })
+    let start = |c: &FitCurves, stroke, colour| {
+        c.start
+            .as_ref()
+            .and_then(|(label, points)| derived(label.clone(), points.clone(), stroke, colour))
     };
     if first.kind == FitKind::Damage {
         let mut s = Vec::new();
-        for (i, f) in fits.iter().enumerate() {
-            s.push(derived(
-                f.case.clone(),
-                f.plot.data.clone(),
-                Stroke::Markers,
-                i,
-            ));
-            s.push(derived(status(f), f.plot.fitted.clone(), Stroke::Solid, i));
+        for (i, (f, c)) in fits
+            .iter()
+            .filter_map(|f| Some((f, f.plot.first()?)))
+            .enumerate()
+        {
+            s.push(derived(f.case.clone(), c.data.clone(), Stroke::Markers, i));
+            s.push(derived(status(f), c.fitted.clone(), Stroke::Solid, i));
         }
-        s.push(start(first, 7));
-        panels.push(panel(fit_heading(study), &first.plot.y_label, s));
+        if let Some(c) = first.plot.first() {
+            s.push(start(c, Stroke::Dashed, 7));
+            panels.push(panel_over(fit_heading(study), &c.x_label, &c.y_label, s));
+        }
     } else {
         for f in fits {
-            let s = vec![
-                derived(
-                    f.plot.data_label.clone(),
-                    f.plot.data.clone(),
-                    Stroke::Markers,
-                    1,
-                ),
-                derived(status(f), f.plot.fitted.clone(), Stroke::Solid, 0),
-                start(f, 2),
-            ];
-            panels.push(panel(
-                format!("{}: {}", fit_heading(study), f.case),
-                &f.plot.y_label,
-                s,
-            ));
+            for c in &f.plot {
+                // The model at the rows of a biaxial path, which may turn back: points, no line.
+                let (fitted, reference) = if c.at_rows {
+                    (Stroke::Filled, Stroke::Dotted)
+                } else {
+                    (Stroke::Solid, Stroke::Dashed)
+                };
+                let s = vec![
+                    derived(c.data_label.clone(), c.data.clone(), Stroke::Markers, 1),
+                    derived(status(f), c.fitted.clone(), fitted, 0),
+                    start(c, reference, 2).filter(|_| !c.at_rows),
+                ];
+                let what = if c.what.is_empty() {
+                    String::new()
+                } else {
+                    format!(" — {}", c.what)
+                };
+                let panel = panel_over(
+                    format!("{}: {}{what}", fit_heading(study), f.case),
+                    &c.x_label,
+                    &c.y_label,
+                    s,
+                );
+                // Measured rows do not blow up: the axis shows them all, uncut.
+                panels.push(panel.map(|mut p| {
+                    if c.at_rows {
+                        p.y_range = whole_range(c.data.iter().chain(&c.fitted).map(|q| q.1));
+                    }
+                    p
+                }));
+            }
         }
     }
+    let drawn = if fits.iter().flat_map(|f| &f.plot).any(|c| c.at_rows) {
+        "Open markers: data; filled: the fitted model at each row of the data (λ₁ on the x axis, so rows of several load paths share it)."
+    } else {
+        "Markers: data; solid: the fitted model; dashed: the model at the reference values."
+    };
     figure(
         &prefixed("fit", study),
         fit_heading(study),
         format!(
-            "Least-squares fit ({}) to {}. Markers: data; solid: the fitted model; dashed: the model at the reference values.",
+            "Least-squares fit ({}) to {}. {drawn}",
             first.kind.name(),
             first.source
         ),
         panels,
     )
+}
+
+/// The range of `y` padded by 5 % each way (`None` if no value is finite or all are equal).
+fn whole_range(y: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    let (lo, hi) = y
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let pad = 0.05 * (hi - lo);
+    (hi > lo).then_some((lo - pad, hi + pad))
 }
 
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.

@@ -1,11 +1,16 @@
 //! `fit = "passive"`: the material's passive parameters (eq. (11)) to a uniaxial curve along or
-//! across the fibres.
+//! across the fibres, or to planar biaxial rows (λ₁, λ₂, P₁₁, P₂₂) ([`crate::fit::biaxial`]:
+//! λ₁ along the fibres, λ₂ across, λ₃ = 1/(λ₁λ₂), the e₃ faces traction free, residuals
+//! P₁₁ − P₁₁ᵢ and P₂₂ − P₂₂ᵢ).
 
 use super::source::{case, need, one_source, sample, DataSource};
-use super::{FitCase, FitKind, FitSpec, Model, Problem};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model, Problem, Shown};
 use crate::app_error::SpecError;
 use crate::energy::{Energy, Parametric};
-use crate::fit::{default_passive_free, fit_passive, FitError, FitReport, FitSetup};
+use crate::fit::{
+    biaxial_stress_with, default_passive_free, fit_passive, fit_passive_biaxial, Data, FitError,
+    FitReport, FitSetup,
+};
 use crate::uniaxial::Direction;
 use crate::{Muscle, StrainEnergy};
 
@@ -37,7 +42,17 @@ impl Problem for Passive {
     ) -> Result<(Vec<FitCase>, String), SpecError> {
         match (&spec.data, &spec.reference) {
             (Some(file), None) => {
-                source.file(file, stretches, Some(self.energy.parameter_values()), "")
+                let values = Some(self.energy.parameter_values());
+                let (cases, words) = source.file(FitKind::Passive, file, stretches, values, "")?;
+                let biaxial = cases.iter().any(|c| matches!(c.data, CaseData::Biaxial(_)));
+                if biaxial && spec.direction.is_some() {
+                    return Err(SpecError::new(
+                        "direction",
+                        "(given)",
+                        "biaxial data load along and across the fibres at once: remove direction",
+                    ));
+                }
+                Ok((cases, words))
             }
             (None, Some(r)) => {
                 let reference = r.build().map_err(|e| e.within("reference"))?;
@@ -49,7 +64,7 @@ impl Problem for Passive {
                 Ok((
                     vec![case(
                         &format!("{name} curve"),
-                        data,
+                        CaseData::Uniaxial(data),
                         Some(self.energy.parameter_values()),
                     )],
                     format!(
@@ -63,16 +78,57 @@ impl Problem for Passive {
         }
     }
     fn fit(&self, case: &FitCase, setup: &FitSetup) -> Result<(FitReport, Vec<String>), FitError> {
-        fit_passive(&self.energy, &[(self.direction, &case.data)], setup)
-            .map(|f| (f.report, vec![]))
+        let fit = match &case.data {
+            CaseData::Uniaxial(data) => fit_passive(&self.energy, &[(self.direction, data)], setup),
+            CaseData::Biaxial(rows) => fit_passive_biaxial(&self.energy, rows, setup),
+        };
+        fit.map(|f| (f.report, vec![]))
     }
-    fn curve(&self, values: &[f64], _: &FitCase, grid: &[f64]) -> Vec<(f64, f64)> {
-        match self.energy.rebuilt(values) {
-            Ok(e) => {
-                let muscle = Muscle::passive(e);
-                sample(grid, |l| Ok(self.direction.point(&muscle, l)?.stress))
+    fn curves(&self, values: &[f64], case: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>> {
+        let Ok(energy) = self.energy.rebuilt(values) else {
+            return vec![];
+        };
+        match &case.data {
+            CaseData::Uniaxial(_) => {
+                let muscle = Muscle::passive(energy);
+                vec![sample(grid, |l| {
+                    Ok(self.direction.point(&muscle, l)?.stress)
+                })]
             }
-            Err(_) => vec![],
+            CaseData::Biaxial(rows) => (0..2)
+                .map(|k| {
+                    rows.stretches()
+                        .iter()
+                        .map(|&row| (row[0], biaxial_stress_with(&energy, values, row)[k]))
+                        .filter(|(_, p)| p.is_finite())
+                        .collect()
+                })
+                .collect(),
         }
+    }
+    fn shown(&self, case: &FitCase) -> Vec<Shown> {
+        let CaseData::Biaxial(rows) = &case.data else {
+            let data = case.data.uniaxial(FitKind::Passive).map(Data::points);
+            return Shown::curve(&self.model(), case.label.clone(), data.unwrap_or_default());
+        };
+        [
+            ("P₁₁, along the fibres", "P₁₁ [kPa]"),
+            ("P₂₂, across the fibres", "P₂₂ [kPa]"),
+        ]
+        .into_iter()
+        .enumerate()
+        .map(|(k, (what, y_label))| Shown {
+            what: what.to_string(),
+            x_label: "λ₁ [-]",
+            y_label: y_label.to_string(),
+            label: case.label.clone(),
+            data: rows
+                .stretches()
+                .iter()
+                .zip(rows.stresses())
+                .map(|(l, p)| (l[0], p[k]))
+                .collect(),
+        })
+        .collect()
     }
 }

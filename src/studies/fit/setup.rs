@@ -2,7 +2,7 @@
 //! of fit takes, enough data points, the free parameters, their starts and bounds.
 
 use super::source::DataSource;
-use super::{FitCase, FitKind, FitSpec, Model};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model};
 use crate::app_error::SpecError;
 use crate::fit::{Bounds, FitOptions, FitSetup};
 use crate::random::Sampler;
@@ -52,26 +52,30 @@ pub(super) fn solver<'a>(
     Ok((options, source))
 }
 
-/// Every data set has more points than free parameters.
+/// Every data set has more data (points; stresses of biaxial rows, two per row) than free
+/// parameters.
 pub(super) fn enough_points(
     spec: &FitSpec,
     kind: FitKind,
     cases: &[FitCase],
     free: usize,
 ) -> Result<(), SpecError> {
-    let Some(c) = cases.iter().find(|c| c.data.len() <= free) else {
+    let Some(c) = cases.iter().find(|c| c.data.residuals() <= free) else {
         return Ok(());
     };
     let (key, what) = match &spec.data {
         Some(file) if kind != FitKind::ExplicitLaw => ("data", format!("data file {file:?}")),
         _ => ("stretch", "stretch".to_string()),
     };
+    let (n, unit) = match c.data {
+        CaseData::Uniaxial(_) => (c.data.points(), "points"),
+        CaseData::Biaxial(_) => (c.data.residuals(), "stresses (two per row)"),
+    };
     Err(SpecError::new(
         key,
-        format!("{} points", c.data.len()),
+        format!("{n} {unit}"),
         format!(
-            "{what}: {} points for {free} free parameters: need at least {}",
-            c.data.len(),
+            "{what}: {n} {unit} for {free} free parameters: need at least {}",
             free + 1
         ),
     ))

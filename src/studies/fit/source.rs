@@ -1,10 +1,11 @@
 //! Where a fit's data come from: a data file named relative to the scene file, or synthetic
 //! data sampled from a model with seeded Gaussian noise ([`DataSource`]).
 
-use super::FitCase;
+use super::{CaseData, FitCase, FitKind};
 use crate::app_error::SpecError;
-use crate::fit::Data;
+use crate::fit::{BiaxialData, Data, FitError, BIAXIAL_HEADER};
 use crate::random::Sampler;
+use std::io::{BufRead, BufReader, Read};
 use std::path::{Path, PathBuf};
 
 /// Where a fit's data come from: the scene file's directory for data files, and the seeded
@@ -17,9 +18,11 @@ pub struct DataSource<'a> {
 
 impl DataSource<'_> {
     /// The one case of a data file named relative to the scene file (then `stretch` must not
-    /// be given), with the source in words (`data file <path><what>`); errors name `data`.
+    /// be given), with the source in words (`data file <path><what>`); errors name `data`. A
+    /// file with the biaxial header holds planar biaxial rows, which only a passive fit takes.
     pub(super) fn file(
         &self,
+        kind: FitKind,
         name: &str,
         stretches: Option<&[f64]>,
         reference: Option<Vec<f64>>,
@@ -37,16 +40,38 @@ impl DataSource<'_> {
         } else {
             self.base.join(name)
         };
-        let data = Data::from_csv_path(&path).map_err(|e| {
+        let unusable = |e: FitError| {
             SpecError::new(
                 "data",
                 format!("{name:?}"),
                 format!("unusable data file: {e}"),
             )
-        })?;
+        };
+        if !is_biaxial(&path) {
+            let data = Data::from_csv_path(&path).map_err(unusable)?;
+            return Ok((
+                vec![case(name, CaseData::Uniaxial(data), reference)],
+                format!("data file {}{what}", path.display()),
+            ));
+        }
+        if kind != FitKind::Passive {
+            return Err(SpecError::new(
+                "data",
+                format!("{name:?}"),
+                format!(
+                    "a planar biaxial file ({}), which passive fits take; a {} fit takes lambda,P",
+                    BIAXIAL_HEADER.join(","),
+                    kind.name()
+                ),
+            ));
+        }
+        let data = BiaxialData::from_csv_path(&path).map_err(unusable)?;
         Ok((
-            vec![case(name, data, reference)],
-            format!("data file {}{what}", path.display()),
+            vec![case(name, CaseData::Biaxial(data), reference)],
+            format!(
+                "planar biaxial data file {} (λ₁ along the fibres, λ₂ across, λ₃ = 1/(λ₁λ₂), the e₃ faces traction free){what}",
+                path.display()
+            ),
         ))
     }
 
@@ -94,7 +119,32 @@ pub(super) fn one_source(fit: &str, other: &str) -> SpecError {
     )
 }
 
-pub(super) fn case(label: &str, data: Data, reference: Option<Vec<f64>>) -> FitCase {
+/// The file's first line is the biaxial header `lambda1,lambda2,P11,P22` (spaces and case
+/// aside); a file that cannot be read is not (its error comes from reading it as `lambda,P`).
+fn is_biaxial(path: &Path) -> bool {
+    let Ok(file) = std::fs::File::open(path) else {
+        return false;
+    };
+    let mut first = String::new();
+    if BufReader::new(file.take(4096))
+        .read_line(&mut first)
+        .is_err()
+    {
+        return false;
+    }
+    let names: Vec<String> = first
+        .trim_start_matches('\u{feff}')
+        .split(',')
+        .map(|c| c.trim().to_ascii_lowercase())
+        .collect();
+    names.len() == BIAXIAL_HEADER.len()
+        && names
+            .iter()
+            .zip(BIAXIAL_HEADER)
+            .all(|(n, h)| *n == h.to_ascii_lowercase())
+}
+
+pub(super) fn case(label: &str, data: CaseData, reference: Option<Vec<f64>>) -> FitCase {
     FitCase {
         label: label.to_string(),
         data,
