@@ -11,7 +11,7 @@ use crate::app_error::{finite, AppError};
 use crate::scene::Results;
 use crate::studies::curves::{sweep_row, uniaxial_row, Row};
 use crate::studies::cylinder::CylinderResult;
-use crate::studies::fit::FitOutcome;
+use crate::studies::fit::{correlations, FitOutcome};
 use crate::studies::history::HistoryResult;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::table::{Table, Values};
@@ -193,26 +193,6 @@ fn text(x: f64, quantity: &str, origin: impl Fn() -> String) -> Result<String, A
 /// `x` with the fewest digits that read back to the same f64: [`crate::text::shortest`].
 pub fn shortest(x: f64) -> String {
     crate::text::shortest(x)
-}
-
-/// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`
-/// (`n/a` where the fit could not estimate one), each number written by `number`.
-pub fn correlations(
-    row: &[Option<f64>],
-    names: &[String],
-    j: usize,
-    number: impl Fn(f64) -> Result<String, AppError>,
-) -> Result<String, AppError> {
-    let mut parts = Vec::new();
-    for (k, (c, other)) in row.iter().zip(names).enumerate() {
-        if k != j {
-            parts.push(format!(
-                "{other}: {}",
-                c.map_or(Ok("n/a".to_string()), &number)?
-            ));
-        }
-    }
-    Ok(parts.join("; "))
 }
 
 /// `fits.csv` of the fits of each study (name, fits), converged or not.

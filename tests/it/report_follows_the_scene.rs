@@ -6,12 +6,13 @@
 //! `scenes/examples/*.toml` and a small chapter-like scene.
 
 use activemuscle::active::{ActiveCurve, ExplicitLaw};
-use activemuscle::output::csv::{correlations, rows};
+use activemuscle::output::csv::rows;
 use activemuscle::output::figures::figures;
 use activemuscle::output::report::{html, RunInfo};
 use activemuscle::plot::CurveId;
 use activemuscle::plot::{Figure, Panel, Series, Stroke};
 use activemuscle::scene::{Results, RunOptions, Scene};
+use activemuscle::studies::fit::correlations;
 use activemuscle::uniaxial::along_fibres;
 use std::collections::BTreeSet;
 use std::path::Path;

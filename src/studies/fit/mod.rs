@@ -658,3 +658,23 @@ impl FitStudy {
         }
     }
 }
+
+/// The correlations of parameter `j` with the others, readable: `w0: 0.99988; beta: -0.12000`
+/// (`n/a` where the fit could not estimate one), each number written by `number`.
+pub fn correlations(
+    row: &[Option<f64>],
+    names: &[String],
+    j: usize,
+    number: impl Fn(f64) -> Result<String, AppError>,
+) -> Result<String, AppError> {
+    let mut parts = Vec::new();
+    for (k, (c, other)) in row.iter().zip(names).enumerate() {
+        if k != j {
+            parts.push(format!(
+                "{other}: {}",
+                c.map_or(Ok("n/a".to_string()), &number)?
+            ));
+        }
+    }
+    Ok(parts.join("; "))
+}

@@ -1,9 +1,8 @@
 //! The fit kind's figures (data, the fitted model, the model at the reference values) and its
 //! report table (values ± standard errors, correlations, RMS, convergence).
 
-use super::{FitCurves, FitKind, FitOutcome};
+use super::{correlations, FitCurves, FitKind, FitOutcome};
 use crate::app_error::{finite, AppError};
-use crate::output::csv::correlations;
 use crate::plot::{Figure, Stroke};
 use crate::studies::outputs::{derived, figure, panel_over, prefixed, Context, KindOutput, Of};
 use crate::text::escape_html as escape;
