@@ -235,10 +235,13 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
             tradeoff(&table, t)?;
             findings.clone_from(&t.findings);
         }
-        StudyResult::Shear(r) => own_table(&table, &r.table(&s.name))?,
-        StudyResult::Biaxial(r) => own_table(&table, &r.table(&s.name))?,
-        // A study that stopped with an error: its failures say why, the table stays empty.
-        StudyResult::Nothing => {}
+        // A kind that owns its table (shear, biaxial): the columns of its CSV file. A study that
+        // stopped with an error has none: its failures say why, the table stays empty.
+        other => {
+            if let Some(own) = other.own_table(&s.name) {
+                own_table(&table, &own.table)?;
+            }
+        }
     }
     d.set_item("table", table.dict)?;
     d.set_item("vtk", vtk)?;

@@ -13,6 +13,7 @@ use crate::studies::curves::{sweep_row, uniaxial_row, Row};
 use crate::studies::cylinder::CylinderResult;
 use crate::studies::fit::{correlations, FitOutcome};
 use crate::studies::history::HistoryResult;
+use crate::studies::outputs::OwnTable;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::table::{Table, Values};
 use crate::studies::StudyResult;
@@ -421,26 +422,23 @@ pub fn tables(results: &Results) -> Result<Vec<(String, Vec<u8>)>, AppError> {
         out.push(("history.csv".into(), history_csv(&histories)?));
     }
     // The kinds that own their table: one file per kind, the tables of its studies appended.
-    let mut own: Vec<(&str, Table)> = Vec::new();
-    for s in &results.studies {
-        let (file, table) = match &s.result {
-            StudyResult::Shear(r) => ("shear.csv", r.table(&s.name)),
-            StudyResult::Biaxial(r) => ("biaxial.csv", r.table(&s.name)),
-            _ => continue,
-        };
-        if table.rows() > 0 {
-            own.push((file, table));
+    let own: Vec<OwnTable> = results
+        .studies
+        .iter()
+        .filter_map(|s| s.result.own_table(&s.name))
+        .filter(|t| t.table.rows() > 0)
+        .collect();
+    let files: Vec<&str> = own.iter().map(|t| t.file).collect();
+    for (i, file) in files.iter().enumerate() {
+        if files[..i].contains(file) {
+            continue;
         }
-    }
-    for file in ["shear.csv", "biaxial.csv"] {
         let tables: Vec<&Table> = own
             .iter()
-            .filter(|(f, _)| *f == file)
-            .map(|(_, t)| t)
+            .filter(|t| t.file == *file)
+            .map(|t| &t.table)
             .collect();
-        if !tables.is_empty() {
-            out.push((file.to_string(), table_csv(file, &tables)?));
-        }
+        out.push((file.to_string(), table_csv(file, &tables)?));
     }
     Ok(out)
 }
@@ -476,15 +474,12 @@ pub fn table_csv(file: &str, tables: &[&Table]) -> Result<Vec<u8>, AppError> {
 /// The schema of each CSV file in `files` that a run of `results` wrote (`curves.csv`, the
 /// tables of [`tables`], `tradeoff.csv`), for `datapackage.json`; other files are skipped.
 pub fn resources(results: &Results, files: &[String]) -> Vec<Resource> {
-    let own = |kind: &str| {
+    let own = |file: &str| {
         results
             .studies
             .iter()
-            .find_map(|s| match (&s.result, kind) {
-                (StudyResult::Shear(r), "shear") => Some(table_fields(&r.table(&s.name))),
-                (StudyResult::Biaxial(r), "biaxial") => Some(table_fields(&r.table(&s.name))),
-                _ => None,
-            })
+            .filter_map(|s| s.result.own_table(&s.name))
+            .find(|t| t.file == file)
     };
     files
         .iter()
@@ -500,14 +495,6 @@ pub fn resources(results: &Results, files: &[String]) -> Vec<Resource> {
                     "one row per activation-in-time model and time step",
                     HISTORY_FIELDS.to_vec(),
                 ),
-                "shear.csv" => (
-                    "one row per shear study, approach and amount of shear",
-                    own("shear")?,
-                ),
-                "biaxial.csv" => (
-                    "one row per biaxial study, model and stretch pair",
-                    own("biaxial")?,
-                ),
                 "tradeoff.csv" => (
                     "one row per measured variant of an option",
                     super::tradeoff::FIELDS.to_vec(),
@@ -516,7 +503,10 @@ pub fn resources(results: &Results, files: &[String]) -> Vec<Resource> {
                     "the displacement of each named point per model and stretch",
                     POINT_FIELDS.to_vec(),
                 ),
-                _ => return None,
+                f => {
+                    let t = own(f)?;
+                    (t.rows_are, table_fields(&t.table))
+                }
             };
             Some(Resource {
                 path: file.clone(),

@@ -172,11 +172,7 @@ fn used(scene: &Scene, results: &Results) -> Used {
         chosen.extend(r.histories.iter().map(|h| h.model));
     }
     for s in &results.studies {
-        let models: Vec<&crate::studies::spec::ApproachModel> = match &s.result {
-            StudyResult::Shear(r) => r.curves.iter().map(|c| &c.model).collect(),
-            StudyResult::Biaxial(r) => r.curves.iter().map(|c| &c.model).collect(),
-            _ => continue,
-        };
+        let models = s.result.approach_models();
         chosen.extend(
             models
                 .iter()
@@ -200,11 +196,7 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     // The approaches of shear and biaxial studies other than the scene's.
     let mut approaches: Vec<crate::active::Approach> = vec![scene.models.approach];
     for s in &results.studies {
-        let models: Vec<&crate::studies::spec::ApproachModel> = match &s.result {
-            StudyResult::Shear(r) => r.curves.iter().map(|c| &c.model).collect(),
-            StudyResult::Biaxial(r) => r.curves.iter().map(|c| &c.model).collect(),
-            _ => continue,
-        };
+        let models = s.result.approach_models();
         for m in models.iter().filter(|m| m.model.is_some()) {
             if !approaches.contains(&m.approach) {
                 approaches.push(m.approach);

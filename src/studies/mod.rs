@@ -214,6 +214,22 @@ macro_rules! study_kinds {
                 figures
             }
 
+            /// The study's own table ([`outputs::KindOutput::own_table`]), if its kind has one.
+            pub fn own_table(&self, study: &str) -> Option<outputs::OwnTable> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::own_table(r, study),)*
+                    StudyResult::Nothing => None,
+                }
+            }
+
+            /// The (approach, model) pairs it computed ([`outputs::KindOutput::approach_models`]).
+            pub fn approach_models(&self) -> Vec<&spec::ApproachModel> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::approach_models(r),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
             /// Every kind's report section ([`outputs::KindOutput::report`]), in the order of
             /// [`Self::figures`], appended to `h`.
             pub fn report(outcomes: &[Outcome], cx: &outputs::Context, h: &mut String) -> Result<(), AppError> {

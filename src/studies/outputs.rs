@@ -11,6 +11,8 @@ use crate::app_error::AppError;
 use crate::models::{CouplingKind, LawKind};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::slug;
+use crate::studies::spec::ApproachModel;
+use crate::studies::table::Table;
 
 /// One study of a kind, as the outputs see it.
 #[derive(Debug, Clone, Copy)]
@@ -47,6 +49,30 @@ pub trait KindOutput: Sized {
     fn report(_studies: &[Of<Self>], _cx: &Context, _h: &mut String) -> Result<(), AppError> {
         Ok(())
     }
+
+    /// The table of one study of the kind, if the kind owns one: written to its own CSV file
+    /// (the tables of the kind's studies appended), described in `datapackage.json`, and
+    /// returned by Python, all from the same columns.
+    fn own_table(&self, _study: &str) -> Option<OwnTable> {
+        None
+    }
+
+    /// The (approach, model) pairs the result computed, whose approaches and laws the report's
+    /// table of models lists (kinds that compare approaches).
+    fn approach_models(&self) -> Vec<&ApproachModel> {
+        Vec::new()
+    }
+}
+
+/// A kind's own table of one study.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OwnTable {
+    /// The CSV file (`shear.csv`).
+    pub file: &'static str,
+    /// What one row is, for `datapackage.json`.
+    pub rows_are: &'static str,
+    /// The columns.
+    pub table: Table,
 }
 
 /// x label of a curve over the stretch.

@@ -4,11 +4,24 @@
 use super::BiaxialResult;
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series, Stroke};
-use crate::studies::outputs::{panel_of, prefixed, Context, KindOutput, Of};
+use crate::studies::outputs::{panel_of, prefixed, Context, KindOutput, Of, OwnTable};
+use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for BiaxialResult {
+    fn own_table(&self, study: &str) -> Option<OwnTable> {
+        Some(OwnTable {
+            file: "biaxial.csv",
+            rows_are: "one row per biaxial study, model and stretch pair",
+            table: self.table(study),
+        })
+    }
+
+    fn approach_models(&self) -> Vec<&ApproachModel> {
+        self.curves.iter().map(|c| &c.model).collect()
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         studies
             .iter()

@@ -4,7 +4,8 @@
 use super::{ShearCurve, ShearResult};
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series};
-use crate::studies::outputs::{panel_of, prefixed, strokes, Context, KindOutput, Of};
+use crate::studies::outputs::{panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable};
+use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -12,6 +13,18 @@ const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
 impl KindOutput for ShearResult {
+    fn own_table(&self, study: &str) -> Option<OwnTable> {
+        Some(OwnTable {
+            file: "shear.csv",
+            rows_are: "one row per shear study, approach and amount of shear",
+            table: self.table(study),
+        })
+    }
+
+    fn approach_models(&self) -> Vec<&ApproachModel> {
+        self.curves.iter().map(|c| &c.model).collect()
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         studies
             .iter()
