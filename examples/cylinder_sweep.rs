@@ -67,9 +67,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )?;
         let sweep = solver.sweep(&targets)?;
         for r in &sweep.results {
+            if std::env::var("TRACE").is_ok() {
+                for s in &r.steps {
+                    let h: Vec<String> = s
+                        .iterations
+                        .iter()
+                        .map(|i| format!("{:.1e}/{:.1e}", i.residual, i.increment))
+                        .collect();
+                    println!(
+                        "#   {:.4} -> {:.4}: predictor {:.1e}; {}",
+                        s.from,
+                        s.to,
+                        s.initial_residual,
+                        h.join(" ")
+                    );
+                }
+            }
             let its: usize = r.steps.iter().map(|s| s.iterations.len()).sum();
             println!(
-                "{d} {:.2} {:.6} {:.6} {its}",
+                "{d} {:.2} {:.15e} {:.6} {its}",
                 r.stretch, r.nominal_stress, r.gamma_centre
             );
         }

@@ -7,8 +7,10 @@
 //! solution is defined only to the solver's tolerance (the scene's 1e-10 on the relative
 //! residual), so a solver that reaches the same solution by another exact route (the static
 //! condensation of the Q2 centre node) changes the last digits. Their numbers must agree to
-//! [`FE_RELATIVE`], ten times that tolerance, relative to max(1, |golden|); their text cells and
-//! Newton iteration counts exactly.
+//! [`FE_RELATIVE`], ten times that tolerance, relative to max(1, |golden|); their text cells
+//! exactly. Their Newton iteration counts are the solver's work, not its result: a count may
+//! fall (issue 26's stopping test saves the iteration that only confirmed a converged state)
+//! but never exceed the golden one.
 //!
 //! The other numbers are closed forms, scalar root solves to machine precision and quadratures
 //! exact to rounding: a change of the order of their summation (the constitutive route of issue
@@ -112,6 +114,15 @@ fn same(file: &str, out: &Path) {
         let scale = column_scale(&g_rows, column);
         for (i, (g, n)) in g_rows.iter().zip(&n_rows).enumerate() {
             let fe_row = model.is_some_and(|m| g[m] == "cylinder");
+            if fe_row && name == "newton_iterations" {
+                let (a, b): (usize, usize) = (g[column].parse().unwrap(), n[j].parse().unwrap());
+                assert!(
+                    b <= a,
+                    "{file}: row {}: {b} Newton iterations, more than the golden {a}\n now {n:?}",
+                    i + 2
+                );
+                continue;
+            }
             assert!(
                 agree(&g[column], &n[j], fe_row, scale),
                 "{file}: row {} column {name}: golden {:?}, now {:?}\n golden row {g:?}\n now    {n:?}",
