@@ -35,6 +35,7 @@ pub mod pattern_lu;
 pub mod problem;
 pub mod solver;
 pub mod tangent_solver;
+pub mod timings;
 pub mod vtk;
 
 pub use assembly::QuadraturePoint;

@@ -18,8 +18,8 @@ use super::material::AxisymmetricMaterial;
 use super::memory::MemoryEstimate;
 use super::mesh::Mesh;
 use super::problem::MixedProblem;
-pub use super::problem::Timings;
 use super::tangent_solver::TangentSolver;
+pub use super::timings::Timings;
 use super::vtk;
 use std::path::PathBuf;
 

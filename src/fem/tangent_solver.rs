@@ -33,7 +33,7 @@ use super::assembly::Pattern;
 use super::ldlt::{Gmres, Preconditioner, SymmetricPartLdlt};
 use super::linear::SparseLu;
 use super::pattern_lu::PatternLu;
-use super::problem::Timings;
+use super::timings::Timings;
 use std::time::Instant;
 
 /// Normwise backward error to which every linear solve is converged.
