@@ -28,8 +28,7 @@
 
 use super::element::Element;
 use super::error::{FemError, FemResult};
-use super::mesh::Mesh;
-use super::solver::LinearSolver;
+use super::linear_solver::LinearSolver;
 
 /// Limit used when the available memory cannot be read (no `/proc/meminfo`): 4 GiB.
 pub const FALLBACK_LIMIT: u64 = 4 << 30;
@@ -82,12 +81,15 @@ pub struct MemoryEstimate {
 
 /// Counts of a mesh with the element's cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Counts {
-    nodes: f64,
-    cells: f64,
+pub struct Counts {
+    /// Nodes.
+    pub nodes: f64,
+    /// Cells.
+    pub cells: f64,
     /// Pressure dofs (corner nodes for Q2/Q1, cells for Q1/P0).
-    pressures: f64,
-    element: Element,
+    pub pressures: f64,
+    /// The element of the cells.
+    pub element: Element,
 }
 
 impl MemoryEstimate {
@@ -110,35 +112,12 @@ impl MemoryEstimate {
                 element,
             },
         };
-        Self::from_counts(counts, &format!("{nr} × {nz} {element} cells"), linear)
+        Self::of_counts(counts, &format!("{nr} × {nz} {element} cells"), linear)
     }
 
-    /// The estimate for `mesh` (with its element's cells).
-    pub fn of_mesh(mesh: &Mesh, linear: LinearSolver) -> Self {
-        let element = mesh.element;
-        let cells = mesh.n_elements();
-        let pressures = match element {
-            Element::Q2Q1 => {
-                let mut corner = vec![false; mesh.n_nodes()];
-                for e in mesh.elements() {
-                    for &a in &e[..4] {
-                        corner[a as usize] = true;
-                    }
-                }
-                corner.iter().filter(|&&c| c).count()
-            }
-            Element::Q1P0 => cells,
-        };
-        let counts = Counts {
-            nodes: mesh.n_nodes() as f64,
-            cells: cells as f64,
-            pressures: pressures as f64,
-            element,
-        };
-        Self::from_counts(counts, &format!("{cells} {element} cells"), linear)
-    }
-
-    fn from_counts(c: Counts, mesh: &str, linear: LinearSolver) -> Self {
+    /// The estimate from the counts `c` of a mesh described as `mesh` (in words), e.g.
+    /// [`super::mesh::Mesh::memory_estimate`]'s.
+    pub fn of_counts(c: Counts, mesh: &str, linear: LinearSolver) -> Self {
         let dofs = 2.0 * c.nodes + c.pressures;
         let d = (2 * c.element.nodes() + c.element.pressures()) as f64;
         let p = c.element.pressures() as f64;

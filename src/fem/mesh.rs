@@ -9,8 +9,8 @@
 
 use super::element::Element;
 use super::error::{FemError, FemResult};
-use super::memory::{self, MemoryEstimate};
-use super::solver::LinearSolver;
+use super::linear_solver::LinearSolver;
+use super::memory::{self, Counts, MemoryEstimate};
 use std::collections::HashMap;
 
 /// Boundary parts of the meridian rectangle.
@@ -288,6 +288,32 @@ impl Mesh {
             radius: self.radius,
             length: self.length,
         }
+    }
+
+    /// The memory a solve on this mesh (with its element's cells) needs, estimated from its
+    /// counts ([`MemoryEstimate`]) before anything large is allocated.
+    pub fn memory_estimate(&self, linear: LinearSolver) -> MemoryEstimate {
+        let element = self.element;
+        let cells = self.n_elements();
+        let pressures = match element {
+            Element::Q2Q1 => {
+                let mut corner = vec![false; self.n_nodes()];
+                for e in self.elements() {
+                    for &a in &e[..4] {
+                        corner[a as usize] = true;
+                    }
+                }
+                corner.iter().filter(|&&c| c).count()
+            }
+            Element::Q1P0 => cells,
+        };
+        let counts = Counts {
+            nodes: self.n_nodes() as f64,
+            cells: cells as f64,
+            pressures: pressures as f64,
+            element,
+        };
+        MemoryEstimate::of_counts(counts, &format!("{cells} {element} cells"), linear)
     }
 
     /// The cells, each as its [`Element::nodes`] node indices.

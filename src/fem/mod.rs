@@ -28,6 +28,7 @@ pub mod error;
 pub mod kinematics;
 pub mod ldlt;
 pub mod linear;
+pub mod linear_solver;
 pub mod material;
 pub mod memory;
 pub mod mesh;

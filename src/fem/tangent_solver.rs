@@ -17,7 +17,8 @@
 //!   for 119 solves, against 119 with 10);
 //! - faer's LU with partial pivoting ([`super::linear`]), solving directly, for a tangent on
 //!   which the pattern LU meets a zero pivot or does not precondition (after three such tangents
-//!   in a row, for good), or when `LinearSolver::Lu` is chosen.
+//!   in a row, for good), or when
+//!   [`LinearSolver::Lu`](super::linear_solver::LinearSolver::Lu) is chosen.
 //!
 //! Measured and rejected: keeping the factorisation of an earlier tangent as a preconditioner
 //! (with an iteration budget and a renewal rule). On a quiet 2-core machine it did not pay on any
