@@ -16,8 +16,9 @@
 //! Layers: [`mesh`], [`dofs`], [`element`] and [`assembly`] build the discrete problem;
 //! [`problem`] makes it a [`NonlinearSystem`]; [`continuation`] drives any such system through
 //! the load path (load stepping, Newton, line search); [`tangent_solver`] solves the Newton
-//! systems ([`ldlt`] with its fill-reducing ordering, [`pattern_lu`], [`linear`]); [`vtk`]
-//! writes fields; [`memory`] bounds the work before it starts.
+//! systems by [`gmres`] preconditioned with [`ldlt`] or [`pattern_lu`] (both in the elimination
+//! order of [`ordering`]), or by faer's LU ([`linear`]), as [`linear_solver`] chooses; [`vtk`]
+//! writes fields; [`memory`] bounds the work before it starts; [`timings`] records the time spent.
 
 pub mod assembly;
 pub mod condensation;
@@ -25,6 +26,7 @@ pub mod continuation;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod gmres;
 pub mod kinematics;
 pub mod ldlt;
 pub mod linear;
@@ -32,6 +34,7 @@ pub mod linear_solver;
 pub mod material;
 pub mod memory;
 pub mod mesh;
+pub mod ordering;
 pub mod pattern_lu;
 pub mod problem;
 pub mod solver;

@@ -31,7 +31,8 @@
 //! fem_scaling`), and the cores are better spent on the element loop.
 
 use super::assembly::Pattern;
-use super::ldlt::{Gmres, Preconditioner, SymmetricPartLdlt};
+use super::gmres::{Gmres, Preconditioner};
+use super::ldlt::SymmetricPartLdlt;
 use super::linear::SparseLu;
 use super::pattern_lu::PatternLu;
 use super::timings::Timings;
