@@ -1,8 +1,8 @@
 //! The Newton system K Δx = −R: which factorisation preconditions it.
 //!
-//! Every solve is exact to round-off: GMRES iterates on the current tangent K until the
-//! normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct solve with
-//! partial pivoting attains), and a factorisation of K only preconditions it. The
+//! Every solve is exact to round-off: GMRES ([`super::gmres`]) iterates on the current tangent
+//! K until the normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct
+//! solve with partial pivoting attains), and a factorisation of K only preconditions it. The
 //! factorisations, one per Newton iteration:
 //!
 //! - LDLᵀ of the symmetric part (K + Kᵀ)/2 ([`super::ldlt`]): pattern of K, no pivoting; for a
