@@ -48,6 +48,14 @@ pub fn trim_zeros(s: &str) -> String {
     }
 }
 
+/// Escapes text for HTML.
+pub fn escape_html(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
 #[cfg(test)]
 mod tests {
     use super::significant;
@@ -95,12 +103,4 @@ mod tests {
             );
         }
     }
-}
-
-/// Escapes text for HTML.
-pub fn escape_html(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
 }
