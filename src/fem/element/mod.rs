@@ -298,6 +298,7 @@ impl std::fmt::Display for Element {
 /// facts against closed forms that hold for any element.
 #[cfg(test)]
 mod tests {
+    use super::reference::LATTICE;
     use super::*;
 
     /// Sums over a reference element that closed forms give for any element.
@@ -339,19 +340,8 @@ mod tests {
                 pressure = pressure.max((re.m[q].sum() - 1.0).abs());
             }
             // The cell [1, 2] × [0, 1] with its nodes where the layout puts them.
-            let lattice = [
-                (0, 0),
-                (2, 0),
-                (2, 2),
-                (0, 2),
-                (1, 0),
-                (2, 1),
-                (1, 2),
-                (0, 1),
-                (1, 1),
-            ];
             let x: [[f64; 2]; NN] = std::array::from_fn(|a| {
-                [1.0 + 0.5 * lattice[a].0 as f64, 0.5 * lattice[a].1 as f64]
+                [1.0 + 0.5 * LATTICE[a].0 as f64, 0.5 * LATTICE[a].1 as f64]
             });
             let volume = re
                 .cell_geometry(&x)
