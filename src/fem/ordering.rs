@@ -89,18 +89,26 @@ pub fn node_structure(
 ) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
     let (group_of, groups) = node_groups(mesh, dofs, index);
     let nf = dofs.n_free as u32;
+    // The cell's own pressures, [`super::element::Element::pressures`] per cell.
+    let per_cell = mesh.element.pressures();
     let trailing = dofs
         .element_p
-        .iter()
+        .chunks_exact(per_cell)
         .zip(mesh.elements())
-        .filter(|(&p, _)| p < nf)
-        .map(|(&p, e)| Trailing {
-            after: e
+        .filter_map(|(p, e)| {
+            let free: Vec<u32> = p
                 .iter()
-                .map(|&a| group_of[a as usize])
-                .filter(|&g| g != u32::MAX)
-                .collect(),
-            dofs: vec![index[p as usize]],
+                .filter(|&&p| p < nf)
+                .map(|&p| index[p as usize])
+                .collect();
+            (!free.is_empty()).then(|| Trailing {
+                after: e
+                    .iter()
+                    .map(|&a| group_of[a as usize])
+                    .filter(|&g| g != u32::MAX)
+                    .collect(),
+                dofs: free,
+            })
         })
         .collect();
     let adjacency = group_adjacency(mesh, &group_of, groups.len());
