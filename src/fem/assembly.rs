@@ -5,12 +5,13 @@
 //! (no sharing, so the element loop runs in parallel without locks); each global entry is then
 //! gathered, again in parallel, from the list of element slots that contribute to it. Both
 //! lists are built once with the pattern; the hot loop allocates nothing. The element loop is
-//! compiled once per [`Element`] with fixed-size matrices; the choice is made once per assembly.
+//! compiled once per [`Element`] with fixed-size matrices ([`PerElement`]); the choice is made
+//! once per assembly.
 
 use super::condensation::Condensation;
 use super::dofs::DofMap;
 use super::element::{
-    zeroed, Element, PointGeometry, Q1P0Reference, Q2Q1Reference, ReferenceElement,
+    zeroed, Element, PerElement, PointGeometry, ReferenceElement, References, TryMap, Typed, Visit,
 };
 use super::error::{FemError, FemResult};
 use super::material::{AxiF, AxisymmetricMaterial};
@@ -40,18 +41,83 @@ pub struct QuadraturePoint {
 
 /// The cells of one element type: reference element, the mapped geometry of every cell's
 /// quadrature points (computed once: the reference mesh does not move) and global dofs.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 struct Cells<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize> {
     re: ReferenceElement<NN, NU, NP, ND, NQ>,
     geometry: Vec<[PointGeometry<NN>; NQ]>,
     dofs: Vec<[u32; ND]>,
 }
 
-/// The mesh's cells, typed by element so that each element loop is monomorphised.
-#[derive(Debug, Clone)]
-enum Kernel {
-    Q2Q1(Box<Cells<9, 18, 4, 22, 9>>),
-    Q1P0(Box<Cells<4, 8, 1, 9, 4>>),
+/// The cells' type for each element's sizes: the mesh's cells are a `PerElement<CellsOf>`, so
+/// that each element loop is monomorphised.
+#[derive(Debug)]
+struct CellsOf;
+
+impl Typed for CellsOf {
+    type Of<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize> =
+        Box<Cells<NN, NU, NP, ND, NQ>>;
+}
+
+/// The cells of a mesh from their reference element ([`Cells::new`]).
+struct BuildCells<'a> {
+    mesh: &'a Mesh,
+    dofs: &'a DofMap,
+}
+
+impl TryMap<References, CellsOf> for BuildCells<'_> {
+    type Error = FemError;
+
+    fn map<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>(
+        self,
+        re: ReferenceElement<NN, NU, NP, ND, NQ>,
+    ) -> FemResult<Box<Cells<NN, NU, NP, ND, NQ>>> {
+        Ok(Box::new(Cells::new(re, self.mesh, self.dofs)?))
+    }
+}
+
+/// One assembly's element loop ([`Cells::evaluate`]).
+struct Evaluate<'a, M: ?Sized> {
+    x: &'a [f64],
+    material: &'a M,
+    tangent: bool,
+    buf: Buffers<'a>,
+}
+
+impl<M: AxisymmetricMaterial + ?Sized> Visit<CellsOf> for Evaluate<'_, M> {
+    type Output = crate::Result<()>;
+
+    fn visit<
+        const NN: usize,
+        const NU: usize,
+        const NP: usize,
+        const ND: usize,
+        const NQ: usize,
+    >(
+        self,
+        cells: &Box<Cells<NN, NU, NP, ND, NQ>>,
+    ) -> crate::Result<()> {
+        cells.evaluate(self.x, self.material, self.tangent, self.buf)
+    }
+}
+
+/// The quadrature points of the cells at the dof values `x` ([`Cells::quadrature_points`]).
+struct QuadraturePoints<'a>(&'a [f64]);
+
+impl Visit<CellsOf> for QuadraturePoints<'_> {
+    type Output = Vec<QuadraturePoint>;
+
+    fn visit<
+        const NN: usize,
+        const NU: usize,
+        const NP: usize,
+        const ND: usize,
+        const NQ: usize,
+    >(
+        self,
+        cells: &Box<Cells<NN, NU, NP, ND, NQ>>,
+    ) -> Vec<QuadraturePoint> {
+        cells.quadrature_points(self.0)
+    }
 }
 
 /// Element buffers and what the element loop needs besides the cells.
@@ -207,7 +273,7 @@ pub struct Pattern {
 /// Builds the residual and tangent of the whole mesh.
 #[derive(Debug)]
 pub struct Assembler {
-    kernel: Kernel,
+    cells: PerElement<CellsOf>,
     n_free: usize,
     /// Sparsity pattern of the system matrix: the free–free tangent, the Q2/Q1 centre nodes
     /// condensed out ([`super::condensation`]).
@@ -434,10 +500,10 @@ impl Assembler {
                 rule: "too many elements for 32-bit gather lists",
             });
         }
-        let kernel = match mesh.element {
-            Element::Q2Q1 => Kernel::Q2Q1(Box::new(Cells::new(Q2Q1Reference::new(), mesh, dofs)?)),
-            Element::Q1P0 => Kernel::Q1P0(Box::new(Cells::new(Q1P0Reference::new(), mesh, dofs)?)),
-        };
+        let cells = mesh
+            .element
+            .reference()
+            .try_map(BuildCells { mesh, dofs })?;
         let n = dofs.n_free;
         let condensation = Condensation::new(mesh, dofs);
         let (index, n_system) = system_numbering(n, condensation.as_ref());
@@ -471,7 +537,7 @@ impl Assembler {
         rates[dofs.n_free..].copy_from_slice(&dofs.prescribed_rate);
         let n_c = condensation.as_ref().map_or(1, Condensation::data_per_cell);
         Ok(Self {
-            kernel,
+            cells,
             n_free: n,
             pattern,
             values: vec![0.0; nnz],
@@ -525,19 +591,13 @@ impl Assembler {
 
     /// The element of the cells.
     pub fn element(&self) -> Element {
-        match self.kernel {
-            Kernel::Q2Q1(_) => Element::Q2Q1,
-            Kernel::Q1P0(_) => Element::Q1P0,
-        }
+        self.cells.element()
     }
 
     /// F, p, position and volume weight at every quadrature point of every cell for the dof
     /// values `x` (all dofs), cell by cell.
     pub fn quadrature_points(&self, x: &[f64]) -> Vec<QuadraturePoint> {
-        match &self.kernel {
-            Kernel::Q2Q1(cells) => cells.quadrature_points(x),
-            Kernel::Q1P0(cells) => cells.quadrature_points(x),
-        }
+        self.cells.visit(QuadraturePoints(x))
     }
 
     /// Assembles the residual at `x` (all dofs) and, if `tangent`, the free–free tangent and
@@ -559,10 +619,12 @@ impl Assembler {
             rates: &self.rates,
             n_free: self.n_free,
         };
-        match &self.kernel {
-            Kernel::Q2Q1(cells) => cells.evaluate(x, material, tangent, buf)?,
-            Kernel::Q1P0(cells) => cells.evaluate(x, material, tangent, buf)?,
-        }
+        self.cells.visit(Evaluate {
+            x,
+            material,
+            tangent,
+            buf,
+        })?;
         let gather = |out: &mut [f64], ptr: &[u32], src: &[u32], buf: &[f64]| {
             out.par_iter_mut().enumerate().for_each(|(i, o)| {
                 *o = src[ptr[i] as usize..ptr[i + 1] as usize]

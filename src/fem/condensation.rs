@@ -1,4 +1,5 @@
-//! Static condensation of the Q2/Q1 centre node.
+//! Static condensation of an element's interior node ([`Element::condensed_node`]: the Q2/Q1
+//! centre).
 //!
 //! The centre node of a Q2/Q1 cell (its two displacement dofs, the "bubble" b) couples only to
 //! the other dofs of its own cell (e: the 8 other nodes' displacements and the 4 corner
@@ -17,16 +18,16 @@
 //! reaction read the full residual, as without condensation.
 
 use super::dofs::DofMap;
+#[cfg(doc)]
 use super::element::Element;
 use super::mesh::Mesh;
-
-/// Local index, in a Q2/Q1 cell's dof list, of the centre node's (u_r, u_z).
-const BUBBLE: [usize; 2] = [16, 17];
 
 /// Per-cell data of the condensation, the global dofs involved, and the numbering of the
 /// condensed system.
 #[derive(Debug, Clone)]
 pub struct Condensation {
+    /// Local indices, in the cell's dof list, of the condensed node's (u_r, u_z): the bubble.
+    bubble: [usize; 2],
     /// Local indices (in the cell's dof list) of the dofs that stay: all but the bubble.
     external: Vec<usize>,
     /// Global dofs of every cell's bubble.
@@ -38,13 +39,13 @@ pub struct Condensation {
 }
 
 impl Condensation {
-    /// The condensation of `mesh`'s Q2/Q1 cells, if every centre node is free and belongs to one
-    /// cell only (always so for [`Mesh::structured`] and [`Mesh::with_element`]); `None`
-    /// otherwise (Q1/P0, or a mesh with shared centre nodes).
+    /// The condensation of `mesh`'s cells (Q2/Q1: their centre nodes), if every condensed node is
+    /// free and belongs to one cell only (always so for [`Mesh::structured`] and
+    /// [`Mesh::with_element`]); `None` otherwise (an element without a condensed node, such as
+    /// Q1/P0, or a mesh with shared centre nodes).
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> Option<Self> {
-        if mesh.element != Element::Q2Q1 {
-            return None;
-        }
+        let centre = mesh.element.condensed_node()?;
+        let bubble = [2 * centre, 2 * centre + 1];
         let mut uses = vec![0u8; mesh.n_nodes()];
         for cell in mesh.elements() {
             for &a in cell {
@@ -52,19 +53,20 @@ impl Condensation {
             }
         }
         let nd = dofs.dofs_per_element();
-        let external: Vec<usize> = (0..nd).filter(|i| !BUBBLE.contains(i)).collect();
+        let external: Vec<usize> = (0..nd).filter(|i| !bubble.contains(i)).collect();
         let mut bubble_dofs = Vec::with_capacity(mesh.n_elements());
         let mut external_dofs = Vec::with_capacity(mesh.n_elements() * external.len());
         for (e, cell) in mesh.elements().enumerate() {
             let d = dofs.cell_dofs(e);
-            let b = [d[BUBBLE[0]], d[BUBBLE[1]]];
-            if uses[cell[8] as usize] != 1 || b.iter().any(|&g| g as usize >= dofs.n_free) {
+            let b = [d[bubble[0]], d[bubble[1]]];
+            if uses[cell[centre] as usize] != 1 || b.iter().any(|&g| g as usize >= dofs.n_free) {
                 return None;
             }
             bubble_dofs.push(b);
             external_dofs.extend(external.iter().map(|&i| d[i]));
         }
         Some(Self {
+            bubble,
             external,
             bubble_dofs,
             external_dofs,
@@ -109,7 +111,7 @@ impl Condensation {
         kc: &mut [f64],
         data: &mut [f64],
     ) -> crate::Result<()> {
-        let [b0, b1] = BUBBLE;
+        let [b0, b1] = self.bubble;
         let at = |i: usize, j: usize| k[i + nd * j];
         let det = at(b0, b0) * at(b1, b1) - at(b0, b1) * at(b1, b0);
         if det == 0.0 || !det.is_finite() {

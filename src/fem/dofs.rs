@@ -2,11 +2,11 @@
 //!
 //! Global numbering: free displacement dofs `[0, n_free_u)`, free pressure dofs
 //! `[n_free_u, n_free)` (one per corner node for Q2/Q1, one per cell for Q1/P0, following the
-//! mesh's [`Element`]), prescribed dofs `[n_free, n_total)`. Prescribed dofs never enter the
+//! [`PressureLayout`] of the mesh's [`Element`]), prescribed dofs `[n_free, n_total)`. Prescribed dofs never enter the
 //! linear system (they are eliminated, not penalised); their values are x_c = (λ − 1) d_c, with
 //! d_c = L for u_z on z = L and 0 otherwise.
 
-use super::element::Element;
+use super::element::{Element, PressureLayout};
 use super::mesh::{Boundary, Mesh};
 
 /// Which displacement components the bases hold.
@@ -25,7 +25,8 @@ pub struct DofMap {
     pub node_u: Vec<[u32; 2]>,
     /// Global pressure dof at each node (`u32::MAX` at nodes without one; all of them for Q1/P0).
     pub node_p: Vec<u32>,
-    /// Global pressure dof of each cell (Q1/P0; empty for Q2/Q1).
+    /// Global pressure dofs of each cell, [`Element::pressures`] per cell
+    /// ([`PressureLayout::PerCell`], e.g. Q1/P0; empty for Q2/Q1).
     pub element_p: Vec<u32>,
     /// The element the numbering is for.
     pub element: Element,
@@ -85,8 +86,9 @@ impl DofMap {
         let nn = mesh.n_nodes();
         let (fixed, rate) = constraints(mesh, bases);
         let element = mesh.element;
+        let per_cell = element.pressure_layout() == PressureLayout::PerCell;
         let mut has_p = vec![false; nn];
-        if element == Element::Q2Q1 {
+        if !per_cell {
             for e in mesh.elements() {
                 for &c in &e[..4] {
                     has_p[c as usize] = true;
@@ -112,9 +114,10 @@ impl DofMap {
             }
         }
         let mut element_p = Vec::new();
-        if element == Element::Q1P0 {
-            element_p = (0..mesh.n_elements() as u32).map(|e| next + e).collect();
-            next += mesh.n_elements() as u32;
+        if per_cell {
+            let n = (mesh.n_elements() * element.pressures()) as u32;
+            element_p = (0..n).map(|k| next + k).collect();
+            next += n;
         }
         let n_free = next as usize;
         let mut prescribed_rate = Vec::new();
@@ -137,9 +140,11 @@ impl DofMap {
             for &node in cell {
                 element_dofs.extend_from_slice(&node_u[node as usize]);
             }
-            match element {
-                Element::Q2Q1 => element_dofs.extend(cell[..4].iter().map(|&c| node_p[c as usize])),
-                Element::Q1P0 => element_dofs.push(element_p[e]),
+            if per_cell {
+                let np = element.pressures();
+                element_dofs.extend_from_slice(&element_p[np * e..np * (e + 1)]);
+            } else {
+                element_dofs.extend(cell[..4].iter().map(|&c| node_p[c as usize]));
             }
         }
         Self {

@@ -26,10 +26,9 @@
 //! 1.6 of the peak resident memory (VmHWM) from 2.4k to 148k dofs, both elements, symmetric
 //! (neo-Hookean) and non-symmetric (frozen muscle) tangents; see BENCHMARKS.md.
 
-use super::element::Element;
+use super::element::{Element, PressureLayout};
 use super::error::{FemError, FemResult};
-use super::mesh::Mesh;
-use super::solver::LinearSolver;
+use super::linear_solver::LinearSolver;
 
 /// Limit used when the available memory cannot be read (no `/proc/meminfo`): 4 GiB.
 pub const FALLBACK_LIMIT: u64 = 4 << 30;
@@ -82,63 +81,40 @@ pub struct MemoryEstimate {
 
 /// Counts of a mesh with the element's cells.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Counts {
-    nodes: f64,
-    cells: f64,
-    /// Pressure dofs (corner nodes for Q2/Q1, cells for Q1/P0).
-    pressures: f64,
-    element: Element,
+pub struct Counts {
+    /// Nodes.
+    pub nodes: f64,
+    /// Cells.
+    pub cells: f64,
+    /// Pressure dofs (corner nodes for Q2/Q1, cells for Q1/P0: [`PressureLayout`]).
+    pub pressures: f64,
+    /// The element of the cells.
+    pub element: Element,
 }
 
 impl MemoryEstimate {
-    /// The estimate for the structured nr × nz mesh of [`Mesh::structured`] with `element`'s
+    /// The estimate for the structured nr × nz mesh of [`super::mesh::Mesh::structured`] with `element`'s
     /// cells, from the counts alone (nothing is allocated).
     pub fn structured(nr: usize, nz: usize, element: Element, linear: LinearSolver) -> Self {
         let (r, z) = (nr as f64, nz as f64);
-        let corners = (r + 1.0) * (z + 1.0);
-        let counts = match element {
-            Element::Q2Q1 => Counts {
-                nodes: (2.0 * r + 1.0) * (2.0 * z + 1.0),
-                cells: r * z,
-                pressures: corners,
-                element,
-            },
-            Element::Q1P0 => Counts {
-                nodes: corners,
-                cells: r * z,
-                pressures: r * z,
-                element,
-            },
-        };
-        Self::from_counts(counts, &format!("{nr} × {nz} {element} cells"), linear)
-    }
-
-    /// The estimate for `mesh` (with its element's cells).
-    pub fn of_mesh(mesh: &Mesh, linear: LinearSolver) -> Self {
-        let element = mesh.element;
-        let cells = mesh.n_elements();
-        let pressures = match element {
-            Element::Q2Q1 => {
-                let mut corner = vec![false; mesh.n_nodes()];
-                for e in mesh.elements() {
-                    for &a in &e[..4] {
-                        corner[a as usize] = true;
-                    }
-                }
-                corner.iter().filter(|&&c| c).count()
-            }
-            Element::Q1P0 => cells,
-        };
+        // k nodes along a cell side: ((k − 1) nr + 1)((k − 1) nz + 1) nodes.
+        let k = (element.node_layout().per_side() - 1) as f64;
+        let cells = r * z;
         let counts = Counts {
-            nodes: mesh.n_nodes() as f64,
-            cells: cells as f64,
-            pressures: pressures as f64,
+            nodes: (k * r + 1.0) * (k * z + 1.0),
+            cells,
+            pressures: match element.pressure_layout() {
+                PressureLayout::AtCorners => (r + 1.0) * (z + 1.0),
+                PressureLayout::PerCell => element.pressures() as f64 * cells,
+            },
             element,
         };
-        Self::from_counts(counts, &format!("{cells} {element} cells"), linear)
+        Self::of_counts(counts, &format!("{nr} × {nz} {element} cells"), linear)
     }
 
-    fn from_counts(c: Counts, mesh: &str, linear: LinearSolver) -> Self {
+    /// The estimate from the counts `c` of a mesh described as `mesh` (in words), e.g.
+    /// [`super::mesh::Mesh::memory_estimate`]'s.
+    pub fn of_counts(c: Counts, mesh: &str, linear: LinearSolver) -> Self {
         let dofs = 2.0 * c.nodes + c.pressures;
         let d = (2 * c.element.nodes() + c.element.pressures()) as f64;
         let p = c.element.pressures() as f64;
@@ -178,14 +154,14 @@ impl MemoryEstimate {
         let p = c.element.pressures() as f64;
         let q = c.element.quadrature_points() as f64;
         let (n, z, f) = (self.dofs, self.nonzeros, self.factor_values);
-        let element_buffers = match c.element {
-            // The condensed cell matrix (m = d − 2, pressure block included) and the centre
+        let element_buffers = match c.element.condensed_node() {
+            // The condensed cell matrix (m = d − 2, pressure block included) and the condensed
             // node's data for the expansion.
-            Element::Q2Q1 => {
+            Some(_) => {
                 let m = d - 2.0;
                 (12.0 * m * m + 8.0 * (4.0 + 4.0 * m) + 24.0 * d) * c.cells
             }
-            Element::Q1P0 => (8.0 * d * d + 4.0 * (d * d - p * p) + 24.0 * d) * c.cells,
+            None => (8.0 * d * d + 4.0 * (d * d - p * p) + 24.0 * d) * c.cells,
         };
         let tangent = 28.0 * z;
         let factors = match linear {

@@ -7,10 +7,10 @@
 //! uses the structured indexing of [`Mesh::structured`]; [`Mesh::with_element`] turns the cells of
 //! one element into those of the other on the same geometry.
 
-use super::element::Element;
+use super::element::{Element, NodeLayout, PressureLayout, ReferenceElement, References, Visit};
 use super::error::{FemError, FemResult};
-use super::memory::{self, MemoryEstimate};
-use super::solver::LinearSolver;
+use super::linear_solver::LinearSolver;
+use super::memory::{self, Counts, MemoryEstimate};
 use std::collections::HashMap;
 
 /// Boundary parts of the meridian rectangle.
@@ -145,10 +145,18 @@ impl Mesh {
                 rule: "mesh too large for 32-bit indices",
             });
         }
-        let mut cheapest =
-            MemoryEstimate::structured(nr, nz, Element::Q1P0, LinearSolver::SymmetricPartGmres);
-        cheapest.mesh = format!("{nr} × {nz} cells with the cheapest element, Q1/P0");
-        cheapest.check(memory::default_limit())?;
+        let estimate_with =
+            |e| MemoryEstimate::structured(nr, nz, e, LinearSolver::SymmetricPartGmres);
+        let cheapest = Element::ALL.into_iter().fold(Element::default(), |a, b| {
+            if estimate_with(b).bytes < estimate_with(a).bytes {
+                b
+            } else {
+                a
+            }
+        });
+        let mut estimate = estimate_with(cheapest);
+        estimate.mesh = format!("{nr} × {nz} cells with the cheapest element, {cheapest}");
+        estimate.check(memory::default_limit())?;
         let nodes = lattice(radius, &z_breaks(length, nz, grading), mr);
         let id = |i: usize, j: usize| (j * mr + i) as u32;
         let mut connectivity = Vec::with_capacity(9 * nr * nz);
@@ -188,18 +196,20 @@ impl Mesh {
     }
 
     /// The same cells for `element`: a 9-node mesh keeps only its corners (renumbered in their
-    /// order) for Q1/P0; a 4-node mesh gains straight-edge mid-nodes and centres for Q2/Q1
-    /// (numbered after the corners). Boundary sets follow (a new mid-node lies on a part when
-    /// both ends of its edge do). The mesh itself if it is already made for `element`.
+    /// order) for a 4-node element such as Q1/P0; a 4-node mesh gains straight-edge mid-nodes and
+    /// centres for a 9-node one such as Q2/Q1 (numbered after the corners). Boundary sets follow
+    /// (a new mid-node lies on a part when both ends of its edge do). The same nodes if the
+    /// element's [`NodeLayout`] is the mesh's.
     pub fn with_element(self, element: Element) -> Self {
-        match (self.element, element) {
-            (Element::Q2Q1, Element::Q1P0) => self.corners(),
-            (Element::Q1P0, Element::Q2Q1) => self.biquadratic(),
-            _ => self,
+        match (self.element.node_layout(), element.node_layout()) {
+            (NodeLayout::Biquadratic, NodeLayout::Corners) => self.corners(element),
+            (NodeLayout::Corners, NodeLayout::Biquadratic) => self.biquadratic(element),
+            _ => Self { element, ..self },
         }
     }
 
-    fn corners(self) -> Self {
+    /// The corners of the cells, as the cells of `element`.
+    fn corners(self, element: Element) -> Self {
         let mut new_id = vec![u32::MAX; self.nodes.len()];
         for e in self.elements() {
             for &a in &e[..4] {
@@ -234,7 +244,7 @@ impl Mesh {
             .collect();
         Self {
             nodes,
-            element: Element::Q1P0,
+            element,
             connectivity,
             boundaries,
             radius: self.radius,
@@ -242,7 +252,8 @@ impl Mesh {
         }
     }
 
-    fn biquadratic(self) -> Self {
+    /// The cells with mid-nodes on their (straight) edges and centres, as the cells of `element`.
+    fn biquadratic(self, element: Element) -> Self {
         let mut nodes = self.nodes.clone();
         let mut edge_node: HashMap<(u32, u32), u32> = HashMap::new();
         let mut connectivity = Vec::with_capacity(9 * self.n_elements());
@@ -282,12 +293,38 @@ impl Mesh {
         }
         Self {
             nodes,
-            element: Element::Q2Q1,
+            element,
             connectivity,
             boundaries: new_boundaries,
             radius: self.radius,
             length: self.length,
         }
+    }
+
+    /// The memory a solve on this mesh (with its element's cells) needs, estimated from its
+    /// counts ([`MemoryEstimate`]) before anything large is allocated.
+    pub fn memory_estimate(&self, linear: LinearSolver) -> MemoryEstimate {
+        let element = self.element;
+        let cells = self.n_elements();
+        let pressures = match element.pressure_layout() {
+            PressureLayout::AtCorners => {
+                let mut corner = vec![false; self.n_nodes()];
+                for e in self.elements() {
+                    for &a in &e[..4] {
+                        corner[a as usize] = true;
+                    }
+                }
+                corner.iter().filter(|&&c| c).count()
+            }
+            PressureLayout::PerCell => element.pressures() * cells,
+        };
+        let counts = Counts {
+            nodes: self.n_nodes() as f64,
+            cells: cells as f64,
+            pressures: pressures as f64,
+            element,
+        };
+        MemoryEstimate::of_counts(counts, &format!("{cells} {element} cells"), linear)
     }
 
     /// The cells, each as its [`Element::nodes`] node indices.
@@ -299,32 +336,7 @@ impl Mesh {
     /// assembly evaluates the material (a region that holds none of them has no effect). Cells
     /// with a node index out of range are left out (the assembly refuses them).
     pub fn quadrature_positions(&self) -> Vec<[f64; 2]> {
-        use super::element::{Q1P0Reference, Q2Q1Reference, ReferenceElement};
-        fn all<
-            const NN: usize,
-            const NU: usize,
-            const NP: usize,
-            const ND: usize,
-            const NQ: usize,
-        >(
-            mesh: &Mesh,
-            re: &ReferenceElement<NN, NU, NP, ND, NQ>,
-        ) -> Vec<[f64; 2]> {
-            mesh.elements()
-                .filter_map(|conn| {
-                    let mut x = [[0.0; 2]; NN];
-                    for (xa, &node) in x.iter_mut().zip(conn) {
-                        *xa = *mesh.nodes.get(node as usize)?;
-                    }
-                    Some(re.positions(&x))
-                })
-                .flatten()
-                .collect()
-        }
-        match self.element {
-            Element::Q2Q1 => all(self, &Q2Q1Reference::new()),
-            Element::Q1P0 => all(self, &Q1P0Reference::new()),
-        }
+        self.element.reference().visit(QuadraturePositions(self))
     }
 
     /// Number of cells.
@@ -344,5 +356,35 @@ impl Mesh {
     /// Number of nodes.
     pub fn n_nodes(&self) -> usize {
         self.nodes.len()
+    }
+}
+
+/// The reference positions of every quadrature point of a mesh ([`Mesh::quadrature_positions`]).
+struct QuadraturePositions<'a>(&'a Mesh);
+
+impl Visit<References> for QuadraturePositions<'_> {
+    type Output = Vec<[f64; 2]>;
+
+    fn visit<
+        const NN: usize,
+        const NU: usize,
+        const NP: usize,
+        const ND: usize,
+        const NQ: usize,
+    >(
+        self,
+        re: &ReferenceElement<NN, NU, NP, ND, NQ>,
+    ) -> Vec<[f64; 2]> {
+        let mesh = self.0;
+        mesh.elements()
+            .filter_map(|conn| {
+                let mut x = [[0.0; 2]; NN];
+                for (xa, &node) in x.iter_mut().zip(conn) {
+                    *xa = *mesh.nodes.get(node as usize)?;
+                }
+                Some(re.positions(&x))
+            })
+            .flatten()
+            .collect()
     }
 }

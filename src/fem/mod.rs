@@ -13,11 +13,19 @@
 //! the axis, u_z = 0 at z = 0, u_z = (λ − 1) L at z = L, lateral surface traction free, bases
 //! [`Bases::Sliding`] or [`Bases::Clamped`]. See [`solver::AxisymmetricSolver`].
 //!
-//! Layers: [`mesh`], [`dofs`], [`element`] and [`assembly`] build the discrete problem;
-//! [`problem`] makes it a [`NonlinearSystem`]; [`continuation`] drives any such system through
-//! the load path (load stepping, Newton, line search); [`tangent_solver`] solves the Newton
-//! systems ([`ldlt`] with its fill-reducing ordering, [`pattern_lu`], [`linear`]); [`vtk`]
-//! writes fields; [`memory`] bounds the work before it starts.
+//! The modules, from the bottom up (imports run one way, none in a circle):
+//!
+//! | module | what |
+//! |---|---|
+//! | [`error`], [`material`], [`kinematics`], [`timings`], [`linear_solver`] | leaves: errors, the material interface, J and its derivatives, time per phase, the choice of linear solver |
+//! | [`element`] | the elements, one file each ([`element::MixedElement`]) plus a line of its registry, and their shared reference element and weak form |
+//! | [`memory`] | the memory a solve needs, from counts, and its limit |
+//! | [`mesh`] | the meridian mesh (structured, bounded by [`memory`]; the cells of any element) |
+//! | [`dofs`], [`condensation`], [`assembly`] | the dof numbering, the static condensation of a condensed node, the parallel assembly into a pattern built once |
+//! | [`ordering`], [`ldlt`], [`pattern_lu`], [`linear`], [`gmres`] | the elimination order, LDLᵀ of the symmetric part, LU on its pattern, faer's LU, GMRES |
+//! | [`tangent_solver`] | which factorisation preconditions the Newton system |
+//! | [`continuation`], [`problem`] | load stepping with Newton for any [`NonlinearSystem`], and the mixed problem as one |
+//! | [`vtk`], [`solver`] | VTK output; the solver that drives a mesh through the stretches |
 
 pub mod assembly;
 pub mod condensation;
@@ -25,16 +33,20 @@ pub mod continuation;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod gmres;
 pub mod kinematics;
 pub mod ldlt;
 pub mod linear;
+pub mod linear_solver;
 pub mod material;
 pub mod memory;
 pub mod mesh;
+pub mod ordering;
 pub mod pattern_lu;
 pub mod problem;
 pub mod solver;
 pub mod tangent_solver;
+pub mod timings;
 pub mod vtk;
 
 pub use assembly::QuadraturePoint;

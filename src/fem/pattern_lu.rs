@@ -19,7 +19,7 @@
 //! preconditioner, so a poor pivot costs iterations, not accuracy.
 
 use super::assembly::Pattern;
-use super::ldlt::Preconditioner;
+use super::gmres::Preconditioner;
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place;
 use faer::reborrow::{Reborrow, ReborrowMut};

@@ -14,46 +14,9 @@ use super::error::StepFailure;
 use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
 use super::tangent_solver::TangentSolver;
+use super::timings::Timings;
 use std::f64::consts::PI;
-use std::time::{Duration, Instant};
-
-/// Accumulated wall-clock time of the solver phases.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Timings {
-    /// Full assemblies (residual + tangent).
-    pub assembly: Duration,
-    /// Number of full assemblies.
-    pub assemblies: usize,
-    /// Residual-only assemblies (line search).
-    pub residual_assembly: Duration,
-    /// Number of residual-only assemblies.
-    pub residual_assemblies: usize,
-    /// Newton iterations (each: one full assembly, one tangent update, one solve).
-    pub newton_iterations: usize,
-    /// Numeric factorisations (LDLᵀ or LU).
-    pub factorisation: Duration,
-    /// Number of factorisations.
-    pub factorisations: usize,
-    /// Linear solves (GMRES and triangular solves, factorisations excluded).
-    pub solve: Duration,
-    /// Number of solves.
-    pub solves: usize,
-    /// GMRES iterations in all solves.
-    pub krylov_iterations: usize,
-    /// Solves that fell back to the sparse LU.
-    pub lu_fallbacks: usize,
-    /// Factorisations by the LU on the LDLᵀ's pattern (non-symmetric tangents).
-    pub pattern_lu_factorisations: usize,
-}
-
-impl Timings {
-    /// Wall-clock seconds per Newton iteration: all assemblies, factorisations and solves
-    /// divided by the Newton iterations.
-    pub fn per_newton_iteration(&self) -> f64 {
-        let total = self.assembly + self.residual_assembly + self.factorisation + self.solve;
-        total.as_secs_f64() / self.newton_iterations.max(1) as f64
-    }
-}
+use std::time::Instant;
 
 /// Euclidean norm, scaled by the largest entry so that squares of huge residuals (stresses near
 /// the exp-overflow limit) do not overflow.

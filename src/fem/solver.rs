@@ -14,12 +14,13 @@ use super::dofs::{Bases, DofMap};
 use super::element::{jacobian, Element};
 use super::error::{FemError, FemResult};
 use super::ldlt::SymmetricPartLdlt;
+pub use super::linear_solver::LinearSolver;
 use super::material::AxisymmetricMaterial;
 use super::memory::MemoryEstimate;
 use super::mesh::Mesh;
 use super::problem::MixedProblem;
-pub use super::problem::Timings;
 use super::tangent_solver::TangentSolver;
+pub use super::timings::Timings;
 use super::vtk;
 use std::path::PathBuf;
 
@@ -31,17 +32,6 @@ pub struct VtkOutput {
     /// Stretches (among the sweep targets) at which to write the fields, as
     /// [`vtk::file_name`] names them (the path is returned in [`StretchResult::vtk_file`]).
     pub stretches: Vec<f64>,
-}
-
-/// How the Newton system K Δx = −R is solved. Both give the exact Newton direction (to round-off).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LinearSolver {
-    /// GMRES on K preconditioned by LDLᵀ of (K + Kᵀ)/2 (fast; for a symmetric K one iteration),
-    /// then by the LU on the LDLᵀ's pattern when GMRES does not converge, faer's LU as last
-    /// resort (see [`super::tangent_solver`]).
-    SymmetricPartGmres,
-    /// faer's sparse LU with partial pivoting (COLAMD ordering) only.
-    Lu,
 }
 
 /// The smallest admissible [`Stepping::tolerance`], 4 ε: the scaled residual and
@@ -234,7 +224,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
             .memory_limit
             .unwrap_or_else(super::memory::default_limit);
         let mesh = mesh.with_element(options.element);
-        let estimate = MemoryEstimate::of_mesh(&mesh, options.linear_solver);
+        let estimate = mesh.memory_estimate(options.linear_solver);
         estimate.check(limit)?;
         let dofs = DofMap::new(&mesh, bases);
         let asm = Assembler::with_volumetric(&mesh, &dofs, options.volumetric)?;

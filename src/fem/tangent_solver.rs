@@ -1,8 +1,8 @@
 //! The Newton system K Δx = −R: which factorisation preconditions it.
 //!
-//! Every solve is exact to round-off: GMRES iterates on the current tangent K until the
-//! normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct solve with
-//! partial pivoting attains), and a factorisation of K only preconditions it. The
+//! Every solve is exact to round-off: GMRES ([`super::gmres`]) iterates on the current tangent
+//! K until the normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct
+//! solve with partial pivoting attains), and a factorisation of K only preconditions it. The
 //! factorisations, one per Newton iteration:
 //!
 //! - LDLᵀ of the symmetric part (K + Kᵀ)/2 ([`super::ldlt`]): pattern of K, no pivoting; for a
@@ -17,7 +17,8 @@
 //!   for 119 solves, against 119 with 10);
 //! - faer's LU with partial pivoting ([`super::linear`]), solving directly, for a tangent on
 //!   which the pattern LU meets a zero pivot or does not precondition (after three such tangents
-//!   in a row, for good), or when `LinearSolver::Lu` is chosen.
+//!   in a row, for good), or when
+//!   [`LinearSolver::Lu`](super::linear_solver::LinearSolver::Lu) is chosen.
 //!
 //! Measured and rejected: keeping the factorisation of an earlier tangent as a preconditioner
 //! (with an iteration budget and a renewal rule). On a quiet 2-core machine it did not pay on any
@@ -30,10 +31,11 @@
 //! fem_scaling`), and the cores are better spent on the element loop.
 
 use super::assembly::Pattern;
-use super::ldlt::{Gmres, Preconditioner, SymmetricPartLdlt};
+use super::gmres::{Gmres, Preconditioner};
+use super::ldlt::SymmetricPartLdlt;
 use super::linear::SparseLu;
 use super::pattern_lu::PatternLu;
-use super::problem::Timings;
+use super::timings::Timings;
 use std::time::Instant;
 
 /// Normwise backward error to which every linear solve is converged.

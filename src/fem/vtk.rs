@@ -4,7 +4,7 @@
 
 use super::assembly::QuadraturePoint;
 use super::dofs::DofMap;
-use super::element::{jacobian, jacobian_gradient, Element};
+use super::element::{jacobian, jacobian_gradient, NodeLayout, PressureLayout};
 use super::error::{FemError, FemResult};
 use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
@@ -107,46 +107,32 @@ fn cell_sums<M: AxisymmetricMaterial + ?Sized>(
 
 /// The pressure at every node (see [`write_state`]); `cell` from [`cell_sums`].
 fn nodal_pressure(mesh: &Mesh, dofs: &DofMap, cell: &[[f64; 5]], x: &[f64]) -> Vec<f64> {
+    let element = mesh.element;
+    let nu = 2 * element.nodes();
     let mut pressure = vec![0.0f64; mesh.n_nodes()];
-    match mesh.element {
-        Element::Q2Q1 => {
-            for conn in mesh.elements() {
-                let pc: Vec<f64> = conn[..4]
-                    .iter()
-                    .map(|&a| x[dofs.node_p[a as usize] as usize])
-                    .collect();
-                // Q1 interpolation at the reference positions of the 9 nodes.
-                let vals = [
-                    pc[0],
-                    pc[1],
-                    pc[2],
-                    pc[3],
-                    0.5 * (pc[0] + pc[1]),
-                    0.5 * (pc[1] + pc[2]),
-                    0.5 * (pc[2] + pc[3]),
-                    0.5 * (pc[3] + pc[0]),
-                    0.25 * (pc[0] + pc[1] + pc[2] + pc[3]),
-                ];
-                for (a, v) in conn.iter().zip(vals) {
-                    pressure[*a as usize] = v;
-                }
-            }
+    let mut weight = vec![0.0f64; mesh.n_nodes()];
+    let mut cell_p = vec![0.0f64; element.pressures()];
+    let mut at_nodes = vec![0.0f64; element.nodes()];
+    for (e, conn) in mesh.elements().enumerate() {
+        for (p, &g) in cell_p.iter_mut().zip(&dofs.cell_dofs(e)[nu..]) {
+            *p = x[g as usize];
         }
-        Element::Q1P0 => {
-            // The cell-constant pressure, volume-averaged over the cells around each node.
-            let mut weight = vec![0.0f64; mesh.n_nodes()];
-            for (e, conn) in mesh.elements().enumerate() {
-                let pe = x[dofs.element_p[e] as usize];
-                for &a in conn {
-                    pressure[a as usize] += pe * cell[e][4];
+        element.nodal_pressures(&cell_p, &mut at_nodes);
+        for (&a, &v) in conn.iter().zip(&at_nodes) {
+            match element.pressure_layout() {
+                // A continuous field: its value at the node.
+                PressureLayout::AtCorners => pressure[a as usize] = v,
+                // The cell's own pressure, volume-averaged over the cells around each node.
+                PressureLayout::PerCell => {
+                    pressure[a as usize] += v * cell[e][4];
                     weight[a as usize] += cell[e][4];
                 }
             }
-            for (p, w) in pressure.iter_mut().zip(&weight) {
-                if *w > 0.0 {
-                    *p /= w;
-                }
-            }
+        }
+    }
+    for (p, w) in pressure.iter_mut().zip(&weight) {
+        if *w > 0.0 {
+            *p /= w;
         }
     }
     pressure
@@ -262,9 +248,9 @@ pub fn write_vtu_with(
 /// The `<Points>` and `<Cells>` sections of `mesh`.
 fn write_geometry(w: &mut impl Write, mesh: &Mesh) -> std::io::Result<()> {
     let ne = mesh.n_elements();
-    let cell_type = match mesh.element {
-        Element::Q2Q1 => VTK_BIQUADRATIC_QUAD,
-        Element::Q1P0 => VTK_QUAD,
+    let cell_type = match mesh.element.node_layout() {
+        NodeLayout::Biquadratic => VTK_BIQUADRATIC_QUAD,
+        NodeLayout::Corners => VTK_QUAD,
     };
     writeln!(
         w,

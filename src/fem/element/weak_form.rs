@@ -1,0 +1,179 @@
+//! The element residual and tangent of the mixed u–p weak form, for any
+//! [`ReferenceElement`]: what the assembly evaluates cell by cell.
+
+use super::reference::{zeroed, PointGeometry, ReferenceElement};
+use crate::fem::kinematics::{jacobian, jacobian_gradient, jacobian_hessian};
+use crate::fem::material::AxisymmetricMaterial;
+use crate::volumetric::Volumetric;
+use nalgebra::{SMatrix, SVector};
+use std::ops::AddAssign;
+
+/// Element vector (`ND` dofs).
+pub type ElementVector<const ND: usize> = SVector<f64, ND>;
+/// Element matrix (column-major, as nalgebra stores it).
+pub type ElementMatrix<const ND: usize> = SMatrix<f64, ND, ND>;
+
+/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU = 2 `NN`), using the structure of B
+/// ([`PointGeometry`]): the 2 × 2 block of nodes (a, b) costs 10 products once D's columns are
+/// combined for b. With `lower`, only the blocks a ≥ b (for a symmetric D; see
+/// [`mirror_node_blocks`]).
+fn add_btdb<const NN: usize, const R: usize>(
+    k: &mut SMatrix<f64, R, R>,
+    g: &PointGeometry<NN>,
+    d: &SMatrix<f64, 5, 5>,
+    lower: bool,
+) {
+    for nb in 0..NN {
+        let (rb, zb) = (2 * nb, 2 * nb + 1);
+        let (dr, dz, nr) = (g.dn_dr[nb], g.dn_dz[nb], g.n_over_r[nb]);
+        let cr: [f64; 5] =
+            std::array::from_fn(|i| d[(i, 0)] * dr + d[(i, 1)] * dz + d[(i, 4)] * nr);
+        let cz: [f64; 5] = std::array::from_fn(|i| d[(i, 2)] * dr + d[(i, 3)] * dz);
+        for na in if lower { nb } else { 0 }..NN {
+            let (ra, za) = (2 * na, 2 * na + 1);
+            let (ar, az, an) = (g.dn_dr[na], g.dn_dz[na], g.n_over_r[na]);
+            k[(ra, rb)] += ar * cr[0] + az * cr[1] + an * cr[4];
+            k[(za, rb)] += ar * cr[2] + az * cr[3];
+            k[(ra, zb)] += ar * cz[0] + az * cz[1] + an * cz[4];
+            k[(za, zb)] += ar * cz[2] + az * cz[3];
+        }
+    }
+}
+
+/// Completes a matrix of 2 × 2 node blocks of which [`add_btdb`] filled the blocks a ≥ b:
+/// block (b, a) = block (a, b)ᵀ.
+fn mirror_node_blocks<const NU: usize>(k: &mut SMatrix<f64, NU, NU>) {
+    for nb in 0..NU / 2 {
+        for na in nb + 1..NU / 2 {
+            for i in 0..2 {
+                for j in 0..2 {
+                    k[(2 * nb + i, 2 * na + j)] = k[(2 * na + j, 2 * nb + i)];
+                }
+            }
+        }
+    }
+}
+
+/// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ElementScale {
+    /// Largest stress magnitude met at the element's quadrature points.
+    pub stress: f64,
+}
+
+impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>
+    ReferenceElement<NN, NU, NP, ND, NQ>
+{
+    /// Residual and (optionally) tangent of one element.
+    ///
+    /// Weak form (Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV, dV = 2π r dr dz, q and δu test functions):
+    ///
+    /// R_u(δu) = ∫ (P(F) − p ∂J/∂F) : δF dV,      δF = B δu,
+    /// R_p(q)  = −∫ q (J − 1) dV,
+    ///
+    /// and its linearisation (A = ∂P/∂F, possibly non-symmetric; H = ∂²J/∂F∂F):
+    ///
+    /// K_uu = ∫ Bᵀ (A − p H) B dV,   K_up = −∫ Bᵀ ∂J/∂F M dV,   K_pu = −∫ M (∂J/∂F)ᵀ B dV,   K_pp = 0.
+    ///
+    /// For Q1/P0 the only M is 1 on the cell, so R_p = −∫_e (J − 1) dV: incompressibility in
+    /// the mean per cell. `geometry` is the cell's mapped geometry ([`Self::cell_geometry`]).
+    ///
+    /// Nearly incompressible (`volumetric` = U(J), strictly convex): the perturbed Lagrangian
+    /// with the Legendre transform Φ(p) = sup_J [−p (J − 1) − U(J)] of U,
+    ///
+    /// Π(u, p) = ∫ [Ψ(F) − p (J − 1) − Φ(p)] dV,
+    ///
+    /// whose stationarity in p, J = J̃(p) := (U′)⁻¹(−p), gives back ∫ [Ψ + U(J)] dV. The
+    /// displacement equations are those of the exact constraint; the pressure equation and block
+    /// become ([`crate::volumetric::Volumetric::dilatation`]: Φ′ = 1 − J̃, Φ″ = 1/U″(J̃))
+    ///
+    /// R_p(q) = −∫ q [J − J̃(p)] dV,   K_pp = −∫ M Mᵀ / U″(J̃(p)) dV,
+    ///
+    /// for U = (κ/2)(J − 1)²: R_p = −∫ q [(J − 1) + p/κ] dV, K_pp = −∫ M Mᵀ/κ dV, and κ = ∞ is the
+    /// exact constraint. U is evaluated at the interpolated pressure, never at the pointwise J of
+    /// the displacement (which the mixed element keeps close to J̃ only weakly): a stiff,
+    /// non-quadratic U (4C's J^(−2κ)) then stays as well conditioned as the quadratic one.
+    #[allow(clippy::too_many_arguments)]
+    pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        geometry: &[PointGeometry<NN>; NQ],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        residual: &mut ElementVector<ND>,
+        tangent: Option<&mut ElementMatrix<ND>>,
+    ) -> crate::Result<ElementScale> {
+        // (J − J̃(p), 1/U″(J̃)) at J and the pressure p: (J − 1, 0) for the exact constraint.
+        let constraint = |j: f64, p: f64| -> crate::Result<(f64, f64)> {
+            match volumetric {
+                None => Ok((j - 1.0, 0.0)),
+                Some(v) => {
+                    let (jt, compliance) = v.dilatation(p)?;
+                    Ok((j - jt, compliance))
+                }
+            }
+        };
+        residual.as_mut_slice().fill(0.0);
+        let mut scale = ElementScale::default();
+        match tangent {
+            None => {
+                for (g, m) in geometry.iter().zip(&self.m) {
+                    let f = g.deformation(u);
+                    let pq = m.dot(p);
+                    let pk = material.stress_at(&f, [g.r, g.z])?;
+                    let dj = jacobian_gradient(&f);
+                    let s = pk - dj * pq;
+                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+                    let ru = g.transpose_mul::<NU>(&s, g.dv);
+                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+                    let rp = m * (-constraint(jacobian(&f), pq)?.0 * g.dv);
+                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+                }
+            }
+            Some(k) => {
+                // Contiguous zeroing (nalgebra's `fill` walks the matrix entry by entry).
+                k.as_mut_slice().fill(0.0);
+                let mut kuu_lower = zeroed::<NU, NU>();
+                for (g, m) in geometry.iter().zip(&self.m) {
+                    let f = g.deformation(u);
+                    let pq = m.dot(p);
+                    let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
+                    let dj = jacobian_gradient(&f);
+                    let s = pk - dj * pq;
+                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+                    let ru = g.transpose_mul::<NU>(&s, g.dv);
+                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+                    let (c, compliance) = constraint(jacobian(&f), pq)?;
+                    let rp = m * (-c * g.dv);
+                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+                    if volumetric.is_some() {
+                        k.fixed_view_mut::<NP, NP>(NU, NU)
+                            .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
+                    }
+                    // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
+                    // material) only the node blocks below the diagonal, mirrored at the end.
+                    let d = (a - jacobian_hessian(&f) * pq) * g.dv;
+                    if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
+                        add_btdb(&mut kuu_lower, g, &d, true);
+                    } else {
+                        add_btdb(k, g, &d, false);
+                    }
+                    // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
+                    let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
+                    let kup = bdj * m.transpose();
+                    k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
+                }
+                // K_pu = K_upᵀ, copied once rather than accumulated point by point.
+                for i in 0..NP {
+                    for j in 0..NU {
+                        k[(NU + i, j)] = k[(j, NU + i)];
+                    }
+                }
+                mirror_node_blocks(&mut kuu_lower);
+                k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&kuu_lower);
+            }
+        }
+        Ok(scale)
+    }
+}

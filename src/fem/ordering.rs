@@ -1,0 +1,207 @@
+//! The elimination order of the tangent's dofs, shared by the LDLᵀ ([`super::ldlt`]) and the
+//! pattern LU ([`super::pattern_lu`]): approximate minimum degree on the node graph, each node's
+//! displacement dofs before its pressure dof, and a pressure without a node of its own (a Q1/P0
+//! cell's) right after the last of its cell's nodes, so that no pressure pivot is the zero
+//! diagonal of the saddle point but a Schur complement.
+
+use super::assembly::Pattern;
+use super::dofs::DofMap;
+use super::mesh::Mesh;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::amd;
+use faer::sparse::SymbolicSparseColMatRef;
+
+/// Dofs without a node of their own (the pressure of a Q1/P0 cell): eliminated right after the
+/// last, in the node ordering, of the node groups `after` (the cell's nodes), so that their
+/// pivot is a Schur complement rather than the zero diagonal. At the end if `after` is empty.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Trailing {
+    /// Node groups (indices into `node_dofs`) that must come first.
+    pub after: Vec<u32>,
+    /// The dofs.
+    pub dofs: Vec<u32>,
+}
+
+/// The elimination order of the dofs: approximate minimum degree on the node graph
+/// `node_adjacency`, each node's dofs `node_dofs[a]` in their order (displacement, then
+/// pressure), and every [`Trailing`] group right after the last of its node groups.
+pub fn dof_ordering(
+    node_dofs: &[Vec<u32>],
+    node_adjacency: &Pattern,
+    trailing: &[Trailing],
+) -> Result<Vec<u32>, String> {
+    let nn = node_adjacency.n;
+    let mut node_perm = vec![0u32; nn];
+    let mut node_perm_inv = vec![0u32; nn];
+    let a = SymbolicSparseColMatRef::new_checked(
+        nn,
+        nn,
+        &node_adjacency.col_ptr,
+        None,
+        &node_adjacency.row_idx,
+    );
+    let mut mem = MemBuffer::try_new(amd::order_scratch::<u32>(nn, node_adjacency.row_idx.len()))
+        .map_err(|_| "out of memory for AMD".to_string())?;
+    amd::order(
+        &mut node_perm,
+        &mut node_perm_inv,
+        a,
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| format!("AMD: {e:?}"))?;
+    // Trailing dofs go right after the last of their node groups in that order.
+    let mut after_position: Vec<Vec<usize>> = vec![Vec::new(); nn + 1];
+    for (t, tr) in trailing.iter().enumerate() {
+        let last = tr
+            .after
+            .iter()
+            .map(|&a| node_perm_inv[a as usize] as usize)
+            .max()
+            .unwrap_or(nn);
+        after_position[last].push(t);
+    }
+    let mut perm = Vec::new();
+    for (k, &a) in node_perm.iter().enumerate() {
+        perm.extend_from_slice(&node_dofs[a as usize]);
+        for &t in &after_position[k] {
+            perm.extend_from_slice(&trailing[t].dofs);
+        }
+    }
+    for &t in &after_position[nn] {
+        perm.extend_from_slice(&trailing[t].dofs);
+    }
+    Ok(perm)
+}
+
+/// Dof groups for the LDLᵀ ordering and their adjacency graph. One group per node with free
+/// displacement dofs: those dofs, then the node's pressure dof (Q2/Q1). A pressure dof whose node
+/// has no free displacement (e.g. on a clamped base) would be a zero pivot if eliminated first,
+/// so it joins the group of a neighbouring node (sharing an element) and is eliminated after that
+/// node's displacement dofs, which couple to it. A Q1/P0 cell pressure is eliminated right after
+/// the last of its cell's node groups (the third return value). Dofs are given in the system's
+/// numbering `index` (free dof → system index, `u32::MAX` if condensed out); a node without
+/// system dofs (a condensed centre node) has no group.
+pub fn node_structure(
+    mesh: &Mesh,
+    dofs: &DofMap,
+    index: &[u32],
+) -> (Vec<Vec<u32>>, Pattern, Vec<Trailing>) {
+    let (group_of, groups) = node_groups(mesh, dofs, index);
+    let nf = dofs.n_free as u32;
+    // The cell's own pressures, [`super::element::Element::pressures`] per cell.
+    let per_cell = mesh.element.pressures();
+    let trailing = dofs
+        .element_p
+        .chunks_exact(per_cell)
+        .zip(mesh.elements())
+        .filter_map(|(p, e)| {
+            let free: Vec<u32> = p
+                .iter()
+                .filter(|&&p| p < nf)
+                .map(|&p| index[p as usize])
+                .collect();
+            (!free.is_empty()).then(|| Trailing {
+                after: e
+                    .iter()
+                    .map(|&a| group_of[a as usize])
+                    .filter(|&g| g != u32::MAX)
+                    .collect(),
+                dofs: free,
+            })
+        })
+        .collect();
+    let adjacency = group_adjacency(mesh, &group_of, groups.len());
+    (groups, adjacency, trailing)
+}
+
+/// The group of every node (`u32::MAX`: none) and the free dofs of every group (see
+/// [`node_structure`]).
+fn node_groups(mesh: &Mesh, dofs: &DofMap, index: &[u32]) -> (Vec<u32>, Vec<Vec<u32>>) {
+    let nf = dofs.n_free as u32;
+    let nn_all = mesh.n_nodes();
+    let mut group_of = vec![u32::MAX; nn_all];
+    let mut groups: Vec<Vec<u32>> = Vec::new();
+    // A condensed centre node keeps its (empty) group: the minimum-degree ordering sees the
+    // graph of the uncondensed mesh, which orders the remaining nodes better (at 148k dofs the
+    // factor of the graph without the centre nodes was 22 % larger).
+    let mut has_u = Vec::new();
+    for (a, g) in group_of.iter_mut().enumerate() {
+        let free: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
+        if !free.is_empty() {
+            let d: Vec<u32> = free
+                .iter()
+                .map(|&g| index[g as usize])
+                .filter(|&s| s != u32::MAX)
+                .collect();
+            *g = groups.len() as u32;
+            has_u.push(!d.is_empty());
+            groups.push(d);
+        }
+    }
+    // Node neighbours through elements.
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nn_all];
+    for e in mesh.elements() {
+        for &a in e {
+            neighbours[a as usize].extend(e.iter().copied().filter(|&b| b != a));
+        }
+    }
+    let mut orphans = Vec::new();
+    for a in 0..nn_all {
+        let p = dofs.node_p[a];
+        if p >= nf {
+            continue;
+        }
+        let host = if group_of[a] != u32::MAX {
+            Some(group_of[a])
+        } else {
+            neighbours[a]
+                .iter()
+                .map(|&b| group_of[b as usize])
+                .find(|&g| g != u32::MAX && has_u[g as usize])
+        };
+        let p = index[p as usize];
+        match host {
+            Some(g) => groups[g as usize].push(p),
+            None => orphans.push(p),
+        }
+    }
+    if !orphans.is_empty() {
+        // No displacement dof anywhere near (degenerate mesh): keep them, the LU will cope.
+        groups.push(orphans);
+    }
+    (group_of, groups)
+}
+
+/// The graph of `ng` groups: two groups are adjacent when their nodes share an element.
+fn group_adjacency(mesh: &Mesh, group_of: &[u32], ng: usize) -> Pattern {
+    let mut cols: Vec<Vec<u32>> = vec![Vec::new(); ng];
+    for e in mesh.elements() {
+        for &a in e {
+            let ga = group_of[a as usize];
+            if ga == u32::MAX {
+                continue;
+            }
+            for &b in e {
+                let gb = group_of[b as usize];
+                if gb != u32::MAX {
+                    cols[ga as usize].push(gb);
+                }
+            }
+        }
+    }
+    let mut col_ptr = vec![0u32];
+    let mut row_idx = Vec::new();
+    for (j, c) in cols.iter_mut().enumerate() {
+        c.push(j as u32);
+        c.sort_unstable();
+        c.dedup();
+        row_idx.extend_from_slice(c);
+        col_ptr.push(row_idx.len() as u32);
+    }
+    Pattern {
+        n: ng,
+        col_ptr,
+        row_idx,
+    }
+}
