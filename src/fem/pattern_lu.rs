@@ -59,9 +59,13 @@ pub struct PatternLu {
     slots: Vec<Slot>,
     schur: Vec<f64>,
     relpos: Vec<u32>,
+    /// Rows of a Schur complement's entries in the target supernode's L panel.
+    scatter_rows: Vec<usize>,
     /// Row swaps inside the diagonal blocks: at step k rows k and pivots[k] were exchanged.
     pivots: Vec<u32>,
     work: Vec<f64>,
+    /// The entries of a supernode's off-diagonal rows, gathered for the solves.
+    gathered: Vec<f64>,
     factorised: bool,
 }
 
@@ -116,8 +120,10 @@ impl PatternLu {
             slots: Vec::with_capacity(pattern.row_idx.len()),
             schur: Vec::new(),
             relpos: vec![u32::MAX; n],
+            scatter_rows: Vec::new(),
             pivots: (0..n as u32).collect(),
             work: vec![0.0; n],
+            gathered: Vec::new(),
             factorised: false,
         };
         for j in 0..n {
@@ -205,11 +211,15 @@ impl PatternLu {
     }
 
     /// Subtracts the Schur complement S (in `schur`) of supernode `s` from the supernodes that
-    /// own the columns of its off-diagonal rows R.
+    /// own the columns of its off-diagonal rows R. For each target supernode t, the row of every
+    /// remaining entry of R in t's L panel is looked up once (`pos`); each destination entry
+    /// receives one subtraction.
     fn scatter_schur(&mut self, s: usize) {
         let r = self.rows[s].len();
         let (l_all, ut_all) = (&mut self.l, &mut self.ut);
         let rows = &self.rows[s];
+        let schur = &self.schur;
+        let pos = &mut self.scatter_rows;
         let mut jj = 0;
         while jj < r {
             let t = self.supernode_of[rows[jj] as usize] as usize;
@@ -218,29 +228,43 @@ impl PatternLu {
             for (k, &i) in self.rows[t].iter().enumerate() {
                 self.relpos[i as usize] = (wt + k) as u32;
             }
+            // The entries of R from jj on: inside t's diagonal block up to `inside`, then in
+            // its off-diagonal rows.
+            pos.clear();
+            pos.extend(rows[jj..].iter().map(|&i| {
+                let i = i as usize;
+                if i < et {
+                    i - bt
+                } else {
+                    self.relpos[i] as usize
+                }
+            }));
+            let inside = jj
+                + rows[jj..]
+                    .iter()
+                    .take_while(|&&i| (i as usize) < et)
+                    .count();
             let (lt, utt) = (self.l_ptr[t], self.ut_ptr[t]);
             let ldt = wt + rt;
-            while jj < r && (rows[jj] as usize) < et {
-                let j = rows[jj] as usize;
-                let cj = j - bt;
-                for (ii, &i) in rows.iter().enumerate().skip(jj) {
-                    let i = i as usize;
-                    // L entry (i, j), i ≥ j.
-                    let row = if i < et {
-                        i - bt
-                    } else {
-                        self.relpos[i] as usize
-                    };
-                    l_all[lt + row + cj * ldt] -= self.schur[ii + jj * r];
-                    if ii > jj {
-                        // U entry (j, i), j < i.
-                        let v = self.schur[jj + ii * r];
-                        if i < et {
-                            l_all[lt + cj + (i - bt) * ldt] -= v;
-                        } else {
-                            ut_all[utt + (self.relpos[i] as usize - wt) + cj * rt] -= v;
-                        }
-                    }
+            let first = jj;
+            while jj < inside {
+                let cj = rows[jj] as usize - bt;
+                // L entries (i, j), i ≥ j: column cj of t's L panel.
+                let column = &mut l_all[lt + cj * ldt..lt + (cj + 1) * ldt];
+                for (&p, &v) in pos[jj - first..]
+                    .iter()
+                    .zip(&schur[jj + jj * r..(jj + 1) * r])
+                {
+                    column[p] -= v;
+                }
+                // U entries (j, i), i > j: in t's diagonal block (row cj of its L panel), then
+                // in its Uᵀ panel (column cj).
+                for ii in jj + 1..inside {
+                    l_all[lt + cj + pos[ii - first] * ldt] -= schur[jj + ii * r];
+                }
+                let ut_column = &mut ut_all[utt + cj * rt..utt + (cj + 1) * rt];
+                for ii in inside..r {
+                    ut_column[pos[ii - first] - wt] -= schur[jj + ii * r];
                 }
                 jj += 1;
             }
@@ -257,47 +281,65 @@ impl PatternLu {
             y[k] = x[i as usize];
         }
         let ns = self.begin.len();
+        // The off-diagonal rows R of a supernode are gathered into `t`, updated as a dense
+        // vector (contiguous, so the loops vectorise) and scattered back: the same operations in
+        // the same order as entry by entry.
+        let t = &mut self.gathered;
         // L y = P b, with the row swaps of each diagonal block applied as it is reached.
         for s in 0..ns {
             let (b, e) = (self.begin[s], self.end[s]);
-            let (w, r) = (e - b, self.rows[s].len());
+            let rows = &self.rows[s];
+            let (w, r) = (e - b, rows.len());
             let ld = w + r;
             for k in b..e {
                 y.swap(k, self.pivots[k] as usize);
             }
             let l = &self.l[self.l_ptr[s]..self.l_ptr[s + 1]];
-            for k in 0..w {
-                let yk = y[b + k];
+            t.clear();
+            t.extend(rows.iter().map(|&i| y[i as usize]));
+            let block = &mut y[b..e];
+            for (k, column) in l.chunks_exact(ld).enumerate() {
+                let yk = block[k];
                 if yk == 0.0 {
                     continue;
                 }
-                for i in k + 1..w {
-                    y[b + i] -= l[i + k * ld] * yk;
+                for (v, &lik) in block[k + 1..].iter_mut().zip(&column[k + 1..w]) {
+                    *v -= lik * yk;
                 }
-                for (q, &i) in self.rows[s].iter().enumerate() {
-                    y[i as usize] -= l[w + q + k * ld] * yk;
+                for (v, &lik) in t.iter_mut().zip(&column[w..]) {
+                    *v -= lik * yk;
                 }
+            }
+            for (&i, &v) in rows.iter().zip(t.iter()) {
+                y[i as usize] = v;
             }
         }
         // U z = y.
         for s in (0..ns).rev() {
             let (b, e) = (self.begin[s], self.end[s]);
-            let (w, r) = (e - b, self.rows[s].len());
+            let rows = &self.rows[s];
+            let (w, r) = (e - b, rows.len());
             let ld = w + r;
             let l = &self.l[self.l_ptr[s]..self.l_ptr[s + 1]];
             let ut = &self.ut[self.ut_ptr[s]..self.ut_ptr[s + 1]];
-            for k in 0..w {
-                let mut acc = 0.0;
-                for (q, &i) in self.rows[s].iter().enumerate() {
-                    acc += ut[q + k * r] * y[i as usize];
+            t.clear();
+            t.extend(rows.iter().map(|&i| y[i as usize]));
+            let block = &mut y[b..e];
+            if r > 0 {
+                for (k, column) in ut.chunks_exact(r).enumerate() {
+                    let mut acc = 0.0;
+                    for (&u, &v) in column.iter().zip(t.iter()) {
+                        acc += u * v;
+                    }
+                    block[k] -= acc;
                 }
-                y[b + k] -= acc;
             }
             for k in (0..w).rev() {
-                let yk = y[b + k] / l[k + k * ld];
-                y[b + k] = yk;
-                for i in 0..k {
-                    y[b + i] -= l[i + k * ld] * yk;
+                let column = &l[k * ld..k * ld + k];
+                let yk = block[k] / l[k + k * ld];
+                block[k] = yk;
+                for (v, &lik) in block[..k].iter_mut().zip(column) {
+                    *v -= lik * yk;
                 }
             }
         }
