@@ -28,18 +28,23 @@ ours with frozen_tangent = "exact". The explicit law, written as in explicit.rs:
     g(λ, T) = α(1 − w0/λ) + ln α − ½ ln(f/q) + ln{b (2/μ)(T + P_pas(λ)) + sqrt(f/q)(f²/q − λ w0/3)},
     P_pas(λ) = μ/2 {(λ f − w0/(3λ²)) e^{α(λ² f + 2w0/(3λ) − 1)} − f/λ³ + w0/3}.
 
-Boundary conditions, Newton and P as fenics_cylinder.py: u_r = 0 on r = 0; u = 0 on z = 0;
-u_r = 0, u_z = (λ − 1) L on z = L; r = R traction free. The first Newton iteration of a load step
-prescribes the boundary increment (the linearised predictor, as ours' tangent predictor), the next
-ones zero corrections; converged when ‖δw‖ ≤ 1e-10 max(1, ‖w‖) and ‖R_free‖ ≤ 1e-10 ‖R_free after
-the predictor‖ (at λ = 1, solved from w = 0 with no predictor: ‖R_free at w = 0‖). P = reaction on
-z = L / (πR²) [kPa] (the residual tested with u_z = 1 on z = L).
+Boundary conditions and P as fenics_cylinder.py: u_r = 0 on r = 0; u = 0 on z = 0; u_r = 0,
+u_z = (λ − 1) L on z = L; r = R traction free; P = reaction on z = L / (πR²) [kPa] (the residual
+tested with u_z = 1 on z = L). Newton: each load step starts with the linearised predictor (one
+assembly, LU and solve with the boundary increment prescribed, as ours' tangent predictor), then
+corrections with ours' backtracking line search on φ = ‖R_free‖₂ (Armijo factor 1 − 10⁻⁴ α, at most
+8 halvings); converged when ‖α δw‖ ≤ 1e-10 max(1, ‖w‖) and φ ≤ 1e-10 φ₁ (φ₁ after the predictor;
+at λ = 1, solved from w = 0, φ at w = 0) or φ stopped falling at a full step (φ > φ_prev / 2: the
+round-off floor). fenics_cylinder.py's criterion (φ ≤ 1e-10 φ₁ only, no line search) fails here:
+on 16 × 64 P2/P1 the step 1.35 → 1.40 diverges without the line search, and the halved steps then
+start so close to the solution that 1e-10 φ₁ is below φ's round-off floor (≈ 1e-10), so every
+step is rejected down to the minimum step and 1.40–1.60 are lost.
 
 Load path as ours (src/fem/continuation.rs): λ = 1 first, then upwards through the targets above
 1, then downwards from the λ = 1 state through those below; each step from the last converged
 state, first step 0.05, at most 0.1, halved when Newton fails (25 corrections, or a non-finite
 residual), doubled after two steps of at most 5 corrections, a direction abandoned below a step
-of 1e-4 (its remaining targets are reported as failed). No line search (ours backtracks).
+of 1e-4 (its remaining targets are reported as failed).
 
 Elements: `P2P1` = Taylor–Hood on the nr × nz rectangles each split by the "right" diagonal (the
 same nodes as Q2/Q1, the same dof count), quadrature degree 4 (6 points per triangle) unless
@@ -85,6 +90,7 @@ A, B = 1.0133, 0.2050  # eq. D:gamma
 STRETCHES = [round(0.70 + 0.05 * i, 10) for i in range(19)] + [1.17]
 TOLERANCE = 1e-10
 MAX_CORRECTIONS, EASY, FIRST_STEP, MAX_STEP, MIN_STEP = 25, 5, 0.05, 0.1, 1e-4
+MAX_BACKTRACKS = 8
 
 
 def passive_stress(l, exp):
@@ -209,36 +215,71 @@ class Sweep:
         self.pc.setType("lu")
         self.pc.setFactorSolverType("umfpack")
         self.iterations = 0
+        self.verbose = False
         self.predictors = 0  # of the iterations, the predictor ones
+
+    def merit(self):
+        """‖R_free‖₂ at w (vector-only assembly, homogeneous conditions), inf if not finite."""
+        self.assemblers[1].assemble(self.b)
+        norm = self.b.norm("l2")
+        return norm if math.isfinite(norm) else math.inf
+
+    def direction(self):
+        """Factorises the K just assembled and solves K δ = b into self.correction."""
+        self.ksp.setOperators(self.K.mat())
+        self.pc.setUp()
+        self.ksp.solve(self.b.vec(), self.correction.vector().vec())
+        self.iterations += 1
+        return self.correction.vector()
 
     def newton(self, increment):
         """Newton at the load already reached in w plus `increment` (None: the λ = 1 solve from
-        w, no predictor). Returns the corrections taken, or None (w then is garbage)."""
+        w, no predictor). Returns the corrections taken, or None (w then is garbage).
+
+        Each correction: assembly of K and b = −R_free, LU, solve, then ours' backtracking line
+        search on φ = ‖R_free‖₂: the full step is taken when φ falls by the Armijo factor
+        (1 − 10⁻⁴ α), else α = ½, ¼, … (at most 8 halvings, vector-only assemblies). Converged
+        when ‖α δ‖ ≤ 1e-10 max(1, ‖w‖) and φ ≤ 1e-10 φ₁ (φ₁ after the predictor) or φ has stopped
+        falling at a full step (φ > φ_previous / 2: the round-off floor, met when a load step is small)."""
         x = self.w.vector()
-        first = None
-        predictor = increment is not None
-        if predictor:
+        if increment is not None:  # the linearised predictor: K δ = b with the increment prescribed
             self.increment.assign(increment)
-        for it in range(MAX_CORRECTIONS + predictor):
-            self.assemblers[0 if predictor and it == 0 else 1].assemble(self.K, self.b)
-            norm = self.b.norm("l2")
-            if not math.isfinite(norm):
+            self.assemblers[0].assemble(self.K, self.b)
+            x.axpy(1.0, self.direction())
+            self.predictors += 1
+        self.assemblers[1].assemble(self.K, self.b)
+        phi = self.b.norm("l2")
+        if not math.isfinite(phi):
+            return None
+        first = phi
+        for it in range(MAX_CORRECTIONS):
+            delta = self.direction()
+            size = delta.norm("l2")
+            if not math.isfinite(size):
                 return None
-            self.ksp.setOperators(self.K.mat())
-            self.pc.setUp()
-            self.ksp.solve(self.b.vec(), self.correction.vector().vec())
-            self.iterations += 1
-            self.predictors += predictor and it == 0
-            x.axpy(1.0, self.correction.vector())
-            if predictor and it == 0:
-                continue
-            if first is None:
-                first = norm
-            dnorm = self.correction.vector().norm("l2")
-            if not math.isfinite(dnorm):
-                return None
-            if dnorm <= TOLERANCE * max(1.0, x.norm("l2")) and norm <= TOLERANCE * first:
-                return it + 1 - predictor
+            small = size <= TOLERANCE * max(1.0, x.norm("l2"))
+            x.axpy(1.0, delta)
+            self.assemblers[1].assemble(self.K, self.b)
+            trial, alpha = self.b.norm("l2"), 1.0
+            if not (small or trial <= (1 - 1e-4) * phi):
+                for _ in range(MAX_BACKTRACKS):
+                    x.axpy(-0.5 * alpha, delta)
+                    alpha *= 0.5
+                    trial = self.merit()
+                    if trial <= (1 - 1e-4 * alpha) * phi:
+                        break
+                else:
+                    return None
+                self.assemblers[1].assemble(self.K, self.b)
+            if self.verbose:
+                print(f"    correction {it + 1}: |R| {trial:.3e} (relative {trial / first:.3e}) "
+                      f"|dw| {alpha * size:.3e} alpha {alpha}", file=sys.stderr)
+            converged = alpha * size <= TOLERANCE * max(1.0, x.norm("l2")) and (
+                trial <= TOLERANCE * first or (alpha == 1.0 and trial > 0.5 * phi)
+            )
+            phi = trial
+            if converged:
+                return it + 1
         return None
 
     def restore(self, saved):
@@ -272,6 +313,9 @@ class Sweep:
                     nxt = target if abs(remaining) <= h * (1 + 1e-9) else load + math.copysign(h, remaining)
                     saved = self.w.vector().copy()
                     corrections = self.newton((nxt - load) * LENGTH)
+                    if self.verbose:
+                        print(f"step {load:.6f} -> {nxt:.6f}: "
+                              f"{'failed' if corrections is None else corrections}", file=sys.stderr)
                     if corrections is None:
                         self.restore(saved)
                         easy, h = 0, 0.5 * abs(nxt - load)
@@ -295,12 +339,15 @@ def main(argv):
     parser.add_argument("nz", type=int)
     parser.add_argument("--element", choices=["P2P1", "Q2Q1"], default="P2P1")
     parser.add_argument("--degree", type=int, default=4, help="quadrature degree")
+    parser.add_argument("--verbose", action="store_true",
+                        help="log every load step and Newton correction to stderr")
     parser.add_argument("--no-warmup", action="store_true", help="skip the JIT warm-up sweep")
     args = parser.parse_args(argv[1:])
     if not args.no_warmup:  # compiles the forms (FFC JIT, cached on disk)
         Sweep(args.element, 2, 8, args.degree).run([1.0, 1.05], lambda *_: None)
     t0 = time.perf_counter()
     sweep = Sweep(args.element, args.nr, args.nz, args.degree)
+    sweep.verbose = args.verbose
     t1 = time.perf_counter()
     rows = []
     failed = sweep.run(STRETCHES, lambda l, P, n: rows.append((l, P, n)))
