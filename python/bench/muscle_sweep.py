@@ -11,7 +11,7 @@ the wall times) and the load (/proc/loadavg) before and after each mesh.
     apt-get download libopenblas0-serial && dpkg -x libopenblas0-serial_*.deb /tmp/ob
     OMP_NUM_THREADS=1 /usr/bin/python3 python/bench/muscle_sweep.py \\
         --openblas /tmp/ob/usr/lib/x86_64-linux-gnu/openblas-serial [--repeats 3] \\
-        [--meshes 16x64,32x128] [--reference-blas] [--one-thread]
+        [--meshes 16x64,32x128] [--reference-blas] [--fenics-q2q1] [--one-thread]
 
 The case (python/bench/muscle_sweep.toml; the equations in fenics_muscle.py's docstring): the
 chapter's clamped cylinder R = 1, L = 4 mm, explicit law, frozen coupling with its exact tangent,
@@ -30,7 +30,8 @@ factorisation), FEniCS every assembly–LU–solve, the predictor iteration of e
 rejected steps included; per iteration = sweep / its; ratios FEniCS / ours of the medians;
 P(1.17) of ours (Q2/Q1) and of FEniCS (P2/P1: another discretisation of the same problem, so
 their difference is the discretisation's, not an error). Ours runs on rayon's default threads
-(2 here), FEniCS in one process; --one-thread adds ours with RAYON_NUM_THREADS=1. An untimed
+(2 here), FEniCS in one process; --fenics-q2q1 adds FEniCS with ours' Q2/Q1 discretisation (the
+like-for-like row where P2/P1 does not reach every stretch); --one-thread adds ours with RAYON_NUM_THREADS=1. An untimed
 run of fenics_muscle.py on 2 × 8 fills the FFC JIT cache first (a first compilation of the P2/P1
 forms takes ≈ 30 s of the process time; with the cache warm, a process's warm-up loads them).
 """
@@ -151,6 +152,8 @@ def main(argv):
                         help="directory holding OpenBLAS's libblas.so.3 (LD_LIBRARY_PATH of FEniCS)")
     parser.add_argument("--reference-blas", action="store_true",
                         help="also FEniCS on the reference BLAS as installed")
+    parser.add_argument("--fenics-q2q1", action="store_true",
+                        help="also FEniCS Q2/Q1 on the quadrilaterals (ours' discretisation) on OpenBLAS")
     parser.add_argument("--one-thread", action="store_true",
                         help="also ours with one thread (RAYON_NUM_THREADS=1), as FEniCS")
     parser.add_argument("--check-mesh", default="8x32",
@@ -181,6 +184,10 @@ def main(argv):
     if args.one_thread:
         codes.append(("ours Q2/Q1, 1 thread", lambda nr, nz: ours(nr, nz, work, 1)))
     fenics_codes = [("FEniCS P2/P1 + OpenBLAS", lambda nr, nz: fenics("P2P1", nr, nz, args.openblas))]
+    if args.fenics_q2q1:
+        fenics("Q2Q1", 2, 8, args.openblas)  # untimed: the JIT cache of the Q2/Q1 forms
+        fenics_codes.append(("FEniCS Q2/Q1 + OpenBLAS",
+                             lambda nr, nz: fenics("Q2Q1", nr, nz, args.openblas)))
     if args.reference_blas:
         fenics_codes.append(("FEniCS P2/P1, reference BLAS", lambda nr, nz: fenics("P2P1", nr, nz)))
     every = codes + fenics_codes
