@@ -20,6 +20,14 @@
 //!   in a row, for good), or when
 //!   [`LinearSolver::Lu`](super::linear_solver::LinearSolver::Lu) is chosen.
 //!
+//! The rate dx/dλ at a converged state is solved for its tangent with the factorisation of the
+//! last Newton iteration's. Where GMRES on that earlier factor does not converge, the rate's own
+//! tangent is factorised the same way (`Timings::refactorisations`); that is no evidence of a
+//! non-symmetric tangent, so it does not switch to an LU. (It did until issue 26: with the
+//! stopping test that saves the confirming Newton iteration, the converged state lies further
+//! from the last factorised one, one such failure put the energy law's symmetric sweep on the
+//! pattern LU for good, and its factorisations took 10 instead of 5.5 ms at 9 360 dofs.)
+//!
 //! Measured and rejected: keeping the factorisation of an earlier tangent as a preconditioner
 //! (with an iteration budget and a renewal rule). On a quiet 2-core machine it did not pay on any
 //! case tried — frozen sweep 32 × 128: 24.9 s with reuse against 22.4 s without; energy-law sweep
@@ -73,6 +81,10 @@ pub struct TangentSolver {
     current: Factor,
     /// GMRES on the LDLᵀ failed once: the tangent is strongly non-symmetric, use an LU.
     prefer_lu: bool,
+    /// The held factorisation has not been used yet: it is of the tangent the next solve is
+    /// for. A later solve may be for another tangent of the pattern (the rate at a converged
+    /// state), on which GMRES failing says nothing about the tangent's symmetry.
+    fresh: bool,
 }
 
 impl TangentSolver {
@@ -89,6 +101,7 @@ impl TangentSolver {
             rhs_copy: vec![0.0; n],
             current: Factor::None,
             prefer_lu,
+            fresh: false,
         }
     }
 
@@ -102,7 +115,8 @@ impl TangentSolver {
         rhs: &mut [f64],
         timings: &mut Timings,
     ) -> Result<(), String> {
-        for _ in 0..2 {
+        for _ in 0..3 {
+            let fresh = std::mem::replace(&mut self.fresh, false);
             let max_iter = match self.current {
                 Factor::Ldlt => LDLT_ITERATIONS,
                 Factor::PatternLu => PATTERN_LU_ITERATIONS,
@@ -117,8 +131,16 @@ impl TangentSolver {
                 }
                 return Ok(());
             }
-            // GMRES does not converge: the pattern LU (after the LDLᵀ) or faer's LU (after the
-            // pattern LU) for this tangent, and an LU from now on.
+            // GMRES does not converge on a factorisation of an earlier tangent: this tangent's,
+            // of the same kind.
+            if !fresh {
+                timings.refactorisations += 1;
+                self.factorise(pattern, values, timings)?;
+                continue;
+            }
+            // GMRES does not converge on this tangent's own factorisation: the pattern LU
+            // (after the LDLᵀ) or faer's LU (after the pattern LU) for it, and an LU from now
+            // on.
             timings.lu_fallbacks += 1;
             if self.current == Factor::PatternLu {
                 self.pattern_lu_strikes += 1;
@@ -182,6 +204,7 @@ impl TangentSolver {
         }
         timings.factorisation += t.elapsed();
         timings.factorisations += 1;
+        self.fresh = r.is_ok();
         r
     }
 

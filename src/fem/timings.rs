@@ -29,6 +29,9 @@ pub struct Timings {
     pub krylov_iterations: usize,
     /// Solves that fell back to the sparse LU.
     pub lu_fallbacks: usize,
+    /// Solves for a later tangent (the rate at a converged state) on which GMRES with the held
+    /// factorisation, of an earlier tangent, did not converge: that tangent was factorised.
+    pub refactorisations: usize,
     /// Factorisations by the LU on the LDLᵀ's pattern (non-symmetric tangents).
     pub pattern_lu_factorisations: usize,
 }
