@@ -209,3 +209,28 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
         assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} vs {b}");
     }
 }
+
+/// The energy law with consistent coupling is hyperelastic, so its tangent is symmetric: a
+/// whole sweep stays on the LDLᵀ (one GMRES iteration per solve on a fresh factor), never on
+/// an LU, also where the rate at a converged state meets the factor of an earlier tangent.
+#[test]
+fn the_hyperelastic_sweep_stays_on_the_ldlt() {
+    let gm = GiantesioMusesti::paper();
+    let muscle = Muscle::new(
+        gm,
+        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
+        0.0,
+        Coupling::Consistent,
+    )
+    .unwrap();
+    let mesh = Mesh::structured(1.0, 4.0, 8, 32, 1.0).unwrap();
+    let mut solver =
+        AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default()).unwrap();
+    let targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
+    let results = solver.sweep(&targets).unwrap().into_result().unwrap();
+    assert_eq!(results.len(), targets.len());
+    let t = solver.timings();
+    println!("{t:?}");
+    assert_eq!(t.lu_fallbacks, 0, "{t:?}");
+    assert_eq!(t.pattern_lu_factorisations, 0, "{t:?}");
+}

@@ -173,9 +173,15 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
                 for x in &f.extra {
                     status.push_str(&format!("<br>{}", e(x)));
                 }
+                // Biaxial rows give two stresses each.
+                let points = if f.plot.iter().any(|c| c.at_rows) {
+                    "rows of (P₁₁, P₂₂)"
+                } else {
+                    "points"
+                };
                 let _ = write!(
                     h,
-                    "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} points)</td>",
+                    "<tr><td rowspan=\"{n}\">{}</td><td rowspan=\"{n}\">{} ({} {points})</td>",
                     e(study),
                     e(&f.case),
                     f.points
