@@ -8,7 +8,7 @@
 
 use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, Law};
 use activemuscle::energy::GiantesioMusesti;
-use activemuscle::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions};
+use activemuscle::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions, StepRecord};
 use activemuscle::stability::diagnose_axisymmetric;
 use activemuscle::Muscle;
 use std::time::Instant;
@@ -68,20 +68,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let sweep = solver.sweep(&targets)?;
         for r in &sweep.results {
             if std::env::var("TRACE").is_ok() {
-                for s in &r.steps {
-                    let h: Vec<String> = s
-                        .iterations
-                        .iter()
-                        .map(|i| format!("{:.1e}/{:.1e}", i.residual, i.increment))
-                        .collect();
-                    println!(
-                        "#   {:.4} -> {:.4}: predictor {:.1e}; {}",
-                        s.from,
-                        s.to,
-                        s.initial_residual,
-                        h.join(" ")
-                    );
-                }
+                trace(&r.steps);
             }
             let its: usize = r.steps.iter().map(|s| s.iterations.len()).sum();
             println!(
@@ -116,4 +103,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// `TRACE=1`: each load step's Newton history, scaled residual / increment per iteration.
+fn trace(steps: &[StepRecord]) {
+    for s in steps {
+        let h: Vec<String> = s
+            .iterations
+            .iter()
+            .map(|i| format!("{:.1e}/{:.1e}", i.residual, i.increment))
+            .collect();
+        println!(
+            "#   {:.4} -> {:.4}: predictor {:.1e}; {}",
+            s.from,
+            s.to,
+            s.initial_residual,
+            h.join(" ")
+        );
+    }
 }

@@ -194,24 +194,31 @@ macro_rules! study_kinds {
             Nothing,
         }
 
+        $(
+            impl outputs::OfResult for $result {
+                fn of(result: &StudyResult) -> Option<&Self> {
+                    match result {
+                        StudyResult::$variant(r) => Some(r),
+                        _ => None,
+                    }
+                }
+            }
+        )*
+
         impl StudyResult {
             /// Every kind's figures ([`outputs::KindOutput::figures`]), kind by kind in the
             /// order of the registry, each given its studies of `outcomes` in scene order.
             pub fn figures(outcomes: &[Outcome], cx: &outputs::Context) -> Vec<crate::plot::Figure> {
                 let mut figures = Vec::new();
-                $(
-                    let of: Vec<outputs::Of<$result>> = outcomes
-                        .iter()
-                        .filter_map(|o| match &o.result {
-                            StudyResult::$variant(r) => Some(outputs::Of { name: &o.name, details: &o.details, result: r }),
-                            _ => None,
-                        })
-                        .collect();
-                    if !of.is_empty() {
-                        figures.extend(<$result as outputs::KindOutput>::figures(&of, cx));
-                    }
-                )*
+                $(figures.extend(outputs::figures_of::<$result>(outcomes, cx));)*
                 figures
+            }
+
+            /// Every kind's report section ([`outputs::KindOutput::report`]), in the order of
+            /// [`Self::figures`], appended to `h`.
+            pub fn report(outcomes: &[Outcome], cx: &outputs::Context, h: &mut String) -> Result<(), AppError> {
+                $(outputs::report_of::<$result>(outcomes, cx, h)?;)*
+                Ok(())
             }
 
             /// The study's own table ([`outputs::KindOutput::own_table`]), if its kind has one.
@@ -228,24 +235,6 @@ macro_rules! study_kinds {
                     $(StudyResult::$variant(r) => outputs::KindOutput::approach_models(r),)*
                     StudyResult::Nothing => Vec::new(),
                 }
-            }
-
-            /// Every kind's report section ([`outputs::KindOutput::report`]), in the order of
-            /// [`Self::figures`], appended to `h`.
-            pub fn report(outcomes: &[Outcome], cx: &outputs::Context, h: &mut String) -> Result<(), AppError> {
-                $(
-                    let of: Vec<outputs::Of<$result>> = outcomes
-                        .iter()
-                        .filter_map(|o| match &o.result {
-                            StudyResult::$variant(r) => Some(outputs::Of { name: &o.name, details: &o.details, result: r }),
-                            _ => None,
-                        })
-                        .collect();
-                    if !of.is_empty() {
-                        <$result as outputs::KindOutput>::report(&of, cx, h)?;
-                    }
-                )*
-                Ok(())
             }
         }
     };

@@ -10,9 +10,9 @@ use crate::active::ActiveCurve;
 use crate::app_error::AppError;
 use crate::models::{CouplingKind, LawKind};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
-use crate::studies::slug;
 use crate::studies::spec::ApproachModel;
 use crate::studies::table::Table;
+use crate::studies::{slug, Outcome, StudyResult};
 
 /// One study of a kind, as the outputs see it.
 #[derive(Debug, Clone, Copy)]
@@ -62,6 +62,59 @@ pub trait KindOutput: Sized {
     fn approach_models(&self) -> Vec<&ApproachModel> {
         Vec::new()
     }
+}
+
+/// A kind's result as the registry files it in a [`StudyResult`] (`study_kinds!` implements it).
+pub trait OfResult: Sized {
+    /// The result if `result` is of this kind.
+    fn of(result: &StudyResult) -> Option<&Self>;
+}
+
+/// The studies of `outcomes` whose result is of kind `R`, in scene order.
+fn studies<R: OfResult>(outcomes: &[Outcome]) -> Vec<Of<'_, R>> {
+    outcomes
+        .iter()
+        .filter_map(|o| {
+            R::of(&o.result).map(|result| Of {
+                name: &o.name,
+                details: &o.details,
+                result,
+            })
+        })
+        .collect()
+}
+
+/// The figures of kind `R` ([`KindOutput::figures`]), if `outcomes` hold any study of it.
+pub fn figures_of<R: OfResult + KindOutput>(outcomes: &[Outcome], cx: &Context) -> Vec<Figure> {
+    let of = studies::<R>(outcomes);
+    if of.is_empty() {
+        return Vec::new();
+    }
+    R::figures(&of, cx)
+}
+
+/// The report section of kind `R` ([`KindOutput::report`]), if `outcomes` hold any study of it.
+pub fn report_of<R: OfResult + KindOutput>(
+    outcomes: &[Outcome],
+    cx: &Context,
+    h: &mut String,
+) -> Result<(), AppError> {
+    let of = studies::<R>(outcomes);
+    if of.is_empty() {
+        return Ok(());
+    }
+    R::report(&of, cx, h)
+}
+
+/// One figure per study, by `figure` (the studies it draws nothing for left out).
+pub fn each_study<R>(
+    studies: &[Of<R>],
+    figure: impl Fn(&str, &R) -> Option<Figure>,
+) -> Vec<Figure> {
+    studies
+        .iter()
+        .filter_map(|s| figure(s.name, s.result))
+        .collect()
 }
 
 /// A kind's own table of one study.

@@ -48,6 +48,22 @@ fn a_device_a_fifo_and_a_directory_are_refused_as_scenes_without_reading_them() 
         .expect("reading the data returned within 10 s")
         .expect_err("a FIFO is no data file");
     assert!(e.contains("a FIFO"), "{e}");
+    // And through a scene's fit study, whose data file is opened once to read its header.
+    let scene = dir.join("fit.toml");
+    std::fs::write(
+        &scene,
+        "[[study]]\nkind = \"fit\"\nfit = \"passive\"\ndata = \"scene.toml\"\n",
+    )
+    .unwrap();
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = send.send(Scene::load(&scene).map(|_| ()).map_err(|e| e.to_string()));
+    });
+    let e = receive
+        .recv_timeout(Duration::from_secs(10))
+        .expect("checking the scene returned within 10 s")
+        .expect_err("a FIFO is no data file");
+    assert!(e.contains("a FIFO") && e.contains("data"), "{e}");
     assert!(load_error(&dir).contains("a directory"));
 }
 

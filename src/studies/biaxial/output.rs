@@ -4,7 +4,7 @@
 use super::BiaxialResult;
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series, Stroke};
-use crate::studies::outputs::{panel_of, prefixed, Context, KindOutput, Of, OwnTable};
+use crate::studies::outputs::{each_study, panel_of, prefixed, Context, KindOutput, Of, OwnTable};
 use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
@@ -23,10 +23,7 @@ impl KindOutput for BiaxialResult {
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
-        studies
-            .iter()
-            .filter_map(|s| biaxial_figure(s.name, s.result))
-            .collect()
+        each_study(studies, biaxial_figure)
     }
 
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {

@@ -214,6 +214,12 @@ pub struct Shown {
 }
 
 impl Shown {
+    /// The one stress of a uniaxial case, its data as given.
+    pub fn uniaxial(model: &Model, case: &FitCase) -> Vec<Shown> {
+        let data = case.data.uniaxial(model.kind).map(Data::points);
+        Shown::curve(model, case.label.clone(), data.unwrap_or_default())
+    }
+
     /// The one stress of a uniaxial case: `data` over λ, labelled `label`.
     pub fn curve(model: &Model, label: String, data: Vec<(f64, f64)>) -> Vec<Shown> {
         vec![Shown {
@@ -264,8 +270,7 @@ pub trait Problem: fmt::Debug + Send + Sync {
     fn curves(&self, values: &[f64], case: &FitCase, grid: &[f64]) -> Vec<Vec<(f64, f64)>>;
     /// The data as the figure shows them: one stress, a uniaxial curve over λ.
     fn shown(&self, case: &FitCase) -> Vec<Shown> {
-        let data = case.data.uniaxial(self.model().kind).map(Data::points);
-        Shown::curve(&self.model(), case.label.clone(), data.unwrap_or_default())
+        Shown::uniaxial(&self.model(), case)
     }
 }
 

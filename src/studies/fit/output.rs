@@ -3,17 +3,16 @@
 
 use super::{correlations, FitCurves, FitKind, FitOutcome};
 use crate::app_error::{finite, AppError};
-use crate::plot::{Figure, Stroke};
-use crate::studies::outputs::{derived, figure, panel_over, prefixed, Context, KindOutput, Of};
+use crate::plot::{Figure, Panel, Series, Stroke};
+use crate::studies::outputs::{
+    derived, each_study, figure, panel_over, prefixed, Context, KindOutput, Of,
+};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<FitOutcome> {
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
-        studies
-            .iter()
-            .filter_map(|s| fit_figure(s.name, s.result))
-            .collect()
+        each_study(studies, |name, fits| fit_figure(name, fits))
     }
 
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
@@ -32,77 +31,17 @@ fn fit_heading(study: &str) -> String {
 }
 
 /// The figure of a fit study: data (markers), the fit (solid) and the model at the reference or
-/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set.
+/// starting values (dashed). Damage fits share one panel; other fits get a panel per data set
+/// and stress.
 fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
     let first = fits.first()?;
-    let mut panels = Vec::new();
-    let status = |f: &FitOutcome| {
-        let values: Vec<String> = f
-            .names
-            .iter()
-            .zip(&f.values)
-            .map(|(n, v)| format!("{n} = {v:.4}"))
-            .collect();
-        format!(
-            "fit: {}{}",
-            values.join(", "),
-            if f.converged { "" } else { " (NOT converged)" }
-        )
-    };
-    let start = |c: &FitCurves, stroke, colour| {
-        c.start
-            .as_ref()
-            .and_then(|(label, points)| derived(label.clone(), points.clone(), stroke, colour))
-    };
-    if first.kind == FitKind::Damage {
-        let mut s = Vec::new();
-        for (i, (f, c)) in fits
-            .iter()
-            .filter_map(|f| Some((f, f.plot.first()?)))
-            .enumerate()
-        {
-            s.push(derived(f.case.clone(), c.data.clone(), Stroke::Markers, i));
-            s.push(derived(status(f), c.fitted.clone(), Stroke::Solid, i));
-        }
-        if let Some(c) = first.plot.first() {
-            s.push(start(c, Stroke::Dashed, 7));
-            panels.push(panel_over(fit_heading(study), &c.x_label, &c.y_label, s));
-        }
+    let panels = if first.kind == FitKind::Damage {
+        vec![damage_panel(study, fits)]
     } else {
-        for f in fits {
-            for c in &f.plot {
-                // The model at the rows of a biaxial path, which may turn back: points, no line.
-                let (fitted, reference) = if c.at_rows {
-                    (Stroke::Filled, Stroke::Dotted)
-                } else {
-                    (Stroke::Solid, Stroke::Dashed)
-                };
-                let s = vec![
-                    derived(c.data_label.clone(), c.data.clone(), Stroke::Markers, 1),
-                    derived(status(f), c.fitted.clone(), fitted, 0),
-                    start(c, reference, 2).filter(|_| !c.at_rows),
-                ];
-                let what = if c.what.is_empty() {
-                    String::new()
-                } else {
-                    format!(" — {}", c.what)
-                };
-                let panel = panel_over(
-                    format!("{}: {}{what}", fit_heading(study), f.case),
-                    &c.x_label,
-                    &c.y_label,
-                    s,
-                );
-                // Measured rows do not blow up: the axis shows them all, uncut.
-                panels.push(panel.map(|mut p| {
-                    if c.at_rows {
-                        p.y_range = whole_range(c.data.iter().chain(&c.fitted).map(|q| q.1));
-                    }
-                    p
-                }));
-            }
-        }
-    }
+        fits.iter()
+            .flat_map(|f| f.plot.iter().map(move |c| case_panel(study, f, c)))
+            .collect()
+    };
     let drawn = if fits.iter().flat_map(|f| &f.plot).any(|c| c.at_rows) {
         "Open markers: data; filled: the fitted model at each row of the data (λ₁ on the x axis, so rows of several load paths share it)."
     } else {
@@ -118,6 +57,77 @@ fn fit_figure(study: &str, fits: &[FitOutcome]) -> Option<Figure> {
         ),
         panels,
     )
+}
+
+/// The legend entry of a fit: `fit: d = 0.3012` (and NOT converged).
+fn fit_status(f: &FitOutcome) -> String {
+    let values: Vec<String> = f
+        .names
+        .iter()
+        .zip(&f.values)
+        .map(|(n, v)| format!("{n} = {v:.4}"))
+        .collect();
+    format!(
+        "fit: {}{}",
+        values.join(", "),
+        if f.converged { "" } else { " (NOT converged)" }
+    )
+}
+
+/// The model at the reference values of a case, if it has them.
+fn reference_series(c: &FitCurves, stroke: Stroke, colour: usize) -> Option<Series> {
+    c.start
+        .as_ref()
+        .and_then(|(label, points)| derived(label.clone(), points.clone(), stroke, colour))
+}
+
+/// Every damage fit in one panel, a colour per data set, with the healthy muscle dashed.
+fn damage_panel(study: &str, fits: &[FitOutcome]) -> Option<Panel> {
+    let mut s = Vec::new();
+    for (i, (f, c)) in fits
+        .iter()
+        .filter_map(|f| Some((f, f.plot.first()?)))
+        .enumerate()
+    {
+        s.push(derived(f.case.clone(), c.data.clone(), Stroke::Markers, i));
+        s.push(derived(fit_status(f), c.fitted.clone(), Stroke::Solid, i));
+    }
+    let c = fits.first()?.plot.first()?;
+    s.push(reference_series(c, Stroke::Dashed, 7));
+    panel_over(fit_heading(study), &c.x_label, &c.y_label, s)
+}
+
+/// The panel of one stress of one data set.
+fn case_panel(study: &str, f: &FitOutcome, c: &FitCurves) -> Option<Panel> {
+    // The model at the rows of a biaxial path, which may turn back: points, no line.
+    let (fitted, reference) = if c.at_rows {
+        (Stroke::Filled, Stroke::Dotted)
+    } else {
+        (Stroke::Solid, Stroke::Dashed)
+    };
+    let s = vec![
+        derived(c.data_label.clone(), c.data.clone(), Stroke::Markers, 1),
+        derived(fit_status(f), c.fitted.clone(), fitted, 0),
+        reference_series(c, reference, 2).filter(|_| !c.at_rows),
+    ];
+    let what = if c.what.is_empty() {
+        String::new()
+    } else {
+        format!(" — {}", c.what)
+    };
+    let panel = panel_over(
+        format!("{}: {}{what}", fit_heading(study), f.case),
+        &c.x_label,
+        &c.y_label,
+        s,
+    );
+    // Measured rows do not blow up: the axis shows them all, uncut.
+    panel.map(|mut p| {
+        if c.at_rows {
+            p.y_range = whole_range(c.data.iter().chain(&c.fitted).map(|q| q.1));
+        }
+        p
+    })
 }
 
 /// The range of `y` padded by 5 % each way (`None` if no value is finite or all are equal).

@@ -8,7 +8,7 @@ use super::{CaseData, FitCase, FitKind, FitSpec, Model, Problem, Shown};
 use crate::app_error::SpecError;
 use crate::energy::{Energy, Parametric};
 use crate::fit::{
-    biaxial_stress_with, default_passive_free, fit_passive, fit_passive_biaxial, Data, FitError,
+    biaxial_stress_with, default_passive_free, fit_passive, fit_passive_biaxial, FitError,
     FitReport, FitSetup,
 };
 use crate::uniaxial::Direction;
@@ -108,8 +108,7 @@ impl Problem for Passive {
     }
     fn shown(&self, case: &FitCase) -> Vec<Shown> {
         let CaseData::Biaxial(rows) = &case.data else {
-            let data = case.data.uniaxial(FitKind::Passive).map(Data::points);
-            return Shown::curve(&self.model(), case.label.clone(), data.unwrap_or_default());
+            return Shown::uniaxial(&self.model(), case);
         };
         [
             ("P₁₁, along the fibres", "P₁₁ [kPa]"),

@@ -5,7 +5,7 @@ use super::{CaseData, FitCase, FitKind};
 use crate::app_error::SpecError;
 use crate::fit::{BiaxialData, Data, FitError, BIAXIAL_HEADER};
 use crate::random::Sampler;
-use std::io::{BufRead, BufReader, Read};
+use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 
 /// Where a fit's data come from: the scene file's directory for data files, and the seeded
@@ -47,8 +47,18 @@ impl DataSource<'_> {
                 format!("unusable data file: {e}"),
             )
         };
-        if !is_biaxial(&path) {
-            let data = Data::from_csv_path(&path).map_err(unusable)?;
+        // Opened and read once: the header, peeked at, says which data the file holds.
+        let source_name = path.display().to_string();
+        let file = crate::user_file::open(&path).map_err(|e| {
+            unusable(FitError::Csv {
+                source_name: source_name.clone(),
+                line: 0,
+                message: e.to_string(),
+            })
+        })?;
+        let mut reader = BufReader::new(file);
+        if !starts_with_header(&mut reader, &BIAXIAL_HEADER) {
+            let data = Data::from_csv_reader(reader, &source_name).map_err(unusable)?;
             return Ok((
                 vec![case(name, CaseData::Uniaxial(data), reference)],
                 format!("data file {}{what}", path.display()),
@@ -65,7 +75,7 @@ impl DataSource<'_> {
                 ),
             ));
         }
-        let data = BiaxialData::from_csv_path(&path).map_err(unusable)?;
+        let data = BiaxialData::from_csv_reader(reader, &source_name).map_err(unusable)?;
         Ok((
             vec![case(name, CaseData::Biaxial(data), reference)],
             format!(
@@ -119,29 +129,26 @@ pub(super) fn one_source(fit: &str, other: &str) -> SpecError {
     )
 }
 
-/// The file's first line is the biaxial header `lambda1,lambda2,P11,P22` (spaces and case
-/// aside); a file that cannot be read is not (its error comes from reading it as `lambda,P`).
-fn is_biaxial(path: &Path) -> bool {
-    let Ok(file) = std::fs::File::open(path) else {
+/// The first line of `reader` is `header` (names compared without regard to ASCII case and
+/// surrounding spaces, as the CSV readers compare them), peeked at without consuming it.
+fn starts_with_header(reader: &mut impl BufRead, header: &[&str]) -> bool {
+    let Ok(buffer) = reader.fill_buf() else {
         return false;
     };
-    let mut first = String::new();
-    if BufReader::new(file.take(4096))
-        .read_line(&mut first)
-        .is_err()
-    {
+    let line = buffer.split(|&b| b == b'\n').next().unwrap_or_default();
+    let Ok(line) = std::str::from_utf8(line) else {
         return false;
-    }
-    let names: Vec<String> = first
+    };
+    let names: Vec<&str> = line
         .trim_start_matches('\u{feff}')
         .split(',')
-        .map(|c| c.trim().to_ascii_lowercase())
+        .map(str::trim)
         .collect();
-    names.len() == BIAXIAL_HEADER.len()
+    names.len() == header.len()
         && names
             .iter()
-            .zip(BIAXIAL_HEADER)
-            .all(|(n, h)| *n == h.to_ascii_lowercase())
+            .zip(header)
+            .all(|(n, h)| n.eq_ignore_ascii_case(h))
 }
 
 pub(super) fn case(label: &str, data: CaseData, reference: Option<Vec<f64>>) -> FitCase {

@@ -4,15 +4,12 @@
 use super::{HistoryPoint, HistoryResult};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::outputs::{
-    derived, figure, prefixed, Context, KindOutput, Of, GAMMA, LAMBDA, STRESS,
+    derived, each_study, figure, prefixed, Context, KindOutput, Of, GAMMA, LAMBDA, STRESS,
 };
 
 impl KindOutput for HistoryResult {
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
-        studies
-            .iter()
-            .filter_map(|s| history_figure(s.name, s.result))
-            .collect()
+        each_study(studies, history_figure)
     }
 }
 

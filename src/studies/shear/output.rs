@@ -4,7 +4,9 @@
 use super::{ShearCurve, ShearResult};
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series};
-use crate::studies::outputs::{panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable};
+use crate::studies::outputs::{
+    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable,
+};
 use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
@@ -26,21 +28,13 @@ impl KindOutput for ShearResult {
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
-        studies
-            .iter()
-            .filter_map(|s| shear_figure(s.name, s.result))
-            .collect()
+        each_study(studies, shear_figure)
     }
 
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
         shear_section(h, studies);
         Ok(())
     }
-}
-
-/// The model of a curve in words.
-fn model_words(c: &ShearCurve) -> String {
-    c.model.words()
 }
 
 /// Simple shear: σ₁₂(k) of every model and fibre angle, active strain minus active stress at
@@ -54,7 +48,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
     }
     let mut models: Vec<String> = Vec::new();
     for c in &r.curves {
-        let w = model_words(c);
+        let w = c.model.words();
         if !models.contains(&w) {
             models.push(w);
         }
@@ -62,7 +56,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
     let style = |c: &ShearCurve| {
         let colour = models
             .iter()
-            .position(|m| *m == model_words(c))
+            .position(|m| *m == c.model.words())
             .unwrap_or(0);
         let stroke = strokes(angles.iter().position(|a| *a == c.angle).unwrap_or(0));
         (stroke, colour % 6)
@@ -73,7 +67,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             .map(|c| {
                 let (stroke, colour) = style(c);
                 Series::new(
-                    format!("{}, θ = {}°", model_words(c), c.angle),
+                    format!("{}, θ = {}°", c.model.words(), c.angle),
                     c.points.iter().map(|p| (p.k, y(&p.sigma))).collect(),
                     stroke,
                     colour,
@@ -108,7 +102,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             .collect();
         let (stroke, colour) = style(c);
         difference.push(Series::new(
-            format!("{} − active stress, θ = {}°", model_words(c), c.angle),
+            format!("{} − active stress, θ = {}°", c.model.words(), c.angle),
             points,
             stroke,
             colour,
@@ -177,7 +171,7 @@ fn coinciding(r: &ShearResult) -> String {
                 }
             }
             if scale > 0.0 && diff <= 0.02 * scale {
-                let (wa, wb) = (model_words(a), model_words(b));
+                let (wa, wb) = (a.model.words(), b.model.words());
                 match pairs.iter_mut().find(|p| p.0 == wa && p.1 == wb) {
                     Some(p) => {
                         p.2 = p.2.max(diff);

@@ -5,18 +5,15 @@ use super::StabilityCurve;
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Stroke};
 use crate::studies::outputs::{
-    coupling_stroke, derived, figure, law_colour, panel, prefixed, sorted_unique, Context,
-    KindOutput, Of, STRESS,
+    coupling_stroke, derived, each_study, figure, law_colour, panel, prefixed, sorted_unique,
+    Context, KindOutput, Of, STRESS,
 };
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<StabilityCurve> {
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
-        studies
-            .iter()
-            .filter_map(|s| stability_figure(s.name, s.result))
-            .collect()
+        each_study(studies, |name, curves| stability_figure(name, curves))
     }
 
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
