@@ -33,11 +33,12 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{Accum, MatMut, MatRef, Par};
 
-/// Where an entry of K goes: the L panel (diagonal block included) or the Uᵀ panel.
+/// Where an entry of K goes: the L panel (diagonal block included) or the U₁₂ panel (offsets
+/// into `l` and `u`).
 #[derive(Debug, Clone, Copy)]
 enum Slot {
     L(u32),
-    Ut(u32),
+    U(u32),
 }
 
 /// Numeric LU on the symmetric pattern, for one symbolic Cholesky analysis.
@@ -49,14 +50,19 @@ pub struct PatternLu {
     end: Vec<usize>,
     /// Off-diagonal row pattern of each supernode (sorted, permuted indices).
     rows: Vec<Vec<u32>>,
-    /// Offsets of the L panels ((w + r) × w, column-major) and Uᵀ panels (r × w).
+    /// Offsets of the L panels ((w + r) × w, column-major) and U₁₂ panels (w × r, column-major).
     l_ptr: Vec<usize>,
-    ut_ptr: Vec<usize>,
+    u_ptr: Vec<usize>,
     l: Vec<f64>,
-    ut: Vec<f64>,
+    u: Vec<f64>,
     supernode_of: Vec<u32>,
-    /// Destination of every nonzero of K (in the order of the pattern's values).
-    slots: Vec<Slot>,
+    /// The entries of K that go to each supernode's panels, `(index into the values, slot)`,
+    /// supernode by supernode (`entry_ptr`).
+    entries: Vec<(u32, Slot)>,
+    entry_ptr: Vec<usize>,
+    /// The supernode's panels hold K's entries (zeroed and filled when first reached: by its
+    /// own elimination or by the first Schur update into it, so the panel is in cache).
+    loaded: Vec<bool>,
     schur: Vec<f64>,
     relpos: Vec<u32>,
     /// Rows of a Schur complement's entries in the target supernode's L panel.
@@ -100,12 +106,12 @@ impl PatternLu {
             .map(|s| sn.supernode(s).pattern().to_vec())
             .collect();
         let mut supernode_of = vec![0u32; n];
-        let (mut l_ptr, mut ut_ptr) = (vec![0usize], vec![0usize]);
+        let (mut l_ptr, mut u_ptr) = (vec![0usize], vec![0usize]);
         for s in 0..ns {
             let (w, r) = (end[s] - begin[s], rows[s].len());
             supernode_of[begin[s]..end[s]].fill(s as u32);
             l_ptr.push(l_ptr[s] + (w + r) * w);
-            ut_ptr.push(ut_ptr[s] + r * w);
+            u_ptr.push(u_ptr[s] + w * r);
         }
         let mut lu = Self {
             perm,
@@ -113,11 +119,13 @@ impl PatternLu {
             end,
             rows,
             l: vec![0.0; l_ptr[ns]],
-            ut: vec![0.0; ut_ptr[ns]],
+            u: vec![0.0; u_ptr[ns]],
             l_ptr,
-            ut_ptr,
+            u_ptr,
             supernode_of,
-            slots: Vec::with_capacity(pattern.row_idx.len()),
+            entries: Vec::new(),
+            entry_ptr: Vec::new(),
+            loaded: vec![false; ns],
             schur: Vec::new(),
             relpos: vec![u32::MAX; n],
             scatter_rows: Vec::new(),
@@ -126,103 +134,143 @@ impl PatternLu {
             gathered: Vec::new(),
             factorised: false,
         };
+        let mut entries = Vec::with_capacity(pattern.row_idx.len());
         for j in 0..n {
-            for &i in &pattern.row_idx[pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize]
-            {
+            let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
+            for (&i, k) in pattern.row_idx[range.clone()].iter().zip(range) {
                 let (pi, pj) = (perm_inv[i as usize] as usize, perm_inv[j] as usize);
-                let slot = lu
+                let (t, slot) = lu
                     .slot(pi, pj)
                     .ok_or_else(|| format!("entry ({i}, {j}) outside the symbolic pattern"))?;
-                lu.slots.push(slot);
+                entries.push((t, k as u32, slot));
             }
         }
+        entries.sort_by_key(|&(t, k, _)| (t, k));
+        lu.entry_ptr = vec![0; ns + 1];
+        for &(t, _, _) in &entries {
+            lu.entry_ptr[t as usize + 1] += 1;
+        }
+        for s in 0..ns {
+            lu.entry_ptr[s + 1] += lu.entry_ptr[s];
+        }
+        lu.entries = entries.into_iter().map(|(_, k, slot)| (k, slot)).collect();
         Ok(lu)
     }
 
-    /// Position of the permuted entry (i, j) in the factor storage.
-    fn slot(&self, i: usize, j: usize) -> Option<Slot> {
+    /// Supernode and position of the permuted entry (i, j) in the factor storage.
+    fn slot(&self, i: usize, j: usize) -> Option<(u32, Slot)> {
         let t = self.supernode_of[i.min(j)] as usize;
         let (b, e) = (self.begin[t], self.end[t]);
         let (w, r) = (e - b, self.rows[t].len());
         let pos = |k: usize| self.rows[t].binary_search(&(k as u32)).ok();
-        if i >= j {
+        let slot = if i >= j {
             let row = if i < e { i - b } else { w + pos(i)? };
-            Some(Slot::L((self.l_ptr[t] + row + (j - b) * (w + r)) as u32))
+            Slot::L((self.l_ptr[t] + row + (j - b) * (w + r)) as u32)
         } else if j < e {
-            Some(Slot::L(
-                (self.l_ptr[t] + (i - b) + (j - b) * (w + r)) as u32,
-            ))
+            Slot::L((self.l_ptr[t] + (i - b) + (j - b) * (w + r)) as u32)
         } else {
-            Some(Slot::Ut((self.ut_ptr[t] + pos(j)? + (i - b) * r) as u32))
-        }
+            Slot::U((self.u_ptr[t] + (i - b) + pos(j)? * w) as u32)
+        };
+        Some((t as u32, slot))
     }
 
     /// Numeric factorisation of the matrix with this pattern and `values`.
+    ///
+    /// The loops are compiled twice, and run with AVX2 where the processor has it (checked at
+    /// run time; the same operations in the same order, so the same factor, four entries to an
+    /// instruction instead of two).
     pub fn factorise(&mut self, values: &[f64]) -> Result<(), String> {
         self.factorised = false;
-        self.l.fill(0.0);
-        self.ut.fill(0.0);
-        for (slot, &v) in self.slots.iter().zip(values) {
-            match *slot {
-                Slot::L(k) => self.l[k as usize] = v,
-                Slot::Ut(k) => self.ut[k as usize] = v,
-            }
+        self.loaded.fill(false);
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { self.factorise_avx2(values) }?;
+            self.factorised = true;
+            return Ok(());
         }
-        for s in 0..self.begin.len() {
-            self.factorise_supernode(s)?;
-        }
-        if self.l.iter().chain(&self.ut).any(|v| !v.is_finite()) {
-            return Err("non-finite LU factor".into());
-        }
+        self.factorise_supernodes(values)?;
         self.factorised = true;
         Ok(())
     }
 
-    fn factorise_supernode(&mut self, s: usize) -> Result<(), String> {
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn factorise_avx2(&mut self, values: &[f64]) -> Result<(), String> {
+        self.factorise_supernodes(values)
+    }
+
+    #[inline(always)]
+    fn factorise_supernodes(&mut self, values: &[f64]) -> Result<(), String> {
+        for s in 0..self.begin.len() {
+            self.load(s, values);
+            self.factorise_supernode(s, values)?;
+        }
+        Ok(())
+    }
+
+    /// Zeroes supernode `t`'s panels and puts K's entries in them, the first time it is reached.
+    #[inline(always)]
+    fn load(&mut self, t: usize, values: &[f64]) {
+        if std::mem::replace(&mut self.loaded[t], true) {
+            return;
+        }
+        self.l[self.l_ptr[t]..self.l_ptr[t + 1]].fill(0.0);
+        self.u[self.u_ptr[t]..self.u_ptr[t + 1]].fill(0.0);
+        for &(k, slot) in &self.entries[self.entry_ptr[t]..self.entry_ptr[t + 1]] {
+            match slot {
+                Slot::L(p) => self.l[p as usize] = values[k as usize],
+                Slot::U(p) => self.u[p as usize] = values[k as usize],
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn factorise_supernode(&mut self, s: usize, values: &[f64]) -> Result<(), String> {
         let (b, e) = (self.begin[s], self.end[s]);
         let (w, r) = (e - b, self.rows[s].len());
-        let (l_all, ut_all) = (&mut self.l, &mut self.ut);
-        let l = &mut l_all[self.l_ptr[s]..self.l_ptr[s + 1]];
+        let l = &mut self.l[self.l_ptr[s]..self.l_ptr[s + 1]];
         let ld = w + r;
-        let ut = &mut ut_all[self.ut_ptr[s]..self.ut_ptr[s + 1]];
-        factor_diagonal_block(l, ut, w, r, b, &mut self.pivots[b..e])?;
-        if r == 0 {
-            return Ok(());
+        let u = &mut self.u[self.u_ptr[s]..self.u_ptr[s + 1]];
+        factor_diagonal_block(l, u, w, r, b, &mut self.pivots[b..e])?;
+        if r > 0 {
+            let lmat = MatRef::from_column_major_slice(l, ld, w);
+            let l11 = lmat.submatrix(0, 0, w, w);
+            let l21 = lmat.submatrix(w, 0, r, w);
+            // U₁₂ = L₁₁⁻¹ P A₁₂ (w × r): solve L₁₁ U₁₂ = P A₁₂.
+            let mut u12 = MatMut::from_column_major_slice_mut(u, w, r);
+            solve_unit_lower_triangular_in_place(l11, u12.rb_mut(), Par::Seq);
+            // Schur complement S = L₂₁ U₁₂ (r × r).
+            self.schur.resize(r * r, 0.0);
+            let schur = MatMut::from_column_major_slice_mut(&mut self.schur, r, r);
+            matmul(schur, Accum::Replace, l21, u12.rb(), 1.0, Par::Seq);
         }
-        let lmat = MatRef::from_column_major_slice(l, ld, w);
-        let l11 = lmat.submatrix(0, 0, w, w);
-        let l21 = lmat.submatrix(w, 0, r, w);
-        // U₁₂ = L₁₁⁻¹ P A₁₂, stored transposed (r × w): solve L₁₁ U₁₂ = P A₁₂.
-        let mut u12t = MatMut::from_column_major_slice_mut(ut, r, w);
-        solve_unit_lower_triangular_in_place(l11, u12t.rb_mut().transpose_mut(), Par::Seq);
-        // Schur complement S = L₂₁ U₁₂ (r × r).
-        self.schur.resize(r * r, 0.0);
-        let mut schur = MatMut::from_column_major_slice_mut(&mut self.schur, r, r);
-        matmul(
-            schur.rb_mut(),
-            Accum::Replace,
-            l21,
-            u12t.rb().transpose(),
-            1.0,
-            Par::Seq,
-        );
-        self.scatter_schur(s);
+        let finite = |x: &[f64]| x.iter().all(|v| v.is_finite());
+        if !finite(&self.l[self.l_ptr[s]..self.l_ptr[s + 1]])
+            || !finite(&self.u[self.u_ptr[s]..self.u_ptr[s + 1]])
+        {
+            return Err(format!("non-finite LU factor at dofs {b}..{e}"));
+        }
+        if r > 0 {
+            self.scatter_schur(s, values);
+        }
         Ok(())
     }
 
     /// Subtracts the Schur complement S (in `schur`) of supernode `s` from the supernodes that
     /// own the columns of its off-diagonal rows R. For each target supernode t, the row of every
     /// remaining entry of R in t's L panel is looked up once (`pos`); each destination entry
-    /// receives one subtraction.
-    fn scatter_schur(&mut self, s: usize) {
+    /// receives one subtraction. S is read column by column: its lower triangle goes to the
+    /// columns of t's L panel, its upper triangle to the rows of t's diagonal block and U₁₂
+    /// panel, whose columns are contiguous in t's dofs.
+    #[inline(always)]
+    fn scatter_schur(&mut self, s: usize, values: &[f64]) {
         let r = self.rows[s].len();
-        let (l_all, ut_all) = (&mut self.l, &mut self.ut);
-        let rows = &self.rows[s];
-        let schur = &self.schur;
-        let pos = &mut self.scatter_rows;
         let mut jj = 0;
         while jj < r {
-            let t = self.supernode_of[rows[jj] as usize] as usize;
+            let t = self.supernode_of[self.rows[s][jj] as usize] as usize;
+            self.load(t, values);
+            let rows = &self.rows[s];
             let (bt, et) = (self.begin[t], self.end[t]);
             let (wt, rt) = (et - bt, self.rows[t].len());
             for (k, &i) in self.rows[t].iter().enumerate() {
@@ -230,6 +278,7 @@ impl PatternLu {
             }
             // The entries of R from jj on: inside t's diagonal block up to `inside`, then in
             // its off-diagonal rows.
+            let pos = &mut self.scatter_rows;
             pos.clear();
             pos.extend(rows[jj..].iter().map(|&i| {
                 let i = i as usize;
@@ -239,35 +288,48 @@ impl PatternLu {
                     self.relpos[i] as usize
                 }
             }));
-            let inside = jj
-                + rows[jj..]
-                    .iter()
-                    .take_while(|&&i| (i as usize) < et)
-                    .count();
-            let (lt, utt) = (self.l_ptr[t], self.ut_ptr[t]);
-            let ldt = wt + rt;
             let first = jj;
-            while jj < inside {
-                let cj = rows[jj] as usize - bt;
-                // L entries (i, j), i ≥ j: column cj of t's L panel.
-                let column = &mut l_all[lt + cj * ldt..lt + (cj + 1) * ldt];
+            let inside = first + rows[first..].partition_point(|&i| (i as usize) < et);
+            let l = &mut self.l[self.l_ptr[t]..self.l_ptr[t + 1]];
+            let u = &mut self.u[self.u_ptr[t]..self.u_ptr[t + 1]];
+            let ldt = wt + rt;
+            let schur = &self.schur;
+            // t's columns reached, and whether they are consecutive (one slice).
+            let columns = &pos[..inside - first];
+            let run = columns[columns.len() - 1] - columns[0] + 1 == columns.len();
+            // L entries (i, j), i ≥ j: column cj of t's L panel.
+            for (jj, &cj) in (first..inside).zip(columns) {
+                let column = &mut l[cj * ldt..(cj + 1) * ldt];
                 for (&p, &v) in pos[jj - first..]
                     .iter()
                     .zip(&schur[jj + jj * r..(jj + 1) * r])
                 {
                     column[p] -= v;
                 }
-                // U entries (j, i), i > j: in t's diagonal block (row cj of its L panel), then
-                // in its Uᵀ panel (column cj).
-                for ii in jj + 1..inside {
-                    l_all[lt + cj + pos[ii - first] * ldt] -= schur[jj + ii * r];
-                }
-                let ut_column = &mut ut_all[utt + cj * rt..utt + (cj + 1) * rt];
-                for ii in inside..r {
-                    ut_column[pos[ii - first] - wt] -= schur[jj + ii * r];
-                }
-                jj += 1;
             }
+            // U entries (j, i), j < i: row cj of t's diagonal block (column pos(i) of its L
+            // panel) while i is inside the block, then of its U₁₂ panel (column pos(i) − wt).
+            for ii in first + 1..r {
+                let p = pos[ii - first];
+                let (target, stride_start) = if ii < inside {
+                    (&mut *l, p * ldt)
+                } else {
+                    (&mut *u, (p - wt) * wt)
+                };
+                let m = ii.min(inside) - first;
+                let source = &schur[first + ii * r..first + ii * r + m];
+                if run {
+                    let start = stride_start + columns[0];
+                    for (d, &v) in target[start..start + m].iter_mut().zip(source) {
+                        *d -= v;
+                    }
+                } else {
+                    for (&cj, &v) in columns[..m].iter().zip(source) {
+                        target[stride_start + cj] -= v;
+                    }
+                }
+            }
+            jj = inside;
         }
     }
 
@@ -276,14 +338,37 @@ impl PatternLu {
         if !self.factorised {
             return Err("no factorisation".into());
         }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            unsafe { self.solve_permuted_avx2(x) };
+        } else {
+            self.solve_permuted(x);
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        self.solve_permuted(x);
+        match x.iter().position(|v| !v.is_finite()) {
+            Some(i) => Err(format!("solution entry {i} is {}", x[i])),
+            None => Ok(()),
+        }
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn solve_permuted_avx2(&mut self, x: &mut [f64]) {
+        self.solve_permuted(x);
+    }
+
+    /// The forward and back substitutions, with the symmetric permutation applied around them.
+    #[inline(always)]
+    fn solve_permuted(&mut self, x: &mut [f64]) {
         let y = &mut self.work;
         for (k, &i) in self.perm.iter().enumerate() {
             y[k] = x[i as usize];
         }
         let ns = self.begin.len();
         // The off-diagonal rows R of a supernode are gathered into `t`, updated as a dense
-        // vector (contiguous, so the loops vectorise) and scattered back: the same operations in
-        // the same order as entry by entry.
+        // vector (contiguous, so the loops vectorise) and scattered back.
         let t = &mut self.gathered;
         // L y = P b, with the row swaps of each diagonal block applied as it is reached.
         for s in 0..ns {
@@ -321,17 +406,16 @@ impl PatternLu {
             let (w, r) = (e - b, rows.len());
             let ld = w + r;
             let l = &self.l[self.l_ptr[s]..self.l_ptr[s + 1]];
-            let ut = &self.ut[self.ut_ptr[s]..self.ut_ptr[s + 1]];
-            t.clear();
-            t.extend(rows.iter().map(|&i| y[i as usize]));
-            let block = &mut y[b..e];
-            if r > 0 {
-                for (k, column) in ut.chunks_exact(r).enumerate() {
-                    let mut acc = 0.0;
-                    for (&u, &v) in column.iter().zip(t.iter()) {
-                        acc += u * v;
+            let u = &self.u[self.u_ptr[s]..self.u_ptr[s + 1]];
+            // The off-diagonal rows all come after the block: y[i] for i in R is in `later`.
+            let (head, later) = y.split_at_mut(e);
+            let block = &mut head[b..];
+            for (column, &i) in u.chunks_exact(w).zip(rows) {
+                let yi = later[i as usize - e];
+                if yi != 0.0 {
+                    for (v, &uki) in block.iter_mut().zip(column) {
+                        *v -= uki * yi;
                     }
-                    block[k] -= acc;
                 }
             }
             for k in (0..w).rev() {
@@ -346,22 +430,19 @@ impl PatternLu {
         for (k, &i) in self.perm.iter().enumerate() {
             x[i as usize] = y[k];
         }
-        match x.iter().position(|v| !v.is_finite()) {
-            Some(i) => Err(format!("solution entry {i} is {}", x[i])),
-            None => Ok(()),
-        }
     }
 }
 
 /// P D = L₁₁ U₁₁ in place for the diagonal block D (w × w) of a supernode's L panel `l`
 /// (column-major, leading dimension w + r; the block's first dof is `b`), unblocked, with
 /// partial pivoting inside the block: rows never leave it, so the pattern is kept. A row swap is
-/// applied to the L panel and to the columns of the Uᵀ panel `ut` (r × w: the same equations'
+/// applied to the L panel and to the rows of the U₁₂ panel `u` (w × r: the same equations'
 /// entries right of the block); `pivots[k]` records the row exchanged with row k. The rows below
 /// the block become L₂₁ = A₂₁ U₁₁⁻¹.
+#[inline(always)]
 fn factor_diagonal_block(
     l: &mut [f64],
-    ut: &mut [f64],
+    u: &mut [f64],
     w: usize,
     r: usize,
     b: usize,
@@ -370,7 +451,7 @@ fn factor_diagonal_block(
     let ld = w + r;
     for k in 0..w {
         // Partial pivoting inside the diagonal block (rows b..e only, so the pattern is
-        // kept): the row swap is applied to the L panel and to the columns of the Uᵀ panel
+        // kept): the row swap is applied to the L panel and to the rows of the U₁₂ panel
         // (the same equations' entries right of the block).
         let mut p = k;
         for i in k + 1..w {
@@ -383,8 +464,8 @@ fn factor_diagonal_block(
             for j in 0..w {
                 l.swap(k + j * ld, p + j * ld);
             }
-            for q in 0..r {
-                ut.swap(q + k * r, q + p * r);
+            for column in u.chunks_exact_mut(w) {
+                column.swap(k, p);
             }
         }
         let pivot = l[k + k * ld];
