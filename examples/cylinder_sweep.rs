@@ -2,11 +2,16 @@
 //! plus 1.17, for every damage, on a chosen mesh; where a direction stops, the material is
 //! diagnosed at the quadrature points of the failed trial state (strong ellipticity, law jumps).
 //!
-//! `cargo run --release --example cylinder_sweep -- NR NZ explicit|energy [sliding]`
+//! `cargo run --release --example cylinder_sweep -- NR NZ explicit|implicit|tabulated|energy [sliding]`
+//! (explicit, implicit and tabulated: the implicit law tabulated over λ ∈ [0.5, 1.6], frozen
+//! coupling; energy: consistent coupling)
 //! (environment: `DAMAGE=0.2,0.3` to restrict the damages, `LINEAR=lu` for the LU-only solver)
 //! prints `d lambda P gamma_centre newton_iterations` rows and the diagnoses.
 
-use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, Law};
+use activemuscle::active::{
+    ActiveCurve, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent, ImplicitLaw, Law, SolvedLaw,
+    TableSpec, TabulatedLaw,
+};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::fem::{AxisymmetricSolver, Bases, FemError, Mesh, SolverOptions, StepRecord};
 use activemuscle::stability::diagnose_axisymmetric;
@@ -15,7 +20,7 @@ use std::time::Instant;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: cylinder_sweep NR NZ explicit|energy [sliding]";
+    let usage = "usage: cylinder_sweep NR NZ explicit|implicit|tabulated|energy [sliding]";
     let (nr, nz): (usize, usize) = (
         args.get(1).ok_or(usage)?.parse()?,
         args.get(2).ok_or(usage)?.parse()?,
@@ -27,6 +32,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Coupling::Frozen(FrozenTangent::Exact),
             vec![0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
         ),
+        Some("implicit") => (
+            Law::Implicit(ImplicitLaw::new(gm, ActiveCurve::paper())),
+            Coupling::Frozen(FrozenTangent::Exact),
+            vec![0.0, 0.1, 0.2, 0.3, 0.4, 0.5],
+        ),
+        Some("tabulated") => {
+            let damages = vec![0.0, 0.1, 0.2, 0.3, 0.4, 0.5];
+            let exact = SolvedLaw::Implicit(ImplicitLaw::new(gm, ActiveCurve::paper()));
+            let table = TabulatedLaw::new(exact, &damages, TableSpec::default())?;
+            (
+                Law::Tabulated(table),
+                Coupling::Frozen(FrozenTangent::Exact),
+                damages,
+            )
+        }
         Some("energy") => (
             Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
             Coupling::Consistent,

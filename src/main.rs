@@ -155,7 +155,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         "kind",
         "models",
         "points",
-        "time [s]"
+        "wall [s]"
     );
     say!("{}", "-".repeat(name_w + kind_w + 34));
     for s in &results.studies {
@@ -171,6 +171,14 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             points,
             s.elapsed.as_secs_f64()
         );
+    }
+    let together = results
+        .studies
+        .iter()
+        .filter(|s| !matches!(s.result, StudyResult::Tradeoff(_)))
+        .count();
+    if together > 1 {
+        say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
     for (_, c) in results.cylinders() {
         if c.bases != activemuscle::fem::Bases::Sliding {
@@ -384,7 +392,8 @@ fn tradeoff_command(
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
     let options = scene.tradeoff_options().cloned().unwrap_or_default();
     let printing = Printing::new(true, false);
-    let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &printing };
+    let bar = printing.study();
+    let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
     let stop = Stop::new();
     on_interrupt(&stop);
     let results = run_tradeoff(

@@ -19,7 +19,7 @@ mod run;
 
 pub use crate::app_error::SceneError;
 pub use keypath::{key_path, line_of};
-pub use run::{Printing, Results, RunOptions};
+pub use run::{Printing, Results, RunOptions, StudyProgress};
 
 use crate::app_error::AppError;
 pub use crate::models::{ActivationSpec, ExplicitSpec};

@@ -1,5 +1,5 @@
-//! Running a scene: every study in order, each building only the models it needs (homogeneous
-//! curves and FE sweeps in parallel), progress reported through [`crate::studies::Progress`].
+//! Running a scene: the studies at the same time (a trade-off study alone), each building only
+//! the models it needs (homogeneous curves and FE sweeps in parallel too), progress reported through [`crate::studies::Progress`].
 
 use super::Scene;
 use crate::studies::cylinder::CylinderResult;
@@ -8,8 +8,9 @@ use crate::studies::history::HistoryResult;
 use crate::studies::stability::StabilityCurve;
 use crate::studies::tradeoff::TradeoffResults;
 use crate::studies::uniaxial::UniaxialResult;
-use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, StudyResult};
+use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, Study, StudyResult};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -117,9 +118,10 @@ impl Results {
 
 /// Progress: log lines, and a bar per study if asked (on a terminal); without bars, one plain
 /// line per point that says it ([`Progress::point`]), stamped with the time since the start.
+/// Each study reports through its own handle ([`Printing::study`]), so studies that run at the
+/// same time each keep a bar.
 pub struct Printing {
     bars: MultiProgress,
-    bar: Mutex<Option<ProgressBar>>,
     verbose: bool,
     progress: bool,
     started: Instant,
@@ -134,38 +136,53 @@ impl Printing {
             } else {
                 ProgressDrawTarget::hidden()
             }),
-            bar: Mutex::new(None),
             verbose,
             progress,
             started: Instant::now(),
         }
     }
 
+    /// The progress handle of one study (its bar, when it starts one).
+    pub fn study(&self) -> StudyProgress<'_> {
+        StudyProgress {
+            printing: self,
+            bar: Mutex::new(None),
+        }
+    }
+}
+
+/// One study's progress: lines through the run's [`Printing`], and the study's own bar.
+pub struct StudyProgress<'a> {
+    printing: &'a Printing,
+    bar: Mutex<Option<ProgressBar>>,
+}
+
+impl StudyProgress<'_> {
     fn current(&self) -> Option<ProgressBar> {
         self.bar.lock().ok().and_then(|b| b.clone())
     }
 }
 
-impl Progress for Printing {
+impl Progress for StudyProgress<'_> {
     fn log(&self, line: &str) {
-        if !self.verbose {
+        if !self.printing.verbose {
             return;
         }
         // Prints above the bars without tearing them.
-        if !self.progress || self.bars.println(line).is_err() {
+        if !self.printing.progress || self.printing.bars.println(line).is_err() {
             let _ = writeln!(std::io::stdout(), "{line}");
         }
     }
 
     fn start(&self, label: &str, total: usize) {
-        if !(self.verbose && self.progress) {
+        if !(self.printing.verbose && self.printing.progress) {
             return;
         }
         let style =
             ProgressStyle::with_template("{spinner} {msg:40!} [{bar:30}] {pos}/{len} ({elapsed})")
                 .unwrap_or_else(|_| ProgressStyle::default_bar())
                 .progress_chars("=> ");
-        let pb = self.bars.add(ProgressBar::new(total as u64));
+        let pb = self.printing.bars.add(ProgressBar::new(total as u64));
         pb.set_style(style);
         pb.set_message(label.to_string());
         pb.enable_steady_tick(Duration::from_millis(120));
@@ -181,17 +198,17 @@ impl Progress for Printing {
     }
 
     fn point(&self, line: &str) {
-        if !self.verbose {
+        if !self.printing.verbose {
             return;
         }
-        if self.progress {
+        if self.printing.progress {
             self.advance(1);
         } else {
             // A closed pipe (`| head`) does not stop the run.
             let _ = writeln!(
                 std::io::stdout(),
                 "[{:8.1} s] {line}",
-                self.started.elapsed().as_secs_f64()
+                self.printing.started.elapsed().as_secs_f64()
             );
         }
     }
@@ -203,26 +220,26 @@ impl Progress for Printing {
     }
 }
 
-/// Runs every study of `scene`, in order. A study that stops with an error is recorded as its
-/// outcome's failure ([`Outcome::nothing`]) and the run goes on with the next one; once the run
-/// is stopped ([`RunOptions::stop`]) the studies not started are recorded as not run.
+/// Runs every study of `scene`. The studies run at the same time, sharing the cores (each
+/// one's own loops, over models or damages and over the FE cells, are parallel too), except a
+/// trade-off study, which measures run times and so runs alone, after the others. The results
+/// keep the scene's order. A study that stops with an error is recorded as its outcome's failure
+/// ([`Outcome::nothing`]) and the others go on; once the run is stopped
+/// ([`RunOptions::stop`]) the studies not started are recorded as not run.
 pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
     let printing = Printing::new(options.verbose, options.progress);
-    let progress: &dyn Progress = if options.verbose { &printing } else { &Silent };
-    let ctx = RunContext {
-        progress,
-        vtk_dir: options.vtk_dir.as_deref(),
-        stop: options.stop.as_ref(),
-    };
     let fallback = scene.fallback();
-    let mut results = Results::default();
-    for study in &scene.studies {
+    let run_one = |study: &Study| -> Outcome {
         if let Some(reason) = options.stop.as_ref().and_then(Stop::reason) {
-            results
-                .studies
-                .push(Outcome::nothing(study, format!("not run: {reason}")));
-            continue;
+            return Outcome::nothing(study, format!("not run: {reason}"));
         }
+        let bar = printing.study();
+        let progress: &dyn Progress = if options.verbose { &bar } else { &Silent };
+        let ctx = RunContext {
+            progress,
+            vtk_dir: options.vtk_dir.as_deref(),
+            stop: options.stop.as_ref(),
+        };
         let t0 = Instant::now();
         let mut outcome = study
             .run(&scene.models, &fallback, &ctx)
@@ -237,7 +254,20 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
             outcome.points,
             outcome.elapsed.as_secs_f64()
         ));
-        results.studies.push(outcome);
+        outcome
+    };
+    let alone = |s: &Study| matches!(s, Study::Tradeoff(_));
+    let mut outcomes: Vec<Option<Outcome>> = scene
+        .studies
+        .par_iter()
+        .map(|s| (!alone(s)).then(|| run_one(s)))
+        .collect();
+    for (outcome, study) in outcomes.iter_mut().zip(&scene.studies) {
+        if outcome.is_none() {
+            *outcome = Some(run_one(study));
+        }
     }
-    results
+    Results {
+        studies: outcomes.into_iter().flatten().collect(),
+    }
 }
