@@ -2,38 +2,47 @@
 whole process `activemuscle run python/bench/muscle_sweep.toml` (Q2/Q1), FEniCS is
 python/bench/fenics_muscle.py with Taylor–Hood P2/P1 on the same cells split in two triangles (the
 same nodes, the same dof count), UMFPACK through PETSc on OpenBLAS (and, with --reference-blas,
-on Debian's reference BLAS as installed). Runs alternate code by code within each repeat so that a
+on Debian's reference BLAS as installed), and with --dolfinx DOLFINx 0.5 as well:
+python/bench/dolfinx_muscle.py, the same P2/P1 problem on DOLFINx, PETSc's MUMPS LU, on the same
+OpenBLAS. Runs alternate code by code within each repeat so that a
 shared machine's load shifts all alike; the table gives the median over the repeats (min–max of
 the wall times) and the load (/proc/loadavg) before and after each mesh.
 
     cargo build --release                      # target/release/activemuscle
-    apt-get install -y python3-dolfin
+    apt-get install -y python3-dolfin [python3-dolfinx]
     apt-get download libopenblas0-serial && dpkg -x libopenblas0-serial_*.deb /tmp/ob
     OMP_NUM_THREADS=1 /usr/bin/python3 python/bench/muscle_sweep.py \\
         --openblas /tmp/ob/usr/lib/x86_64-linux-gnu/openblas-serial [--repeats 3] \\
-        [--meshes 16x64,32x128] [--reference-blas] [--fenics-q2q1] [--one-thread]
+        [--meshes 16x64,32x128] [--reference-blas] [--fenics-q2q1] [--one-thread] [--dolfinx]
 
 The case (python/bench/muscle_sweep.toml; the equations in fenics_muscle.py's docstring): the
 chapter's clamped cylinder R = 1, L = 4 mm, explicit law, frozen coupling with its exact tangent,
 d = 0, the 20 stretches 0.70, 0.75, …, 1.60 and 1.17 (λ = 1, then upwards, then downwards from
 λ = 1), Newton to 1e-10, uniform meshes. Before the table, the check that both codes solve the same
 problem: FEniCS with Q2/Q1 on the quadrilaterals (3 × 3 Gauss, our discretisation) on --check-mesh
-(default 8 × 32) must give our P at every stretch (the largest relative difference is printed).
+(default 8 × 32) must give our P at every stretch (the largest relative difference is printed),
+and with --dolfinx DOLFINx's Q2/Q1 too (a second line).
 
 Columns: process = wall time of the whole process: ours `activemuscle run` (mesh, symbolic
 factorisation, the sweep, the 0D curve, CSV, figures and report.html), FEniCS `python3
 fenics_muscle.py` (interpreter, DOLFIN import, JIT cache lookup, a warm-up sweep on 2 × 8, set-up,
-the sweep); sweep = ours the study's time in its summary (set-up, the sweep, the 0D curve), FEniCS
-the load path only (set-up and JIT warm-up excluded); Newton its = ours summed over curves.csv
-(rejected steps included; the predictor solve of a step is no iteration: it reuses the last
-factorisation), FEniCS every assembly–LU–solve, the predictor iteration of each load step and
-rejected steps included; per iteration = sweep / its; ratios FEniCS / ours of the medians;
+the sweep), DOLFINx `python3 dolfinx_muscle.py` (the same with DOLFINx's import, FFCx/CFFI's
+cache); sweep = ours the study's time in its summary (set-up, the sweep, the 0D curve), FEniCS and
+DOLFINx the load path only (set-up and JIT warm-up excluded); Newton its = ours summed over
+curves.csv (rejected steps included; the predictor solve of a step is no iteration: it reuses the
+last factorisation), FEniCS and DOLFINx every assembly–LU–solve, the predictor iteration of each
+load step and rejected steps included; per iteration = sweep / its; ratios FEniCS / ours (DOLFINx
+/ ours on the DOLFINx rows) of the medians;
 P(1.17) of ours (Q2/Q1) and of FEniCS (P2/P1: another discretisation of the same problem, so
 their difference is the discretisation's, not an error). Ours runs on rayon's default threads
 (2 here), FEniCS in one process; --fenics-q2q1 adds FEniCS with ours' Q2/Q1 discretisation (the
-like-for-like row where P2/P1 does not reach every stretch); --one-thread adds ours with RAYON_NUM_THREADS=1. An untimed
-run of fenics_muscle.py on 2 × 8 fills the FFC JIT cache first (a first compilation of the P2/P1
-forms takes ≈ 30 s of the process time; with the cache warm, a process's warm-up loads them).
+like-for-like row where P2/P1 does not reach every stretch; with --dolfinx, DOLFINx Q2/Q1 as well);
+--one-thread adds ours with RAYON_NUM_THREADS=1; --dolfinx adds DOLFINx P2/P1 with MUMPS (one
+process, OMP_NUM_THREADS=1, on the same OpenBLAS: MUMPS's dense fronts call libblas.so.3), its
+rows named DOLFINx, alternated with the others in each repeat. An untimed run of fenics_muscle.py
+(and of dolfinx_muscle.py) on 2 × 8 fills the FFC (FFCx) JIT cache first (a first compilation of
+the P2/P1 forms takes ≈ 30 s of the process time for FFC, a few seconds for FFCx; with the cache
+warm, a process's warm-up loads them).
 """
 
 import argparse
@@ -50,11 +59,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 OURS = os.path.join(ROOT, "target", "release", "activemuscle")
 SCENE = os.path.join(HERE, "muscle_sweep.toml")
-FENICS = [sys.executable if sys.executable.startswith("/usr/bin/") else "/usr/bin/python3",
-          os.path.join(HERE, "fenics_muscle.py")]
-SUMMARY = re.compile(
-    r"^fenics (\S+) (\d+)x(\d+) dofs (\d+) free (\d+) stretches (\d+)/(\d+) its (\d+) "
-    r"predictors (\d+) sweep (\S+) iteration (\S+) setup (\S+) P\(1\.17\) (\S+)$",
+PYTHON = sys.executable if sys.executable.startswith("/usr/bin/") else "/usr/bin/python3"
+FENICS = [PYTHON, os.path.join(HERE, "fenics_muscle.py")]
+DOLFINX = [PYTHON, os.path.join(HERE, "dolfinx_muscle.py"), "--solver", "mumps"]
+SUMMARY = re.compile(  # fenics_muscle.py's line, and dolfinx_muscle.py's (first word, solver)
+    r"^(?:fenics|dolfinx) (\S+) (\d+)x(\d+) dofs (\d+) free (\d+) stretches (\d+)/(\d+) its (\d+) "
+    r"predictors (\d+) sweep (\S+) iteration (\S+) setup (\S+) P\(1\.17\) (\S+)(?: solver \S+)?$",
     re.M,
 )
 ROW = re.compile(r"^lambda (\S+) P (\S+) newton_its (\d+)$", re.M)
@@ -108,19 +118,21 @@ def ours(nr, nz, work, threads=None):
     }
 
 
-def fenics(element, nr, nz, blas=None):
+def fenics(element, nr, nz, blas=None, command=FENICS):
+    """One process of fenics_muscle.py (or, command=DOLFINX, of dolfinx_muscle.py)."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
     if blas:
         env["LD_LIBRARY_PATH"] = blas
+    script = os.path.basename(command[1])
     t0 = time.perf_counter()
-    run = subprocess.run(FENICS + ["--element", element, str(nr), str(nz)],
+    run = subprocess.run(command + ["--element", element, str(nr), str(nz)],
                          capture_output=True, text=True, env=env, timeout=7200)
     wall = time.perf_counter() - t0
     if run.returncode != 0:
-        raise RuntimeError(f"fenics_muscle.py {element} {nr} {nz} failed:\n{run.stderr[-3000:]}")
+        raise RuntimeError(f"{script} {element} {nr} {nz} failed:\n{run.stderr[-3000:]}")
     m = SUMMARY.search(run.stdout)
     if m is None:
-        raise RuntimeError(f"fenics_muscle.py: no summary line in\n{run.stdout[-3000:]}")
+        raise RuntimeError(f"{script}: no summary line in\n{run.stdout[-3000:]}")
     g = m.groups()
     return {
         "wall": wall,
@@ -133,6 +145,15 @@ def fenics(element, nr, nz, blas=None):
         "P": {round(float(a), 6): float(b) for a, b, _ in ROW.findall(run.stdout)},
         "failed": [float(x) for x in FAILED.findall(run.stdout)],
     }
+
+
+def dolfinx(element, nr, nz, blas=None):
+    return fenics(element, nr, nz, blas, DOLFINX)
+
+
+def is_fenics(name):
+    """A row of legacy FEniCS or of DOLFINx (the Python codes: their own sweep time, predictors)."""
+    return name.startswith(("FEniCS", "DOLFINx"))
 
 
 def relative(a, b):
@@ -156,6 +177,9 @@ def main(argv):
                         help="also FEniCS Q2/Q1 on the quadrilaterals (ours' discretisation) on OpenBLAS")
     parser.add_argument("--one-thread", action="store_true",
                         help="also ours with one thread (RAYON_NUM_THREADS=1), as FEniCS")
+    parser.add_argument("--dolfinx", action="store_true",
+                        help="also DOLFINx 0.5 P2/P1 (dolfinx_muscle.py, MUMPS) on OpenBLAS; with "
+                        "--fenics-q2q1 DOLFINx Q2/Q1 too")
     parser.add_argument("--check-mesh", default="8x32",
                         help="mesh of the same-problem check, Q2/Q1 in both codes ('' to skip)")
     args = parser.parse_args(argv[1:])
@@ -177,24 +201,40 @@ def main(argv):
               f"in both, largest relative difference of P {worst[0]:.1e} (at λ = {worst[1]:g}); "
               f"P(1.17) ours {a['P'].get(1.17, float('nan')):.12g}, "
               f"FEniCS {b['P'].get(1.17, float('nan')):.12g} kPa")
+        if args.dolfinx:
+            c = dolfinx("Q2Q1", nr, nz, args.openblas)
+            common = sorted(set(a["P"]) & set(c["P"]))
+            worst = max((relative(c["P"][l], a["P"][l]), l) for l in common)
+            print(f"same problem, Q2/Q1 {nr}x{nz}, DOLFINx: {len(common)} stretches in both, largest "
+                  f"relative difference of P {worst[0]:.1e} (at λ = {worst[1]:g}); P(1.17) DOLFINx "
+                  f"{c['P'].get(1.17, float('nan')):.12g} kPa")
 
     fenics("P2P1", 2, 8, args.openblas)  # untimed: fills the FFC JIT cache for the P2/P1 forms
+    if args.dolfinx:
+        dolfinx("P2P1", 2, 8, args.openblas)  # untimed: the FFCx JIT cache of its P2/P1 forms
 
     codes = [("ours Q2/Q1", lambda nr, nz: ours(nr, nz, work))]
     if args.one_thread:
         codes.append(("ours Q2/Q1, 1 thread", lambda nr, nz: ours(nr, nz, work, 1)))
     fenics_codes = [("FEniCS P2/P1 + OpenBLAS", lambda nr, nz: fenics("P2P1", nr, nz, args.openblas))]
+    if args.dolfinx:
+        fenics_codes.append(("DOLFINx P2/P1 + MUMPS + OpenBLAS",
+                             lambda nr, nz: dolfinx("P2P1", nr, nz, args.openblas)))
     if args.fenics_q2q1:
         fenics("Q2Q1", 2, 8, args.openblas)  # untimed: the JIT cache of the Q2/Q1 forms
         fenics_codes.append(("FEniCS Q2/Q1 + OpenBLAS",
                              lambda nr, nz: fenics("Q2Q1", nr, nz, args.openblas)))
+        if args.dolfinx:
+            dolfinx("Q2Q1", 2, 8, args.openblas)  # untimed: the FFCx JIT cache of the Q2/Q1 forms
+            fenics_codes.append(("DOLFINx Q2/Q1 + MUMPS + OpenBLAS",
+                                 lambda nr, nz: dolfinx("Q2Q1", nr, nz, args.openblas)))
     if args.reference_blas:
         fenics_codes.append(("FEniCS P2/P1, reference BLAS", lambda nr, nz: fenics("P2P1", nr, nz)))
     every = codes + fenics_codes
 
     print(f"\nmedian of {args.repeats} alternated runs (min–max), wall times in seconds")
     print("| cells | code | free dofs | Newton its | process [s] | sweep [s] | failed stretches "
-          "| per iteration [ms] | FEniCS / ours: process | sweep | per iteration "
+          "| per iteration [ms] | FEniCS (DOLFINx) / ours: process | sweep | per iteration "
           "| P(1.17) [kPa] | rel. diff. to ours | load before → after |")
     print("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
     for nr, nz in meshes:
@@ -207,7 +247,7 @@ def main(argv):
 
         def summary(name):
             rs = runs[name]
-            f = name.startswith("FEniCS")
+            f = is_fenics(name)
             sweeps = [r["sweep"] if f else r["study"] for r in rs]
             return {
                 "process": [r["wall"] for r in rs],
@@ -219,15 +259,15 @@ def main(argv):
         ref = summary(codes[0][0])
         ref_p = runs[codes[0][0]][0]["P"].get(1.17, float("nan"))
         for name, rs in runs.items():
-            is_fenics = name.startswith("FEniCS")
+            python = is_fenics(name)
             s = summary(name)
-            its = f"{s['its']:.0f}" + (f" (of which {rs[0]['predictors']} predictors)" if is_fenics else "")
-            free = rs[0]["free"] if is_fenics else rs[0]["dofs"]
+            its = f"{s['its']:.0f}" + (f" (of which {rs[0]['predictors']} predictors)" if python else "")
+            free = rs[0]["free"] if python else rs[0]["dofs"]
             failed = ", ".join(f"{x:.2f}" for x in rs[0]["failed"]) or "none"
             p = rs[0]["P"].get(1.17, float("nan"))
-            ratio = {k: f"{statistics.median(s[k]) / statistics.median(ref[k]):.1f}×" if is_fenics else "–"
+            ratio = {k: f"{statistics.median(s[k]) / statistics.median(ref[k]):.1f}×" if python else "–"
                      for k in ("process", "sweep", "per_it")}
-            diff = f"{relative(p, ref_p):.1e}" if is_fenics else "–"
+            diff = f"{relative(p, ref_p):.1e}" if python else "–"
             print(f"| {nr} × {nz} | {name} | {free} | {its} | {spread(s['process'])} "
                   f"| {spread(s['sweep'])} | {failed} | {1e3 * statistics.median(s['per_it']):.1f} "
                   f"| {ratio['process']} | {ratio['sweep']} | {ratio['per_it']} | {p:.9f} | {diff} "
