@@ -172,12 +172,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
             s.elapsed.as_secs_f64()
         );
     }
-    let together = results
-        .studies
-        .iter()
-        .filter(|s| !matches!(s.result, StudyResult::Tradeoff(_)))
-        .count();
-    if together > 1 {
+    if results.ran_together() {
         say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
     for (_, c) in results.cylinders() {

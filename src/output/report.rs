@@ -83,7 +83,11 @@ pub fn html(
 /// The studies with their summaries.
 fn studies_table(h: &mut String, results: &Results) {
     let e = escape;
-    h.push_str("<h2>Studies</h2>\n<table><caption>The studies run at the same time on the machine's cores, so their wall times overlap: each includes the time it shared the cores with the others.</caption>\n<tr><th>study</th><th>kind</th><th>models</th><th>points</th><th>wall time [s]</th><th>details</th></tr>\n");
+    h.push_str("<h2>Studies</h2>\n<table>");
+    if results.ran_together() {
+        h.push_str("<caption>The studies ran at the same time on the machine's cores, so their wall times overlap: each includes the time it shared the cores with the others.</caption>");
+    }
+    h.push_str("\n<tr><th>study</th><th>kind</th><th>models</th><th>points</th><th>wall time [s]</th><th>details</th></tr>\n");
     for s in &results.studies {
         let _ = writeln!(
             h,

@@ -43,6 +43,13 @@ impl Results {
         self.studies.iter().all(Outcome::complete)
     }
 
+    /// Whether several studies ran at the same time (a trade-off study runs alone, after), so
+    /// their wall times overlap.
+    pub fn ran_together(&self) -> bool {
+        let alone = |s: &&Outcome| matches!(s.result, StudyResult::Tradeoff(_));
+        self.studies.iter().filter(|s| !alone(s)).count() > 1
+    }
+
     /// Every failure, with the name of its study.
     pub fn failures(&self) -> impl Iterator<Item = (&str, &Failure)> {
         self.studies

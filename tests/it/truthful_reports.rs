@@ -54,3 +54,19 @@ fn a_sweep_that_reached_no_stretch_has_no_figure_and_no_zero_difference() {
     assert!(report.contains("no stretch converged"));
     assert!(!report.contains("0.00e0"));
 }
+
+#[test]
+fn only_studies_that_ran_together_are_said_to_overlap() {
+    let overlap = "wall times overlap";
+    let uniaxial = |name: &str| {
+        format!("[[study]]\nkind = \"uniaxial\"\nname = \"{name}\"\nstretch = [0.9, 1.1]\n")
+    };
+    let (_one, alone) = run("one-study-report", &uniaxial("a"));
+    assert!(!alone.contains(overlap), "one study said to overlap");
+    let two = format!("{}{}", uniaxial("a"), uniaxial("b"));
+    let (_two, together) = run("two-study-report", &two);
+    assert!(
+        together.contains(overlap),
+        "two studies not said to overlap"
+    );
+}
