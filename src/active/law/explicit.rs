@@ -33,27 +33,34 @@ pub struct ExplicitLaw {
     b: f64,
     passive: GiantesioMusesti,
     curve: ActiveCurve,
+    /// r(g(λ_min), λ_min) λ_min with this b, γ's constant first term (over a), computed once:
+    /// it was 2 logarithms and an exponential at every evaluation.
+    start: f64,
 }
 
 impl ExplicitLaw {
     /// a [-] > 0, b [-] > 0, the chapter's energy parameters and the active curve.
     pub fn new(a: f64, b: f64, passive: GiantesioMusesti, curve: ActiveCurve) -> Result<Self> {
-        Ok(Self {
+        let mut law = Self {
             a: positive("a", a)?,
             b: positive("b", b)?,
             passive,
             curve,
-        })
+            start: f64::NAN,
+        };
+        law.start = law.start(law.b);
+        Ok(law)
     }
 
     /// The chapter's a = 1.0133, b = 0.2050 with its energy and active curve.
     pub fn paper() -> Self {
-        Self {
-            a: 1.0133,
-            b: 0.2050,
-            passive: GiantesioMusesti::paper(),
-            curve: ActiveCurve::paper(),
-        }
+        Self::new(
+            1.0133,
+            0.2050,
+            GiantesioMusesti::paper(),
+            ActiveCurve::paper(),
+        )
+        .expect("the chapter's a and b are positive")
     }
 
     /// Fitting parameters (a, b).
@@ -88,10 +95,16 @@ impl ExplicitLaw {
         ((g / al + l.recip() * (w0 / 3.0)).recip() * f).sqrt() * l
     }
 
+    /// r(g(λ_min), λ_min) λ_min for the coefficient b: γ = a (start − r(g(λ), λ) λ).
+    fn start<P: Scalar>(&self, b: P) -> P {
+        let lmin = P::from(self.curve.lambda_min());
+        self.scaled_root(self.g(lmin, P::zero(), b), lmin)
+    }
+
     /// γ(λ) on any scalar, clamped at 0 beyond its zero crossing. Errors if the formula leaves
     /// its domain (a logarithm or square root of a non-positive number) or γ ≥ 1.
     pub fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
-        self.gamma_with(self.a, self.b, lambda, drive)
+        self.gamma_from(self.a, self.b, || self.start, lambda, drive)
     }
 
     /// γ(λ) of eq. D:gamma, written once, with (a, b) as `f64` ([`gamma`](Self::gamma)) or dual
@@ -101,6 +114,18 @@ impl ExplicitLaw {
         &self,
         a: P,
         b: P,
+        lambda: T,
+        drive: impl Into<Drive>,
+    ) -> Result<T> {
+        self.gamma_from(a, b, || self.start(b), lambda, drive)
+    }
+
+    /// γ(λ) with (a, b) and the constant term `start` (evaluated only where γ may be nonzero).
+    fn gamma_from<P: Scalar, T: ScalarWith<P>>(
+        &self,
+        a: P,
+        b: P,
+        start: impl FnOnce() -> P,
         lambda: T,
         drive: impl Into<Drive>,
     ) -> Result<T> {
@@ -115,9 +140,7 @@ impl ExplicitLaw {
             return Ok(T::zero());
         }
         let active = drive.target(&self.curve, lambda);
-        let lmin_p = P::from(lmin);
-        let start = self.scaled_root(self.g(lmin_p, P::zero(), b), lmin_p);
-        let gamma = (-self.scaled_root(self.g(lambda, active, b), lambda) + start) * a;
+        let gamma = (-self.scaled_root(self.g(lambda, active, b), lambda) + start()) * a;
         if !gamma.re().is_finite() {
             return Err(Error::NonFinite {
                 quantity: "explicit activation gamma",
