@@ -195,8 +195,18 @@ impl<E: StrainEnergy> Muscle<E> {
                 | (Order::Stress, Coupling::Frozen(_))
                 | (Order::Tangent, Coupling::Frozen(FrozenTangent::Symmetric))
         );
-        let law = if needs_slope {
+        // d²γ/dλ² only for the consistent tangent; without it `curvature` stays 0, and nothing
+        // reads it (the consistent terms (a, b) below are used only with Coupling::Consistent).
+        let needs_curvature = order == Order::Tangent && self.coupling == Coupling::Consistent;
+        let law = if needs_curvature {
             self.activation(fibre_stretch)?
+        } else if needs_slope {
+            let (gamma, slope) = self.law.gamma_and_slope(fibre_stretch, self.drive)?;
+            LawValue {
+                gamma,
+                slope,
+                curvature: 0.0,
+            }
         } else {
             LawValue {
                 gamma: self.law.activation(fibre_stretch, self.drive)?,

@@ -91,6 +91,13 @@ fn check_derivatives(law: &impl ActivationLaw, name: &str, range: (f64, f64)) {
             v.gamma,
             "{name}: gamma alone = gamma with derivatives"
         );
+        let (gamma, slope) = law.gamma_and_slope(l, 0.2).unwrap();
+        assert!(
+            gamma == v.gamma && (slope - v.slope).abs() <= 1e-14 * v.slope.abs().max(1.0),
+            "{name}: (gamma, slope) alone = ({gamma}, {slope}), with the curvature ({}, {})",
+            v.gamma,
+            v.slope
+        );
         let (up, down) = (
             law.evaluate(l + h, 0.2).unwrap(),
             law.evaluate(l - h, 0.2).unwrap(),
@@ -116,6 +123,11 @@ fn check_derivatives(law: &impl ActivationLaw, name: &str, range: (f64, f64)) {
 #[test]
 fn law_derivatives_agree_with_finite_differences() {
     check_derivatives(&implicit(), "implicit", (0.7, 1.6));
+    check_derivatives(
+        &Law::<GiantesioMusesti>::Explicit(ExplicitLaw::paper()),
+        "explicit through Law",
+        (0.7, 1.6),
+    );
     check_derivatives(&energy_law(), "energy", (0.7, 1.6));
     check_derivatives(&ExplicitLaw::paper(), "explicit", (0.7, 1.6));
 }

@@ -4,7 +4,7 @@ use crate::active::drive::Drive;
 use crate::active::strain::check_activation;
 use crate::energy::{positive, GiantesioMusesti, ScalarWith};
 use crate::{Error, Result, Scalar};
-use num_dual::second_derivative;
+use num_dual::{first_derivative, second_derivative};
 
 /// The chapter's closed-form activation law (eq. D:gamma), a first fixed-point step for the
 /// exponent of eq. D:eqgammaesplicita with fitted a, b:
@@ -168,6 +168,15 @@ impl ActivationLaw for ExplicitLaw {
             slope,
             curvature,
         })
+    }
+
+    fn activation(&self, lambda: f64, drive: impl Into<Drive>) -> Result<f64> {
+        self.gamma(lambda, drive)
+    }
+
+    fn gamma_and_slope(&self, lambda: f64, drive: impl Into<Drive>) -> Result<(f64, f64)> {
+        let drive = drive.into();
+        first_derivative(|l| self.gamma(l, drive), lambda)
     }
 
     fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {

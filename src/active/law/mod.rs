@@ -59,6 +59,13 @@ pub trait ActivationLaw {
         Ok(self.evaluate(lambda, drive)?.gamma)
     }
 
+    /// γ and dγ/dλ, without d²γ/dλ²: what the frozen model's exact tangent and the consistent
+    /// stress need (a law written once on dual numbers then carries first-order duals only).
+    fn gamma_and_slope(&self, lambda: f64, drive: impl Into<Drive>) -> Result<(f64, f64)> {
+        let v = self.evaluate(lambda, drive)?;
+        Ok((v.gamma, v.slope))
+    }
+
     /// γ on a generic scalar: the second-order Taylor expansion of [`evaluate`](Self::evaluate)
     /// about the real part, which carries exact first and second derivatives through any dual
     /// number of order ≤ 2.
@@ -184,6 +191,18 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
             Law::Explicit(l) => l.activation(lambda, drive),
             Law::Energy(l) => l.activation(lambda, drive),
             Law::Tabulated(l) => l.activation(lambda, drive),
+        }
+    }
+
+    fn gamma_and_slope(&self, lambda: f64, drive: impl Into<Drive>) -> Result<(f64, f64)> {
+        let drive = drive.into();
+        match self {
+            Law::Passive => Ok((0.0, 0.0)),
+            Law::Constant(l) => l.gamma_and_slope(lambda, drive),
+            Law::Implicit(l) => l.gamma_and_slope(lambda, drive),
+            Law::Explicit(l) => l.gamma_and_slope(lambda, drive),
+            Law::Energy(l) => l.gamma_and_slope(lambda, drive),
+            Law::Tabulated(l) => l.gamma_and_slope(lambda, drive),
         }
     }
 

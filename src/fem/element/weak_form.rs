@@ -13,29 +13,40 @@ pub type ElementVector<const ND: usize> = SVector<f64, ND>;
 /// Element matrix (column-major, as nalgebra stores it).
 pub type ElementMatrix<const ND: usize> = SMatrix<f64, ND, ND>;
 
-/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU = 2 `NN`), using the structure of B
-/// ([`PointGeometry`]): the 2 × 2 block of nodes (a, b) costs 10 products once D's columns are
-/// combined for b. With `lower`, only the blocks a ≥ b (for a symmetric D; see
-/// [`mirror_node_blocks`]).
-fn add_btdb<const NN: usize, const R: usize>(
+/// K[0..NU, 0..NU] += Bᵀ D B (`K` of any size R ≥ NU = 2 `NN`), column by column. Column j of B
+/// (node b = j/2, its u_r or u_z) gives c = D B_j (five numbers), and column j of Bᵀ D B is
+///
+/// Bᵀ c = (∂N_a/∂r c₀ + ∂N_a/∂z c₁ + N_a/r c₄,  ∂N_a/∂r c₂ + ∂N_a/∂z c₃)  for every node a,
+///
+/// written over the interleaved rows (u_r⁰, u_z⁰, u_r¹, …) as one expression
+/// `dr2 · (c₀ | c₂) + dz2 · (c₁ | c₃) + nr2 · c₄` with `dr2` = (∂N₀/∂r, ∂N₀/∂r, ∂N₁/∂r, …),
+/// `dz2` likewise and `nr2` = (N₀/r, 0, N₁/r, 0, …): a loop over contiguous rows, which
+/// vectorises (a u_z row adds nr2 · c₄ = 0, so its value is the same as without that term).
+/// With `lower`, only the node blocks a ≥ b (for a symmetric D; see [`mirror_node_blocks`]).
+#[inline(always)]
+fn add_btdb<const NN: usize, const NU: usize, const R: usize>(
     k: &mut SMatrix<f64, R, R>,
     g: &PointGeometry<NN>,
     d: &SMatrix<f64, 5, 5>,
     lower: bool,
 ) {
-    for nb in 0..NN {
-        let (rb, zb) = (2 * nb, 2 * nb + 1);
-        let (dr, dz, nr) = (g.dn_dr[nb], g.dn_dz[nb], g.n_over_r[nb]);
-        let cr: [f64; 5] =
-            std::array::from_fn(|i| d[(i, 0)] * dr + d[(i, 1)] * dz + d[(i, 4)] * nr);
-        let cz: [f64; 5] = std::array::from_fn(|i| d[(i, 2)] * dr + d[(i, 3)] * dz);
-        for na in if lower { nb } else { 0 }..NN {
-            let (ra, za) = (2 * na, 2 * na + 1);
-            let (ar, az, an) = (g.dn_dr[na], g.dn_dz[na], g.n_over_r[na]);
-            k[(ra, rb)] += ar * cr[0] + az * cr[1] + an * cr[4];
-            k[(za, rb)] += ar * cr[2] + az * cr[3];
-            k[(ra, zb)] += ar * cz[0] + az * cz[1] + an * cz[4];
-            k[(za, zb)] += ar * cz[2] + az * cz[3];
+    let dr2: [f64; NU] = std::array::from_fn(|i| g.dn_dr[i / 2]);
+    let dz2: [f64; NU] = std::array::from_fn(|i| g.dn_dz[i / 2]);
+    let nr2: [f64; NU] = std::array::from_fn(|i| if i % 2 == 0 { g.n_over_r[i / 2] } else { 0.0 });
+    for j in 0..NU {
+        let b = j / 2;
+        let (dr, dz, nr) = (g.dn_dr[b], g.dn_dz[b], g.n_over_r[b]);
+        let c: [f64; 5] = if j % 2 == 0 {
+            std::array::from_fn(|i| d[(i, 0)] * dr + d[(i, 1)] * dz + d[(i, 4)] * nr)
+        } else {
+            std::array::from_fn(|i| d[(i, 2)] * dr + d[(i, 3)] * dz)
+        };
+        let even: [f64; NU] = std::array::from_fn(|i| if i % 2 == 0 { c[0] } else { c[2] });
+        let odd: [f64; NU] = std::array::from_fn(|i| if i % 2 == 0 { c[1] } else { c[3] });
+        let first = if lower { 2 * b } else { 0 };
+        let column = &mut k.as_mut_slice()[j * R..j * R + NU];
+        for i in first..NU {
+            column[i] += dr2[i] * even[i] + dz2[i] * odd[i] + nr2[i] * c[4];
         }
     }
 }
@@ -93,8 +104,50 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
     /// exact constraint. U is evaluated at the interpolated pressure, never at the pointwise J of
     /// the displacement (which the mixed element keeps close to J̃ only weakly): a stiff,
     /// non-quadratic U (4C's J^(−2κ)) then stays as well conditioned as the quadratic one.
+    ///
+    /// Compiled twice, for the baseline target and with AVX2, and chosen at run time
+    /// (`is_x86_feature_detected!`): the same operations in the same order, so the same numbers;
+    /// AVX2 vectorises the loops over an element's rows ([`add_btdb`]).
     #[allow(clippy::too_many_arguments)]
     pub fn residual_tangent<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        geometry: &[PointGeometry<NN>; NQ],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        residual: &mut ElementVector<ND>,
+        tangent: Option<&mut ElementMatrix<ND>>,
+    ) -> crate::Result<ElementScale> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the processor has AVX2 (checked just above).
+            return unsafe {
+                self.residual_tangent_avx2(geometry, u, p, material, volumetric, residual, tangent)
+            };
+        }
+        self.residual_tangent_plain(geometry, u, p, material, volumetric, residual, tangent)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    #[allow(clippy::too_many_arguments)]
+    fn residual_tangent_avx2<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        geometry: &[PointGeometry<NN>; NQ],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        residual: &mut ElementVector<ND>,
+        tangent: Option<&mut ElementMatrix<ND>>,
+    ) -> crate::Result<ElementScale> {
+        self.residual_tangent_plain(geometry, u, p, material, volumetric, residual, tangent)
+    }
+
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn residual_tangent_plain<M: AxisymmetricMaterial + ?Sized>(
         &self,
         geometry: &[PointGeometry<NN>; NQ],
         u: &SVector<f64, NU>,
@@ -155,9 +208,9 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     // material) only the node blocks below the diagonal, mirrored at the end.
                     let d = (a - jacobian_hessian(&f) * pq) * g.dv;
                     if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
-                        add_btdb(&mut kuu_lower, g, &d, true);
+                        add_btdb::<NN, NU, NU>(&mut kuu_lower, g, &d, true);
                     } else {
-                        add_btdb(k, g, &d, false);
+                        add_btdb::<NN, NU, ND>(k, g, &d, false);
                     }
                     // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
                     let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
