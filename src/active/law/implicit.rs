@@ -1,13 +1,13 @@
 use super::{
-    fibre_stress_and_slope, first_activation_root, implicit_derivatives, ActivationLaw, LawValue,
-    PathPartials,
+    fibre_stiffness, fibre_stress_and_slope, first_activation_root, implicit_derivatives,
+    ActivationLaw, LawValue, PathPartials,
 };
 use crate::active::curve::ActiveCurve;
 use crate::active::drive::Drive;
 use crate::active::map::ActivationMap;
 use crate::energy::{positive, StrainEnergy};
 use crate::Result;
-use num_dual::second_derivative;
+use num_dual::{first_derivative, second_derivative};
 
 /// The chapter's activation law (eq. D:eqgammaesplicita): γ(λ) solves
 ///
@@ -90,6 +90,31 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
                 (p - p_pas - t, dp)
             },
         )
+    }
+
+    /// γ′ = −F_λ/F_γ for F(λ, γ) = P_tot(λ, γ) − P_pas(λ) − T(λ): F_λ = ∂P_tot/∂λ(λ, γ) −
+    /// ∂P_tot/∂λ(λ, 0) − T′(λ), F_γ = ∂P_tot/∂γ, by hyper-duals (second order: a third of the cost
+    /// of [`evaluate`](Self::evaluate)'s third-order partials).
+    fn gamma_and_slope(&self, lambda: f64, drive: impl Into<Drive>) -> Result<(f64, f64)> {
+        let drive = drive.into();
+        let gamma = self.activation(lambda, drive)?;
+        let (t, t_l) = first_derivative(|l| drive.target(&self.curve, l), lambda);
+        if t <= 0.0 {
+            return Ok((0.0, 0.0));
+        }
+        let (_, f_g) = fibre_stress_and_slope(&self.energy, self.map, lambda, gamma);
+        let f_l = fibre_stiffness(&self.energy, self.map, lambda, gamma)?
+            - fibre_stiffness(&self.energy, self.map, lambda, 0.0)?
+            - t_l;
+        let slope = -f_l / f_g;
+        if !slope.is_finite() {
+            return Err(crate::Error::NonFinite {
+                quantity: "implicit activation slope",
+                value: slope,
+                context: format!("at lambda = {lambda}, gamma = {gamma}: dP_tot/dgamma = {f_g}"),
+            });
+        }
+        Ok((gamma, slope))
     }
 
     fn evaluate(&self, lambda: f64, drive: impl Into<Drive>) -> Result<LawValue> {

@@ -315,6 +315,33 @@ pub(crate) fn fibre_path_derivatives<E: StrainEnergy>(
     [w.eps1, w.eps2, w.eps1eps2]
 }
 
+/// ∂P_tot/∂λ = ∂²Ŵ/∂λ² along the fibre path at (λ, γ), by one hyper-dual. Errors if it is not
+/// finite (exp overflow).
+pub(crate) fn fibre_stiffness<E: StrainEnergy>(
+    energy: &E,
+    map: ActivationMap,
+    lambda: f64,
+    gamma: f64,
+) -> Result<f64> {
+    let l = HyperDual64::from_re(lambda).derivative1().derivative2();
+    let w_ll = map
+        .fibre_path_energy(energy, l, HyperDual64::from_re(gamma))
+        .eps1eps2;
+    if w_ll.is_finite() {
+        Ok(w_ll)
+    } else {
+        Err(Error::NonFinite {
+            quantity: "fibre stiffness dP_tot/dlambda",
+            value: w_ll,
+            context: format!(
+                "at lambda = {}, gamma = {} (exp overflow?)",
+                crate::text::significant(lambda, 6),
+                crate::text::significant(gamma, 6)
+            ),
+        })
+    }
+}
+
 /// P_tot(λ, γ) = ∂Ŵ/∂λ and ∂P_tot/∂γ along the fibre path ([`fibre_path_derivatives`]).
 pub(crate) fn fibre_stress_and_slope<E: StrainEnergy>(
     energy: &E,
