@@ -9,7 +9,7 @@
 //! a supernode it does not own, an ancestor outside its subtrees, is kept ([`Deferred`]) and
 //! applied by the owner after the two workers have joined.
 
-use super::{Slot, Structure};
+use super::Structure;
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_unit_lower_triangular_in_place,
@@ -131,12 +131,13 @@ impl Worker<'_> {
         };
         l.fill(0.0);
         u.fill(0.0);
-        let (lp, up) = (self.st.l_ptr[t], self.st.u_ptr[t]);
-        for &(k, slot) in &self.st.entries[self.st.entry_ptr[t]..self.st.entry_ptr[t + 1]] {
-            match slot {
-                Slot::L(p) => l[p as usize - lp] = self.values[k as usize],
-                Slot::U(p) => u[p as usize - up] = self.values[k as usize],
-            }
+        let st = self.st;
+        let (first, middle, last) = (st.entry_ptr[t], st.u_entries[t], st.entry_ptr[t + 1]);
+        for &(k, p) in &st.entries[first..middle] {
+            l[p as usize] = self.values[k as usize];
+        }
+        for &(k, p) in &st.entries[middle..last] {
+            u[p as usize] = self.values[k as usize];
         }
     }
 
