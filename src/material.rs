@@ -296,4 +296,12 @@ impl<E: StrainEnergy> crate::fem::AxisymmetricMaterial for Muscle<E> {
         let lambda = kin.fibre_stretch();
         Ok((self.law.activation(lambda, self.drive)?, lambda))
     }
+
+    /// The frozen model's exact tangent has the non-symmetric term (dP/dγ) ⊗ g′ ∂λ_f/∂F
+    /// wherever γ varies with the fibre stretch: any law but none and a constant γ, with the
+    /// activation on.
+    fn symmetric_tangent(&self) -> bool {
+        let varies = !matches!(self.law, Law::Passive | Law::Constant(_)) && !self.drive.is_off();
+        !(varies && self.coupling == Coupling::Frozen(FrozenTangent::Exact))
+    }
 }

@@ -20,6 +20,9 @@ use crate::volumetric::Volumetric;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
+/// Entries of the system matrix gathered per parallel task.
+const GATHER_CHUNK: usize = 4096;
+
 /// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuadraturePoint {
@@ -280,6 +283,8 @@ pub struct Assembler {
     pub pattern: Pattern,
     /// System matrix values (aligned with `pattern.row_idx`).
     pub values: Vec<f64>,
+    /// Their Frobenius norm ‖K‖_F, summed while they are gathered (GMRES's backward error).
+    pub values_norm: f64,
     /// Residual on every dof, prescribed ones included (there it is the reaction).
     pub residual: Vec<f64>,
     /// K_fc d_c: the tangent times the rate of the prescribed dofs (for the tangent predictor).
@@ -541,6 +546,7 @@ impl Assembler {
             n_free: n,
             pattern,
             values: vec![0.0; nnz],
+            values_norm: 0.0,
             residual: vec![0.0; dofs.n_total],
             rate_force: vec![0.0; dofs.n_total],
             stress_scale: 0.0,
@@ -636,7 +642,26 @@ impl Assembler {
         gather(&mut self.residual, &self.res_ptr, &self.res_src, &self.rbuf);
         self.stress_scale = self.scale_buf.par_iter().cloned().reduce(|| 0.0, f64::max);
         if tangent {
-            gather(&mut self.values, &self.val_ptr, &self.val_src, &self.kbuf);
+            // The squares summed by fixed chunks, in order: the same norm whatever the threads.
+            let (ptr, src, kbuf) = (&self.val_ptr, &self.val_src, &self.kbuf);
+            let squares: Vec<f64> = self
+                .values
+                .par_chunks_mut(GATHER_CHUNK)
+                .enumerate()
+                .map(|(c, chunk)| {
+                    let mut squares = 0.0;
+                    for (k, o) in chunk.iter_mut().enumerate() {
+                        let i = c * GATHER_CHUNK + k;
+                        *o = src[ptr[i] as usize..ptr[i + 1] as usize]
+                            .iter()
+                            .map(|&s| kbuf[s as usize])
+                            .sum();
+                        squares += *o * *o;
+                    }
+                    squares
+                })
+                .collect();
+            self.values_norm = squares.iter().sum::<f64>().sqrt();
             gather(
                 &mut self.rate_force,
                 &self.res_ptr,

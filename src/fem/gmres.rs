@@ -133,12 +133,15 @@ impl Gmres {
     /// ‖b − K x‖ ≤ `tol` (‖K‖_F ‖x‖ + ‖b‖) with at most `max_iter` iterations. (A relative
     /// residual ‖b − K x‖ ≤ tol ‖b‖ is out of reach of any solver once the condition number
     /// exceeds tol/ε; the backward error is what a direct solve with partial pivoting attains,
-    /// ≈ 1e-16 times a modest growth factor.) Returns the iterations used, or `None` if the
-    /// tolerance was not met.
+    /// ≈ 1e-16 times a modest growth factor.) `knorm` is ‖K‖_F (the assembly's
+    /// [`values_norm`](super::assembly::Assembler::values_norm)). Returns the iterations used, or
+    /// `None` if the tolerance was not met.
+    #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
         pattern: &Pattern,
         values: &[f64],
+        knorm: f64,
         pre: &mut dyn Preconditioner,
         rhs: &mut [f64],
         tol: f64,
@@ -148,7 +151,6 @@ impl Gmres {
         if bnorm == 0.0 {
             return Some(0);
         }
-        let knorm = values.iter().map(|v| v * v).sum::<f64>().sqrt();
         let norm = |v: &[f64]| v.iter().map(|v| v * v).sum::<f64>().sqrt();
         // First guess x₀ = M⁻¹ b, r₀ = b − K x₀: the solution itself when M is a factorisation
         // of K (a symmetric tangent), found with one product by K where a GMRES iteration

@@ -46,6 +46,13 @@ pub trait AxisymmetricMaterial: Sync {
     fn damage_activation_at(&self, _at: [f64; 2]) -> Option<(f64, f64)> {
         None
     }
+    /// False when the tangent is known to be non-symmetric (the frozen model's exact tangent):
+    /// the solver then factorises it by LU from the first Newton iteration, instead of first
+    /// finding out that GMRES on the LDLᵀ of its symmetric part does not converge. True (the
+    /// default) only says that the LDLᵀ is worth trying; the solver still checks.
+    fn symmetric_tangent(&self) -> bool {
+        true
+    }
 }
 
 /// A material varying in space by regions: `base` outside every region, and in each
@@ -121,6 +128,9 @@ impl<M: AxisymmetricMaterial> AxisymmetricMaterial for Regions<M> {
     }
     fn damage_activation_at(&self, at: [f64; 2]) -> Option<(f64, f64)> {
         Some(self.at(at).1)
+    }
+    fn symmetric_tangent(&self) -> bool {
+        self.base.symmetric_tangent() && self.regions.iter().all(|g| g.material.symmetric_tangent())
     }
 }
 

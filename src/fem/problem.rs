@@ -108,7 +108,13 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
         let factorising = self.timings.factorisation;
         let r = self
             .linear
-            .solve(&self.asm.pattern, &self.asm.values, rhs, &mut self.timings)
+            .solve(
+                &self.asm.pattern,
+                &self.asm.values,
+                self.asm.values_norm,
+                rhs,
+                &mut self.timings,
+            )
             .map_err(|detail| StepFailure::SingularTangent { detail });
         // Factorisations triggered inside the solve are counted as factorisation only.
         self.timings.solve += t.elapsed() - (self.timings.factorisation - factorising);

@@ -90,9 +90,13 @@ pub struct TangentSolver {
 }
 
 impl TangentSolver {
-    /// `ldlt`: the symbolic LDLᵀ (None: faer's LU only).
-    pub fn new(n: usize, ldlt: Option<SymmetricPartLdlt>) -> Self {
-        let prefer_lu = ldlt.is_none();
+    /// `ldlt`: the symbolic LDLᵀ (None: faer's LU only). `symmetric`: whether the tangent may be
+    /// symmetric ([`AxisymmetricMaterial::symmetric_tangent`]); if not, the LU from the start
+    /// (the pattern LU on the LDLᵀ's supernodes).
+    ///
+    /// [`AxisymmetricMaterial::symmetric_tangent`]: super::material::AxisymmetricMaterial::symmetric_tangent
+    pub fn new(n: usize, ldlt: Option<SymmetricPartLdlt>, symmetric: bool) -> Self {
+        let prefer_lu = ldlt.is_none() || !symmetric;
         Self {
             ldlt,
             pattern_lu: None,
@@ -109,11 +113,12 @@ impl TangentSolver {
 
     /// Solves K x = b (b in `rhs`, x returned in it) for the tangent last factorised — or, when
     /// a later tangent with the same pattern is passed (the rate dx/dλ at a converged state),
-    /// for that one, by GMRES preconditioned with the held factorisation.
+    /// for that one, by GMRES preconditioned with the held factorisation. `values_norm`: ‖K‖_F.
     pub fn solve(
         &mut self,
         pattern: &Pattern,
         values: &[f64],
+        values_norm: f64,
         rhs: &mut [f64],
         timings: &mut Timings,
     ) -> Result<(), String> {
@@ -125,7 +130,7 @@ impl TangentSolver {
                 _ => break,
             };
             if self
-                .krylov(pattern, values, rhs, max_iter, timings)
+                .krylov(pattern, values, values_norm, rhs, max_iter, timings)
                 .is_some()
             {
                 if self.current == Factor::PatternLu {
@@ -216,6 +221,7 @@ impl TangentSolver {
         &mut self,
         pattern: &Pattern,
         values: &[f64],
+        values_norm: f64,
         rhs: &mut [f64],
         max_iter: usize,
         timings: &mut Timings,
@@ -232,7 +238,7 @@ impl TangentSolver {
         };
         let its = pre.and_then(|pre| {
             self.gmres
-                .solve(pattern, values, pre, rhs, TOLERANCE, max_iter)
+                .solve(pattern, values, values_norm, pre, rhs, TOLERANCE, max_iter)
         });
         match its {
             Some(its) => timings.krylov_iterations += its,
