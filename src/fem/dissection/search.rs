@@ -172,22 +172,10 @@ impl<'g> Search<'g> {
     /// The thinned level of the last search's `levels` with the least |S| / (|A| |B|), A the
     /// nodes before the separator (the level's other nodes included), B those after.
     fn best_cut(&self, levels: &Levels) -> Option<Cut> {
-        let depth = levels.depth();
-        let mut thinned = vec![0usize; depth];
-        for k in 0..depth.saturating_sub(1) {
-            for &v in levels.level(k) {
-                let next = k as u32 + 1;
-                if self.free_neighbours(v).any(|w| {
-                    self.stamp[w as usize] == self.current && self.level_of[w as usize] == next
-                }) {
-                    thinned[k] += 1;
-                }
-            }
-        }
         let total = levels.len() as f64;
-        let (cost, l) = (1..depth.saturating_sub(1))
+        let (cost, l) = (1..levels.depth().saturating_sub(1))
             .map(|l| {
-                let s = thinned[l] as f64;
+                let s = self.thinned(levels, l).len() as f64;
                 let before = levels.up_to(l) as f64 - s;
                 let after = total - levels.up_to(l) as f64;
                 (s / (before * after), l)
