@@ -207,3 +207,63 @@ fn group_adjacency(mesh: &Mesh, group_of: &[u32], ng: usize) -> Pattern {
         row_idx,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::assembly::Assembler;
+    use crate::fem::dofs::Bases;
+    use crate::fem::element::Element;
+
+    /// On the clamped cylinder with either element: the order is a permutation of the system's
+    /// dofs; every node group is eliminated in one piece, its displacements before its
+    /// pressures (its own and those of clamped neighbours); a cell pressure of Q1/P0 comes
+    /// after every dof of its cell's node groups, next to them (only other cell pressures
+    /// between).
+    #[test]
+    fn every_dof_once_each_node_in_one_piece_and_pressures_after_their_displacements() {
+        for element in Element::ALL {
+            let mesh = Mesh::structured(1.0, 4.0, 6, 24, 1.0)
+                .unwrap()
+                .with_element(element);
+            let dofs = DofMap::new(&mesh, Bases::Clamped);
+            let asm = Assembler::new(&mesh, &dofs).unwrap();
+            let (groups, adjacency, trailing) = node_structure(&mesh, &dofs, asm.system_index());
+            let perm = dof_ordering(&groups, &adjacency, &trailing).unwrap();
+            let n = asm.pattern.n;
+            let mut position = vec![usize::MAX; n];
+            for (k, &i) in perm.iter().enumerate() {
+                assert_eq!(position[i as usize], usize::MAX, "{element}: dof {i} twice");
+                position[i as usize] = k;
+            }
+            assert!(position.iter().all(|&k| k < n), "{element}: a dof missing");
+            let mut pressure = vec![false; n];
+            for &p in dofs.node_p.iter().filter(|&&p| p < dofs.n_free as u32) {
+                pressure[asm.system_index()[p as usize] as usize] = true;
+            }
+            let mut group_of_position = vec![None; n];
+            for (g, group) in groups.iter().enumerate() {
+                for (k, &i) in group.iter().enumerate() {
+                    assert_eq!(position[i as usize], position[group[0] as usize] + k);
+                    let displacement_after = group[k..].iter().any(|&j| !pressure[j as usize]);
+                    assert!(
+                        !pressure[i as usize] || !displacement_after,
+                        "{element}: {g}"
+                    );
+                    group_of_position[position[i as usize]] = Some(g as u32);
+                }
+            }
+            assert_eq!(trailing.is_empty(), element == Element::Q2Q1);
+            for t in &trailing {
+                let first = position[t.dofs[0] as usize];
+                let before = (0..first).rev().find_map(|k| group_of_position[k]);
+                assert!(before.is_some_and(|g| t.after.contains(&g)), "{element}");
+                for &g in &t.after {
+                    assert!(groups[g as usize]
+                        .iter()
+                        .all(|&i| position[i as usize] < first));
+                }
+            }
+        }
+    }
+}
