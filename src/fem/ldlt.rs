@@ -4,9 +4,9 @@
 //! Why: faer's sparse LU bounds its fill by the Cholesky factor of KᵀK (static pivoting
 //! structure), which for these meshes is several times denser than the factor of K itself.
 //! LDLᵀ works on the pattern of K. The saddle point is factorised without pivoting thanks to the
-//! ordering ([`super::ordering`]): approximate minimum degree on the node graph, and within each
-//! node the displacement dofs before the pressure dof, so a pressure pivot is a Schur complement
-//! rather than the zero diagonal. A zero pivot (or a non-finite factor) is reported and the
+//! ordering ([`super::ordering`]): a dissection of the node graph ([`super::dissection`]), and
+//! within each node the displacement dofs before the pressure dof, so a pressure pivot is a
+//! Schur complement rather than the zero diagonal. A zero pivot (or a non-finite factor) is reported and the
 //! caller uses an LU instead. For a symmetric tangent S = K and GMRES converges in one
 //! iteration; for a non-symmetric one in a few, or not at all when K is far from symmetric: the
 //! caller then switches to an LU ([`super::tangent_solver`]), so the Newton direction is always

@@ -20,8 +20,8 @@
 //!   8 q (3 k + 3) c for cells of k nodes (2 160 bytes per Q2/Q1 cell, 480 per Q1/P0 cell);
 //! - the mesh and dof map: 28 N + 8 d c.
 //!
-//! Before the symbolic factorisation f is modelled as [`FILL`] · n (log₂ n)² (a 2D mesh under a
-//! minimum-degree ordering); after it, f is exact. Measured (clamped cylinder R = 1, L = 4,
+//! Before the symbolic factorisation f is modelled as [`FILL`] · n (log₂ n)² (a 2D mesh under the
+//! dissection order of [`super::dissection`]); after it, f is exact. Measured (clamped cylinder R = 1, L = 4,
 //! 20 stretches, `cargo run --release --example fem_memory`): the estimate is within a factor
 //! 1.6 of the peak resident memory (VmHWM) from 2.4k to 148k dofs, both elements, symmetric
 //! (neo-Hookean) and non-symmetric (frozen muscle) tangents; see BENCHMARKS.md.
@@ -33,9 +33,10 @@ use super::linear_solver::LinearSolver;
 /// Limit used when the available memory cannot be read (no `/proc/meminfo`): 4 GiB.
 pub const FALLBACK_LIMIT: u64 = 4 << 30;
 
-/// Factor values per n (log₂ n)² of the LDLᵀ of the cylinder meshes: measured 0.39–0.41 for
-/// Q2/Q1 (9.4k–148k dofs), 0.48–0.49 for Q1/P0 (3.1k–12k dofs).
-pub const FILL: f64 = 0.5;
+/// Factor values per n (log₂ n)² of the LDLᵀ of the clamped cylinder meshes (n the free dofs)
+/// under the dissection order: measured 0.39 for Q2/Q1 (9.4k–148k dofs), 0.52–0.55 for Q1/P0
+/// (3.1k–49k dofs). (Under the minimum-degree order used before: 0.38 and 0.48–0.50.)
+pub const FILL: f64 = 0.56;
 
 /// Bytes per dof of faer's workspace for the numeric supernodal LDLᵀ (measured 465–479 from
 /// 9.4k to 148k dofs).

@@ -30,6 +30,7 @@
 pub mod assembly;
 pub mod condensation;
 pub mod continuation;
+pub mod dissection;
 pub mod dofs;
 pub mod element;
 pub mod error;

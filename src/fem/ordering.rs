@@ -1,15 +1,23 @@
 //! The elimination order of the tangent's dofs, shared by the LDLᵀ ([`super::ldlt`]) and the
-//! pattern LU ([`super::pattern_lu`]): approximate minimum degree on the node graph, each node's
-//! displacement dofs before its pressure dof, and a pressure without a node of its own (a Q1/P0
-//! cell's) right after the last of its cell's nodes, so that no pressure pivot is the zero
-//! diagonal of the saddle point but a Schur complement.
+//! pattern LU ([`super::pattern_lu`]): a dissection order of the node graph
+//! ([`super::dissection`]: one separator between two halves for the two cores, the halves cut
+//! into slabs, the rest by nested dissection and minimum degree), each node's displacement dofs
+//! before its pressure dof, and a pressure without a node of its own (a Q1/P0 cell's) right
+//! after the last of its cell's nodes, so that no pressure pivot is the zero diagonal of the
+//! saddle point but a Schur complement.
+//!
+//! Against approximate minimum degree on the node graph (the order before), clamped cylinder
+//! R = 1, L = 4, Q2/Q1: the LDLᵀ's values 640 711 against 621 134 (16 × 64 cells), 3.39 M
+//! against 3.28 M (32 × 128), 16.96 M against 16.48 M (64 × 256); the LU's flops 0.7–2 % more,
+//! the estimated two-core speed-up of the pattern LU's split 1.89–1.93 against 1.50–1.54.
+//! Frozen explicit sweep (`examples/cylinder_sweep.rs`, alternated release runs, load < 2):
+//! factorisation 6.06 → 4.86 ms per call at 9 360 dofs, 36.5 → 32.9 ms at 37 152, the same
+//! Newton and GMRES iterations (BENCHMARKS.md, "The dissection order of the tangent").
 
 use super::assembly::Pattern;
+use super::dissection::nested_dissection;
 use super::dofs::DofMap;
 use super::mesh::Mesh;
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::amd;
-use faer::sparse::SymbolicSparseColMatRef;
 
 /// Dofs without a node of their own (the pressure of a Q1/P0 cell): eliminated right after the
 /// last, in the node ordering, of the node groups `after` (the cell's nodes), so that their
@@ -22,47 +30,44 @@ pub struct Trailing {
     pub dofs: Vec<u32>,
 }
 
-/// The elimination order of the dofs: approximate minimum degree on the node graph
-/// `node_adjacency`, each node's dofs `node_dofs[a]` in their order (displacement, then
-/// pressure), and every [`Trailing`] group right after the last of its node groups.
+/// The elimination order of the dofs: the dissection order of the node graph
+/// `node_adjacency` ([`nested_dissection`]), each node's dofs `node_dofs[a]` in their order
+/// (displacement, then pressure), and every [`Trailing`] group right after the last of its node
+/// groups.
 pub fn dof_ordering(
     node_dofs: &[Vec<u32>],
     node_adjacency: &Pattern,
     trailing: &[Trailing],
 ) -> Result<Vec<u32>, String> {
-    let nn = node_adjacency.n;
-    let mut node_perm = vec![0u32; nn];
-    let mut node_perm_inv = vec![0u32; nn];
-    let a = SymbolicSparseColMatRef::new_checked(
-        nn,
-        nn,
-        &node_adjacency.col_ptr,
-        None,
-        &node_adjacency.row_idx,
-    );
-    let mut mem = MemBuffer::try_new(amd::order_scratch::<u32>(nn, node_adjacency.row_idx.len()))
-        .map_err(|_| "out of memory for AMD".to_string())?;
-    amd::order(
-        &mut node_perm,
-        &mut node_perm_inv,
-        a,
-        amd::Control::default(),
-        MemStack::new(&mut mem),
-    )
-    .map_err(|e| format!("AMD: {e:?}"))?;
-    // Trailing dofs go right after the last of their node groups in that order.
+    let node_order = nested_dissection(node_adjacency)?;
+    Ok(dofs_in_node_order(&node_order, node_dofs, trailing))
+}
+
+/// The dofs in the node order `node_order` (`node_order[k]`: the k-th node group), each
+/// group's dofs `node_dofs[a]` in their order and every [`Trailing`] group right after the last
+/// of its node groups (at the end if it has none).
+pub fn dofs_in_node_order(
+    node_order: &[u32],
+    node_dofs: &[Vec<u32>],
+    trailing: &[Trailing],
+) -> Vec<u32> {
+    let nn = node_order.len();
+    let mut position = vec![0usize; nn];
+    for (k, &a) in node_order.iter().enumerate() {
+        position[a as usize] = k;
+    }
     let mut after_position: Vec<Vec<usize>> = vec![Vec::new(); nn + 1];
     for (t, tr) in trailing.iter().enumerate() {
         let last = tr
             .after
             .iter()
-            .map(|&a| node_perm_inv[a as usize] as usize)
+            .map(|&a| position[a as usize])
             .max()
             .unwrap_or(nn);
         after_position[last].push(t);
     }
     let mut perm = Vec::new();
-    for (k, &a) in node_perm.iter().enumerate() {
+    for (k, &a) in node_order.iter().enumerate() {
         perm.extend_from_slice(&node_dofs[a as usize]);
         for &t in &after_position[k] {
             perm.extend_from_slice(&trailing[t].dofs);
@@ -71,7 +76,7 @@ pub fn dof_ordering(
     for &t in &after_position[nn] {
         perm.extend_from_slice(&trailing[t].dofs);
     }
-    Ok(perm)
+    perm
 }
 
 /// Dof groups for the LDLᵀ ordering and their adjacency graph. One group per node with free
@@ -122,9 +127,9 @@ fn node_groups(mesh: &Mesh, dofs: &DofMap, index: &[u32]) -> (Vec<u32>, Vec<Vec<
     let nn_all = mesh.n_nodes();
     let mut group_of = vec![u32::MAX; nn_all];
     let mut groups: Vec<Vec<u32>> = Vec::new();
-    // A condensed centre node keeps its (empty) group: the minimum-degree ordering sees the
-    // graph of the uncondensed mesh, which orders the remaining nodes better (at 148k dofs the
-    // factor of the graph without the centre nodes was 22 % larger).
+    // A condensed centre node keeps its (empty) group: the ordering sees the graph of the
+    // uncondensed mesh (under minimum degree, at 148k dofs the factor of the graph without the
+    // centre nodes was 22 % larger).
     let mut has_u = Vec::new();
     for (a, g) in group_of.iter_mut().enumerate() {
         let free: Vec<u32> = dofs.node_u[a].iter().copied().filter(|&g| g < nf).collect();
@@ -203,5 +208,65 @@ fn group_adjacency(mesh: &Mesh, group_of: &[u32], ng: usize) -> Pattern {
         n: ng,
         col_ptr,
         row_idx,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::assembly::Assembler;
+    use crate::fem::dofs::Bases;
+    use crate::fem::element::Element;
+
+    /// On the clamped cylinder with either element: the order is a permutation of the system's
+    /// dofs; every node group is eliminated in one piece, its displacements before its
+    /// pressures (its own and those of clamped neighbours); a cell pressure of Q1/P0 comes
+    /// after every dof of its cell's node groups, next to them (only other cell pressures
+    /// between).
+    #[test]
+    fn every_dof_once_each_node_in_one_piece_and_pressures_after_their_displacements() {
+        for element in Element::ALL {
+            let mesh = Mesh::structured(1.0, 4.0, 6, 24, 1.0)
+                .unwrap()
+                .with_element(element);
+            let dofs = DofMap::new(&mesh, Bases::Clamped);
+            let asm = Assembler::new(&mesh, &dofs).unwrap();
+            let (groups, adjacency, trailing) = node_structure(&mesh, &dofs, asm.system_index());
+            let perm = dof_ordering(&groups, &adjacency, &trailing).unwrap();
+            let n = asm.pattern.n;
+            let mut position = vec![usize::MAX; n];
+            for (k, &i) in perm.iter().enumerate() {
+                assert_eq!(position[i as usize], usize::MAX, "{element}: dof {i} twice");
+                position[i as usize] = k;
+            }
+            assert!(position.iter().all(|&k| k < n), "{element}: a dof missing");
+            let mut pressure = vec![false; n];
+            for &p in dofs.node_p.iter().filter(|&&p| p < dofs.n_free as u32) {
+                pressure[asm.system_index()[p as usize] as usize] = true;
+            }
+            let mut group_of_position = vec![None; n];
+            for (g, group) in groups.iter().enumerate() {
+                for (k, &i) in group.iter().enumerate() {
+                    assert_eq!(position[i as usize], position[group[0] as usize] + k);
+                    let displacement_after = group[k..].iter().any(|&j| !pressure[j as usize]);
+                    assert!(
+                        !pressure[i as usize] || !displacement_after,
+                        "{element}: {g}"
+                    );
+                    group_of_position[position[i as usize]] = Some(g as u32);
+                }
+            }
+            assert_eq!(trailing.is_empty(), element == Element::Q2Q1);
+            for t in &trailing {
+                let first = position[t.dofs[0] as usize];
+                let before = (0..first).rev().find_map(|k| group_of_position[k]);
+                assert!(before.is_some_and(|g| t.after.contains(&g)), "{element}");
+                for &g in &t.after {
+                    assert!(groups[g as usize]
+                        .iter()
+                        .all(|&i| position[i as usize] < first));
+                }
+            }
+        }
     }
 }
