@@ -48,8 +48,9 @@ pub trait NonlinearSystem {
     /// The Newton direction dx = −K⁻¹ R on the free unknowns, with the tangent of the last
     /// evaluation.
     fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure>;
-    /// dx/dλ at the last evaluated (converged) state, all unknowns: K v_f = −∂R_f/∂λ and the
-    /// prescribed part from the load.
+    /// dx/dλ, all unknowns: K v_f = −∂R_f/∂λ and the prescribed part from the load, with K and
+    /// ∂R_f/∂λ of the last evaluation that had the tangent (at a converged state, that state's
+    /// or the last iterate's before it: see `Continuation::newton`).
     fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure>;
 }
 
@@ -417,7 +418,10 @@ impl Continuation {
     ///
     /// Each iteration solves K Δx = −R on the free unknowns, then backtracks
     /// ([`Self::line_search`]). On success `x` holds the converged state and the system holds
-    /// its evaluation with the tangent.
+    /// its residual there; its tangent is of the converged state or, when the last step was
+    /// evaluated without one ([`LIKELY_LAST`]), of the iterate before, whose factorisation it
+    /// also holds: the rate dx/dλ solved with it is the previous iterate's, as good a
+    /// predictor (the two states differ by the last increment, ≤ 1e-4 of the load step's).
     fn newton<S: NonlinearSystem>(
         &mut self,
         system: &mut S,
@@ -446,8 +450,10 @@ impl Continuation {
                 }
             }
             system.newton_direction(&mut self.delta[..nf])?;
-            let alpha = self.line_search(system, x, phi, record.to)?;
-            have_tangent = alpha == 1.0;
+            // Near the solution the step is most likely the last: its state without the tangent.
+            let tangent = phi > LIKELY_LAST * tol;
+            let alpha = self.line_search(system, x, phi, record.to, tangent)?;
+            have_tangent = tangent && alpha == 1.0;
             std::mem::swap(x, &mut self.trial);
             let scale = system.scale();
             let increment = system.increment_norm(&self.delta[..nf], alpha, scale);
@@ -460,10 +466,6 @@ impl Continuation {
             let next = next_increment(increment, residual, phi);
             (phi, last_increment) = (residual, increment);
             if residual <= tol && next <= tol {
-                if !have_tangent {
-                    // Leave the system evaluated at the converged state, tangent included.
-                    system.evaluate(x, true).map_err(StepFailure::Material)?;
-                }
                 return Ok(());
             }
         }
@@ -479,13 +481,14 @@ impl Continuation {
     /// x + α Δx (α = 1, ½, …, at most [`Stepping::max_backtracks`] halvings) is accepted when
     /// the scaled residual (scale frozen at `x`) decreases, φ(α) ≤ (1 − 10⁻⁴ α) φ(0) (Armijo),
     /// or at α = 1 when φ(0) is already at the tolerance (round-off floor). The full step is
-    /// evaluated with its tangent. Returns α; the trial is left in `trial`.
+    /// evaluated with its tangent if `tangent`. Returns α; the trial is left in `trial`.
     fn line_search<S: NonlinearSystem>(
         &mut self,
         system: &mut S,
         x: &[f64],
         phi: f64,
         load: f64,
+        tangent: bool,
     ) -> Result<f64, StepFailure> {
         let nf = system.free();
         let scale = system.scale();
@@ -493,11 +496,12 @@ impl Continuation {
         let mut last_error = None;
         for k in 0..=self.stepping.max_backtracks {
             let full = k == 0;
+            let with_tangent = full && tangent;
             self.trial.copy_from_slice(x);
             for (t, d) in self.trial[..nf].iter_mut().zip(&self.delta[..nf]) {
                 *t += alpha * d;
             }
-            match system.evaluate(&self.trial, full) {
+            match system.evaluate(&self.trial, with_tangent) {
                 Ok(()) => {
                     let phi_trial = system.residual_norm(scale);
                     if phi_trial <= (1.0 - 1e-4 * alpha) * phi
@@ -521,6 +525,13 @@ impl Continuation {
         })
     }
 }
+
+/// Below `LIKELY_LAST` × the tolerance, the scaled residual is in Newton's quadratic phase and
+/// the next step is most likely the last: its trial state is evaluated without the tangent,
+/// which only a further iteration would need (it is then evaluated again, with it). On the
+/// 16 × 64 frozen explicit sweeps (d = 0 and 0.5), 10⁴ catches 34 of the 40 last iterations
+/// and costs 5 extra residual evaluations (10⁵: 38 and 22; 10³: 25 and 2).
+const LIKELY_LAST: f64 = 1e4;
 
 /// The scaled norm of the next Newton increment, estimated from the last one, `increment`, and
 /// the residual's contraction over the last iteration, r_k / r_{k−1} (`residual` / `before`):
@@ -556,6 +567,8 @@ mod tests {
         tangent: f64,
         rate_force: f64,
         limit: f64,
+        /// Evaluations without and with the tangent.
+        evaluations: [usize; 2],
     }
 
     impl NonlinearSystem for Sinh {
@@ -577,6 +590,7 @@ mod tests {
                 });
             }
             self.residual = x[0].sinh() - x[1];
+            self.evaluations[usize::from(tangent)] += 1;
             if tangent {
                 self.tangent = x[0].cosh();
                 self.rate_force = -1.0;
@@ -640,6 +654,7 @@ mod tests {
             tangent: 1.0,
             rate_force: 0.0,
             limit,
+            evaluations: [0, 0],
         }
     }
 
@@ -698,6 +713,33 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert_eq!(observer.reached.len(), 1);
+    }
+
+    /// A step taken from a residual in Newton's quadratic phase is evaluated without its
+    /// tangent (only a further iteration would need it), and the path is the closed form all the
+    /// same: the rate at such a state is solved with the iterate's before it.
+    #[test]
+    fn a_likely_last_step_is_evaluated_without_its_tangent() {
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let mut sinh = system(f64::INFINITY);
+        let failures = driver
+            .sweep(&mut sinh, &[0.2, 3.0, 6.0], &mut observer)
+            .unwrap();
+        assert!(failures.is_empty());
+        for (load, y, _) in &observer.reached {
+            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
+        }
+        // Without the rule, every step evaluates its predictor and each iteration's trial with
+        // the tangent.
+        let steps: usize = observer.reached.iter().map(|r| r.2.len()).sum();
+        let [without, with] = sinh.evaluations;
+        assert!(without > 0, "{:?}", sinh.evaluations);
+        assert!(
+            with < steps + driver.newton_iterations(),
+            "{with} with the tangent for {steps} steps and {} iterations",
+            driver.newton_iterations()
+        );
     }
 
     #[test]

@@ -207,8 +207,9 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         self.solve_free(dx)
     }
 
-    /// K_ff v_f = −K_fc d_c, v_c = d_c, with the last factorisation (the tangent at the previous
-    /// iterate, within tolerance) preconditioning GMRES on the current tangent.
+    /// K_ff v_f = −K_fc d_c, v_c = d_c, for the tangent last assembled (of the converged state,
+    /// or of the iterate before it when the last step was evaluated without it), with the last
+    /// factorisation (of that tangent or of the iterate before) preconditioning GMRES.
     fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure> {
         let nf = self.dofs.n_free;
         for (f, g) in self.rhs.iter_mut().zip(&self.asm.rate_force) {
