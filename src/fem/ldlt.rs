@@ -200,25 +200,36 @@ fn permuted(
 ) -> Result<(Pattern, Vec<[u32; 2]>), String> {
     let n = pattern.n;
     let transpose_of = transpose_positions(pattern)?;
-    let mut entries: Vec<(u32, u32, [u32; 2])> = Vec::with_capacity(pattern.row_idx.len());
+    let kept = |row: u32, col: u32| !lower || row >= col;
+    // Counted by permuted column, placed, then each (short) column sorted by row.
+    let mut col_ptr = vec![0u32; n + 1];
     for j in 0..n {
-        for k in pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize {
-            let (pi, pj) = (perm_inv[pattern.row_idx[k] as usize], perm_inv[j]);
-            if !lower || pi >= pj {
-                entries.push((pj, pi, [k as u32, transpose_of[k]]));
+        for &i in &pattern.row_idx[pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize] {
+            let (pi, pj) = (perm_inv[i as usize], perm_inv[j]);
+            if kept(pi, pj) {
+                col_ptr[pj as usize + 1] += 1;
             }
         }
-    }
-    entries.sort_unstable_by_key(|&(col, row, _)| (col, row));
-    let mut col_ptr = vec![0u32; n + 1];
-    for &(col, _, _) in &entries {
-        col_ptr[col as usize + 1] += 1;
     }
     for j in 0..n {
         col_ptr[j + 1] += col_ptr[j];
     }
-    let row_idx = entries.iter().map(|e| e.1).collect();
-    let sources = entries.iter().map(|e| e.2).collect();
+    let mut next: Vec<u32> = col_ptr[..n].to_vec();
+    let mut entries = vec![(0u32, [0u32; 2]); col_ptr[n] as usize];
+    for j in 0..n {
+        for k in pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize {
+            let (pi, pj) = (perm_inv[pattern.row_idx[k] as usize], perm_inv[j]);
+            if kept(pi, pj) {
+                entries[next[pj as usize] as usize] = (pi, [k as u32, transpose_of[k]]);
+                next[pj as usize] += 1;
+            }
+        }
+    }
+    for j in 0..n {
+        entries[col_ptr[j] as usize..col_ptr[j + 1] as usize].sort_unstable_by_key(|e| e.0);
+    }
+    let row_idx = entries.iter().map(|e| e.0).collect();
+    let sources = entries.iter().map(|e| e.1).collect();
     Ok((
         Pattern {
             n,
@@ -232,18 +243,25 @@ fn permuted(
 /// Position of the transposed entry of every nonzero (the pattern must be structurally
 /// symmetric).
 fn transpose_positions(pattern: &Pattern) -> Result<Vec<u32>, String> {
+    // Visiting the columns j in order, entry (i, j) is the next unvisited row of column i when
+    // the pattern is symmetric (column i's rows ascend): one pass, each match checked.
+    let mut next: Vec<u32> = pattern.col_ptr[..pattern.n].to_vec();
     let mut transpose_of = vec![0u32; pattern.row_idx.len()];
+    let asymmetric = || "tangent pattern is not structurally symmetric".to_string();
     for j in 0..pattern.n {
         let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
         for (k, &i) in range.clone().zip(&pattern.row_idx[range]) {
-            let i = i as usize;
-            let col =
-                &pattern.row_idx[pattern.col_ptr[i] as usize..pattern.col_ptr[i + 1] as usize];
-            let pos = col
-                .binary_search(&(j as u32))
-                .map_err(|_| "tangent pattern is not structurally symmetric".to_string())?;
-            transpose_of[k] = pattern.col_ptr[i] + pos as u32;
+            let at = next[i as usize];
+            if at >= pattern.col_ptr[i as usize + 1] || pattern.row_idx[at as usize] != j as u32 {
+                return Err(asymmetric());
+            }
+            transpose_of[k] = at;
+            next[i as usize] += 1;
         }
+    }
+    // Every entry of every column matched.
+    if (0..pattern.n).any(|i| next[i] != pattern.col_ptr[i + 1]) {
+        return Err(asymmetric());
     }
     Ok(transpose_of)
 }
@@ -251,5 +269,65 @@ fn transpose_positions(pattern: &Pattern) -> Result<Vec<u32>, String> {
 impl Preconditioner for SymmetricPartLdlt {
     fn apply(&mut self, x: &mut [f64]) {
         SymmetricPartLdlt::apply(self, x);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pattern from its columns' rows.
+    fn pattern(columns: &[&[u32]]) -> Pattern {
+        let mut col_ptr = vec![0u32];
+        let mut row_idx = Vec::new();
+        for c in columns {
+            row_idx.extend_from_slice(c);
+            col_ptr.push(row_idx.len() as u32);
+        }
+        Pattern {
+            n: columns.len(),
+            col_ptr,
+            row_idx,
+        }
+    }
+
+    #[test]
+    fn transposed_positions_swap_row_and_column_and_an_asymmetric_pattern_is_refused() {
+        let p = pattern(&[&[0, 2, 3], &[1, 3], &[0, 2], &[0, 1, 3]]);
+        let t = transpose_positions(&p).unwrap();
+        let column_of = |k: usize| (0..p.n).find(|&j| (p.col_ptr[j + 1] as usize) > k).unwrap();
+        for (k, &tk) in t.iter().enumerate() {
+            let tk = tk as usize;
+            assert_eq!(p.row_idx[tk] as usize, column_of(k));
+            assert_eq!(column_of(tk), p.row_idx[k] as usize);
+            assert_eq!(t[tk] as usize, k);
+        }
+        // (2, 1) without (1, 2), and (1, 3) missing its partner in the last column.
+        assert!(transpose_positions(&pattern(&[&[0], &[1, 2], &[2]])).is_err());
+        assert!(transpose_positions(&pattern(&[&[0], &[1, 3], &[2], &[3]])).is_err());
+    }
+
+    #[test]
+    fn the_permuted_lower_triangle_holds_each_entry_once_with_its_sources() {
+        let p = pattern(&[&[0, 2, 3], &[1, 3], &[0, 2], &[0, 1, 3]]);
+        // perm = [3, 0, 2, 1]: original i goes to perm_inv[i].
+        let perm_inv = [1, 3, 2, 0];
+        let (lower, sources) = permuted(&p, &perm_inv, true).unwrap();
+        let mut seen = 0;
+        for j in 0..lower.n {
+            let rows = &lower.row_idx[lower.col_ptr[j] as usize..lower.col_ptr[j + 1] as usize];
+            assert!(rows.windows(2).all(|w| w[0] < w[1]), "column {j}: {rows:?}");
+            for (k, &i) in (lower.col_ptr[j] as usize..).zip(rows) {
+                assert!(i as usize >= j);
+                let [a, b] = sources[k];
+                // The source entry sits at (i, j) in the permuted order, its transpose at (j, i).
+                let (ra, rb) = (p.row_idx[a as usize], p.row_idx[b as usize]);
+                assert!(perm_inv[ra as usize] == i || perm_inv[ra as usize] == j as u32);
+                assert_eq!(perm_inv[ra as usize] + perm_inv[rb as usize], i + j as u32);
+                seen += 1;
+            }
+        }
+        // The lower triangle (diagonal included) of the 10-entry symmetric pattern.
+        assert_eq!(seen, 4 + 3);
     }
 }

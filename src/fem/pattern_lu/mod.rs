@@ -146,7 +146,8 @@ impl PatternLu {
                 entries.push((t, k as u32, slot));
             }
         }
-        entries.sort_by_key(|&(t, k, slot)| (t, matches!(slot, Slot::U(_)), k));
+        // Placed by (supernode, L before U) in one counting pass: `entries` is in ascending k
+        // already (column by column), and each bucket keeps that order.
         let mut l_entries = vec![0usize; ns];
         for &(t, _, slot) in &entries {
             st.entry_ptr[t as usize + 1] += 1;
@@ -158,16 +159,19 @@ impl PatternLu {
             st.entry_ptr[s + 1] += st.entry_ptr[s];
             st.u_entries[s] = st.entry_ptr[s] + l_entries[s];
         }
-        st.entries = entries
-            .into_iter()
-            .map(|(t, k, slot)| {
-                let offset = match slot {
-                    Slot::L(p) => p as usize - st.l_ptr[t as usize],
-                    Slot::U(p) => p as usize - st.u_ptr[t as usize],
-                };
-                (k, offset as u32)
-            })
+        let mut next: Vec<[usize; 2]> = (0..ns)
+            .map(|s| [st.entry_ptr[s], st.u_entries[s]])
             .collect();
+        st.entries = vec![(0, 0); entries.len()];
+        for (t, k, slot) in entries {
+            let t = t as usize;
+            let (at, offset) = match slot {
+                Slot::L(p) => (&mut next[t][0], p as usize - st.l_ptr[t]),
+                Slot::U(p) => (&mut next[t][1], p as usize - st.u_ptr[t]),
+            };
+            st.entries[*at] = (k, offset as u32);
+            *at += 1;
+        }
         let split = st.split();
         Ok(Self {
             l: vec![0.0; st.l_ptr[ns]],
