@@ -7,13 +7,13 @@ use super::material::AxiF;
 use nalgebra::SMatrix;
 
 /// J = F_θθ (F_rr F_zz − F_rz F_zr).
-#[inline]
+#[inline(always)]
 pub fn jacobian(f: &AxiF) -> f64 {
     f[4] * (f[0] * f[3] - f[1] * f[2])
 }
 
 /// ∂J/∂F on the five entries.
-#[inline]
+#[inline(always)]
 pub fn jacobian_gradient(f: &AxiF) -> AxiF {
     AxiF::new(
         f[4] * f[3],
@@ -25,7 +25,7 @@ pub fn jacobian_gradient(f: &AxiF) -> AxiF {
 }
 
 /// ∂²J/∂F∂F on the five entries (symmetric).
-#[inline]
+#[inline(always)]
 pub fn jacobian_hessian(f: &AxiF) -> SMatrix<f64, 5, 5> {
     let mut h = SMatrix::<f64, 5, 5>::zeros();
     let mut set = |i: usize, j: usize, v: f64| {

@@ -79,7 +79,7 @@ impl<const NN: usize> PointGeometry<NN> {
     /// u = [u_r⁰, u_z⁰, u_r¹, …] (`NU` = 2 `NN`):
     /// F_rr = 1 + Σ ∂N_a/∂r u_r^a, F_rz = Σ ∂N_a/∂z u_r^a, F_zr = Σ ∂N_a/∂r u_z^a,
     /// F_zz = 1 + Σ ∂N_a/∂z u_z^a, F_θθ = 1 + Σ N_a/r u_r^a.
-    #[inline]
+    #[inline(always)]
     pub fn deformation<const NU: usize>(&self, u: &SVector<f64, NU>) -> AxiF {
         let mut f = [0.0; 5];
         for a in 0..NN {
@@ -95,7 +95,7 @@ impl<const NN: usize> PointGeometry<NN> {
 
     /// Bᵀ s · `scale` for a vector s on the five F entries: node a's pair
     /// (∂N_a/∂r s₀ + ∂N_a/∂z s₁ + N_a/r s₄, ∂N_a/∂r s₂ + ∂N_a/∂z s₃) · `scale`.
-    #[inline]
+    #[inline(always)]
     pub(super) fn transpose_mul<const NU: usize>(&self, s: &AxiF, scale: f64) -> SVector<f64, NU> {
         let mut out = zeroed::<NU, 1>();
         for a in 0..NN {
