@@ -32,13 +32,15 @@
 
 mod solve;
 mod split;
+mod substitution;
 mod worker;
 
 use super::assembly::Pattern;
 use super::gmres::Preconditioner;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
-use solve::{Factor, Schedule};
+use solve::Schedule;
 use split::Split;
+use substitution::Factor;
 use worker::{Deferred, Worker, Workspace};
 
 /// Where an entry of K goes: the L panel (diagonal block included) or the U₁₂ panel (offsets
@@ -638,13 +640,14 @@ mod tests {
         b
     }
 
-    /// The solutions of A x = b on one core and on two (rayon pools of one and two threads),
-    /// and the normwise backward error ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) of the two cores'.
+    /// The solutions of A x = b on one core and on two (rayon pools of one and two threads; the
+    /// second also with one of its threads busy), and the normwise backward error
+    /// ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) of the two cores'.
     fn one_and_two_core_solutions(
         lu: &mut PatternLu,
         pattern: &Pattern,
         values: &[f64],
-    ) -> (Vec<f64>, Vec<f64>, f64) {
+    ) -> (Vec<f64>, [Vec<f64>; 2], f64) {
         let n = pattern.n;
         lu.factorise(values).unwrap();
         let b: Vec<f64> = (0..n).map(|i| ((i * 13) % 17) as f64 - 8.0).collect();
@@ -657,7 +660,26 @@ mod tests {
             pool.install(|| lu.solve_in_place(&mut x)).unwrap();
             x
         };
-        let (one, two) = (solve(lu, 1), solve(lu, 2));
+        // Two threads, one of them busy until the solve ends: the other does every step.
+        let busy = |lu: &mut PatternLu| {
+            use std::sync::mpsc::channel;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap();
+            let (started, wait_started) = channel();
+            let (end, wait_end) = channel::<()>();
+            pool.spawn(move || {
+                started.send(()).unwrap();
+                let _ = wait_end.recv();
+            });
+            wait_started.recv().unwrap();
+            let mut x = b.clone();
+            pool.install(|| lu.solve_in_place(&mut x)).unwrap();
+            end.send(()).unwrap();
+            x
+        };
+        let (one, two, two_busy) = (solve(lu, 1), solve(lu, 2), busy(lu));
         let norm = |v: &[f64]| v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         let mut row_sums = vec![0.0; n];
         for (k, &i) in pattern.row_idx.iter().enumerate() {
@@ -669,23 +691,25 @@ mod tests {
             .map(|(ax, b)| b - ax)
             .collect();
         let error = norm(&residual) / (norm(&row_sums) * norm(&two) + norm(&b));
-        (one, two, error)
+        (one, [two, two_busy], error)
     }
 
-    /// The two cores' solve is the one core's bit for bit and solves A x = b to a backward
-    /// error below `tolerance` (a lost or doubled update of the rest's rows would change x by
-    /// O(1)).
+    /// The two cores' solve is the one core's bit for bit (also when one thread does all the
+    /// steps, the other being busy) and solves A x = b to a backward error below `tolerance`
+    /// (a lost or doubled update of the rest's rows would change x by O(1)).
     fn check_two_core_solve(lu: &mut PatternLu, pattern: &Pattern, values: &[f64], tolerance: f64) {
         let (one, two, error) = one_and_two_core_solutions(lu, pattern, values);
-        let differ = one
-            .iter()
-            .zip(&two)
-            .filter(|(a, b)| a.to_bits() != b.to_bits());
-        assert_eq!(
-            differ.count(),
-            0,
-            "entries differ between one and two cores"
-        );
+        for (x, case) in two.iter().zip(["two cores", "two threads, one busy"]) {
+            let differ = one
+                .iter()
+                .zip(x)
+                .filter(|(a, b)| a.to_bits() != b.to_bits());
+            assert_eq!(
+                differ.count(),
+                0,
+                "entries differ between one core and {case}"
+            );
+        }
         assert!(error < tolerance, "backward error {error:e}");
     }
 
@@ -697,7 +721,9 @@ mod tests {
         [0, 1].map(|g| {
             p.middle
                 .iter()
-                .filter(|step| matches!(step, solve::Step::Rows { s, .. } if in_group(g, *s)))
+                .filter(
+                    |step| matches!(step, substitution::Step::Rows { s, .. } if in_group(g, *s)),
+                )
                 .count()
         })
     }

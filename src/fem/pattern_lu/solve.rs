@@ -1,36 +1,23 @@
-//! The substitutions of a solve, L y = P b then U z = y, supernode by supernode, on one core or
-//! on two.
-//!
-//! Forward, supernode s (dofs b..e, off-diagonal rows R, all in its ancestors): its row swaps,
-//! y₁ ← L₁₁⁻¹ y₁ column by column, and with each column k, y_R ← y_R − L₂₁[:, k] y_k. Backward,
-//! in reverse: y₁ ← U₁₁⁻¹ (y₁ − U₁₂ y_R), reading the ancestors' entries only.
+//! The order of a solve's substitutions ([`super::substitution`]), on one core or on two.
 //!
 //! On two cores ([`Split`]): a group's supernode writes rows of its own subtrees and rows of
-//! the rest (the groups' ancestors), never the other group's. The two groups run at the same
-//! time, the second on its own copy of the vector, each updating only its own rows; the
-//! updates of the rest's rows are applied after the join ([`Step::Rows`]), supernode by
+//! the rest (the groups' ancestors), never the other group's. Forward, the two groups run at
+//! the same time, the second on its own copy of the vector, each updating only its own rows;
+//! the updates of the rest's rows are applied after both ([`Step::Rows`]), supernode by
 //! supernode in ascending order, which is the order one core applies them in. The first group
 //! applies its own in place when all its supernodes come before every other supernode (the
-//! dissection order's two halves and separator): then they come first on one core too. The
-//! rest is then solved forward and backward on one core, and the two groups backward at the
+//! dissection order's two halves and separator): then they come first on one core too. Then
+//! the rest, forward and backward, on one core (the middle), and the two groups backward at the
 //! same time, each reading the rest's entries. Every entry receives the same operations in
-//! the same order as on one core, so the solution is the same bit for bit.
+//! the same order as on one core, so the solution is the same bit for bit. One `rayon::join`
+//! covers the whole solve ([`Parallel::run`]).
 
 use super::split::Split;
+use super::substitution::{run, Factor, Step};
 use super::Structure;
 use std::ops::Range;
-
-/// One supernode's share of a solve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Step {
-    /// Row swaps and L₁₁ solve of supernode `s`, with the update of its off-diagonal rows
-    /// before `until`.
-    Forward { s: usize, until: usize },
-    /// The update of supernode `s`'s off-diagonal rows from `from` on, by its solved block.
-    Rows { s: usize, from: usize },
-    /// U₁₁⁻¹ (y₁ − U₁₂ y_R) for supernode `s`.
-    Backward { s: usize },
-}
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::{Mutex, PoisonError};
 
 /// The steps of a solve on one core and, with a split, on two.
 #[derive(Debug)]
@@ -80,26 +67,70 @@ impl Schedule {
         two_cores: bool,
     ) {
         let [t, t2] = gathered;
-        let Some(p) = self.parallel.as_ref().filter(|_| two_cores) else {
-            return run(factor, &self.serial, y, t);
-        };
-        copy_dofs(y, copy, &p.second);
-        rayon::join(
-            || run(factor, &p.forward[0], y, t),
-            || run(factor, &p.forward[1], copy, t2),
-        );
-        copy_dofs(copy, y, &p.second);
-        run(factor, &p.middle, y, t);
-        copy_dofs(y, copy, &p.rest);
-        rayon::join(
-            || run(factor, &p.backward[0], y, t),
-            || run(factor, &p.backward[1], copy, t2),
-        );
-        copy_dofs(copy, y, &p.second);
+        match self.parallel.as_ref().filter(|_| two_cores) {
+            Some(p) => p.run(factor, y, t, Mutex::new((copy, t2))),
+            None => run(factor, &self.serial, y, t),
+        }
     }
 }
 
-/// to[r] ← from[r] for the ranges r of `runs`.
+/// The stages of a run of the second group's steps in a two-core solve: ready to be claimed,
+/// claimed by a thread, done.
+struct Stages {
+    ready: u8,
+    claimed: u8,
+    done: u8,
+}
+
+/// The second group's forward steps (ready at the start), then its backward steps (ready when
+/// the middle is done).
+const FORWARD: Stages = Stages {
+    ready: 0,
+    claimed: 1,
+    done: 2,
+};
+const BACKWARD: Stages = Stages {
+    ready: 3,
+    claimed: 4,
+    done: 5,
+};
+/// A thread panicked: no wait lasts (the join then raises the panic).
+const ABANDONED: u8 = u8::MAX;
+
+/// Sets the stage to [`ABANDONED`] if its thread unwinds, so that the other thread, which may
+/// be waiting for a stage this one would have reached, does not wait for ever.
+struct AbandonOnPanic<'a>(&'a AtomicU8);
+
+impl Drop for AbandonOnPanic<'_> {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            self.0.store(ABANDONED, Ordering::Release);
+        }
+    }
+}
+
+/// Moves `stage` from `from` to `to`; false if it was not at `from` (another thread claimed
+/// the steps, or abandoned).
+fn advance(stage: &AtomicU8, from: u8, to: u8) -> bool {
+    stage
+        .compare_exchange(from, to, Ordering::AcqRel, Ordering::Acquire)
+        .is_ok()
+}
+
+/// Waits until `stage` reaches `at_least` (set by the other thread, which is running).
+fn wait_for(stage: &AtomicU8, at_least: u8) {
+    let mut spins = 0u32;
+    while stage.load(Ordering::Acquire) < at_least {
+        spins += 1;
+        if spins.is_multiple_of(64) {
+            std::thread::yield_now();
+        } else {
+            std::hint::spin_loop();
+        }
+    }
+}
+
+/// `to[r] = from[r]` for the ranges r of `runs`.
 fn copy_dofs(from: &[f64], to: &mut [f64], runs: &[Range<usize>]) {
     for run in runs {
         to[run.clone()].copy_from_slice(&from[run.clone()]);
@@ -174,129 +205,59 @@ impl Parallel {
             rest: dofs(&split.rest),
         }
     }
-}
 
-/// The factor a solve reads.
-pub(super) struct Factor<'a> {
-    pub st: &'a Structure,
-    pub l: &'a [f64],
-    pub u: &'a [f64],
-    pub pivots: &'a [u32],
-}
-
-/// Runs `steps` on the permuted vector `y` (`t`: a buffer for the gathered rows), with AVX2
-/// where the processor has it (checked at run time; the same operations in the same order).
-fn run(factor: &Factor<'_>, steps: &[Step], y: &mut [f64], t: &mut Vec<f64>) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        // SAFETY: the processor has AVX2 (checked just above).
-        return unsafe { run_avx2(factor, steps, y, t) };
-    }
-    run_plain(factor, steps, y, t)
-}
-
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-fn run_avx2(factor: &Factor<'_>, steps: &[Step], y: &mut [f64], t: &mut Vec<f64>) {
-    run_plain(factor, steps, y, t)
-}
-
-#[inline(always)]
-fn run_plain(factor: &Factor<'_>, steps: &[Step], y: &mut [f64], t: &mut Vec<f64>) {
-    for &step in steps {
-        match step {
-            Step::Forward { s, until } => factor.forward(s, until, y, t),
-            Step::Rows { s, from } => factor.rows(s, from, y, t),
-            Step::Backward { s } => factor.backward(s, y),
-        }
-    }
-}
-
-impl Factor<'_> {
-    /// Supernode `s` forward, its off-diagonal rows before `until` updated. The rows R are
-    /// gathered into `t`, updated as a dense vector (contiguous, so the loops vectorise) and
-    /// scattered back.
-    #[inline(always)]
-    fn forward(&self, s: usize, until: usize, y: &mut [f64], t: &mut Vec<f64>) {
-        let st = self.st;
-        let (b, e) = (st.begin[s], st.end[s]);
-        let rows = &st.rows[s][..until];
-        let (w, ld) = (e - b, e - b + st.rows[s].len());
-        for k in b..e {
-            y.swap(k, self.pivots[k] as usize);
-        }
-        let l = &self.l[st.l_ptr[s]..st.l_ptr[s + 1]];
-        t.clear();
-        t.extend(rows.iter().map(|&i| y[i as usize]));
-        let block = &mut y[b..e];
-        for (k, column) in l.chunks_exact(ld).enumerate() {
-            let yk = block[k];
-            if yk == 0.0 {
-                continue;
+    /// The solve on two cores, in one `rayon::join`: the second thread is woken once, not once
+    /// per phase, and waits for the middle spinning. The first closure does the first group's
+    /// steps and the middle; the second group's forward and backward steps are claimed by
+    /// whichever thread reaches them first (the first, if the second thread has not started
+    /// by then: under load its start takes from 0.1 ms to several), so neither thread waits
+    /// for steps no thread has started. `second`: the second group's vector and buffer.
+    fn run(
+        &self,
+        factor: &Factor<'_>,
+        y: &mut [f64],
+        t: &mut Vec<f64>,
+        second: Mutex<(&mut [f64], &mut Vec<f64>)>,
+    ) {
+        let stage = AtomicU8::new(FORWARD.ready);
+        let (stage, second) = (&stage, &second);
+        let lock = || second.lock().unwrap_or_else(PoisonError::into_inner);
+        copy_dofs(y, lock().0, &self.second);
+        // The second group's steps, by the thread that claims them.
+        let claim = |stages: &Stages, steps: &[Step]| {
+            if advance(stage, stages.ready, stages.claimed) {
+                let mut guard = lock();
+                let (copy, t2) = &mut *guard;
+                run(factor, steps, copy, t2);
+                drop(guard);
+                advance(stage, stages.claimed, stages.done);
             }
-            for (v, &lik) in block[k + 1..].iter_mut().zip(&column[k + 1..w]) {
-                *v -= lik * yk;
-            }
-            for (v, &lik) in t.iter_mut().zip(&column[w..w + until]) {
-                *v -= lik * yk;
-            }
-        }
-        for (&i, &v) in rows.iter().zip(t.iter()) {
-            y[i as usize] = v;
-        }
-    }
-
-    /// The update of supernode `s`'s off-diagonal rows from `from` on by its solved block: the
-    /// operations [`Self::forward`] leaves out of those rows, in the same order.
-    #[inline(always)]
-    fn rows(&self, s: usize, from: usize, y: &mut [f64], t: &mut Vec<f64>) {
-        let st = self.st;
-        let (b, e) = (st.begin[s], st.end[s]);
-        let rows = &st.rows[s][from..];
-        let (w, ld) = (e - b, e - b + st.rows[s].len());
-        let l = &self.l[st.l_ptr[s]..st.l_ptr[s + 1]];
-        t.clear();
-        t.extend(rows.iter().map(|&i| y[i as usize]));
-        for (&yk, column) in y[b..e].iter().zip(l.chunks_exact(ld)) {
-            if yk == 0.0 {
-                continue;
-            }
-            for (v, &lik) in t.iter_mut().zip(&column[w + from..]) {
-                *v -= lik * yk;
-            }
-        }
-        for (&i, &v) in rows.iter().zip(t.iter()) {
-            y[i as usize] = v;
-        }
-    }
-
-    /// Supernode `s` backward.
-    #[inline(always)]
-    fn backward(&self, s: usize, y: &mut [f64]) {
-        let st = self.st;
-        let (b, e) = (st.begin[s], st.end[s]);
-        let rows = &st.rows[s];
-        let (w, ld) = (e - b, e - b + rows.len());
-        let l = &self.l[st.l_ptr[s]..st.l_ptr[s + 1]];
-        let u = &self.u[st.u_ptr[s]..st.u_ptr[s + 1]];
-        // The off-diagonal rows all come after the block: y[i] for i in R is in `later`.
-        let (head, later) = y.split_at_mut(e);
-        let block = &mut head[b..];
-        for (column, &i) in u.chunks_exact(w).zip(rows) {
-            let yi = later[i as usize - e];
-            if yi != 0.0 {
-                for (v, &uki) in block.iter_mut().zip(column) {
-                    *v -= uki * yi;
+        };
+        rayon::join(
+            || {
+                let _abandon = AbandonOnPanic(stage);
+                run(factor, &self.forward[0], y, t);
+                claim(&FORWARD, &self.forward[1]);
+                wait_for(stage, FORWARD.done);
+                {
+                    let mut guard = lock();
+                    let (copy, _) = &mut *guard;
+                    copy_dofs(copy, y, &self.second);
+                    run(factor, &self.middle, y, t);
+                    copy_dofs(y, copy, &self.rest);
                 }
-            }
-        }
-        for k in (0..w).rev() {
-            let column = &l[k * ld..k * ld + k];
-            let yk = block[k] / l[k + k * ld];
-            block[k] = yk;
-            for (v, &lik) in block[..k].iter_mut().zip(column) {
-                *v -= lik * yk;
-            }
-        }
+                advance(stage, FORWARD.done, BACKWARD.ready);
+                run(factor, &self.backward[0], y, t);
+                claim(&BACKWARD, &self.backward[1]);
+                wait_for(stage, BACKWARD.done);
+                copy_dofs(lock().0, y, &self.second);
+            },
+            || {
+                let _abandon = AbandonOnPanic(stage);
+                claim(&FORWARD, &self.forward[1]);
+                wait_for(stage, BACKWARD.ready);
+                claim(&BACKWARD, &self.backward[1]);
+            },
+        );
     }
 }
