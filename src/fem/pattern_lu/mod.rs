@@ -17,8 +17,10 @@
 //! The solves (GMRES's preconditioner, [`solve`]) follow the same split: forward, the two groups
 //! at the same time, the second on its own copy of the vector, then on one core their updates
 //! of the rest's rows and the rest; backward, the rest on one core, then the two groups at the
-//! same time. Every entry receives the one-core solve's operations in the one-core order, so
-//! the solution is the same bit for bit.
+//! same time, in one `rayon::join`. Every entry receives the one-core solve's operations in the
+//! one-core order, so the solution is the same bit for bit. In the frozen explicit sweep a
+//! solve takes 3.5–3.8 ms on two cores against 6.0–6.2 ms on one at 37 152 dofs (32 × 128),
+//! 0.44–0.52 against 0.68–0.75 ms at 9 360 (16 × 64).
 //!
 //! L₂₁ and U₁₂ are triangular solves and the update a matrix product, all faer's blocked
 //! kernels; only the w × w block is eliminated column by column. (Eliminating the whole
