@@ -169,9 +169,9 @@ impl PatternLu {
                 l_entries[t as usize] += 1;
             }
         }
-        for s in 0..ns {
+        for (s, &l_count) in l_entries.iter().enumerate() {
             st.entry_ptr[s + 1] += st.entry_ptr[s];
-            st.u_entries[s] = st.entry_ptr[s] + l_entries[s];
+            st.u_entries[s] = st.entry_ptr[s] + l_count;
         }
         st.entries = entries
             .into_iter()
