@@ -38,7 +38,9 @@
 //! factorisation was 1.3–1.9× slower at 9k–150k dofs (`cargo run --release --example
 //! fem_scaling`). The pattern LU uses the two cores on two independent groups of subtrees of
 //! the elimination tree (`pattern_lu::split`): factorisation 7.0 → 5.6 ms at 9 360 dofs and
-//! 47 → 34 ms at 37 152 (frozen explicit sweeps, `examples/cylinder_sweep.rs`).
+//! 47 → 34 ms at 37 152 (frozen explicit sweeps, `examples/cylinder_sweep.rs`), and its solves
+//! too (`pattern_lu::solve`): GMRES solve (one preconditioner application and one product by K)
+//! 1.07 → 0.86 ms and 8.65 → 6.35 ms per call.
 
 use super::assembly::Pattern;
 use super::gmres::{Gmres, Preconditioner};
