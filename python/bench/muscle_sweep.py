@@ -14,6 +14,7 @@ the wall times) and the load (/proc/loadavg) before and after each mesh.
     OMP_NUM_THREADS=1 /usr/bin/python3 python/bench/muscle_sweep.py \\
         --openblas /tmp/ob/usr/lib/x86_64-linux-gnu/openblas-serial [--repeats 3] \\
         [--meshes 16x64,32x128] [--reference-blas] [--fenics-q2q1] [--one-thread] [--dolfinx]
+        [--baseline OTHER/target/release/activemuscle]
 
 The case (python/bench/muscle_sweep.toml; the equations in fenics_muscle.py's docstring): the
 chapter's clamped cylinder R = 1, L = 4 mm, explicit law, frozen coupling with its exact tangent,
@@ -31,13 +32,15 @@ cache); sweep = ours the study's time in its summary (set-up, the sweep, the 0D 
 DOLFINx the load path only (set-up and JIT warm-up excluded); Newton its = ours summed over
 curves.csv (rejected steps included; the predictor solve of a step is no iteration: it reuses the
 last factorisation), FEniCS and DOLFINx every assembly–LU–solve, the predictor iteration of each
-load step and rejected steps included; per iteration = sweep / its; ratios FEniCS / ours (DOLFINx
-/ ours on the DOLFINx rows) of the medians;
+load step and rejected steps included; per iteration = sweep / its; ratios: the row's median / ours'
+(the first row) median;
 P(1.17) of ours (Q2/Q1) and of FEniCS (P2/P1: another discretisation of the same problem, so
 their difference is the discretisation's, not an error). Ours runs on rayon's default threads
 (2 here), FEniCS in one process; --fenics-q2q1 adds FEniCS with ours' Q2/Q1 discretisation (the
 like-for-like row where P2/P1 does not reach every stretch; with --dolfinx, DOLFINx Q2/Q1 as well);
---one-thread adds ours with RAYON_NUM_THREADS=1; --dolfinx adds DOLFINx P2/P1 with MUMPS (one
+--one-thread adds ours with RAYON_NUM_THREADS=1; --baseline BINARY adds another activemuscle
+(an earlier commit's release build: ours before and after a change, in the same run, so that a
+machine that runs slower or faster that day moves both); --dolfinx adds DOLFINx P2/P1 with MUMPS (one
 process, OMP_NUM_THREADS=1, on the same OpenBLAS: MUMPS's dense fronts call libblas.so.3), its
 rows named DOLFINx, alternated with the others in each repeat. An untimed run of fenics_muscle.py
 (and of dolfinx_muscle.py) on 2 × 8 fills the FFC (FFCx) JIT cache first (a first compilation of
@@ -92,14 +95,14 @@ def scene_for(nr, nz, directory):
     return path
 
 
-def ours(nr, nz, work, threads=None):
+def ours(nr, nz, work, threads=None, binary=OURS):
     scene = scene_for(nr, nz, work)
     out = os.path.join(work, f"out_{nr}x{nz}")
     env = dict(os.environ)
     if threads:
         env["RAYON_NUM_THREADS"] = str(threads)
     t0 = time.perf_counter()
-    run = subprocess.run([OURS, "run", scene, "--out", out, "--quiet"],
+    run = subprocess.run([binary, "run", scene, "--out", out, "--quiet"],
                          capture_output=True, text=True, env=env, timeout=7200)
     wall = time.perf_counter() - t0
     if run.returncode not in (0, 3):  # 3: some stretch failed, the rest written
@@ -180,6 +183,9 @@ def main(argv):
     parser.add_argument("--dolfinx", action="store_true",
                         help="also DOLFINx 0.5 P2/P1 (dolfinx_muscle.py, MUMPS) on OpenBLAS; with "
                         "--fenics-q2q1 DOLFINx Q2/Q1 too")
+    parser.add_argument("--baseline", metavar="BINARY",
+                        help="also another activemuscle binary (e.g. an earlier commit's release "
+                        "build), alternated with the others: ours before and after in the same run")
     parser.add_argument("--check-mesh", default="8x32",
                         help="mesh of the same-problem check, Q2/Q1 in both codes ('' to skip)")
     args = parser.parse_args(argv[1:])
@@ -216,6 +222,10 @@ def main(argv):
     codes = [("ours Q2/Q1", lambda nr, nz: ours(nr, nz, work))]
     if args.one_thread:
         codes.append(("ours Q2/Q1, 1 thread", lambda nr, nz: ours(nr, nz, work, 1)))
+    if args.baseline:
+        print(f"baseline: {args.baseline}")
+        codes.append(("ours Q2/Q1, baseline",
+                      lambda nr, nz: ours(nr, nz, work, binary=args.baseline)))
     fenics_codes = [("FEniCS P2/P1 + OpenBLAS", lambda nr, nz: fenics("P2P1", nr, nz, args.openblas))]
     if args.dolfinx:
         fenics_codes.append(("DOLFINx P2/P1 + MUMPS + OpenBLAS",
@@ -234,7 +244,7 @@ def main(argv):
 
     print(f"\nmedian of {args.repeats} alternated runs (min–max), wall times in seconds")
     print("| cells | code | free dofs | Newton its | process [s] | sweep [s] | failed stretches "
-          "| per iteration [ms] | FEniCS (DOLFINx) / ours: process | sweep | per iteration "
+          "| per iteration [ms] | this row / ours: process | sweep | per iteration "
           "| P(1.17) [kPa] | rel. diff. to ours | load before → after |")
     print("|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---|")
     for nr, nz in meshes:
@@ -265,7 +275,8 @@ def main(argv):
             free = rs[0]["free"] if python else rs[0]["dofs"]
             failed = ", ".join(f"{x:.2f}" for x in rs[0]["failed"]) or "none"
             p = rs[0]["P"].get(1.17, float("nan"))
-            ratio = {k: f"{statistics.median(s[k]) / statistics.median(ref[k]):.1f}×" if python else "–"
+            first = name == codes[0][0]
+            ratio = {k: "–" if first else f"{statistics.median(s[k]) / statistics.median(ref[k]):.1f}×"
                      for k in ("process", "sweep", "per_it")}
             diff = f"{relative(p, ref_p):.1e}" if python else "–"
             print(f"| {nr} × {nz} | {name} | {free} | {its} | {spread(s['process'])} "
