@@ -239,7 +239,12 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> AxisymmetricSolver<'m, M> {
         let factor_values = ldlt.as_ref().map(|l| l.symbolic().len_val());
         let estimate = estimate.with_counts(dofs.n_free, asm.pattern.row_idx.len(), factor_values);
         estimate.check(limit)?;
-        let linear = TangentSolver::new(asm.pattern.n, ldlt, material.symmetric_tangent());
+        let linear = TangentSolver::new(
+            asm.pattern.n,
+            ldlt,
+            material.symmetric_tangent(),
+            rayon::current_num_threads(),
+        );
         let centre = nearest_to_centre(&asm.quadrature_points(&vec![0.0; dofs.n_total]), &mesh);
         let driver = Continuation::new(dofs.n_total, options.stepping, options.cancel.clone());
         let problem = MixedProblem::new(mesh, dofs, asm, linear, material, options.stress_floor);

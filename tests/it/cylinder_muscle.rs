@@ -228,8 +228,9 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
             ..SolverOptions::default()
         },
     );
-    // The same muscle behind a wrapper that does not say its tangent is non-symmetric.
-    let (switched, t_switched) = run(&Unsaid(&muscle), SolverOptions::default());
+    // The same muscle behind a wrapper that does not say its tangent is non-symmetric, on one
+    // thread (on two, every tangent starts on the pattern LU).
+    let (switched, t_switched) = on_threads(1, || run(&Unsaid(&muscle), SolverOptions::default()));
     println!("default: {default:?} {t:?}\nLU: {lu:?} {t_lu:?}\nswitched: {t_switched:?}");
     // Every factorisation a pattern LU, none wasted on the LDLᵀ; a pattern LU that failed to
     // precondition would add an LU fallback.
@@ -243,11 +244,12 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
     }
 }
 
-/// The energy law with consistent coupling is hyperelastic, so its tangent is symmetric: a
-/// whole sweep stays on the LDLᵀ (one GMRES iteration per solve on a fresh factor), never on
-/// an LU, also where the rate at a converged state meets the factor of an earlier tangent.
+/// The energy law with consistent coupling is hyperelastic, so its tangent is symmetric: on one
+/// thread a whole sweep stays on the LDLᵀ (one GMRES iteration per solve on a fresh factor),
+/// never on an LU, also where the rate at a converged state meets the factor of an earlier
+/// tangent.
 #[test]
-fn the_hyperelastic_sweep_stays_on_the_ldlt() {
+fn the_hyperelastic_sweep_stays_on_the_ldlt_on_one_thread() {
     let gm = GiantesioMusesti::paper();
     let muscle = Muscle::new(
         gm,
@@ -257,13 +259,70 @@ fn the_hyperelastic_sweep_stays_on_the_ldlt() {
     )
     .unwrap();
     let mesh = Mesh::structured(1.0, 4.0, 8, 32, 1.0).unwrap();
-    let mut solver =
-        AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default()).unwrap();
     let targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
-    let results = solver.sweep(&targets).unwrap().into_result().unwrap();
+    let (solver, results) = on_threads(1, || {
+        let mut solver =
+            AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default())
+                .unwrap();
+        let results = solver.sweep(&targets).unwrap().into_result().unwrap();
+        (solver, results)
+    });
     assert_eq!(results.len(), targets.len());
     let t = solver.timings();
     println!("{t:?}");
     assert_eq!(t.lu_fallbacks, 0, "{t:?}");
     assert_eq!(t.pattern_lu_factorisations, 0, "{t:?}");
+}
+
+/// `f` on a rayon pool of `threads` threads (the solver picks its factorisation by them).
+fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+/// On two threads and from `PATTERN_LU_UNKNOWNS` unknowns, the symmetric tangent of the energy
+/// law is factorised by the pattern LU (two cores) instead of the LDLᵀ (one core), and the two
+/// give the same stresses: every solve is converged to the same backward error. Below, on two
+/// threads too, the LDLᵀ.
+#[test]
+fn a_symmetric_tangent_on_two_threads_takes_the_pattern_lu() {
+    let gm = GiantesioMusesti::paper();
+    let muscle = Muscle::new(
+        gm,
+        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
+        0.0,
+        Coupling::Consistent,
+    )
+    .unwrap();
+    assert!(muscle.symmetric_tangent());
+    let targets = [0.95, 1.17];
+    let run = |nr, nz| {
+        let mesh = Mesh::structured(1.0, 4.0, nr, nz, 1.0).unwrap();
+        let mut solver =
+            AxisymmetricSolver::new(mesh, Bases::Clamped, &muscle, SolverOptions::default())
+                .unwrap();
+        let results = solver.sweep(&targets).unwrap().into_result().unwrap();
+        let stresses: Vec<f64> = results.iter().map(|r| r.nominal_stress).collect();
+        (stresses, solver.timings())
+    };
+    // 16 × 64 Q2/Q1: 7 312 unknowns after condensation; 8 × 32: about 1 900.
+    let (one, t_one) = on_threads(1, || run(16, 64));
+    let (two, t_two) = on_threads(2, || run(16, 64));
+    let (_, t_small) = on_threads(2, || run(8, 32));
+    assert_eq!(t_small.pattern_lu_factorisations, 0, "{t_small:?}");
+    println!("one thread: {one:?} {t_one:?}\ntwo threads: {two:?} {t_two:?}");
+    assert_eq!(t_one.pattern_lu_factorisations, 0, "{t_one:?}");
+    assert_eq!(t_one.lu_fallbacks, 0, "{t_one:?}");
+    assert_eq!(
+        t_two.pattern_lu_factorisations, t_two.factorisations,
+        "{t_two:?}"
+    );
+    assert_eq!(t_two.lu_fallbacks, 0, "{t_two:?}");
+    assert_eq!(one.len(), targets.len());
+    for (a, b) in two.iter().zip(&one) {
+        assert!((a - b).abs() <= 1e-9 * b.abs(), "{a} vs {b}");
+    }
 }

@@ -34,7 +34,7 @@ fn the_condensed_newton_step_and_load_rate_solve_the_full_system() {
     assert!(asm.is_condensed());
     assert_eq!(asm.pattern.n, dofs.n_free - 2 * cells);
     let ldlt = SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs, asm.system_index()).unwrap();
-    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt), true);
+    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt), true, 1);
     let mut problem = MixedProblem::new(mesh, dofs, asm, linear, &material, 1e-6);
     let (n, nf) = (problem.unknowns(), problem.free());
     // A state off equilibrium: λ = 1.1 with a smooth perturbation of every free dof.
