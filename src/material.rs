@@ -180,6 +180,34 @@ impl<E: StrainEnergy> Muscle<E> {
         self.law.evaluate(lambda, self.drive)
     }
 
+    /// γ at the fibre stretch with the derivatives `order` needs under this coupling, the others
+    /// 0: the law's derivatives enter only the consistent stress and the exact tangents, and
+    /// d²γ/dλ² only the consistent tangent (nothing else reads `curvature`).
+    fn law_value(&self, fibre_stretch: f64, order: Order) -> Result<LawValue> {
+        let needs_slope = !matches!(
+            (order, self.coupling),
+            (Order::Energy, _)
+                | (Order::Stress, Coupling::Frozen(_))
+                | (Order::Tangent, Coupling::Frozen(FrozenTangent::Symmetric))
+        );
+        let needs_curvature = order == Order::Tangent && self.coupling == Coupling::Consistent;
+        if needs_curvature {
+            self.activation(fibre_stretch)
+        } else if needs_slope {
+            let (gamma, slope) = self.law.gamma_and_slope(fibre_stretch, self.drive)?;
+            Ok(LawValue {
+                gamma,
+                slope,
+                curvature: 0.0,
+            })
+        } else {
+            Ok(LawValue {
+                gamma: self.law.activation(fibre_stretch, self.drive)?,
+                ..LawValue::default()
+            })
+        }
+    }
+
     /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
     pub fn respond<const N: usize>(
         &self,
@@ -188,31 +216,7 @@ impl<E: StrainEnergy> Muscle<E> {
         entries: &Entries<N>,
     ) -> Result<MuscleResponse<N>> {
         let fibre_stretch = kinematics.fibre_stretch();
-        // The law's derivatives enter only the consistent stress and the exact tangents.
-        let needs_slope = !matches!(
-            (order, self.coupling),
-            (Order::Energy, _)
-                | (Order::Stress, Coupling::Frozen(_))
-                | (Order::Tangent, Coupling::Frozen(FrozenTangent::Symmetric))
-        );
-        // d²γ/dλ² only for the consistent tangent; without it `curvature` stays 0, and nothing
-        // reads it (the consistent terms (a, b) below are used only with Coupling::Consistent).
-        let needs_curvature = order == Order::Tangent && self.coupling == Coupling::Consistent;
-        let law = if needs_curvature {
-            self.activation(fibre_stretch)?
-        } else if needs_slope {
-            let (gamma, slope) = self.law.gamma_and_slope(fibre_stretch, self.drive)?;
-            LawValue {
-                gamma,
-                slope,
-                curvature: 0.0,
-            }
-        } else {
-            LawValue {
-                gamma: self.law.activation(fibre_stretch, self.drive)?,
-                ..LawValue::default()
-            }
-        };
+        let law = self.law_value(fibre_stretch, order)?;
         let j = SVector::from(kinematics.invariants);
         let mut d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
         if let Some(curve) = &self.active_stress {

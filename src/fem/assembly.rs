@@ -20,8 +20,31 @@ use crate::volumetric::Volumetric;
 use nalgebra::SVector;
 use rayon::prelude::*;
 
-/// Entries of the system matrix gathered per parallel task.
+/// Entries gathered per parallel task ([`gather`]).
 const GATHER_CHUNK: usize = 4096;
+
+/// out[i] = Σ buf[src[k]] over k in ptr[i]..ptr[i + 1] (the element slots of entry i), in
+/// parallel by chunks of [`GATHER_CHUNK`]; returns Σ out[i]², summed per chunk and the chunks in
+/// order, so the same whatever the threads (‖K‖_F for GMRES's backward error).
+fn gather(out: &mut [f64], ptr: &[u32], src: &[u32], buf: &[f64]) -> f64 {
+    let squares: Vec<f64> = out
+        .par_chunks_mut(GATHER_CHUNK)
+        .enumerate()
+        .map(|(c, chunk)| {
+            let mut squares = 0.0;
+            for (k, o) in chunk.iter_mut().enumerate() {
+                let i = c * GATHER_CHUNK + k;
+                *o = src[ptr[i] as usize..ptr[i + 1] as usize]
+                    .iter()
+                    .map(|&s| buf[s as usize])
+                    .sum();
+                squares += *o * *o;
+            }
+            squares
+        })
+        .collect();
+    squares.iter().sum()
+}
 
 /// Deformation state at one quadrature point (for diagnostics such as an ellipticity check).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -631,37 +654,11 @@ impl Assembler {
             tangent,
             buf,
         })?;
-        let gather = |out: &mut [f64], ptr: &[u32], src: &[u32], buf: &[f64]| {
-            out.par_iter_mut().enumerate().for_each(|(i, o)| {
-                *o = src[ptr[i] as usize..ptr[i + 1] as usize]
-                    .iter()
-                    .map(|&s| buf[s as usize])
-                    .sum();
-            });
-        };
         gather(&mut self.residual, &self.res_ptr, &self.res_src, &self.rbuf);
         self.stress_scale = self.scale_buf.par_iter().cloned().reduce(|| 0.0, f64::max);
         if tangent {
-            // The squares summed by fixed chunks, in order: the same norm whatever the threads.
-            let (ptr, src, kbuf) = (&self.val_ptr, &self.val_src, &self.kbuf);
-            let squares: Vec<f64> = self
-                .values
-                .par_chunks_mut(GATHER_CHUNK)
-                .enumerate()
-                .map(|(c, chunk)| {
-                    let mut squares = 0.0;
-                    for (k, o) in chunk.iter_mut().enumerate() {
-                        let i = c * GATHER_CHUNK + k;
-                        *o = src[ptr[i] as usize..ptr[i + 1] as usize]
-                            .iter()
-                            .map(|&s| kbuf[s as usize])
-                            .sum();
-                        squares += *o * *o;
-                    }
-                    squares
-                })
-                .collect();
-            self.values_norm = squares.iter().sum::<f64>().sqrt();
+            let squares = gather(&mut self.values, &self.val_ptr, &self.val_src, &self.kbuf);
+            self.values_norm = squares.sqrt();
             gather(
                 &mut self.rate_force,
                 &self.res_ptr,

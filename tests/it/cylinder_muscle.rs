@@ -229,7 +229,7 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
         },
     );
     // The same muscle behind a wrapper that does not say its tangent is non-symmetric, on one
-    // thread (on two, every tangent starts on the pattern LU).
+    // thread (on two, a tangent of 4 000 unknowns or more starts on the pattern LU).
     let (switched, t_switched) = on_threads(1, || run(&Unsaid(&muscle), SolverOptions::default()));
     println!("default: {default:?} {t:?}\nLU: {lu:?} {t_lu:?}\nswitched: {t_switched:?}");
     // Every factorisation a pattern LU, none wasted on the LDLᵀ; a pattern LU that failed to
@@ -250,14 +250,7 @@ fn pattern_lu_path_matches_the_pivoting_lu_on_the_frozen_model() {
 /// tangent.
 #[test]
 fn the_hyperelastic_sweep_stays_on_the_ldlt_on_one_thread() {
-    let gm = GiantesioMusesti::paper();
-    let muscle = Muscle::new(
-        gm,
-        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
-        0.0,
-        Coupling::Consistent,
-    )
-    .unwrap();
+    let muscle = hyperelastic_muscle();
     let mesh = Mesh::structured(1.0, 4.0, 8, 32, 1.0).unwrap();
     let targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
     let (solver, results) = on_threads(1, || {
@@ -272,6 +265,18 @@ fn the_hyperelastic_sweep_stays_on_the_ldlt_on_one_thread() {
     println!("{t:?}");
     assert_eq!(t.lu_fallbacks, 0, "{t:?}");
     assert_eq!(t.pattern_lu_factorisations, 0, "{t:?}");
+}
+
+/// The chapter's energy law with consistent coupling, d = 0: a symmetric tangent.
+fn hyperelastic_muscle() -> Muscle<GiantesioMusesti> {
+    let gm = GiantesioMusesti::paper();
+    Muscle::new(
+        gm,
+        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
+        0.0,
+        Coupling::Consistent,
+    )
+    .unwrap()
 }
 
 /// `f` on a rayon pool of `threads` threads (the solver picks its factorisation by them).
@@ -289,14 +294,7 @@ fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
 /// threads too, the LDLᵀ.
 #[test]
 fn a_symmetric_tangent_on_two_threads_takes_the_pattern_lu() {
-    let gm = GiantesioMusesti::paper();
-    let muscle = Muscle::new(
-        gm,
-        Law::Energy(EnergyLaw::new(gm, ActiveCurve::paper())),
-        0.0,
-        Coupling::Consistent,
-    )
-    .unwrap();
+    let muscle = hyperelastic_muscle();
     assert!(muscle.symmetric_tangent());
     let targets = [0.95, 1.17];
     let run = |nr, nz| {

@@ -150,43 +150,7 @@ impl PatternLu {
             entry_ptr: vec![0; ns + 1],
             u_entries: vec![0; ns],
         };
-        let mut entries = Vec::with_capacity(pattern.row_idx.len());
-        for j in 0..n {
-            let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
-            for (&i, k) in pattern.row_idx[range.clone()].iter().zip(range) {
-                let (pi, pj) = (perm_inv[i as usize] as usize, perm_inv[j] as usize);
-                let (t, slot) = st
-                    .slot(pi, pj)
-                    .ok_or_else(|| format!("entry ({i}, {j}) outside the symbolic pattern"))?;
-                entries.push((t, k as u32, slot));
-            }
-        }
-        // Placed by (supernode, L before U) in one counting pass: `entries` is in ascending k
-        // already (column by column), and each bucket keeps that order.
-        let mut l_entries = vec![0usize; ns];
-        for &(t, _, slot) in &entries {
-            st.entry_ptr[t as usize + 1] += 1;
-            if let Slot::L(_) = slot {
-                l_entries[t as usize] += 1;
-            }
-        }
-        for (s, l_count) in l_entries.into_iter().enumerate() {
-            st.entry_ptr[s + 1] += st.entry_ptr[s];
-            st.u_entries[s] = st.entry_ptr[s] + l_count;
-        }
-        let mut next: Vec<[usize; 2]> = (0..ns)
-            .map(|s| [st.entry_ptr[s], st.u_entries[s]])
-            .collect();
-        st.entries = vec![(0, 0); entries.len()];
-        for (t, k, slot) in entries {
-            let t = t as usize;
-            let (at, offset) = match slot {
-                Slot::L(p) => (&mut next[t][0], p as usize - st.l_ptr[t]),
-                Slot::U(p) => (&mut next[t][1], p as usize - st.u_ptr[t]),
-            };
-            st.entries[*at] = (k, offset as u32);
-            *at += 1;
-        }
+        st.place_entries(pattern, &perm_inv)?;
         let split = st.split();
         let schedule = Schedule::new(&st, split.as_ref());
         Ok(Self {
@@ -302,6 +266,50 @@ impl PatternLu {
 }
 
 impl Structure {
+    /// Fills `entries`, `entry_ptr` and `u_entries`: where each entry of K (`pattern`, in the
+    /// original order; `perm_inv[i]` its permuted index) goes in the panels.
+    fn place_entries(&mut self, pattern: &Pattern, perm_inv: &[u32]) -> Result<(), String> {
+        let (n, ns) = (pattern.n, self.begin.len());
+        let mut entries = Vec::with_capacity(pattern.row_idx.len());
+        for j in 0..n {
+            let range = pattern.col_ptr[j] as usize..pattern.col_ptr[j + 1] as usize;
+            for (&i, k) in pattern.row_idx[range.clone()].iter().zip(range) {
+                let (pi, pj) = (perm_inv[i as usize] as usize, perm_inv[j] as usize);
+                let (t, slot) = self
+                    .slot(pi, pj)
+                    .ok_or_else(|| format!("entry ({i}, {j}) outside the symbolic pattern"))?;
+                entries.push((t, k as u32, slot));
+            }
+        }
+        // Placed by (supernode, L before U) in one counting pass: `entries` is in ascending k
+        // already (column by column), and each bucket keeps that order.
+        let mut l_entries = vec![0usize; ns];
+        for &(t, _, slot) in &entries {
+            self.entry_ptr[t as usize + 1] += 1;
+            if let Slot::L(_) = slot {
+                l_entries[t as usize] += 1;
+            }
+        }
+        for (s, l_count) in l_entries.into_iter().enumerate() {
+            self.entry_ptr[s + 1] += self.entry_ptr[s];
+            self.u_entries[s] = self.entry_ptr[s] + l_count;
+        }
+        let mut next: Vec<[usize; 2]> = (0..ns)
+            .map(|s| [self.entry_ptr[s], self.u_entries[s]])
+            .collect();
+        self.entries = vec![(0, 0); entries.len()];
+        for (t, k, slot) in entries {
+            let t = t as usize;
+            let (at, offset) = match slot {
+                Slot::L(p) => (&mut next[t][0], p as usize - self.l_ptr[t]),
+                Slot::U(p) => (&mut next[t][1], p as usize - self.u_ptr[t]),
+            };
+            self.entries[*at] = (k, offset as u32);
+            *at += 1;
+        }
+        Ok(())
+    }
+
     /// Supernode and position of the permuted entry (i, j) in the factor storage.
     fn slot(&self, i: usize, j: usize) -> Option<(u32, Slot)> {
         let t = self.supernode_of[i.min(j)] as usize;
