@@ -14,6 +14,7 @@ use super::element::{
     zeroed, Element, PerElement, PointGeometry, ReferenceElement, References, TryMap, Typed, Visit,
 };
 use super::error::{FemError, FemResult};
+use super::finite::first_non_finite;
 use super::material::{AxiF, AxisymmetricMaterial};
 use super::mesh::Mesh;
 use crate::volumetric::Volumetric;
@@ -666,7 +667,7 @@ impl Assembler {
                 &self.gbuf,
             );
         }
-        let bad = self.residual.iter().position(|v| !v.is_finite());
+        let bad = first_non_finite(&self.residual);
         if let Some(i) = bad {
             return Err(crate::Error::NonFinite {
                 quantity: "assembled residual",

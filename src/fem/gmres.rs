@@ -4,6 +4,7 @@
 //! ([`super::pattern_lu`]), chosen by [`super::tangent_solver`].
 
 use super::assembly::Pattern;
+use super::finite::all_finite;
 
 /// y = K x for K in compressed columns.
 fn matvec(pattern: &Pattern, values: &[f64], x: &[f64], y: &mut [f64]) {
@@ -196,7 +197,7 @@ impl Gmres {
             }
         }
         let beta = norm(&self.r);
-        if beta <= tol * (knorm * norm(&self.x) + bnorm) && self.x.iter().all(|v| v.is_finite()) {
+        if beta <= tol * (knorm * norm(&self.x) + bnorm) && all_finite(&self.x) {
             rhs.copy_from_slice(&self.x);
             Some(total)
         } else {

@@ -14,6 +14,7 @@
 
 use super::assembly::Pattern;
 use super::dofs::DofMap;
+use super::finite::all_finite;
 use super::gmres::Preconditioner;
 use super::mesh::Mesh;
 use super::ordering::{dof_ordering, node_structure, Trailing};
@@ -156,7 +157,7 @@ impl SymmetricPartLdlt {
                 Default::default(),
             )
             .map_err(|e| format!("LDLT: {e:?}"))?;
-        if self.l_values.iter().any(|v| !v.is_finite()) {
+        if !all_finite(&self.l_values) {
             return Err("non-finite LDLT factor (zero pivot)".into());
         }
         Ok(())

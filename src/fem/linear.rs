@@ -3,6 +3,7 @@
 //! numeric factorisation; numeric storage and scratch memory are reused too.
 
 use super::assembly::Pattern;
+use super::finite::first_non_finite;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -56,7 +57,7 @@ impl SparseLu {
     /// Numeric factorisation of the matrix with `pattern` and `values`.
     pub fn factorise(&mut self, pattern: &Pattern, values: &[f64]) -> Result<(), String> {
         self.factorised = false;
-        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        if let Some(i) = first_non_finite(values) {
             return Err(format!(
                 "non-finite tangent entry {} at nonzero {i}",
                 values[i]
@@ -89,7 +90,7 @@ impl SparseLu {
             self.par,
             MemStack::new(&mut self.solve_scratch),
         );
-        match rhs.iter().position(|v| !v.is_finite()) {
+        match first_non_finite(rhs) {
             Some(i) => Err(format!(
                 "solution entry {i} is {} (zero pivot: the tangent is singular)",
                 rhs[i]

@@ -17,7 +17,7 @@
 //!
 //! | module | what |
 //! |---|---|
-//! | [`error`], [`material`], [`kinematics`], [`timings`], [`linear_solver`] | leaves: errors, the material interface, J and its derivatives, time per phase, the choice of linear solver |
+//! | [`error`], [`finite`], [`material`], [`kinematics`], [`timings`], [`linear_solver`] | leaves: errors, the finiteness test of long slices, the material interface, J and its derivatives, time per phase, the choice of linear solver |
 //! | [`element`] | the elements, one file each ([`element::MixedElement`]) plus a line of its registry, and their shared reference element and weak form |
 //! | [`memory`] | the memory a solve needs, from counts, and its limit |
 //! | [`mesh`] | the meridian mesh (structured, bounded by [`memory`]; the cells of any element) |
@@ -34,6 +34,7 @@ pub mod dissection;
 pub mod dofs;
 pub mod element;
 pub mod error;
+pub mod finite;
 pub mod gmres;
 pub mod kinematics;
 pub mod ldlt;

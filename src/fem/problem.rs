@@ -11,6 +11,7 @@ use super::assembly::Assembler;
 use super::continuation::NonlinearSystem;
 use super::dofs::DofMap;
 use super::error::StepFailure;
+use super::finite::first_non_finite;
 use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
 use super::tangent_solver::TangentSolver;
@@ -191,7 +192,7 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
 
     /// Factorises the tangent just assembled and solves K Δx = −R.
     fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
-        if let Some(k) = self.asm.values.iter().position(|v| !v.is_finite()) {
+        if let Some(k) = first_non_finite(&self.asm.values) {
             return Err(StepFailure::Material(crate::Error::NonFinite {
                 quantity: "assembled tangent",
                 value: self.asm.values[k],

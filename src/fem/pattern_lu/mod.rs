@@ -38,6 +38,7 @@ mod substitution;
 mod worker;
 
 use super::assembly::Pattern;
+use super::finite::first_non_finite;
 use super::gmres::Preconditioner;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use solve::Schedule;
@@ -258,7 +259,7 @@ impl PatternLu {
         for (k, &i) in self.st.perm.iter().enumerate() {
             x[i as usize] = y[k];
         }
-        match x.iter().position(|v| !v.is_finite()) {
+        match first_non_finite(x) {
             Some(i) => Err(format!("solution entry {i} is {}", x[i])),
             None => Ok(()),
         }

@@ -9,6 +9,7 @@
 //! a supernode it does not own, an ancestor outside its subtrees, is kept ([`Deferred`]) and
 //! applied by the owner after the two workers have joined.
 
+use super::super::finite::all_finite;
 use super::Structure;
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
@@ -169,7 +170,7 @@ impl Worker<'_> {
             let schur = MatMut::from_column_major_slice_mut(&mut self.ws.schur, r, r);
             matmul(schur, Accum::Replace, l21, u12.rb(), 1.0, Par::Seq);
         }
-        if !l.iter().chain(u.iter()).all(|v| v.is_finite()) {
+        if !(all_finite(l) && all_finite(u)) {
             return Err(format!("non-finite LU factor at dofs {b}..{e}"));
         }
         if r > 0 {
