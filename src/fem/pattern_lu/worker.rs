@@ -11,6 +11,8 @@
 
 use super::super::finite::all_finite;
 use super::Structure;
+use faer::dyn_stack::MemStack;
+use faer::linalg::lu::partial_pivoting::factor::{lu_in_place, lu_in_place_scratch};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_unit_lower_triangular_in_place,
@@ -28,13 +30,15 @@ pub(super) struct Workspace {
     /// The supernode's panels hold K's entries (zeroed and filled when first reached: by its
     /// own elimination or by the first Schur update into it, so the panel is in cache).
     loaded: Vec<bool>,
+    dense: DenseLu,
 }
 
 impl Workspace {
-    pub fn new(n: usize, supernodes: usize) -> Self {
+    pub fn new(n: usize, supernodes: usize, widest: usize) -> Self {
         Self {
             relpos: vec![u32::MAX; n],
             loaded: vec![false; supernodes],
+            dense: DenseLu::new(widest),
             ..Self::default()
         }
     }
@@ -156,7 +160,7 @@ impl Worker<'_> {
         ) else {
             return Err(format!("supernode {s} is not this worker's"));
         };
-        factor_diagonal_block(l, u, w, r, b, pivots)?;
+        factor_diagonal_block(l, u, w, r, b, pivots, &mut self.ws.dense)?;
         let ld = w + r;
         if r > 0 {
             let lmat = MatRef::from_column_major_slice(l, ld, w);
@@ -283,11 +287,11 @@ impl Worker<'_> {
 }
 
 /// P D = L₁₁ U₁₁ in place for the diagonal block D (w × w) of a supernode's L panel `l`
-/// (column-major, leading dimension w + r; the block's first dof is `b`), unblocked, with
-/// partial pivoting inside the block: rows never leave it, so the pattern is kept. A row swap is
-/// applied to the L panel and to the rows of the U₁₂ panel `u` (w × r: the same equations'
-/// entries right of the block); `pivots[k]` records the row exchanged with row k. The rows below
-/// the block become L₂₁ = A₂₁ U₁₁⁻¹.
+/// (column-major, leading dimension w + r; the block's first dof is `b`), by faer's blocked
+/// (recursive) LU with partial pivoting inside the block: rows never leave it, so the pattern is
+/// kept. The row exchanges are recorded as swaps, `pivots[k]` the row exchanged with row k, and
+/// applied to the rows of the U₁₂ panel `u` (w × r: the same equations' entries right of the
+/// block). The rows below the block become L₂₁ = A₂₁ U₁₁⁻¹.
 #[inline(always)]
 fn factor_diagonal_block(
     l: &mut [f64],
@@ -296,49 +300,54 @@ fn factor_diagonal_block(
     r: usize,
     b: usize,
     pivots: &mut [u32],
+    dense: &mut DenseLu,
 ) -> Result<(), String> {
     let ld = w + r;
+    let panel = MatMut::from_column_major_slice_mut(l, ld, w);
+    let (mut block, mut l21) = panel.split_at_row_mut(w);
+    let DenseLu {
+        perm,
+        perm_inv,
+        at,
+        scratch,
+    } = dense;
+    let (perm, perm_inv) = (&mut perm[..w], &mut perm_inv[..w]);
+    lu_in_place(
+        block.rb_mut(),
+        perm,
+        perm_inv,
+        Par::Seq,
+        MemStack::new(scratch),
+        Default::default(),
+    );
+    // The permutation as swaps: at step k, row perm[k] (now at position at[perm[k]]) is
+    // exchanged with the row at position k. `at` and `perm_inv` are reused as position ↔ row.
+    let (row_at, at) = (perm_inv, &mut at[..w]);
     for k in 0..w {
-        let mut p = k;
-        for i in k + 1..w {
-            if l[i + k * ld].abs() > l[p + k * ld].abs() {
-                p = i;
-            }
-        }
+        row_at[k] = k as u32;
+        at[k] = k as u32;
+    }
+    for k in 0..w {
+        let p = at[perm[k] as usize] as usize;
         pivots[k] = (b + p) as u32;
         if p != k {
-            for j in 0..w {
-                l.swap(k + j * ld, p + j * ld);
-            }
+            let (rk, rp) = (row_at[k], row_at[p]);
+            row_at.swap(k, p);
+            at[rk as usize] = p as u32;
+            at[rp as usize] = k as u32;
             for column in u.chunks_exact_mut(w) {
                 column.swap(k, p);
             }
         }
-        let pivot = l[k + k * ld];
+    }
+    for k in 0..w {
+        let pivot = block[(k, k)];
         if pivot == 0.0 || !pivot.is_finite() {
             return Err(format!("pivot {pivot:e} at dof {}", b + k));
         }
-        // Column k of L₁₁ below the pivot and the update of the block's trailing columns, as
-        // column slices (no index checks, so the loops vectorise).
-        let (left, right) = l.split_at_mut((k + 1) * ld);
-        let below = &mut left[k * ld + k + 1..k * ld + w];
-        for v in below.iter_mut() {
-            *v /= pivot;
-        }
-        for column in right.chunks_exact_mut(ld).take(w - k - 1) {
-            let ukj = column[k];
-            if ukj != 0.0 {
-                for (v, &lik) in column[k + 1..w].iter_mut().zip(below.iter()) {
-                    *v -= lik * ukj;
-                }
-            }
-        }
     }
-    // The rows below the block: L₂₁ U₁₁ = A₂₁, i.e. U₁₁ᵀ L₂₁ᵀ = A₂₁ᵀ, one triangular solve
-    // (faer's blocked kernel) instead of w rank-one updates of the r rows.
+    // The rows below the block: L₂₁ U₁₁ = A₂₁, i.e. U₁₁ᵀ L₂₁ᵀ = A₂₁ᵀ (faer's blocked kernel).
     if r > 0 {
-        let panel = MatMut::from_column_major_slice_mut(l, ld, w);
-        let (block, mut l21) = panel.split_at_row_mut(w);
         solve_lower_triangular_in_place(
             block.rb().transpose(),
             l21.rb_mut().transpose_mut(),
@@ -346,4 +355,33 @@ fn factor_diagonal_block(
         );
     }
     Ok(())
+}
+
+/// Buffers of the diagonal blocks' dense LU, for blocks up to the widest supernode.
+#[derive(Debug, Default)]
+pub(super) struct DenseLu {
+    perm: Vec<u32>,
+    perm_inv: Vec<u32>,
+    at: Vec<u32>,
+    scratch: Vec<std::mem::MaybeUninit<u8>>,
+}
+
+impl DenseLu {
+    fn new(width: usize) -> Self {
+        Self {
+            perm: vec![0; width],
+            perm_inv: vec![0; width],
+            at: vec![0; width],
+            scratch: vec![
+                std::mem::MaybeUninit::uninit();
+                lu_in_place_scratch::<u32, f64>(
+                    width,
+                    width,
+                    Par::Seq,
+                    Default::default()
+                )
+                .unaligned_bytes_required()
+            ],
+        }
+    }
 }
