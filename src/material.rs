@@ -209,6 +209,7 @@ impl<E: StrainEnergy> Muscle<E> {
     }
 
     /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
+    #[inline(always)]
     pub fn respond<const N: usize>(
         &self,
         kinematics: &Kinematics,
