@@ -192,7 +192,14 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
 
     /// Factorises the tangent just assembled and solves K Δx = −R.
     fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
-        if let Some(k) = first_non_finite(&self.asm.values) {
+        // ‖K‖_F (summed in the assembly) is finite unless an entry is not (or the sum of
+        // squares overflows, which the scan then tells apart): no scan of K when it is.
+        let bad = if self.asm.values_norm.is_finite() {
+            None
+        } else {
+            first_non_finite(&self.asm.values)
+        };
+        if let Some(k) = bad {
             return Err(StepFailure::Material(crate::Error::NonFinite {
                 quantity: "assembled tangent",
                 value: self.asm.values[k],
