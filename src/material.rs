@@ -209,6 +209,8 @@ impl<E: StrainEnergy> Muscle<E> {
     }
 
     /// Energy, stress and tangent at the point described by `kinematics`, to the order asked.
+    /// Always inlined: the response is then built in its caller's frame, not copied out of
+    /// this one (the copy was 4.5 % of the 16 × 64 frozen FE sweep).
     #[inline(always)]
     pub fn respond<const N: usize>(
         &self,

@@ -483,6 +483,50 @@ fn system_numbering(n_free: usize, condensation: Option<&Condensation>) -> (Vec<
     (index, next as usize)
 }
 
+/// Whether `dofs` numbers `mesh` (same element, a dof list per cell) and the cells' matrices
+/// fit 32-bit gather lists.
+fn check_numbering(mesh: &Mesh, dofs: &DofMap) -> FemResult<()> {
+    let n_el = mesh.n_elements();
+    let nd = dofs.dofs_per_element();
+    if mesh.element != dofs.element || dofs.element_dofs.len() != n_el * nd {
+        return Err(FemError::InvalidInput {
+            name: "dof map",
+            value: format!(
+                "{} dofs for {} {} cells",
+                dofs.element_dofs.len(),
+                n_el,
+                mesh.element
+            ),
+            rule: "must be the numbering of this mesh",
+        });
+    }
+    if n_el
+        .checked_mul(nd * nd)
+        .is_none_or(|v| v >= u32::MAX as usize)
+    {
+        return Err(FemError::InvalidInput {
+            name: "elements",
+            value: n_el.to_string(),
+            rule: "too many elements for 32-bit gather lists",
+        });
+    }
+    Ok(())
+}
+
+/// The system's index of each of the dofs `global` (`u32::MAX` for a prescribed one, ≥ `n_free`).
+fn in_system(global: &[u32], index: &[u32], n_free: usize) -> Vec<u32> {
+    global
+        .iter()
+        .map(|&g| {
+            if (g as usize) < n_free {
+                index[g as usize]
+            } else {
+                u32::MAX
+            }
+        })
+        .collect()
+}
+
 impl Assembler {
     /// Validates the element geometry and builds the pattern and the gather lists (exact
     /// incompressibility).
@@ -503,32 +547,9 @@ impl Assembler {
         dofs: &DofMap,
         volumetric: Option<Volumetric>,
     ) -> FemResult<Self> {
-        let n_el = mesh.n_elements();
-        if mesh.element != dofs.element || dofs.element_dofs.len() != n_el * dofs.dofs_per_element()
-        {
-            return Err(FemError::InvalidInput {
-                name: "dof map",
-                value: format!(
-                    "{} dofs for {} {} cells",
-                    dofs.element_dofs.len(),
-                    n_el,
-                    mesh.element
-                ),
-                rule: "must be the numbering of this mesh",
-            });
-        }
-        let nd = dofs.dofs_per_element();
+        check_numbering(mesh, dofs)?;
+        let (n_el, nd) = (mesh.n_elements(), dofs.dofs_per_element());
         let nu = 2 * mesh.element.nodes();
-        if n_el
-            .checked_mul(nd * nd)
-            .is_none_or(|v| v >= u32::MAX as usize)
-        {
-            return Err(FemError::InvalidInput {
-                name: "elements",
-                value: n_el.to_string(),
-                rule: "too many elements for 32-bit gather lists",
-            });
-        }
         let cells = mesh
             .element
             .reference()
@@ -542,16 +563,7 @@ impl Assembler {
             Some(c) => (c.dofs_per_cell(), c.cell_dofs()),
             None => (nd, dofs.element_dofs.as_slice()),
         };
-        let system: Vec<u32> = global
-            .iter()
-            .map(|&g| {
-                if (g as usize) < n {
-                    index[g as usize]
-                } else {
-                    u32::MAX
-                }
-            })
-            .collect();
+        let system = in_system(global, &index, n);
         let condensed = condensation.is_some();
         let penalised = volumetric.is_some();
         let couples = move |i: usize, j: usize| condensed || penalised || !(i >= nu && j >= nu);
