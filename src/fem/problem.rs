@@ -190,8 +190,10 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         du.max(dp)
     }
 
-    /// Factorises the tangent just assembled and solves K Δx = −R.
-    fn newton_direction(&mut self, dx: &mut [f64]) -> Result<(), StepFailure> {
+    /// Factorises the tangent last assembled (if `refactorise`) and solves K Δx = −R; GMRES on
+    /// K converges whichever factorisation preconditions it, and one of an earlier tangent that
+    /// does not precondition is replaced by K's own ([`TangentSolver::solve`]).
+    fn newton_direction(&mut self, dx: &mut [f64], refactorise: bool) -> Result<(), StepFailure> {
         // ‖K‖_F (summed in the assembly) is finite unless an entry is not (or the sum of
         // squares overflows, which the scan then tells apart): no scan of K when it is.
         let bad = if self.asm.values_norm.is_finite() {
@@ -206,9 +208,11 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
                 context: format!("at nonzero {k}"),
             }));
         }
-        self.linear
-            .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
-            .map_err(|detail| StepFailure::SingularTangent { detail })?;
+        if refactorise {
+            self.linear
+                .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
+                .map_err(|detail| StepFailure::SingularTangent { detail })?;
+        }
         for (f, r) in self.rhs.iter_mut().zip(&self.asm.residual) {
             *f = -r;
         }
