@@ -190,9 +190,11 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         du.max(dp)
     }
 
-    /// Factorises the tangent last assembled (if `refactorise`) and solves K Δx = −R; GMRES on
-    /// K converges whichever factorisation preconditions it, and one of an earlier tangent that
-    /// does not precondition is replaced by K's own ([`TangentSolver::solve`]).
+    /// Factorises the tangent last assembled and solves K Δx = −R. Unless `refactorise`, the
+    /// factorisation held preconditions GMRES on K if it is one that GMRES iterates with
+    /// ([`TangentSolver::iterates`]; faer's LU solves directly, so it is always renewed): the
+    /// direction is K's all the same, and one that does not precondition K is replaced by K's
+    /// own ([`TangentSolver::solve`]).
     fn newton_direction(&mut self, dx: &mut [f64], refactorise: bool) -> Result<(), StepFailure> {
         // ‖K‖_F (summed in the assembly) is finite unless an entry is not (or the sum of
         // squares overflows, which the scan then tells apart): no scan of K when it is.
@@ -208,10 +210,12 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
                 context: format!("at nonzero {k}"),
             }));
         }
-        if refactorise {
+        if refactorise || !self.linear.iterates() {
             self.linear
                 .factorise(&self.asm.pattern, &self.asm.values, &mut self.timings)
                 .map_err(|detail| StepFailure::SingularTangent { detail })?;
+        } else {
+            self.timings.earlier_factorisations += 1;
         }
         for (f, r) in self.rhs.iter_mut().zip(&self.asm.residual) {
             *f = -r;

@@ -198,7 +198,14 @@ impl TangentSolver {
         lu.solve_in_place(rhs)
     }
 
-    /// Factorises the tangent just assembled (called once per Newton iteration): LDLᵀ of the symmetric part unless the LU is
+    /// Whether the factorisation held preconditions GMRES (the LDLᵀ or the pattern LU), which
+    /// then converges on whichever tangent is passed to [`Self::solve`]; faer's LU solves
+    /// directly, with the tangent it factorised.
+    pub fn iterates(&self) -> bool {
+        matches!(self.current, Factor::Ldlt | Factor::PatternLu)
+    }
+
+    /// Factorises the tangent just assembled (by a Newton iteration whose step has none close enough, see [`Self::iterates`]): LDLᵀ of the symmetric part unless the LU is
     /// preferred or the LDLᵀ breaks down (zero pivot).
     pub fn factorise(
         &mut self,

@@ -15,7 +15,8 @@ pub struct Timings {
     pub residual_assembly: Duration,
     /// Number of residual-only assemblies.
     pub residual_assemblies: usize,
-    /// Newton iterations (each: one full assembly, one tangent update, one solve).
+    /// Newton iterations (each: one full assembly, one solve, and one factorisation unless an
+    /// earlier one serves).
     pub newton_iterations: usize,
     /// Numeric factorisations (LDLᵀ or LU).
     pub factorisation: Duration,
@@ -29,9 +30,13 @@ pub struct Timings {
     pub krylov_iterations: usize,
     /// Solves that fell back to the sparse LU.
     pub lu_fallbacks: usize,
-    /// Solves for a later tangent (the rate at a converged state) on which GMRES with the held
-    /// factorisation, of an earlier tangent, did not converge: that tangent was factorised.
+    /// Solves for a later tangent (the rate at a converged state, a Newton iteration near
+    /// convergence) on which GMRES with the held factorisation, of an earlier tangent, did not
+    /// converge: that tangent was factorised.
     pub refactorisations: usize,
+    /// Newton iterations solved without a factorisation of their own: GMRES on the tangent,
+    /// preconditioned by the factorisation of an earlier iterate of the load step.
+    pub earlier_factorisations: usize,
     /// Factorisations by the LU on the LDLᵀ's pattern (non-symmetric tangents).
     pub pattern_lu_factorisations: usize,
 }
