@@ -127,6 +127,52 @@ impl<M: AxisymmetricMaterial + ?Sized> Visit<CellsOf> for Evaluate<'_, M> {
     }
 }
 
+/// Element residuals and tangents of a few cells (experiment).
+struct Patch<'a, M: ?Sized> {
+    x: &'a [f64],
+    material: &'a M,
+    volumetric: Option<&'a Volumetric>,
+    list: &'a [usize],
+}
+
+/// A cell's dofs, element residual and element tangent (column-major).
+pub type CellSystem = (Vec<u32>, Vec<f64>, Vec<f64>);
+
+impl<M: AxisymmetricMaterial + ?Sized> Visit<CellsOf> for Patch<'_, M> {
+    type Output = crate::Result<Vec<CellSystem>>;
+
+    fn visit<
+        const NN: usize,
+        const NU: usize,
+        const NP: usize,
+        const ND: usize,
+        const NQ: usize,
+    >(
+        self,
+        cells: &Box<Cells<NN, NU, NP, ND, NQ>>,
+    ) -> crate::Result<Vec<CellSystem>> {
+        let mut out = Vec::with_capacity(self.list.len());
+        for &e in self.list {
+            let d = &cells.dofs[e];
+            let u = SVector::<f64, NU>::from_fn(|i, _| self.x[d[i] as usize]);
+            let p = SVector::<f64, NP>::from_fn(|i, _| self.x[d[NU + i] as usize]);
+            let mut r = zeroed::<ND, 1>();
+            let mut k = zeroed::<ND, ND>();
+            cells.re.residual_tangent(
+                &cells.geometry[e],
+                &u,
+                &p,
+                self.material,
+                self.volumetric,
+                &mut r,
+                Some(&mut k),
+            )?;
+            out.push((d.to_vec(), r.as_slice().to_vec(), k.as_slice().to_vec()));
+        }
+        Ok(out)
+    }
+}
+
 /// The quadrature points of the cells at the dof values `x` ([`Cells::quadrature_points`]).
 struct QuadraturePoints<'a>(&'a [f64]);
 
@@ -599,6 +645,26 @@ impl Assembler {
             volumetric,
             index,
             rates,
+        })
+    }
+
+    /// Largest stress of each cell at the last assembly.
+    pub fn cell_scales(&self) -> &[f64] {
+        &self.scale_buf
+    }
+
+    /// Element residuals and tangents of the cells `list` at `x` (all dofs, no condensation).
+    pub fn patch<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        x: &[f64],
+        material: &M,
+        list: &[usize],
+    ) -> crate::Result<Vec<CellSystem>> {
+        self.cells.visit(Patch {
+            x,
+            material,
+            volumetric: self.volumetric.as_ref(),
+            list,
         })
     }
 

@@ -54,6 +54,12 @@ pub trait NonlinearSystem {
     /// ∂R_f/∂λ of the last evaluation that had the tangent (at a converged state, that state's
     /// or the last iterate's before it: see `Continuation::newton`).
     fn load_rate(&mut self, rate: &mut [f64]) -> Result<(), StepFailure>;
+    /// Relaxes, in place, the part of a predicted state `x` (just evaluated) whose stresses
+    /// overshoot those of the last converged state, of largest stress `converged_scale`;
+    /// returns whether `x` changed. By default nothing is relaxed.
+    fn relax_predictor(&mut self, _x: &mut [f64], _converged_scale: f64) -> bool {
+        false
+    }
 }
 
 /// A discrete solution: all unknowns at a load (the stretch of the cylinder).
@@ -194,6 +200,8 @@ struct Converged {
     load: f64,
     x: Vec<f64>,
     rate: Vec<f64>,
+    /// Its largest stress ([`NonlinearSystem::scale`]).
+    scale: f64,
 }
 
 /// The load-stepping Newton driver, with its work vectors (allocated once).
@@ -296,9 +304,16 @@ impl Continuation {
             iterations: Vec::new(),
             failure: None,
         };
-        self.newton(system, &mut x, &mut record)?;
+        self.newton(system, &mut x, &mut record, None)?;
+        let scale = system.scale();
         let rate = rate(system)?;
-        Ok((Converged { load: 1.0, x, rate }, record))
+        let reference = Converged {
+            load: 1.0,
+            x,
+            rate,
+            scale,
+        };
+        Ok((reference, record))
     }
 
     /// Steps from `cur` through `targets` (sorted away from λ = 1), reporting each.
@@ -338,6 +353,8 @@ impl Continuation {
                 let (record, outcome) = self.step(system, &cur, next, &mut x);
                 match outcome {
                     Ok(rate) => {
+                        // The system holds the converged state's evaluation (see `newton`).
+                        let scale = system.scale();
                         observer.step_accepted(&record);
                         let n_it = record.iterations.len();
                         steps.push(record);
@@ -345,6 +362,7 @@ impl Continuation {
                             load: next,
                             x: x.clone(),
                             rate,
+                            scale,
                         };
                         if n_it <= o.easy_iterations {
                             easy += 1;
@@ -401,7 +419,7 @@ impl Continuation {
             failure: None,
         };
         let outcome = self
-            .newton(system, x, &mut record)
+            .newton(system, x, &mut record, Some(cur.scale))
             .and_then(|_| rate(system));
         if let Err(cause) = &outcome {
             record.failure = Some(cause.clone());
@@ -416,7 +434,9 @@ impl Continuation {
         });
     }
 
-    /// Newton's method at the load already set in `x` (prescribed unknowns included).
+    /// Newton's method at the load already set in `x` (prescribed unknowns included); a load
+    /// step's predictor (`converged_scale`: the largest stress of the state it started from) is
+    /// first relaxed where it overshoots ([`NonlinearSystem::relax_predictor`]).
     ///
     /// Each iteration solves K Δx = −R on the free unknowns, then backtracks
     /// ([`Self::line_search`]). On success `x` holds the converged state and the system holds
@@ -429,10 +449,18 @@ impl Continuation {
         system: &mut S,
         x: &mut Vec<f64>,
         record: &mut StepRecord,
+        converged_scale: Option<f64>,
     ) -> Result<(), StepFailure> {
         let tol = self.stepping.tolerance;
         let nf = system.free();
-        if let Err(e) = system.evaluate(x, true) {
+        let mut evaluated = system.evaluate(x, true);
+        // A predictor that overshoots in a few cells is relaxed there first.
+        if let (Ok(()), Some(scale)) = (&evaluated, converged_scale) {
+            if system.relax_predictor(x, scale) {
+                evaluated = system.evaluate(x, true);
+            }
+        }
+        if let Err(e) = evaluated {
             self.keep_failed_trial(record.to, x);
             return Err(StepFailure::Material(e));
         }

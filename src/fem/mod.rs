@@ -24,6 +24,7 @@
 //! | [`dofs`], [`condensation`], [`assembly`] | the dof numbering, the static condensation of a condensed node, the parallel assembly into a pattern built once |
 //! | [`ordering`], [`ldlt`], [`pattern_lu`], [`linear`], [`gmres`] | the elimination order, LDLᵀ of the symmetric part, LU on its pattern, faer's LU, GMRES |
 //! | [`tangent_solver`] | which factorisation preconditions the Newton system |
+//! | [`relaxation`] | the local relaxation of a predictor that overshoots in a few cells |
 //! | [`continuation`], [`problem`] | load stepping with Newton for any [`NonlinearSystem`], and the mixed problem as one |
 //! | [`vtk`], [`solver`] | VTK output; the solver that drives a mesh through the stretches |
 
@@ -46,6 +47,7 @@ pub mod mesh;
 pub mod ordering;
 pub mod pattern_lu;
 pub mod problem;
+pub mod relaxation;
 pub mod solver;
 pub mod tangent_solver;
 pub mod timings;

@@ -14,6 +14,7 @@ use super::error::StepFailure;
 use super::finite::first_non_finite;
 use super::material::AxisymmetricMaterial;
 use super::mesh::Mesh;
+use super::relaxation;
 use super::tangent_solver::TangentSolver;
 use super::timings::Timings;
 use std::f64::consts::PI;
@@ -221,6 +222,12 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
             *f = -r;
         }
         self.solve_free(dx)
+    }
+
+    /// The patch of cells over [`relaxation::OVERSHOOT`] × the converged largest stress,
+    /// relaxed by Newton on its own unknowns ([`relaxation::relax`]).
+    fn relax_predictor(&mut self, x: &mut [f64], converged_scale: f64) -> bool {
+        relaxation::relax(&self.asm, &self.dofs, self.material, x, converged_scale)
     }
 
     /// K_ff v_f = −K_fc d_c, v_c = d_c, for the tangent last assembled (of the converged state,

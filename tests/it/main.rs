@@ -39,6 +39,7 @@ mod fem_limits;
 mod fem_nearly_incompressible;
 mod fem_newton;
 mod fem_output;
+mod fem_relaxation;
 mod fem_sliding;
 mod fit_errors;
 mod fit_extremes;
