@@ -3,7 +3,8 @@
 //! Load path: from λ = 1 outwards in both directions (each direction starts from the λ = 1
 //! state), landing exactly on every requested load. Each load step uses a tangent predictor
 //! (x ← x_k + Δλ dx/dλ, with dx/dλ from [`NonlinearSystem::load_rate`] at the last converged
-//! state), then Newton with backtracking line search on the system's scaled residual norm. A
+//! state), relaxed where it overshoots in a few cells ([`NonlinearSystem::relax_predictor`]),
+//! then Newton with backtracking line search on the system's scaled residual norm. A
 //! rejected step (no convergence, material error at a trial state, failed line search, singular
 //! tangent) is halved; after two easy steps in a row the step doubles again. Below the minimum
 //! step the direction stops with [`FemError::TargetNotReached`]; after [`Stepping::max_steps`]
