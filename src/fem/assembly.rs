@@ -11,7 +11,8 @@
 use super::condensation::Condensation;
 use super::dofs::DofMap;
 use super::element::{
-    zeroed, Element, PerElement, PointGeometry, ReferenceElement, References, TryMap, Typed, Visit,
+    zeroed, Element, ElementMatrix, ElementScale, ElementVector, PerElement, PointGeometry,
+    ReferenceElement, References, TryMap, Typed, Visit,
 };
 use super::error::{FemError, FemResult};
 use super::finite::first_non_finite;
@@ -127,7 +128,7 @@ impl<M: AxisymmetricMaterial + ?Sized> Visit<CellsOf> for Evaluate<'_, M> {
     }
 }
 
-/// Element residuals and tangents of a few cells (experiment).
+/// The element systems of a few cells ([`Cells::patch`]).
 struct Patch<'a, M: ?Sized> {
     x: &'a [f64],
     material: &'a M,
@@ -151,25 +152,7 @@ impl<M: AxisymmetricMaterial + ?Sized> Visit<CellsOf> for Patch<'_, M> {
         self,
         cells: &Box<Cells<NN, NU, NP, ND, NQ>>,
     ) -> crate::Result<Vec<CellSystem>> {
-        let mut out = Vec::with_capacity(self.list.len());
-        for &e in self.list {
-            let d = &cells.dofs[e];
-            let u = SVector::<f64, NU>::from_fn(|i, _| self.x[d[i] as usize]);
-            let p = SVector::<f64, NP>::from_fn(|i, _| self.x[d[NU + i] as usize]);
-            let mut r = zeroed::<ND, 1>();
-            let mut k = zeroed::<ND, ND>();
-            cells.re.residual_tangent(
-                &cells.geometry[e],
-                &u,
-                &p,
-                self.material,
-                self.volumetric,
-                &mut r,
-                Some(&mut k),
-            )?;
-            out.push((d.to_vec(), r.as_slice().to_vec(), k.as_slice().to_vec()));
-        }
-        Ok(out)
+        cells.patch(self.x, self.material, self.volumetric, self.list)
     }
 }
 
@@ -247,6 +230,51 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         })
     }
 
+    /// The displacements and pressures of a cell with dofs `d` in `x`.
+    fn cell_values(x: &[f64], d: &[u32; ND]) -> (SVector<f64, NU>, SVector<f64, NP>) {
+        (
+            SVector::from_fn(|i, _| x[d[i] as usize]),
+            SVector::from_fn(|i, _| x[d[NU + i] as usize]),
+        )
+    }
+
+    /// The element residual and tangent (and the stress scale) of the cell with geometry `xe`
+    /// and dofs `d` at `x`.
+    #[inline(always)]
+    fn cell_system<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        xe: &[PointGeometry<NN>; NQ],
+        d: &[u32; ND],
+        x: &[f64],
+        material: &M,
+        volumetric: Option<&Volumetric>,
+    ) -> crate::Result<(ElementVector<ND>, ElementMatrix<ND>, ElementScale)> {
+        let (u, p) = Self::cell_values(x, d);
+        let (mut r, mut k) = (zeroed::<ND, 1>(), zeroed::<ND, ND>());
+        let s = self
+            .re
+            .residual_tangent(xe, &u, &p, material, volumetric, &mut r, Some(&mut k))?;
+        Ok((r, k, s))
+    }
+
+    /// Element residuals and tangents of the cells `list` at `x` (all dofs; the full element
+    /// system, nothing condensed), with each cell's global dofs.
+    fn patch<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        x: &[f64],
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        list: &[usize],
+    ) -> crate::Result<Vec<CellSystem>> {
+        list.iter()
+            .map(|&e| {
+                let d = &self.dofs[e];
+                let (r, k, _) = self.cell_system(&self.geometry[e], d, x, material, volumetric)?;
+                Ok((d.to_vec(), r.as_slice().to_vec(), k.as_slice().to_vec()))
+            })
+            .collect()
+    }
+
     /// Element residuals (and tangents, K_fc d_c) at `x` into the buffers.
     fn evaluate<M: AxisymmetricMaterial + ?Sized>(
         &self,
@@ -268,20 +296,8 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
             .zip(buf.scale_buf.par_iter_mut())
             .zip(self.geometry.par_iter().zip(self.dofs.par_iter()))
             .try_for_each(|(((((rb, kb), cd), gb), sc), (xe, d))| {
-                let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
-                let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
-                let mut r = zeroed::<ND, 1>();
-                let scale = if tangent {
-                    let mut k = zeroed::<ND, ND>();
-                    let s = re.residual_tangent(
-                        xe,
-                        &u,
-                        &p,
-                        material,
-                        volumetric,
-                        &mut r,
-                        Some(&mut k),
-                    )?;
+                let (r, scale) = if tangent {
+                    let (r, k, s) = self.cell_system(xe, d, x, material, volumetric)?;
                     match condensation {
                         Some(c) => c.condense_cell(k.as_slice(), ND, kb, cd)?,
                         None => kb.copy_from_slice(k.as_slice()),
@@ -299,9 +315,12 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     } else {
                         gb.fill(0.0);
                     }
-                    s
+                    (r, s)
                 } else {
-                    re.residual_tangent(xe, &u, &p, material, volumetric, &mut r, None)?
+                    let (u, p) = Self::cell_values(x, d);
+                    let mut r = zeroed::<ND, 1>();
+                    let s = re.residual_tangent(xe, &u, &p, material, volumetric, &mut r, None)?;
+                    (r, s)
                 };
                 rb.copy_from_slice(r.as_slice());
                 *sc = scale.stress;
@@ -313,8 +332,7 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         let re = &self.re;
         let mut out = Vec::with_capacity(self.geometry.len() * NQ);
         for (e, (ge, d)) in self.geometry.iter().zip(&self.dofs).enumerate() {
-            let u = SVector::<f64, NU>::from_fn(|i, _| x[d[i] as usize]);
-            let p = SVector::<f64, NP>::from_fn(|i, _| x[d[NU + i] as usize]);
+            let (u, p) = Self::cell_values(x, d);
             for (q, g) in ge.iter().enumerate() {
                 out.push(QuadraturePoint {
                     element: e,

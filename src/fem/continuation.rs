@@ -769,21 +769,26 @@ mod tests {
         assert_eq!(observer.reached.len(), 1);
     }
 
+    /// The sinh path through `targets`, unbounded, checked against the closed form at every
+    /// target: the driver, what it reported, and the system with its counts.
+    fn closed_form_sweep(targets: &[f64]) -> (Continuation, Collect, Sinh) {
+        let mut driver = Continuation::new(2, stepping(), None);
+        let mut observer = Collect::default();
+        let mut sinh = system(f64::INFINITY);
+        let failures = driver.sweep(&mut sinh, targets, &mut observer).unwrap();
+        assert!(failures.is_empty());
+        for (load, y, _) in &observer.reached {
+            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
+        }
+        (driver, observer, sinh)
+    }
+
     /// A step taken from a residual in Newton's quadratic phase is evaluated without its
     /// tangent (only a further iteration would need it), and the path is the closed form all the
     /// same: the rate at such a state is solved with the iterate's before it.
     #[test]
     fn a_likely_last_step_is_evaluated_without_its_tangent() {
-        let mut driver = Continuation::new(2, stepping(), None);
-        let mut observer = Collect::default();
-        let mut sinh = system(f64::INFINITY);
-        let failures = driver
-            .sweep(&mut sinh, &[0.2, 3.0, 6.0], &mut observer)
-            .unwrap();
-        assert!(failures.is_empty());
-        for (load, y, _) in &observer.reached {
-            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
-        }
+        let (driver, observer, sinh) = closed_form_sweep(&[0.2, 3.0, 6.0]);
         // Without the rule, every step evaluates its predictor and each iteration's trial with
         // the tangent.
         let steps: usize = observer.reached.iter().map(|r| r.2.len()).sum();
@@ -800,16 +805,7 @@ mod tests {
     /// Newton direction solved without refactorising; the path is the closed form all the same.
     #[test]
     fn an_earlier_factorisation_serves_only_near_convergence_within_a_step() {
-        let mut driver = Continuation::new(2, stepping(), None);
-        let mut observer = Collect::default();
-        let mut sinh = system(f64::INFINITY);
-        let failures = driver
-            .sweep(&mut sinh, &[0.2, 1.0, 3.0, 6.0], &mut observer)
-            .unwrap();
-        assert!(failures.is_empty());
-        for (load, y, _) in &observer.reached {
-            assert!((y - (load - 1.0).asinh()).abs() < 1e-13, "λ = {load}: {y}");
-        }
+        let (_, observer, sinh) = closed_form_sweep(&[0.2, 1.0, 3.0, 6.0]);
         // Each step's directions, in the order solved: the first factorises, every later one
         // from a residual at most REUSE_BELOW × tol does not, every other one does.
         let below = REUSE_BELOW * stepping().tolerance;

@@ -20,37 +20,45 @@ fn residual(problem: &mut MixedProblem<'_, NonSymmetric>, x: &[f64]) -> DVector<
     DVector::from_column_slice(&problem.asm.residual[..problem.free()])
 }
 
-#[test]
-fn the_condensed_newton_step_and_load_rate_solve_the_full_system() {
-    let material = NonSymmetric {
-        mu: 10.0,
-        c: 1.5,
-        approximate: false,
-    };
+/// The material of both tests: non-symmetric tangent.
+const MATERIAL: NonSymmetric = NonSymmetric {
+    mu: 10.0,
+    c: 1.5,
+    approximate: false,
+};
+
+/// The problem on a clamped 2 × 3 Q2/Q1 mesh (centre nodes condensed); `symmetric`: whether
+/// the tangent solver may start on the LDLᵀ (otherwise the pattern LU, as the frozen sweeps).
+fn small_problem(symmetric: bool) -> MixedProblem<'static, NonSymmetric> {
     let mesh = Mesh::structured(1.0, 2.0, 2, 3, 1.0).unwrap();
-    let cells = mesh.n_elements();
     let dofs = DofMap::new(&mesh, Bases::Clamped);
     let asm = Assembler::new(&mesh, &dofs).unwrap();
-    assert!(asm.is_condensed());
-    assert_eq!(asm.pattern.n, dofs.n_free - 2 * cells);
     let ldlt = SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs, asm.system_index()).unwrap();
-    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt), true, 1);
-    let mut problem = MixedProblem::new(mesh, dofs, asm, linear, &material, 1e-6);
-    let (n, nf) = (problem.unknowns(), problem.free());
-    // A state off equilibrium: λ = 1.1 with a smooth perturbation of every free dof.
-    let lambda = 1.1;
-    let mut x: Vec<f64> = (0..n).map(|i| 0.01 * ((i as f64) * 0.7).sin()).collect();
+    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt), symmetric, 1);
+    MixedProblem::new(mesh, dofs, asm, linear, &MATERIAL, 1e-6)
+}
+
+/// A state off equilibrium: λ with a smooth perturbation of every free dof.
+fn off_equilibrium(problem: &MixedProblem<'_, NonSymmetric>, lambda: f64) -> Vec<f64> {
+    let mut x: Vec<f64> = (0..problem.unknowns())
+        .map(|i| 0.01 * ((i as f64) * 0.7).sin())
+        .collect();
     problem.apply_load(&mut x, lambda);
+    x
+}
+
+#[test]
+fn the_condensed_newton_step_and_load_rate_solve_the_full_system() {
+    let mut problem = small_problem(true);
+    let cells = problem.mesh.n_elements();
+    assert!(problem.asm.is_condensed());
+    assert_eq!(problem.asm.pattern.n, problem.dofs.n_free - 2 * cells);
+    let (n, nf) = (problem.unknowns(), problem.free());
+    let lambda = 1.1;
+    let x = off_equilibrium(&problem, lambda);
     // The full free–free tangent and ∂R_f/∂λ by central differences.
     let h = 1e-6;
-    let mut k = DMatrix::<f64>::zeros(nf, nf);
-    for j in 0..nf {
-        let (mut plus, mut minus) = (x.clone(), x.clone());
-        plus[j] += h;
-        minus[j] -= h;
-        let column = (residual(&mut problem, &plus) - residual(&mut problem, &minus)) / (2.0 * h);
-        k.set_column(j, &column);
-    }
+    let k = tangent_by_differences(&mut problem, &x);
     let (mut plus, mut minus) = (x.clone(), x.clone());
     problem.apply_load(&mut plus, lambda + h);
     problem.apply_load(&mut minus, lambda - h);
@@ -94,22 +102,10 @@ fn tangent_by_differences(problem: &mut MixedProblem<'_, NonSymmetric>, x: &[f64
 /// fresh factorisation, and no factorisation was made for it.
 #[test]
 fn a_newton_direction_on_an_earlier_factorisation_solves_the_current_tangent() {
-    let material = NonSymmetric {
-        mu: 10.0,
-        c: 1.5,
-        approximate: false,
-    };
-    let mesh = Mesh::structured(1.0, 2.0, 2, 3, 1.0).unwrap();
-    let dofs = DofMap::new(&mesh, Bases::Clamped);
-    let asm = Assembler::new(&mesh, &dofs).unwrap();
-    let ldlt = SymmetricPartLdlt::for_mesh(&asm.pattern, &mesh, &dofs, asm.system_index()).unwrap();
     // Non-symmetric: the pattern LU from the start, as in the frozen sweeps.
-    let linear = TangentSolver::new(asm.pattern.n, Some(ldlt), false, 1);
-    let mut problem = MixedProblem::new(mesh, dofs, asm, linear, &material, 1e-6);
-    let (n, nf) = (problem.unknowns(), problem.free());
-    let lambda = 1.1;
-    let mut x: Vec<f64> = (0..n).map(|i| 0.01 * ((i as f64) * 0.7).sin()).collect();
-    problem.apply_load(&mut x, lambda);
+    let mut problem = small_problem(false);
+    let nf = problem.free();
+    let mut x = off_equilibrium(&problem, 1.1);
     problem.evaluate(&x, true).unwrap();
     let mut dx = vec![0.0; nf];
     problem.newton_direction(&mut dx, true).unwrap();
