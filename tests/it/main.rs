@@ -62,6 +62,7 @@ mod scene_specs;
 mod scene_tradeoff;
 mod scratch_dirs;
 mod shear_biaxial;
+mod shipped_scenes;
 mod stability;
 mod study_names;
 mod tabulated_law;
