@@ -7,7 +7,7 @@
 mod output;
 
 use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
-use super::table::Table;
+use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -317,11 +317,10 @@ impl BiaxialResult {
             .collect();
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
         let at = |f: fn(&BiaxialPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
-        let same = |text: String| rows.iter().map(move |_| Some(text.clone()));
         Table::default()
-            .text("study", "the study's name", same(study.to_string()))
-            .text("energy", "the passive energy", same(self.energy.clone()))
-            .text("path", "equibiaxial, strip or pairs", same(self.path.to_string()))
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("energy", "the passive energy", every_row(&self.energy, rows.len()))
+            .text("path", "equibiaxial, strip or pairs", every_row(self.path, rows.len()))
             .text("approach", "activation approach (empty: passive)", cell(0))
             .text("law", "activation law (passive for the passive material; empty: an approach without a law, active stress)", cell(1))
             .text("coupling", "frozen or consistent (empty: passive, or an approach without a law)", cell(2))

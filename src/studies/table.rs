@@ -89,6 +89,11 @@ impl Column {
     }
 }
 
+/// The cells of a column with `text` in each of `rows` rows (the study's name, its energy).
+pub fn every_row(text: &str, rows: usize) -> impl Iterator<Item = Option<String>> {
+    std::iter::repeat_n(Some(text.to_string()), rows)
+}
+
 /// Columns of equal length.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Table {

@@ -4,9 +4,9 @@
 //! not have; passive rows have no approach.
 
 use crate::binary;
+use crate::datapackage::rows_by_name as rows;
 use crate::scratch::scratch;
 use std::collections::HashMap;
-use std::path::Path;
 
 /// A uniaxial, a stability, an activation-in-time and a cylinder study (with a named point)
 /// under `approach`.
@@ -20,22 +20,6 @@ fn scene(approach: &str) -> String {
          [[study]]\nkind = \"cylinder\"\nname = \"cyl\"\nnr = 1\nnz = 2\nbases = \"sliding\"\n\
          damage = [0.3]\nstretch = [1.0, 1.1]\n[study.points]\ntip = [1.0, 4.0]\n"
     )
-}
-
-/// The rows of a CSV file as maps from column name to cell.
-fn rows(path: &Path) -> Vec<HashMap<String, String>> {
-    let mut reader = csv::Reader::from_path(path).expect("the file");
-    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
-    reader
-        .records()
-        .map(|r| {
-            header
-                .iter()
-                .cloned()
-                .zip(r.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect()
 }
 
 /// Runs the scene of `approach` and checks every file with a `law` column; returns the active

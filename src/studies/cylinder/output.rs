@@ -13,7 +13,7 @@ use crate::studies::outputs::{
     OwnTable, Used, GAMMA, STRESS,
 };
 use crate::studies::slug;
-use crate::studies::table::Table;
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -34,11 +34,7 @@ impl CylinderResult {
         let cell = |i: usize| rows.iter().map(move |r| cells(r.0)[i].clone());
         let length = "the mesh's length unit";
         Table::default()
-            .text(
-                "study",
-                "the study's name",
-                rows.iter().map(|_| Some(study.to_string())),
-            )
+            .text("study", "the study's name", every_row(study, rows.len()))
             .text(
                 "point",
                 "the point's name ([study.points])",

@@ -7,7 +7,7 @@ use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::outputs::{
     derived, each_study, figure, panel_over, prefixed, Context, KindOutput, Of, OwnTable,
 };
-use crate::studies::table::Table;
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -54,7 +54,7 @@ pub fn fits_table_of(study: &str, fits: &[FitOutcome]) -> Table {
     let words = |f: fn(&FitOutcome, usize) -> String| rows.iter().map(move |&(r, j)| Some(f(r, j)));
     let unit = "the parameter's unit";
     Table::default()
-        .text("study", "the study's name", rows.iter().map(|_| Some(study.to_string())))
+        .text("study", "the study's name", every_row(study, rows.len()))
         .text("fit", "what was fitted (the fit kind)", words(|f, _| f.kind.name().into()))
         .text("case", "the data set or case fitted", words(|f, _| f.case.clone()))
         .text("parameter", "the fitted parameter's name", words(|f, j| f.names[j].clone()))

@@ -7,7 +7,7 @@ use crate::studies::outputs::{
     derived, each_study, figure, model_cells, prefixed, Context, KindOutput, Of, OwnTable, Used,
     GAMMA, LAMBDA, STRESS,
 };
-use crate::studies::table::Table;
+use crate::studies::table::{every_row, Table};
 
 impl KindOutput for HistoryResult {
     /// Its rows of `history.csv`.
@@ -42,12 +42,11 @@ impl HistoryResult {
             rows.iter()
                 .map(move |(h, _)| model_cells(self.approach, Some(h.model))[i].clone())
         };
-        let same = |text: String| rows.iter().map(move |_| Some(text.clone()));
         let at = |f: fn(&HistoryPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
         Table::default()
-            .text("study", "the study's name", same(study.to_string()))
-            .text("loading", "prescribed (the stretch as scheduled) or free (no load)", same(self.loading.to_string()))
-            .text("energy", "the strain energy's name", same(self.energy.clone()))
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("loading", "prescribed (the stretch as scheduled) or free (no load)", every_row(self.loading, rows.len()))
+            .text("energy", "the strain energy's name", every_row(&self.energy, rows.len()))
             .text("law", "implicit, explicit or energy (empty: an approach without a law, active stress)", cell(1))
             .text("coupling", "frozen or consistent (empty: an approach without a law)", cell(2))
             .number("d", "-", "damage d", rows.iter().map(|(h, _)| Some(h.model.damage)))

@@ -8,7 +8,7 @@ use crate::studies::outputs::{
     coupling_stroke, derived, each_study, figure, law_colour, model_cells, panel, prefixed,
     sorted_unique, Context, KindOutput, Of, OwnTable, Used, STRESS,
 };
-use crate::studies::table::Table;
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -51,7 +51,7 @@ pub fn stability_table_of(study: &str, curves: &[StabilityCurve]) -> Table {
     };
     let at = |f: fn(&super::StabilityPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
     Table::default()
-        .text("study", "the study's name", rows.iter().map(|_| Some(study.to_string())))
+        .text("study", "the study's name", every_row(study, rows.len()))
         .text("law", "passive, implicit, explicit or energy (empty: an approach without a law, active stress)", cell(1))
         .text("coupling", "frozen or consistent (active rows; empty: passive, or an approach without a law)", cell(2))
         .number("d", "-", "damage d (active rows)", rows.iter().map(|(c, _)| c.damage()))
