@@ -459,3 +459,39 @@ fn a_scene_with_other_parameters_does_not_claim_the_chapter_s_figures() {
         );
     }
 }
+
+/// Every shipped energy's row in the report's table of models says what it is, with its formula,
+/// as the energy registry declares it (4c-passive was "a shipped energy" when the report kept its
+/// own list).
+#[test]
+fn every_shipped_energy_has_its_formula_in_the_table_of_models() {
+    for energy in activemuscle::energy::SHIPPED {
+        // Parameters without a chapter value must be given.
+        let given: String = energy
+            .parameters
+            .iter()
+            .filter(|p| p.default.is_none())
+            .map(|p| format!("{} = 1.0\n", p.name))
+            .collect();
+        let text = format!(
+            "[material]\nenergy = \"{}\"\n{given}[[study]]\nkind = \"uniaxial\"\nstretch = [1.1]\nlaws = []\n",
+            energy.name
+        );
+        let scene = Scene::parse(&text, "energy.toml").expect("valid scene");
+        let page = report(&scene, &scene.run(&RunOptions::default()));
+        let row = format!(
+            "<td>{} (energy)</td><td>{}; the material, with ",
+            energy.name,
+            activemuscle::text::escape_html(energy.formula)
+        );
+        assert!(page.contains(&row), "{}: no row {row}", energy.name);
+        assert!(
+            page.contains(&format!(
+                "</td><td>{}</td></tr>",
+                activemuscle::text::escape_html(energy.chapter)
+            )),
+            "{}",
+            energy.name
+        );
+    }
+}
