@@ -97,7 +97,7 @@ impl KindOutput for CylinderResult {
             tables.push(OwnTable {
                 key: "named_points",
                 file: format!("points_{}.csv", slug(study)),
-                rows_are: "the displacement of each named point per model and stretch",
+                rows_are: "one row per named point, model and stretch: its displacement",
                 table: self.points_table(study),
             });
         }
