@@ -112,8 +112,8 @@ fn run_and_write(scene: &Scene, out: Option<&Path>, started: Instant) -> Result<
     Ok(results)
 }
 
-/// `values` as a numpy array of `T` (`dtype` numpy's name for it), or, if some rows have no
-/// value, a `numpy.ma` array masking them (pandas reads them as missing).
+/// `values` as a numpy array (float64, int64 or bool), or, if some rows have no value, a
+/// `numpy.ma` array masking them (pandas reads them as missing).
 fn array<'py, T: numpy::Element + Copy + Default>(
     py: Python<'py>,
     values: &[Option<T>],
