@@ -131,7 +131,14 @@ fn trace(steps: &[StepRecord]) {
         let h: Vec<String> = s
             .iterations
             .iter()
-            .map(|i| format!("{:.1e}/{:.1e}", i.residual, i.increment))
+            .map(|i| {
+                let step = if i.step_length == 1.0 {
+                    String::new()
+                } else {
+                    format!("@{}", i.step_length)
+                };
+                format!("{:.1e}/{:.1e}{step}", i.residual, i.increment)
+            })
             .collect();
         println!(
             "#   {:.4} -> {:.4}: predictor {:.1e}; {}",

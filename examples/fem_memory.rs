@@ -1,6 +1,9 @@
 //! The memory estimate of a solve against what the solve really uses: prints the estimate
 //! before and after the symbolic factorisation, then runs a sweep; measure the peak resident
-//! memory with `/usr/bin/time -v` (or read VmHWM, printed at the end).
+//! memory with `/usr/bin/time -v` (or read VmHWM, printed at the end). The last line, `cost …`,
+//! sums it up for `python/bench/cost_curve.py`: free dofs, the two estimates and the peak
+//! (MiB), the sweep's wall time (s), its Newton iterations (those of curves.csv: summed over
+//! the stretches' load steps) and the time per iteration (ms).
 //!
 //! `cargo run --release --example fem_memory -- NR NZ [neo-hookean|muscle] [Q2Q1|Q1P0]`
 //! (muscle: the chapter's explicit law, frozen exact tangent, clamped, 20 stretches 0.7–1.6 and
@@ -52,7 +55,7 @@ fn run<M: AxisymmetricMaterial>(
         "resident after the set-up: {:.1} MiB",
         peak_memory_mib().unwrap_or(f64::NAN)
     );
-    let exact = solver.memory_estimate();
+    let exact = solver.memory_estimate().clone();
     println!(
         "estimate after the symbolic factorisation: {:.1} MiB ({:.0} dofs, {:.0} nonzeros, {:.0} factor values)",
         exact.bytes / MIB,
@@ -62,12 +65,31 @@ fn run<M: AxisymmetricMaterial>(
     );
     let mut targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
     targets.push(1.17);
+    let start = std::time::Instant::now();
     let sweep = solver.sweep(&targets)?;
+    let seconds = start.elapsed().as_secs_f64();
+    let peak = peak_memory_mib().unwrap_or(f64::NAN);
     println!(
-        "{} of {} stretches; peak resident memory (VmHWM) {:.1} MiB",
+        "{} of {} stretches; peak resident memory (VmHWM) {peak:.1} MiB",
         sweep.results.len(),
         targets.len(),
-        peak_memory_mib().unwrap_or(f64::NAN)
+    );
+    // One line for a driver (python/bench/cost_curve.py).
+    let its: usize = sweep
+        .results
+        .iter()
+        .flat_map(|r| &r.steps)
+        .map(|s| s.iterations.len())
+        .sum();
+    println!(
+        "cost {nr}x{nz} dofs {} estimate_counts {:.1} estimate {:.1} sweep {seconds:.3} its {its} \
+         iteration {:.2} peak {peak:.1} stretches {}/{}",
+        exact.dofs,
+        before.bytes / MIB,
+        exact.bytes / MIB,
+        1e3 * seconds / its.max(1) as f64,
+        sweep.results.len(),
+        targets.len()
     );
     Ok(())
 }

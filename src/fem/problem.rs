@@ -38,6 +38,19 @@ fn norm_inf(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, a| m.max(a.abs()))
 }
 
+/// Normwise backward error of a Newton direction ([`TangentSolver::solve`]): what a direct
+/// solve with partial pivoting attains, so that the iterates do not depend on the factorisation
+/// that preconditions GMRES.
+const DIRECTION_TOLERANCE: f64 = 1e-12;
+
+/// Normwise backward error of the rate dx/dλ at a converged state, which serves only the next
+/// load step's predictor x + Δλ dx/dλ, whose own error is O(Δλ²): GMRES on the held (earlier)
+/// factorisation stops one or two iterations sooner than at [`DIRECTION_TOLERANCE`]. Frozen
+/// explicit sweep (`examples/cylinder_sweep`, d = 0): Krylov iterations 16 × 64 256 → 237,
+/// 32 × 128 250 → 223 (10⁻¹¹: 245, 239), the same Newton iterations, P within 1.7e-11; 10⁻⁹
+/// and looser cost Newton iterations (32 × 128: 111 instead of 102).
+const RATE_TOLERANCE: f64 = 1e-10;
+
 /// The discrete u–p problem on one mesh with one material: what the continuation driver solves.
 pub struct MixedProblem<'m, M: AxisymmetricMaterial + ?Sized> {
     /// The mesh (cells of the element in use).
@@ -92,10 +105,10 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
 
     /// x = K⁻¹ f on the free dofs for f in `rhs`: the condensed system solved, then expanded
     /// ([`Assembler::condense`], [`Assembler::expand`]).
-    fn solve_free(&mut self, x: &mut [f64]) -> Result<(), StepFailure> {
+    fn solve_free(&mut self, x: &mut [f64], tolerance: f64) -> Result<(), StepFailure> {
         let mut y = std::mem::take(&mut self.system_rhs);
         self.asm.condense(&self.rhs, &mut y);
-        let solved = self.solve(&mut y);
+        let solved = self.solve(&mut y, tolerance);
         if solved.is_ok() {
             self.asm.expand(&self.rhs, &y, x);
         }
@@ -105,7 +118,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
 
     /// Solves K y = rhs in place for the system matrix, exactly to round-off (see
     /// [`TangentSolver`]).
-    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), StepFailure> {
+    fn solve(&mut self, rhs: &mut [f64], tolerance: f64) -> Result<(), StepFailure> {
         let t = Instant::now();
         let factorising = self.timings.factorisation;
         let r = self
@@ -115,6 +128,7 @@ impl<'m, M: AxisymmetricMaterial + ?Sized> MixedProblem<'m, M> {
                 &self.asm.values,
                 self.asm.values_norm,
                 rhs,
+                tolerance,
                 &mut self.timings,
             )
             .map_err(|detail| StepFailure::SingularTangent { detail });
@@ -221,7 +235,7 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         for (f, r) in self.rhs.iter_mut().zip(&self.asm.residual) {
             *f = -r;
         }
-        self.solve_free(dx)
+        self.solve_free(dx, DIRECTION_TOLERANCE)
     }
 
     /// The patch of cells over [`relaxation::OVERSHOOT`] × the converged largest stress,
@@ -238,7 +252,7 @@ impl<M: AxisymmetricMaterial + ?Sized> NonlinearSystem for MixedProblem<'_, M> {
         for (f, g) in self.rhs.iter_mut().zip(&self.asm.rate_force) {
             *f = -g;
         }
-        self.solve_free(&mut rate[..nf])?;
+        self.solve_free(&mut rate[..nf], RATE_TOLERANCE)?;
         rate[nf..].copy_from_slice(&self.dofs.prescribed_rate);
         Ok(())
     }

@@ -1,8 +1,9 @@
 //! The Newton system K Δx = −R: which factorisation preconditions it.
 //!
-//! Every solve is exact to round-off: GMRES ([`super::gmres`]) iterates on the current tangent
-//! K until the normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) ≤ 10⁻¹² (what a direct
-//! solve with partial pivoting attains), and a factorisation of K only preconditions it. The
+//! Every solve is exact to the caller's tolerance: GMRES ([`super::gmres`]) iterates on the
+//! current tangent K until the normwise backward error ‖b − K x‖ / (‖K‖_F ‖x‖ + ‖b‖) is below
+//! it (10⁻¹² for a Newton direction, what a direct solve with partial pivoting attains; see
+//! [`super::problem`]), and a factorisation of K only preconditions it. The
 //! factorisations, one per Newton iteration:
 //!
 //! - LDLᵀ of the symmetric part (K + Kᵀ)/2 ([`super::ldlt`]): pattern of K, no pivoting; for a
@@ -57,8 +58,6 @@ use super::pattern_lu::PatternLu;
 use super::timings::Timings;
 use std::time::Instant;
 
-/// Normwise backward error to which every linear solve is converged.
-const TOLERANCE: f64 = 1e-12;
 /// GMRES iterations allowed with the LDLᵀ of the symmetric part before switching to an LU
 /// (about the cost of one factorisation).
 const LDLT_ITERATIONS: usize = 10;
@@ -142,15 +141,18 @@ impl TangentSolver {
         }
     }
 
-    /// Solves K x = b (b in `rhs`, x returned in it) for the tangent last factorised — or, when
-    /// a later tangent with the same pattern is passed (the rate dx/dλ at a converged state),
-    /// for that one, by GMRES preconditioned with the held factorisation. `values_norm`: ‖K‖_F.
+    /// Solves K x = b (b in `rhs`, x returned in it) to the normwise backward error `tolerance`
+    /// for the tangent last factorised — or, when a later tangent with the same pattern is
+    /// passed (the rate dx/dλ at a converged state), for that one, by GMRES preconditioned with
+    /// the held factorisation. `values_norm`: ‖K‖_F. (faer's LU, when it is the one held,
+    /// solves directly.)
     pub fn solve(
         &mut self,
         pattern: &Pattern,
         values: &[f64],
         values_norm: f64,
         rhs: &mut [f64],
+        tolerance: f64,
         timings: &mut Timings,
     ) -> Result<(), String> {
         for _ in 0..3 {
@@ -168,7 +170,15 @@ impl TangentSolver {
                 max_iter.min(EARLIER_FACTOR_ITERATIONS)
             };
             if self
-                .krylov(pattern, values, values_norm, rhs, max_iter, timings)
+                .krylov(
+                    pattern,
+                    values,
+                    values_norm,
+                    rhs,
+                    tolerance,
+                    max_iter,
+                    timings,
+                )
                 .is_some()
             {
                 if self.current == Factor::PatternLu {
@@ -268,6 +278,7 @@ impl TangentSolver {
         values: &[f64],
         values_norm: f64,
         rhs: &mut [f64],
+        tolerance: f64,
         max_iter: usize,
         timings: &mut Timings,
     ) -> Option<usize> {
@@ -283,7 +294,7 @@ impl TangentSolver {
         };
         let its = pre.and_then(|pre| {
             self.gmres
-                .solve(pattern, values, values_norm, pre, rhs, TOLERANCE, max_iter)
+                .solve(pattern, values, values_norm, pre, rhs, tolerance, max_iter)
         });
         match its {
             Some(its) => timings.krylov_iterations += its,

@@ -75,7 +75,8 @@ pub struct ElementScale {
 impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const NQ: usize>
     ReferenceElement<NN, NU, NP, ND, NQ>
 {
-    /// Residual and (optionally) tangent of one element.
+    /// Residual and (optionally) tangent of one element, added to `residual` and `tangent`
+    /// (which the caller zeroes: [`zeroed`]).
     ///
     /// Weak form (Π(u, p) = ∫ [Ψ(F) − p (J − 1)] dV, dV = 2π r dr dz, q and δu test functions):
     ///
@@ -167,7 +168,6 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                 }
             }
         };
-        residual.as_mut_slice().fill(0.0);
         let mut scale = ElementScale::default();
         match tangent {
             None => {
@@ -185,9 +185,8 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                 }
             }
             Some(k) => {
-                // Contiguous zeroing (nalgebra's `fill` walks the matrix entry by entry).
-                k.as_mut_slice().fill(0.0);
-                let mut kuu_lower = zeroed::<NU, NU>();
+                // The node blocks below the diagonal of the points with a symmetric D, if any.
+                let mut kuu_lower = None;
                 for (g, m) in geometry.iter().zip(&self.m) {
                     let f = g.deformation(u);
                     let pq = m.dot(p);
@@ -208,7 +207,8 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                     // material) only the node blocks below the diagonal, mirrored at the end.
                     let d = (a - jacobian_hessian(&f) * pq) * g.dv;
                     if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
-                        add_btdb::<NN, NU, NU>(&mut kuu_lower, g, &d, true);
+                        let lower = kuu_lower.get_or_insert_with(zeroed::<NU, NU>);
+                        add_btdb::<NN, NU, NU>(lower, g, &d, true);
                     } else {
                         add_btdb::<NN, NU, ND>(k, g, &d, false);
                     }
@@ -223,8 +223,10 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
                         k[(NU + i, j)] = k[(j, NU + i)];
                     }
                 }
-                mirror_node_blocks(&mut kuu_lower);
-                k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&kuu_lower);
+                if let Some(mut lower) = kuu_lower {
+                    mirror_node_blocks(&mut lower);
+                    k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&lower);
+                }
             }
         }
         Ok(scale)
