@@ -72,23 +72,39 @@ class MuscleBody:
         self.jacobian += ufl.derivative(constraint, w, dw)
         if volumetric is not None:
             self.jacobian -= q * m.compliance() * dp * dx
+        self._energy_form = None
         self.reset()
 
     def reset(self):
-        """The undeformed body at rest: u = 0 and p = p₀, the material's lateral stress at F = I,
-        p₀ = P₂₂(I) with the fibre along e₁ (the same for any fibre: at F = I, P depends on m
-        only through its frame), so that the lateral faces of a uniaxial state are traction
-        free. For a uniform fibre field with clamped ends that is the solution at λ = 1; and it
-        is the pressure with which an activated consistent model's tangent, A + p G:Gᵀ on
-        isochoric G, is positive at rest where A alone is not (the energy law's). For a
-        passive material p₀ is its reference stress (0 for the chapter's energy), where every
-        volumetric energy's J̃(p₀) = 1."""
-        rest = self.material.material.evaluate(np.eye(3)[None], [1.0, 0.0, 0.0], order="stress",
-                                                layout="leading")
-        p0 = float(rest["stress"][0, 1, 1])
+        """The undeformed body at rest, u = 0 and p = p₀.
+
+        Exact incompressibility: p₀ = P₂₂(I), the material's lateral stress at F = I with the
+        fibre along e₁ (the same for any fibre: at F = I, P depends on m only through its
+        frame), so that the lateral faces of a uniaxial state are traction free: for a uniform
+        fibre field with clamped ends that is the solution at λ = 1, and it is the pressure
+        with which an activated consistent model's tangent, A + p G:Gᵀ on isochoric G, is
+        positive at rest where A alone is not (the energy law's).
+
+        Near incompressibility: p₀ = −U′(1), at which J̃(p₀) = 1 = J(u = 0) (activemuscle's
+        axisymmetric solver's start): from any other pressure the first step must make up the
+        volume J − J̃(p₀) at once, which its Newton does not survive for active models."""
+        if self.volumetric is not None:
+            p0 = self.volumetric.reference_pressure
+        else:
+            rest = self.material.material.evaluate(np.eye(3)[None], [1.0, 0.0, 0.0], order="stress",
+                                                    layout="leading")
+            p0 = float(rest["stress"][0, 1, 1])
         self.w.x.array[:] = 0.0
         self.w.sub(1).interpolate(lambda x: np.full(x.shape[1], p0))
         self.w.x.scatter_forward()
+
+    def stored_energy(self):
+        """∫ Ŵ(F) dX at w over the whole body (every process), the material's energy without
+        a volumetric energy's; raises the material's error where it cannot be evaluated."""
+        if self._energy_form is None:
+            self._energy_form = fem.form(self.material.energy() * self.material.dx)
+        self.material.update(tangent=False)
+        return self.mesh.comm.allreduce(fem.assemble_scalar(self._energy_form))
 
     @property
     def dofs(self):

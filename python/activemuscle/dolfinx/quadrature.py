@@ -80,8 +80,8 @@ class PointValues:
 
 
 class QuadratureMaterial:
-    """P, A (and, near incompressibility, J̃ and 1/U″) at the quadrature points of the owned
-    cells, from a `Material` (and a `Volumetric`).
+    """P, A, Ŵ (and, near incompressibility, J̃ and 1/U″) at the quadrature points of the
+    owned cells, from a `Material` (and a `Volumetric`).
 
     u: the displacement (a Function or a component of one, e.g. `ufl.split(w)[0]`) on `mesh`;
     fibre: one vector (3,), or a function of the reference points X (3, n) returning unit
@@ -102,7 +102,7 @@ class QuadratureMaterial:
         def field(size):
             return PointValues(quadrature_space(mesh, degree, size), self.cells, npts)
 
-        self._stress, self._tangent = field(9), field(81)
+        self._stress, self._tangent, self._energy = field(9), field(81), field(1)
         self._F = fem.Expression(ufl.Identity(3) + ufl.grad(u), points)
         self._F_values = np.empty((self.cells.size, npts * 9))
         if callable(fibre):
@@ -123,6 +123,10 @@ class QuadratureMaterial:
         """A : G as a UFL 3 × 3 matrix."""
         return tangent_action(self._tangent.function, G)
 
+    def energy(self):
+        """Ŵ at the points (UFL): the stored energy density of the last update."""
+        return self._energy.function[0]
+
     def volume_ratio(self):
         """J̃(p) at the points (UFL), near incompressibility only."""
         return self._volume_ratio.function[0]
@@ -137,16 +141,17 @@ class QuadratureMaterial:
         return self._F_values.reshape(-1, 3, 3)
 
     def update(self, tangent=True):
-        """Evaluates the material at the current displacement (P, and A when `tangent`) and the
+        """Evaluates the material at the current displacement (P and Ŵ, and A when `tangent`) and the
         volumetric fields at the current pressure. Raises MATERIAL_ERRORS for a point the
         material cannot evaluate (the message names it)."""
-        out = {"stress": self._stress.view.reshape(-1, 3, 3)}
+        out = {"stress": self._stress.view.reshape(-1, 3, 3), "energy": self._energy.view.reshape(-1)}
         if tangent:
             out["tangent"] = self._tangent.view.reshape(-1, 3, 3, 3, 3)
         self.material.evaluate(self.deformation_gradients(), self.fibre,
                                order="tangent" if tangent else "stress", layout="leading",
                                parallel=self.parallel, out=out)
         self._stress.store()
+        self._energy.store()
         if tangent:
             self._tangent.store()
         if self.volumetric is not None:

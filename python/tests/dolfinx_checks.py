@@ -1,16 +1,22 @@
-"""The fusiform spindle solved twice on DOLFINx (run by tests/test_dolfinx.py with Debian's
-python3): once by activemuscle.dolfinx (P and A from activemuscle at the quadrature points,
-per-point generatrix fibres), once with the energy written in UFL and differentiated by UFL
-(P = ∂Ŵ/∂F by `ufl.diff`, the Jacobian by `ufl.derivative`), the fibres a UFL expression of
-the reference coordinates. The same mesh, element, quadrature, conditions and Newton: the two
-forces must agree to the solver's tolerance.
+"""Checks of activemuscle.dolfinx on the fusiform spindle that need DOLFINx in the process (run
+by tests/test_dolfinx.py with Debian's python3, under mpirun or not):
 
-The energies: the chapter's passive energy (eq. (1), Table 1) and the neo-Hookean μ/2 (tr C − 3),
-each with active strain at a held activation γ (F_a = I − γ M, Ŵ = (1 − γ) W(F_a⁻ᵀ C F_a⁻¹)).
+`ufl`: the spindle solved twice, once by activemuscle.dolfinx (P and A from activemuscle at
+the quadrature points, per-point generatrix fibres), once with the energy written in UFL and
+differentiated by UFL (P = ∂Ŵ/∂F by `ufl.diff`, the Jacobian by `ufl.derivative`), the fibres a
+UFL expression of the reference coordinates; the same mesh, element, quadrature, conditions and
+Newton, so the two forces must agree to the solver's tolerance. The energies: the chapter's
+passive energy (eq. (1), Table 1) and the neo-Hookean μ/2 (tr C − 3), each with active strain at
+a held activation γ (F_a = I − γ M, Ŵ = (1 − γ) W(F_a⁻ᵀ C F_a⁻¹)). Prints
+`<energy> activemuscle <force> ufl <force>`.
 
-    mpirun -n 2 /usr/bin/python3 tests/dolfinx_ufl_reference.py [GAMMA] [STRETCH]
+`work`: the spindle stretched from λ = 1 to 1.1 in eight equal steps; the work of the end force,
+∫ f dδ by Simpson's rule over the nine states (and over every other state: the rule's error is
+a fifteenth of their difference), against the change of the stored energy ∫ Ŵ dX. Equal (to
+the rule's error) for a hyperelastic model, the consistent coupling; not for the frozen one,
+whose P is no gradient. Prints `<model> work <W> work_2h <W with steps 2h> energy <ΔE>`.
 
-Prints `<energy> activemuscle <force> ufl <force>` per energy.
+    mpirun -n 2 /usr/bin/python3 tests/dolfinx_checks.py ufl|work
 """
 
 import sys
@@ -100,10 +106,7 @@ def force(body, stretch):
     return out[stretch]
 
 
-def main(argv):
-    gamma = float(argv[1]) if len(argv) > 1 else 0.1
-    stretch = float(argv[2]) if len(argv) > 2 else 1.1
-    mesh = meshes.spindle(2, 6, LENGTH, BELLY, TENDON)
+def ufl_check(mesh, gamma=0.1, stretch=1.1):
     for name, material, energy in [
         ("giantesio-musesti", am.Material(law="constant", gamma=gamma), active_strain(chapter, gamma)),
         ("neo-hookean", am.Material(energy="neo-hookean", mu=MU, law="constant", gamma=gamma),
@@ -111,8 +114,38 @@ def main(argv):
     ]:
         ours = force(MuscleBody(mesh, material, meshes_fibres), stretch)
         theirs = force(ufl_body(mesh, material, energy), stretch)
-        if MPI.COMM_WORLD.rank == 0:
-            print(f"{name} activemuscle {ours:.15g} ufl {theirs:.15g}", flush=True)
+        say(f"{name} activemuscle {ours:.15g} ufl {theirs:.15g}")
+
+
+def simpson(f, h):
+    """∫ over equal steps h of the values f (an even number of steps)."""
+    return h / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
+
+
+def work_check(mesh, steps=8, stretch=1.1):
+    path = [1.0 + (stretch - 1.0) * k / steps for k in range(steps + 1)]
+    for name, choices in [("energy-consistent", dict(law="energy", coupling="consistent")),
+                          ("explicit-frozen", dict(law="explicit", coupling="frozen"))]:
+        body = MuscleBody(mesh, am.Material(**choices), meshes_fibres)
+        newton = Newton(body, *ends(body, LENGTH, "clamped"))
+        states = {}
+        sweep(newton, path, LENGTH, lambda lam, f, _: states.update({lam: (f, body.stored_energy())}))
+        if len(states) != len(path):
+            raise RuntimeError(f"{name}: not every stretch reached ({newton.error})")
+        f = np.array([states[lam][0] for lam in path])
+        h = (stretch - 1.0) * LENGTH / steps  # the end's displacement per step
+        say(f"{name} work {simpson(f, h):.12g} work_2h {simpson(f[::2], 2 * h):.12g} "
+            f"energy {states[path[-1]][1] - states[path[0]][1]:.12g}")
+
+
+def say(line):
+    if MPI.COMM_WORLD.rank == 0:
+        print(line, flush=True)
+
+
+def main(argv):
+    mesh = meshes.spindle(2, 6, LENGTH, BELLY, TENDON)
+    {"ufl": ufl_check, "work": work_check}[argv[1]](mesh)
 
 
 if __name__ == "__main__":
