@@ -94,6 +94,26 @@ def test_two_processes_give_the_numbers_of_one():
     assert one["P_2x4"][1] > one["P_0d"][1] and one["P_2x4"][0] < one["P_0d"][0]
 
 
+def axisymmetric(stretches, nr, nz, grading):
+    """activemuscle's own axisymmetric Q2/Q1 solver on the clamped cylinder: P per stretch."""
+    study = dict(kind="cylinder", name="axisymmetric", nr=nr, nz=nz, grading=grading, bases="clamped",
+                 law="explicit", coupling="frozen", damage=[0.0], stretch=stretches)
+    return am.run_scene({"title": "reference", "study": [study]})["axisymmetric"].table["P"]
+
+
+def test_clamped_cylinder_approaches_the_axisymmetric_solution_as_its_mesh_is_refined():
+    """Two 3D meshes, the second twice as fine: the finer is closer to the axisymmetric solution,
+    and no further from it than from the coarser (P converges like h at the clamped rims, so the
+    finer mesh's own error is about the change between the two)."""
+    stretches = [1.17, 1.3]
+    got = cylinder("--law", "explicit", "--quarter", "--half", "--meshes", "3x12,6x24",
+                   "--stretches", ",".join(map(str, stretches)))
+    reference = axisymmetric(stretches, 32, 128, 3.0)
+    coarse, fine = got["P_3x12"], got["P_6x24"]
+    assert np.all(abs(fine - reference) < abs(coarse - reference))
+    assert np.all(abs(fine - reference) <= abs(coarse - fine))
+
+
 def test_fusiform_route_equals_the_energy_differentiated_by_ufl():
     """Per-point fibres, active strain, P and the exact tangent through the quadrature spaces,
     on two processes: the force equals that of the energy written in UFL."""
