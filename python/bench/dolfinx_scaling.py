@@ -6,18 +6,20 @@ triangular solves). Not a test.
 
 One load step, λ = 1 → 1.05 from the solution at λ = 1 (its predictor and corrections: every
 iteration one material evaluation with the tangent, one assembly, one factorisation, one solve);
-the figures are per iteration. With --analysis-only the step is not solved: one material
-evaluation and assembly at λ = 1, then MUMPS's analysis alone (the ordering and symbolic
-factorisation), whose estimates of the factorisation's flops and memory say what the step would
-need where it does not fit.
+the figures are per iteration. With --single, the λ = 1 solve alone: one iteration (the pressure
+at rest is its solution) and two assemblies (the second checks it). With --analysis-only, no
+solve: one material evaluation and assembly at λ = 1, then MUMPS's analysis alone (ordering and
+symbolic factorisation), whose estimates of the factorisation's flops and memory say what an
+iteration would need where it does not fit.
 
-    mpirun -n 2 /usr/bin/python3 python/bench/dolfinx_scaling.py RINGS LAYERS [--analysis-only]
+    mpirun -n 2 /usr/bin/python3 python/bench/dolfinx_scaling.py RINGS LAYERS [--single | --analysis-only]
 
 Prints one line: `rings <n> layers <n> dofs <n> cells <n> points <n> processes <n> iterations <n>
-material <s> assembly <s> factorisation <s> solve <s> iteration <s> memory_mib <peak RSS per
-process> mumps_flops <estimated> mumps_factor_entries <estimated> mumps_mib_max <estimated, the
-largest process> mumps_mib_sum <estimated, all processes> load <1-min load average at the start,
-at the end>` (the phases in seconds per iteration).
+assemblies <n> material <s> assembly <s> factorisation <s> solve <s> iteration <s> memory_mib
+<peak RSS per process> mumps_flops <estimated> mumps_factor_entries <estimated> mumps_mib_max
+<estimated, the largest process> mumps_mib_sum <estimated, all processes> load <1-min load
+average at the start, at the end>` (the phases in seconds per iteration; assemblies: K with the
+material's tangent).
 """
 
 import argparse
@@ -60,6 +62,8 @@ def main(argv):
     p.add_argument("rings", type=int)
     p.add_argument("layers", type=int)
     p.add_argument("--analysis-only", action="store_true")
+    p.add_argument("--single", action="store_true",
+                   help="time the λ = 1 solve alone (one iteration: p at rest is its solution)")
     args = p.parse_args(argv[1:])
     comm = MPI.COMM_WORLD
     load0 = os.getloadavg()[0]
@@ -75,9 +79,11 @@ def main(argv):
     else:
         if newton.step(None) is None:  # λ = 1: p at rest is the solution, one correction
             sys.exit(f"no solution at λ = 1: {newton.error}")
-        newton.timings = dict.fromkeys(PHASES, 0.0)
-        start = newton.iterations
-        if newton.step(0.05 * LENGTH) is None:
+        if not args.single:
+            newton.timings = dict.fromkeys(PHASES, 0.0)
+            newton.assemblies = 0
+        start = 0 if args.single else newton.iterations
+        if not args.single and newton.step(0.05 * LENGTH) is None:
             sys.exit(f"no solution at λ = 1.05: {newton.error}")
         iterations = newton.iterations - start
         factor = newton.pc.getFactorMatrix()
@@ -89,7 +95,7 @@ def main(argv):
         phases = " ".join(f"{k} {v:.4f}" for k, v in per.items())
         entries = estimates[1] if estimates[1] >= 0 else estimates[1] * -1e6  # MUMPS: < 0 in millions
         print(f"rings {args.rings} layers {args.layers} dofs {body.dofs} cells {cells} points {points} "
-              f"processes {comm.size} iterations {iterations} {phases} iteration {sum(per.values()):.4f} "
+              f"processes {comm.size} iterations {iterations} assemblies {newton.assemblies} {phases} iteration {sum(per.values()):.4f} "
               f"memory_mib {memory} mumps_flops {estimates[0]:.3e} mumps_factor_entries {entries:.4g} "
               f"mumps_mib_max {estimates[2]} mumps_mib_sum {estimates[3]} "
               f"load {load0:.2f},{os.getloadavg()[0]:.2f}", flush=True)

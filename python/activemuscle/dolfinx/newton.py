@@ -61,7 +61,7 @@ class Newton:
         self.pc = self.ksp.getPC()
         self.pc.setType("lu")
         self.pc.setFactorSolverType(solver)
-        self.iterations, self.predictors, self.error = 0, 0, None
+        self.iterations, self.predictors, self.assemblies, self.error = 0, 0, 0, None
         self.timings = dict.fromkeys(PHASES, 0.0)
         self.log = None  # a function of one line, called on every correction
 
@@ -102,6 +102,7 @@ class Newton:
         diagonal; b_g = g, with lifting b −= K_·g g). False if the material failed."""
         if not self.update_material(True):
             return False
+        self.assemblies += 1
         self._timed("assembly", self._matrix, bcs)
         self._timed("assembly", self._vector, bcs, lifting)
         return True
