@@ -177,12 +177,7 @@ fn used(scene: &Scene, results: &Results) -> Used {
     }
     for s in &results.studies {
         let models = s.result.approach_models();
-        chosen.extend(
-            models
-                .iter()
-                .filter(|a| a.approach.has_law())
-                .filter_map(|a| a.model),
-        );
+        chosen.extend(models.iter().filter_map(|a| a.model));
     }
     Used {
         energies,
@@ -197,20 +192,6 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
-    // The approaches of shear and biaxial studies other than the scene's.
-    let mut approaches: Vec<crate::active::Approach> = vec![scene.models.approach];
-    for s in &results.studies {
-        let models = s.result.approach_models();
-        for m in models.iter().filter(|m| m.model.is_some()) {
-            if !approaches.contains(&m.approach) {
-                approaches.push(m.approach);
-                rows.push(approach_row(&crate::models::Models {
-                    approach: m.approach,
-                    ..scene.models.clone()
-                }));
-            }
-        }
-    }
     if let Some(v) = &scene.models.volumetric {
         let form = v.form().formula();
         rows.push((
@@ -274,10 +255,19 @@ fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
 fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
     let m = &scene.models;
     let (chosen, constant) = (&used.chosen, used.constant);
+    // The scene's approach first, then the others its studies used, each as the registry
+    // describes it.
+    let mut approaches = Vec::new();
+    if constant || !chosen.is_empty() {
+        approaches.push(scene.defaults.approach);
+    }
+    for a in chosen.iter().map(|c| c.approach) {
+        if !approaches.contains(&a) {
+            approaches.push(a);
+        }
+    }
     let mut rows: Vec<ModelRow> = Vec::new();
-    let active = !chosen.is_empty() || constant;
-    if active {
-        rows.push(approach_row(m));
+    if !approaches.is_empty() {
         rows.push((
             "λ_f, fibre stretch".into(),
             "λ_f = √(C:M), the argument of the activation laws and of the active curve".into(),
@@ -290,9 +280,27 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
         ));
     }
     if !chosen.is_empty() {
-        let c = &m.curve;
-        let chapter = matches!(c, crate::active::ActiveCurve::Chapter(_));
-        rows.push((
+        rows.extend(curve_rows(m));
+    }
+    rows.extend(law_rows(m, chosen, constant));
+    // The rows are written with the active-strain γ; the scene's approach may name its
+    // variable otherwise (the structural ω).
+    if let Some(v) = scene.defaults.approach.variable().filter(|v| *v != "γ") {
+        for row in &mut rows {
+            row.1 = row.1.replace('γ', v);
+        }
+    }
+    let mut all: Vec<ModelRow> = approaches.iter().map(|a| approach_row(*a, m)).collect();
+    all.extend(rows);
+    all
+}
+
+/// The rows of the active curve, damage and force–velocity.
+fn curve_rows(m: &crate::models::Models) -> Vec<ModelRow> {
+    let c = &m.curve;
+    let chapter = matches!(c, crate::active::ActiveCurve::Chapter(_));
+    let mut rows = vec![
+        (
             format!("P_act, active curve ({})", c.name()),
             format!(
                 "P_act(λ) = {} for λ > λ_min, else 0 ({}); here {}",
@@ -305,24 +313,32 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             } else {
                 "not in the chapter".into()
             },
-        ));
-        rows.push((
+        ),
+        (
             "d, damage".into(),
             "loss of activation: the active stress becomes (1 − d) P_act".into(),
             "the chapter's loss of activation (Fig. 9)".into(),
+        ),
+    ];
+    if m.force_velocity.is_some() {
+        rows.push((
+            "f_v, force–velocity".into(),
+            "Böl & Reese (2008): the target becomes (1 − d)·a·f_v(λ̇)·P_act in activation-in-time studies, λ̇ by backward Euler over the time step (0 at the first step); quasi-static studies have λ̇ = 0, f_v = 1".into(),
+            "not in the chapter".into(),
         ));
-        if m.force_velocity.is_some() {
-            rows.push((
-                "f_v, force–velocity".into(),
-                "Böl & Reese (2008): the target becomes (1 − d)·a·f_v(λ̇)·P_act in activation-in-time studies, λ̇ by backward Euler over the time step (0 at the first step); quasi-static studies have λ̇ = 0, f_v = 1".into(),
-                "not in the chapter".into(),
-            ));
-        }
     }
-    if !m.approach.has_law() {
-        return rows;
-    }
-    let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
+    rows
+}
+
+/// The rows of the constant γ, the laws and the couplings the `chosen` models (of approaches
+/// that have a law) used.
+fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -> Vec<ModelRow> {
+    let laws: Vec<(LawKind, CouplingKind)> = chosen
+        .iter()
+        .filter_map(ModelChoice::activation_law)
+        .collect();
+    let used = |law: LawKind| laws.iter().any(|x| x.0 == law);
+    let mut rows: Vec<ModelRow> = Vec::new();
     if constant {
         rows.push(("constant γ".into(), "γ held fixed".into(), "Fig. 5".into()));
     }
@@ -350,57 +366,27 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             "not in the chapter (Giantesio & Musesti 2017, strain-dependent internal parameters)".into(),
         ));
     }
-    if chosen.iter().any(|x| x.coupling == CouplingKind::Frozen) {
+    if laws.iter().any(|x| x.1 == CouplingKind::Frozen) {
         rows.push((
             "frozen coupling".into(),
             "P = ∂Ŵ/∂F − p F⁻ᵀ at γ = g(λ_f) held: the chapter's model (not a gradient)".into(),
             "eq. (7)".into(),
         ));
     }
-    if chosen
-        .iter()
-        .any(|x| x.coupling == CouplingKind::Consistent)
-    {
+    if laws.iter().any(|x| x.1 == CouplingKind::Consistent) {
         rows.push((
             "consistent coupling".into(),
             "the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))), differentiated through the law".into(),
             "not in the chapter".into(),
         ));
     }
-    // The rows are written with the active-strain γ; the structural approach's variable is ω.
-    if let Ok(map) = m.activation_map() {
-        for row in rows.iter_mut().skip(1) {
-            row.1 = row.1.replace('γ', map.variable());
-        }
-    }
     rows
 }
 
-/// The row of the scene's activation approach and map.
-fn approach_row(m: &crate::models::Models) -> ModelRow {
-    use crate::active::{ActiveStrainMap, Approach};
-    match (m.approach, m.map) {
-        (Approach::ActiveStress, _) => (
-            "active stress".into(),
-            "Ψ = W_pas(C) + (1 − d) ∫_{λ_min}^{λ_f} P_act, P = ∂W_pas/∂F + (1 − d) P_act(λ_f) F M/λ_f (FEBio, Blemker): no activation variable, no law; hyperelastic".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::Structural, _) => (
-            "ω, activation".into(),
-            "activation in the structural tensor (Ehret, Böl & Itskov 2011; 4C's MAT_Muscle_Weickenmeier): W with I = C:(L + ωM), L = (w0/3) I + (1 − w0) M, ω = g(λ_f)".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::VolumePreserving) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a with the volume-preserving F_a = (1 − γ) m⊗m + (1 − γ)^(−½)(I − m⊗m) (Weickenmeier et al. 2014; 4C's MAT_Muscle_Giantesio), Ŵ(F, γ) = W(C_e)".into(),
-            "eqs. (5)–(6) with another F_a".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::Chapter) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
-            "eqs. (5)–(6)".into(),
-        ),
-    }
+/// The row of an activation approach, with the scene's map, as the registry describes it.
+fn approach_row(approach: crate::active::Approach, m: &crate::models::Models) -> ModelRow {
+    let [name, what, chapter] = approach.row(m.map);
+    (name.into(), what.into(), chapter.into())
 }
 
 /// The figures (embedded) and the list of data files.

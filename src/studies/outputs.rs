@@ -8,7 +8,7 @@
 
 use crate::active::ActiveCurve;
 use crate::app_error::AppError;
-use crate::models::{CouplingKind, LawKind};
+use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::spec::ApproachModel;
 use crate::studies::table::Table;
@@ -167,6 +167,12 @@ pub fn chapter(n: u32, energy: &str, chapter_material: bool) -> String {
 /// `implicit law, frozen coupling`.
 pub fn words(law: LawKind, coupling: CouplingKind) -> String {
     format!("{} law, {} coupling", law.name(), coupling.name())
+}
+
+/// The law and coupling of `m` in [`words`], or its approach if it has no law (`active-stress`).
+pub fn model_words(m: &ModelChoice) -> String {
+    m.activation_law()
+        .map_or_else(|| m.approach.name().to_string(), |(l, c)| words(l, c))
 }
 
 /// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.

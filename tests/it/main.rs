@@ -14,6 +14,7 @@ mod activation_in_time;
 mod activation_laws;
 mod active_curves;
 mod active_strain_map;
+mod approach_registry;
 mod approaches;
 mod bounded_loops;
 mod cauchy_stress;
