@@ -187,7 +187,7 @@ fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
         toml::Value::Float(value.extract()?)
     } else if value.is_instance_of::<PyString>() {
         toml::Value::String(value.extract()?)
-    } else if let Ok(d) = value.downcast::<PyDict>() {
+    } else if let Ok(d) = value.cast::<PyDict>() {
         let mut table = toml::Table::new();
         for (k, v) in d.iter() {
             table.insert(k.extract()?, toml_value(&v)?);

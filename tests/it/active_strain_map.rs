@@ -247,7 +247,7 @@ fn implicit_law_with_the_volume_preserving_map_reproduces_the_target_curve() {
             Coupling::Frozen(FrozenTangent::Exact),
         )
         .unwrap();
-        assert_eq!(muscle.map(), volume_preserving().into());
+        assert_eq!(muscle.map(), volume_preserving());
         let gap = worst_gap(&muscle, d);
         assert!(gap < 1e-10, "d = {d}: {gap:e}");
     }
@@ -293,7 +293,7 @@ fn tabulated_implicit_law_follows_the_volume_preserving_map() {
     };
     let table = TabulatedLaw::new(SolvedLaw::Implicit(exact.clone()), &[0.0], spec).unwrap();
     let law = Law::Tabulated(table);
-    assert_eq!(law.map(), Some(volume_preserving().into()));
+    assert_eq!(law.map(), Some(volume_preserving()));
     let muscle = Muscle::new(
         gm(),
         law.clone(),
@@ -301,7 +301,7 @@ fn tabulated_implicit_law_follows_the_volume_preserving_map() {
         Coupling::Frozen(FrozenTangent::Exact),
     )
     .unwrap();
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     for i in 0..50 {
         let l = 0.7137 + 0.6731 * i as f64 / 50.0;
         let (t, e) = (
@@ -364,7 +364,7 @@ fn scenes_choose_the_active_strain_map() {
     let scene = Scene::parse(&text, FILE).unwrap();
     assert_eq!(scene.models.map, volume_preserving());
     let muscle = implicit_frozen(&scene);
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     assert_eq!(
         muscle.activation(1.0).unwrap().gamma,
         ImplicitLaw::new(gm(), ActiveCurve::paper())
@@ -379,7 +379,7 @@ fn scenes_choose_the_active_strain_map() {
             .constant(scene.defaults.approach, 0.2)
             .unwrap()
             .map(),
-        volume_preserving().into()
+        volume_preserving()
     );
     // The default is the chapter's, and the printed scene says which map runs.
     let default = Scene::parse(study, FILE).unwrap();
@@ -413,7 +413,7 @@ fn a_scene_tabulates_the_law_of_its_map() {
     let scene = Scene::parse(text, FILE).unwrap();
     let muscle = implicit_frozen(&scene);
     assert_eq!(muscle.law().name(), "implicit-tabulated");
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     let exact = ImplicitLaw::new(gm(), ActiveCurve::paper()).with_map(volume_preserving());
     for l in [0.85, 1.0, 1.21] {
         let (t, e) = (
