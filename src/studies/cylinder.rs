@@ -330,6 +330,8 @@ pub struct CylinderStudy {
     pub element: Element,
     /// Target stretches, ascending.
     pub stretches: Vec<f64>,
+    /// The scene's approach.
+    pub approach: crate::active::Approach,
     /// The models, one per damage value (the scene's approach, the study's law and coupling):
     /// one FE sweep each.
     pub models: Vec<ModelChoice>,
@@ -413,6 +415,7 @@ pub fn resolve(
             bases: spec.bases,
             element: spec.element,
             stretches,
+            approach: d.approach,
             models: set.choices,
             vtk,
             tolerance,
@@ -559,6 +562,8 @@ impl Sweep {
 pub struct CylinderResult {
     /// The energy's name.
     pub energy: String,
+    /// The activation approach of every sweep.
+    pub approach: crate::active::Approach,
     /// Base conditions.
     pub bases: Bases,
     /// Finite element.
@@ -660,6 +665,7 @@ impl CylinderStudy {
         ctx.progress.finish();
         let mut result = CylinderResult {
             energy: crate::StrainEnergy::name(&models.energy).to_string(),
+            approach: self.approach,
             bases: self.bases,
             element: self.element,
             sweeps: Vec::with_capacity(sweeps.len()),

@@ -178,6 +178,8 @@ pub struct HistoryStudy {
     pub activation: ActivationInTime,
     /// The loading.
     pub loading: Loading,
+    /// The scene's approach.
+    pub approach: crate::active::Approach,
     /// The models, one per damage value (the scene's approach, the study's law and coupling):
     /// one history each.
     pub models: Vec<ModelChoice>,
@@ -243,6 +245,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             times,
             activation,
             loading,
+            approach: d.approach,
             models: set.choices,
         },
         resolved,
@@ -413,6 +416,8 @@ pub struct HistoryResult {
     pub loading: &'static str,
     /// The energy's name.
     pub energy: String,
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
     pub volumetric: Option<VolumetricForm>,
     /// One history per damage value.
@@ -491,6 +496,7 @@ impl HistoryStudy {
             result: StudyResult::ActivationInTime(HistoryResult {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
+                approach: self.approach,
                 volumetric: models.volumetric.as_ref().map(Volumetric::form),
                 histories,
             }),

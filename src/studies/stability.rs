@@ -150,6 +150,8 @@ pub struct StabilityPoint {
 /// The stability of one model along the fibres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilityCurve {
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The activation model; `None`: the passive material.
     pub model: Option<ModelChoice>,
     /// Points that could be computed.
@@ -258,6 +260,8 @@ impl StabilityStudy {
         model: Option<ModelChoice>,
     ) -> (StabilityCurve, Option<Failure>) {
         let mut curve = StabilityCurve {
+            // The passive material has none: its cells name no approach.
+            approach: model.map(|m| m.approach).unwrap_or_default(),
             model,
             points: Vec::with_capacity(self.stretches.len()),
         };

@@ -7,11 +7,13 @@
 
 use activemuscle::active::{Approach, ShippedApproach};
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice, Models};
-use activemuscle::output::csv::rows;
 use activemuscle::output::figures::figures;
 use activemuscle::output::report::{html, RunInfo};
 use activemuscle::plot::CurveId;
 use activemuscle::scene::{RunOptions, Scene, SceneError};
+use activemuscle::studies::curves::{cylinder_rows, uniaxial_rows};
+use activemuscle::studies::cylinder::CylinderResult;
+use activemuscle::studies::uniaxial::UniaxialResult;
 use activemuscle::studies::StudyResult;
 use activemuscle::uniaxial::Direction;
 use std::collections::BTreeSet;
@@ -307,7 +309,14 @@ fn written_and_drawn(scene: &Scene) -> (BTreeSet<CurveId>, BTreeSet<CurveId>, St
         "{:?}",
         results.failures().collect::<Vec<_>>()
     );
-    let written = rows(&results).iter().map(|r| r.curve()).collect();
+    let mut rows = Vec::new();
+    for (study, u) in results.of::<UniaxialResult>() {
+        rows.extend(uniaxial_rows(study, u));
+    }
+    for (study, c) in results.of::<CylinderResult>() {
+        rows.extend(cylinder_rows(study, c));
+    }
+    let written = rows.iter().map(|r| r.curve()).collect();
     let figures = figures(scene, &results);
     let drawn = figures
         .iter()
