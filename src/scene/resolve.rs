@@ -264,17 +264,15 @@ fn unique_name(study: &Study, before: &[Study]) -> Result<(), SpecError> {
     }
 }
 
-/// The axisymmetric FE cylinder (cylinder and trade-off studies) has its fibres along its axis,
-/// e₁ of the material frame: a unit fibre `f` with |f · e₁| < 1 − 1e-12 cannot be represented
-/// there and is refused, naming the first study that would have replaced it by the axis.
+/// The axisymmetric FE cylinder (the studies of a kind that solves it,
+/// [`StudyKind::axial_fibres`]) has its fibres along its axis, e₁ of the material frame: a unit
+/// fibre `f` with |f · e₁| < 1 − 1e-12 cannot be represented there and is refused, naming the
+/// first study that would have replaced it by the axis.
 fn axial_fibres(fibre: [f64; 3], studies: &[Study]) -> Result<(), SpecError> {
     if fibre[0].abs() >= 1.0 - 1e-12 {
         return Ok(());
     }
-    match studies
-        .iter()
-        .position(|s| matches!(s, Study::Cylinder(_) | Study::Tradeoff(_)))
-    {
+    match studies.iter().position(|s| s.kind().axial_fibres()) {
         None => Ok(()),
         Some(i) => {
             let shown: Vec<String> = fibre.iter().map(|x| format!("{x:.4}")).collect();

@@ -167,9 +167,8 @@ impl Progress for StudyProgress<'_> {
 
 /// Runs every study of `scene`. The studies run at the same time, sharing the cores (each
 /// one's own loops, over models or damages and over the FE cells, are parallel too), except
-/// those of a kind that runs alone ([`crate::studies::StudyKind::runs_alone`]: the trade-off,
-/// which measures run times), after the others. The results
-/// keep the scene's order. A study that stops with an error is recorded as its outcome's failure
+/// those of a kind that runs alone ([`crate::studies::StudyKind::runs_alone`]: it measures run
+/// times), after the others. The results keep the scene's order. A study that stops with an error is recorded as its outcome's failure
 /// ([`Outcome::nothing`]) and the others go on; once the run is stopped
 /// ([`RunOptions::stop`]) the studies not started are recorded as not run.
 pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {

@@ -122,10 +122,7 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
     let passive = spec.passive.unwrap_or(true);
     let keys = ModelKeys {
         approaches: spec.approaches.as_deref(),
-        laws: spec.laws.as_deref(),
-        couplings: spec.couplings.as_deref(),
-        damage: spec.damage.as_deref(),
-        single: false,
+        ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
     };
     let (models, set) = approach_models(keys, passive, d, &[d.approach], "biaxial")?;
     let name = spec.name.clone().unwrap_or_else(|| "planar biaxial".into());

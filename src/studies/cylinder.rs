@@ -360,14 +360,11 @@ pub fn resolve(
     d: &Defaults,
 ) -> Result<(CylinderStudy, CylinderSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
-    let set = ModelKeys {
-        approaches: None,
-        laws: spec.law.as_ref().map(std::slice::from_ref),
-        couplings: spec.coupling.as_ref().map(std::slice::from_ref),
-        damage: spec.damage.as_deref(),
-        single: true,
-    }
-    .resolve(d, &[d.law], &[d.coupling])?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
     let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
     let length = positive("length", spec.length.unwrap_or(4.0))?;
     let nr = cell_count("nr", spec.nr.unwrap_or(6))?;

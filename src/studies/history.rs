@@ -216,14 +216,11 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
     bounded_activation(&activation, &times)?;
     let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
     let loading = loading(&loading_spec, &times)?;
-    let set = ModelKeys {
-        approaches: None,
-        laws: spec.law.as_ref().map(std::slice::from_ref),
-        couplings: spec.coupling.as_ref().map(std::slice::from_ref),
-        damage: spec.damage.as_deref(),
-        single: true,
-    }
-    .resolve(d, &[d.law], &[d.coupling])?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
     let name = spec
         .name
         .clone()

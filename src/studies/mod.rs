@@ -80,6 +80,8 @@ pub trait KindStudy {
     const IN_TIME: bool = false;
     /// Why a scene holds at most one study of its kind, if it does (`None`: any number).
     const ONE_PER_SCENE: Option<&'static str> = None;
+    /// Whether it solves the axisymmetric FE cylinder, whose fibres run along its axis.
+    const AXIAL_FIBRES: bool = false;
     /// Its label.
     fn name(&self) -> &str;
     /// What it will compute, in one line.
@@ -126,6 +128,14 @@ macro_rules! study_kinds {
             pub fn one_per_scene(self) -> Option<&'static str> {
                 match self {
                     $(StudyKind::$variant => <$study as KindStudy>::ONE_PER_SCENE,)*
+                }
+            }
+
+            /// Whether its studies solve the axisymmetric FE cylinder, whose fibres run along
+            /// its axis ([`KindStudy::AXIAL_FIBRES`]).
+            pub fn axial_fibres(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::AXIAL_FIBRES,)*
                 }
             }
 
@@ -394,7 +404,10 @@ plain_kind!(
 plain_kind!(
     cylinder::CylinderSpec,
     cylinder::CylinderStudy,
-    cylinder::resolve
+    cylinder::resolve,
+    {
+        const AXIAL_FIBRES: bool = true;
+    }
 );
 plain_kind!(
     stability::StabilitySpec,

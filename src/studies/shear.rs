@@ -107,10 +107,7 @@ pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec)
     let passive = spec.passive.unwrap_or(true);
     let keys = ModelKeys {
         approaches: spec.approaches.as_deref(),
-        laws: spec.laws.as_deref(),
-        couplings: spec.couplings.as_deref(),
-        damage: spec.damage.as_deref(),
-        single: false,
+        ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
     };
     let defaults = [Approach::ActiveStrain, Approach::ActiveStress];
     let (models, set) = approach_models(keys, passive, d, &defaults, "shear")?;

@@ -333,7 +333,37 @@ pub struct ModelSet {
     pub choices: Vec<ModelChoice>,
 }
 
-impl ModelKeys<'_> {
+impl<'a> ModelKeys<'a> {
+    /// A study's `laws`, `couplings` and `damage` lists, of the scene's approach.
+    pub fn lists(
+        laws: &'a Option<Vec<LawKind>>,
+        couplings: &'a Option<Vec<CouplingKind>>,
+        damage: &'a Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            approaches: None,
+            laws: laws.as_deref(),
+            couplings: couplings.as_deref(),
+            damage: damage.as_deref(),
+            single: false,
+        }
+    }
+
+    /// A study's one `law`, one `coupling` and `damage` list, of the scene's approach.
+    pub fn one(
+        law: &'a Option<LawKind>,
+        coupling: &'a Option<CouplingKind>,
+        damage: &'a Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            approaches: None,
+            laws: law.as_ref().map(std::slice::from_ref),
+            couplings: coupling.as_ref().map(std::slice::from_ref),
+            damage: damage.as_deref(),
+            single: true,
+        }
+    }
+
     /// The key of a law (`laws[j]`, or `law`).
     fn key(&self, list: &str, one: &str, j: usize) -> String {
         if self.single {

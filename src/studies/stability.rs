@@ -78,14 +78,11 @@ pub fn resolve(
         .copied()
         .filter(|l| d.models.supports(d.approach, *l).is_ok())
         .collect();
-    let set = ModelKeys {
-        approaches: None,
-        laws: spec.laws.as_deref(),
-        couplings: spec.couplings.as_deref(),
-        damage: spec.damage.as_deref(),
-        single: false,
-    }
-    .resolve(d, &every, &CouplingKind::ALL)?;
+    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
+        d,
+        &every,
+        &CouplingKind::ALL,
+    )?;
     let normals = spec.normals.unwrap_or(300);
     if !(1..=100_000).contains(&normals) {
         return Err(SpecError::new(

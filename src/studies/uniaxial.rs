@@ -76,14 +76,11 @@ pub fn resolve(
 ) -> Result<(UniaxialStudy, UniaxialSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
     let direction = spec.direction.unwrap_or_default();
-    let set = ModelKeys {
-        approaches: None,
-        laws: spec.laws.as_deref(),
-        couplings: spec.couplings.as_deref(),
-        damage: spec.damage.as_deref(),
-        single: false,
-    }
-    .resolve(d, &[d.law], &[d.coupling])?;
+    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
     let mut compare = Vec::new();
     for (j, c) in spec.compare.iter().flatten().enumerate() {
         compare.push(c.build().map_err(|e| e.within(&format!("compare[{j}]")))?);

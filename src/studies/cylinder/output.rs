@@ -170,23 +170,7 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
             .collect()
     };
     let mut fibre = by_damage(|p| p.fibre_stretch_centre);
-    let lambdas: Vec<f64> = c
-        .sweeps
-        .iter()
-        .flat_map(|s| s.points.iter().map(|p| p.lambda))
-        .collect();
-    let (lo, hi) = lambdas
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &l| {
-            (a.0.min(l), a.1.max(l))
-        });
-    let lmin = cx.curve.lambda_min();
-    fibre.push(derived(
-        format!("λ_min = {lmin}"),
-        vec![(lo, lmin), (hi, lmin)],
-        Stroke::Dashed,
-        GREY,
-    ));
+    fibre.push(lambda_min_line(c, cx.curve.lambda_min()));
     let mut p = by_damage(|p| p.stress);
     for (i, s) in c.sweeps.iter().enumerate() {
         p.push(derived(
@@ -237,6 +221,23 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
             ),
             panel("Nominal axial stress", STRESS, p),
         ],
+    )
+}
+
+/// The dashed line at λ_f = `lmin` across the stretches of `c`.
+fn lambda_min_line(c: &CylinderResult, lmin: f64) -> Option<Series> {
+    let (lo, hi) = c
+        .sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.lambda))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, l| {
+            (a.0.min(l), a.1.max(l))
+        });
+    derived(
+        format!("λ_min = {lmin}"),
+        vec![(lo, lmin), (hi, lmin)],
+        Stroke::Dashed,
+        GREY,
     )
 }
 

@@ -695,6 +695,8 @@ impl KindStudy for TradeoffStudy {
     const ALONE: bool = true;
     const ONE_PER_SCENE: Option<&'static str> =
         Some("its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures");
+    /// Its FE options solve the axisymmetric cylinder.
+    const AXIAL_FIBRES: bool = true;
 
     fn name(&self) -> &str {
         &self.name
