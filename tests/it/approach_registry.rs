@@ -451,3 +451,34 @@ fn a_shear_study_s_laws_apply_to_its_approaches_that_have_one() {
         }
     }
 }
+
+/// A trade-off follows the scene's approach: on the structural approach it measures the laws
+/// that give ω (the implicit law, the reference, and the energy law) with the structural map,
+/// and says why the explicit law is not measured.
+#[test]
+fn a_structural_tradeoff_measures_the_structural_laws() {
+    use activemuscle::studies::tradeoff::{run, OptionGroup, TradeoffOptions};
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::ActivationLaw],
+        approach: Approach::Structural,
+        curve_stretches: Some(vec![0.9, 1.1, 1.3]),
+        ..TradeoffOptions::default()
+    };
+    let results = run(&Models::paper(), &options, &activemuscle::studies::Silent).unwrap();
+    let variants: Vec<&str> = results.rows.iter().map(|r| r.variant.as_str()).collect();
+    assert_eq!(variants, ["implicit (frozen)", "energy (consistent)"]);
+    // The energy law's consistent model meets the same target as the implicit law's frozen one.
+    assert!(
+        results.rows[1].error.max_rel < 1e-8,
+        "{:?}",
+        results.rows[1]
+    );
+    assert!(
+        results
+            .findings
+            .iter()
+            .any(|f| f.contains("explicit law") && f.contains("structural")),
+        "{:#?}",
+        results.findings
+    );
+}
