@@ -263,12 +263,19 @@ impl Material {
             .zip(e.parameter_values())
             .map(|(n, v)| format!("{n}={v}"))
             .collect();
+        // An approach without a law (active stress) is named, never a law it does not have.
+        let model = match self.muscle.fibre_energy() {
+            Some((approach, _)) => format!("approach={:?}", approach.name()),
+            None => format!(
+                "law={:?}, coupling={:?}",
+                self.muscle.law().name(),
+                self.muscle.coupling().name()
+            ),
+        };
         format!(
-            "Material(energy={:?}, {}, law={:?}, coupling={:?}, damage={})",
+            "Material(energy={:?}, {}, {model}, damage={})",
             e.name(),
             params.join(", "),
-            self.muscle.law().name(),
-            self.muscle.coupling().name(),
             self.muscle.damage()
         )
     }
