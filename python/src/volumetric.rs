@@ -29,6 +29,8 @@ impl Volumetric {
         kappa: Option<f64>,
         mu: Option<f64>,
     ) -> PyResult<Self> {
+        let kind =
+            crate::model::named("kind", &kind).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let spec = IncompressibilitySpec {
             kind: Some(kind),
             kappa,
