@@ -69,8 +69,8 @@ def timed(command, env=None):
     return run.stdout, wall, kib / 1024.0
 
 
-def ours(nr, nz):
-    stdout, wall, peak = timed([OURS, str(nr), str(nz), "muscle"])
+def ours(nr, nz, binary=OURS):
+    stdout, wall, peak = timed([binary, str(nr), str(nz), "muscle"])
     m = COST.search(stdout)
     if m is None:
         raise RuntimeError(f"fem_memory: no cost line in\n{stdout[-3000:]}")
@@ -108,9 +108,10 @@ def main(argv):
     parser.add_argument("--openblas", metavar="DIR",
                         help="directory holding OpenBLAS's libblas.so.3 (LD_LIBRARY_PATH of DOLFINx)")
     parser.add_argument("--ours-only", action="store_true", help="skip DOLFINx")
+    parser.add_argument("--binary", default=OURS, help="our fem_memory example (default: %(default)s)")
     args = parser.parse_args(argv[1:])
-    if not os.path.exists(OURS):
-        sys.exit(f"{OURS} missing: cargo build --release --example fem_memory")
+    if not os.path.exists(args.binary):
+        sys.exit(f"{args.binary} missing: cargo build --release --example fem_memory")
     meshes = [tuple(int(x) for x in m.split("x")) for m in args.meshes.split(",")]
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
                             capture_output=True, text=True).stdout.strip()
@@ -118,7 +119,7 @@ def main(argv):
           f"{os.cpu_count()} cores, load {load()}", flush=True)
     if not args.ours_only:
         dolfinx(2, 8, args.openblas)  # untimed: the FFCx JIT cache of the Q2/Q1 forms
-    codes = [("ours", ours)] + ([] if args.ours_only else
+    codes = [("ours", lambda nr, nz: ours(nr, nz, args.binary))] + ([] if args.ours_only else
                                 [("DOLFINx", lambda nr, nz: dolfinx(nr, nz, args.openblas))])
     rows = {name: [] for name, _ in codes}
     for nr, nz in meshes:
