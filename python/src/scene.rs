@@ -235,12 +235,20 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
             tradeoff(&table, t)?;
             findings.clone_from(&t.findings);
         }
-        // A kind that owns its table (shear, biaxial): the columns of its CSV file. A study that
-        // stopped with an error has none: its failures say why, the table stays empty.
+        // A kind that owns its table (shear, biaxial): the columns of its CSV file; a kind that
+        // writes several (tangent) has each under "tables", by file name without `.csv`. A
+        // study that stopped with an error has none: its failures say why, the table stays empty.
         other => {
             if let Some(own) = other.own_table(&s.name) {
                 own_table(&table, &own.table)?;
             }
+            let tables = PyDict::new(py);
+            for own in other.own_tables(&s.name) {
+                let t = Columns::new(py, format!("study {:?}: {}", s.name, own.file));
+                own_table(&t, &own.table)?;
+                tables.set_item(own.file.trim_end_matches(".csv"), t.dict)?;
+            }
+            d.set_item("tables", tables)?;
         }
     }
     d.set_item("table", table.dict)?;

@@ -425,7 +425,7 @@ pub fn tables(results: &Results) -> Result<Vec<(String, Vec<u8>)>, AppError> {
     let own: Vec<OwnTable> = results
         .studies
         .iter()
-        .filter_map(|s| s.result.own_table(&s.name))
+        .flat_map(|s| s.result.own_tables(&s.name))
         .filter(|t| t.table.rows() > 0)
         .collect();
     let files: Vec<&str> = own.iter().map(|t| t.file).collect();
@@ -478,7 +478,7 @@ pub fn resources(results: &Results, files: &[String]) -> Vec<Resource> {
         results
             .studies
             .iter()
-            .filter_map(|s| s.result.own_table(&s.name))
+            .flat_map(|s| s.result.own_tables(&s.name))
             .find(|t| t.file == file)
     };
     files

@@ -13,6 +13,7 @@
 //! | `activation-in-time` | [`history`] | a 0D block driven in time by a(t) |
 //! | `shear` | [`shear`] | simple shear per approach and fibre angle |
 //! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
+//! | `tangent` | [`tangent`] | Taylor tests of every model's tangent at chosen states |
 //!
 //! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
 //! and `impl KindStudy` for the study, and one line in `study_kinds!` below, which generates
@@ -28,6 +29,7 @@ pub mod shear;
 pub mod spec;
 pub mod stability;
 pub mod table;
+pub mod tangent;
 pub mod tradeoff;
 pub mod uniaxial;
 
@@ -229,6 +231,14 @@ macro_rules! study_kinds {
                 }
             }
 
+            /// Every table of the study ([`outputs::KindOutput::own_tables`]), each its own file.
+            pub fn own_tables(&self, study: &str) -> Vec<outputs::OwnTable> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::own_tables(r, study),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
             /// The (approach, model) pairs it computed ([`outputs::KindOutput::approach_models`]).
             pub fn approach_models(&self) -> Vec<&spec::ApproachModel> {
                 match self {
@@ -259,6 +269,8 @@ study_kinds! {
     Shear("shear", shear::ShearSpec, shear::ShearStudy, shear::ShearResult, shear::HINTS),
     /// Homogeneous planar biaxial stretch.
     Biaxial("biaxial", biaxial::BiaxialSpec, biaxial::BiaxialStudy, biaxial::BiaxialResult, biaxial::HINTS),
+    /// Tangent accuracy: Taylor remainders of every model at chosen states.
+    Tangent("tangent", tangent::TangentSpec, tangent::TangentStudy, tangent::TangentResult, tangent::HINTS),
 }
 
 /// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
@@ -315,6 +327,11 @@ plain_kind!(
     biaxial::BiaxialSpec,
     biaxial::BiaxialStudy,
     biaxial::resolve
+);
+plain_kind!(
+    tangent::TangentSpec,
+    tangent::TangentStudy,
+    tangent::resolve
 );
 
 impl KindSpec for fit::FitSpec {

@@ -57,6 +57,12 @@ pub trait KindOutput: Sized {
         None
     }
 
+    /// Every table of one study of the kind, each in its own file: [`own_table`](Self::own_table)
+    /// unless the kind writes several (the tangent kind: remainders, summary, FE level).
+    fn own_tables(&self, study: &str) -> Vec<OwnTable> {
+        self.own_table(study).into_iter().collect()
+    }
+
     /// The (approach, model) pairs the result computed, whose approaches and laws the report's
     /// table of models lists (kinds that compare approaches).
     fn approach_models(&self) -> Vec<&ApproachModel> {

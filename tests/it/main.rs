@@ -65,6 +65,8 @@ mod shear_biaxial;
 mod stability;
 mod study_names;
 mod tabulated_law;
+mod tangent_check;
+mod tangent_study;
 mod tangents;
 mod tradeoff_machinery;
 mod truthful_reports;

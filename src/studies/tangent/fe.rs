@@ -1,0 +1,554 @@
+//! The finite-element level of a tangent study (`fe = { ... }`): a small cylinder of the scene's
+//! material with one model (`law`, `coupling`, `damage`), the load step λ₀ → λ₁ with
+//! λ₀ = (1 + λ₁)/2 after a first step 1 → λ₀ of the same size, for every element × bases ×
+//! incompressibility asked for:
+//!
+//! - the Taylor test of the assembled residual and tangent
+//!   ([`crate::tangent_check::assembled_taylor_test`]) at the step's predictor
+//!   x(λ₀) + (λ₁ − λ₀) dx/dλ (the driver's tangent predictor, without its local relaxation) and
+//!   at the converged x(λ₁), along a seeded random v (displacements of the size of L,
+//!   pressures of the largest stress at x(λ₁)), with each tangent the solver can use: the exact
+//!   one, the frozen model's symmetric approximation (frozen models whose law varies) and
+//!   central differences of the stress at every quadrature point
+//!   ([`crate::tangent_check::CentralDifferences`]);
+//! - Newton's convergence over the step with each of them: the scaled residual of the first
+//!   attempt at every iteration (quadratic with an exact tangent, linear with an approximate
+//!   one), whether the step had to be cut, and the wall time per Newton iteration of the sweep.
+
+use crate::active::{Approach, FrozenTangent};
+use crate::app_error::{AppError, SpecError};
+use crate::energy::Energy;
+use crate::fem::continuation::NonlinearSystem;
+use crate::fem::dofs::DofMap;
+use crate::fem::problem::MixedProblem;
+use crate::fem::tangent_solver::TangentSolver;
+use crate::fem::{
+    AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions, Stepping,
+};
+use crate::models::{CouplingKind, IncompressibilitySpec, LawKind, ModelChoice, Models};
+use crate::random::Sampler;
+use crate::studies::cylinder::bases_name;
+use crate::studies::spec::{cell_count, positive, Defaults};
+use crate::studies::{Failure, RunContext};
+use crate::tangent_check::{assembled_taylor_test, AssembledTaylor, CentralDifferences};
+use crate::volumetric::Volumetric;
+use crate::Muscle;
+use serde::{Deserialize, Serialize};
+
+/// The most cells along r or z of the FE level's mesh (a check, not a simulation).
+pub const MAX_CELLS: i64 = 16;
+/// The most element × bases × incompressibility configurations.
+pub const MAX_CONFIGS: usize = 16;
+
+/// `fe = { ... }` of a tangent study as written; `None` is a key left to its default.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FeSpec {
+    /// Radius R (default 1).
+    pub radius: Option<f64>,
+    /// Length L (default 3).
+    pub length: Option<f64>,
+    /// Cells in r (default 2, at most 16).
+    pub nr: Option<i64>,
+    /// Cells in z (default 4, at most 16).
+    pub nz: Option<i64>,
+    /// Elements (default `["Q2/Q1", "Q1/P0"]`).
+    pub elements: Option<Vec<String>>,
+    /// Bases (default `["clamped", "sliding"]`).
+    pub bases: Option<Vec<String>>,
+    /// Incompressibility, each as `[incompressibility]` (default: the scene's).
+    pub incompressibility: Option<Vec<IncompressibilitySpec>>,
+    /// The stretch λ₁ of the load step (default 1.1).
+    pub stretch: Option<f64>,
+    /// Activation law (default `activation.law`).
+    pub law: Option<LawKind>,
+    /// Coupling (default `activation.coupling`).
+    pub coupling: Option<CouplingKind>,
+    /// Damage (default: the first of `activation.damage`).
+    pub damage: Option<f64>,
+    /// Newton iterations per load step before it is cut (default 50).
+    pub max_iterations: Option<i64>,
+}
+
+/// A validated FE level.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeLevel {
+    /// Radius and length.
+    pub size: (f64, f64),
+    /// Cells in r and z.
+    pub cells: (usize, usize),
+    /// Elements.
+    pub elements: Vec<Element>,
+    /// Bases.
+    pub bases: Vec<Bases>,
+    /// Incompressibility: its name and volumetric energy (`None`: exact).
+    pub forms: Vec<(String, Option<Volumetric>)>,
+    /// λ₁.
+    pub stretch: f64,
+    /// The scene's approach.
+    pub approach: Approach,
+    /// The model.
+    pub model: ModelChoice,
+    /// Newton iterations per load step.
+    pub max_iterations: usize,
+}
+
+/// Names from a list, each one of `known` by `name`.
+fn named<T: Copy>(
+    key: &str,
+    given: Option<&[String]>,
+    known: &[T],
+    name: fn(T) -> &'static str,
+) -> Result<Vec<T>, SpecError> {
+    let Some(given) = given else {
+        return Ok(known.to_vec());
+    };
+    if given.is_empty() {
+        return Err(SpecError::new(key, "[]", "give at least one"));
+    }
+    let names: Vec<String> = known.iter().map(|k| format!("\"{}\"", name(*k))).collect();
+    given
+        .iter()
+        .enumerate()
+        .map(|(j, g)| {
+            known
+                .iter()
+                .copied()
+                .find(|k| name(*k) == g)
+                .ok_or_else(|| {
+                    SpecError::new(
+                        format!("{key}[{j}]"),
+                        format!("\"{g}\""),
+                        format!("expected {}", names.join(" or ")),
+                    )
+                })
+        })
+        .collect()
+}
+
+/// The incompressibility forms (default: the scene's).
+fn forms(
+    given: Option<&[IncompressibilitySpec]>,
+    d: &Defaults,
+) -> Result<
+    (
+        Vec<(String, Option<Volumetric>)>,
+        Vec<IncompressibilitySpec>,
+    ),
+    SpecError,
+> {
+    let specs = match given {
+        Some(g) if g.is_empty() => {
+            return Err(SpecError::new(
+                "incompressibility",
+                "[]",
+                "give at least one",
+            ))
+        }
+        Some(g) => g.to_vec(),
+        None => vec![IncompressibilitySpec::written(d.models.volumetric.as_ref())],
+    };
+    let mut out = Vec::new();
+    for (j, s) in specs.iter().enumerate() {
+        let v = s
+            .build(&d.models.energy)
+            .map_err(|e| e.within(&format!("incompressibility[{j}]")))?;
+        out.push((s.kind.clone().unwrap_or_else(|| "exact".into()), v));
+    }
+    Ok((out, specs))
+}
+
+/// Validates `spec` against the scene's defaults; keys relative to `fe`.
+pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecError> {
+    let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
+    let length = positive("length", spec.length.unwrap_or(3.0))?;
+    let (nr, nz) = (spec.nr.unwrap_or(2), spec.nz.unwrap_or(4));
+    for (key, n) in [("nr", nr), ("nz", nz)] {
+        if n > MAX_CELLS {
+            return Err(SpecError::new(
+                key,
+                n,
+                format!(
+                    "at most {MAX_CELLS} cells: the FE level checks a tangent, a small mesh does"
+                ),
+            ));
+        }
+    }
+    let cells = (cell_count("nr", nr)?, cell_count("nz", nz)?);
+    let elements = named(
+        "elements",
+        spec.elements.as_deref(),
+        &Element::ALL,
+        Element::name,
+    )?;
+    let bases = named(
+        "bases",
+        spec.bases.as_deref(),
+        &[Bases::Clamped, Bases::Sliding],
+        bases_name,
+    )?;
+    let (forms, written) = forms(spec.incompressibility.as_deref(), d)?;
+    let configs = elements.len() * bases.len() * forms.len();
+    if configs > MAX_CONFIGS {
+        return Err(SpecError::new(
+            "elements",
+            configs,
+            format!("at most {MAX_CONFIGS} elements × bases × incompressibility configurations"),
+        ));
+    }
+    let stretch = spec.stretch.unwrap_or(1.1);
+    if !(stretch.is_finite() && stretch > 0.5 && stretch < 2.0 && stretch != 1.0) {
+        return Err(SpecError::new(
+            "stretch",
+            stretch,
+            "the load step's end λ₁ must lie in (0.5, 2) and differ from 1",
+        ));
+    }
+    let law = spec.law.unwrap_or(d.law);
+    let coupling = spec.coupling.unwrap_or(d.coupling);
+    let damage = spec
+        .damage
+        .unwrap_or(d.damage.first().copied().unwrap_or(0.0));
+    crate::studies::spec::damages("damage", &[damage])?;
+    if d.models.approach.has_law() {
+        d.models
+            .supports(law)
+            .map_err(|rule| SpecError::new("law", format!("\"{}\"", law.name()), rule))?;
+    }
+    let max_iterations = spec.max_iterations.unwrap_or(50);
+    if !(1..=500).contains(&max_iterations) {
+        return Err(SpecError::new(
+            "max_iterations",
+            max_iterations,
+            "must be an integer in [1, 500]",
+        ));
+    }
+    let level = FeLevel {
+        size: (radius, length),
+        cells,
+        elements: elements.clone(),
+        bases: bases.clone(),
+        forms,
+        stretch,
+        approach: d.models.approach,
+        model: ModelChoice {
+            law,
+            coupling,
+            damage,
+        },
+        max_iterations: max_iterations as usize,
+    };
+    let written = FeSpec {
+        radius: Some(radius),
+        length: Some(length),
+        nr: Some(nr),
+        nz: Some(nz),
+        elements: Some(elements.iter().map(|e| e.name().to_string()).collect()),
+        bases: Some(bases.iter().map(|b| bases_name(*b).to_string()).collect()),
+        incompressibility: Some(written),
+        stretch: Some(stretch),
+        law: Some(law),
+        coupling: Some(coupling),
+        damage: Some(damage),
+        max_iterations: Some(max_iterations),
+    };
+    Ok((level, written))
+}
+
+/// What the FE level computed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeResult {
+    /// The model's label.
+    pub model: String,
+    /// (λ₀, λ₁).
+    pub stretches: (f64, f64),
+    /// Cells in r and z.
+    pub cells: (usize, usize),
+    /// One entry per element × bases × incompressibility.
+    pub configs: Vec<FeConfig>,
+    /// Configurations that could not be set up or solved, and why.
+    pub failures: Vec<Failure>,
+}
+
+/// One element × bases × incompressibility.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeConfig {
+    /// The element.
+    pub element: Element,
+    /// The bases.
+    pub bases: Bases,
+    /// The incompressibility's name.
+    pub incompressibility: String,
+    /// Free dofs.
+    pub dofs: usize,
+    /// The Taylor tests of the assembled residual.
+    pub taylor: Vec<FeTaylor>,
+    /// Newton with each tangent.
+    pub newton: Vec<NewtonRun>,
+}
+
+/// One Taylor test of the assembled residual.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeTaylor {
+    /// `predictor` or `converged`.
+    pub state: &'static str,
+    /// The tangent: `exact`, `symmetric frozen` or `finite differences`.
+    pub tangent: &'static str,
+    /// The remainders, or why there are none.
+    pub outcome: Result<AssembledTaylor, String>,
+}
+
+/// Newton over the load step with one tangent.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NewtonRun {
+    /// The tangent.
+    pub tangent: &'static str,
+    /// Scaled residuals of the step's first attempt: the predictor's, then one per iteration.
+    pub residuals: Vec<f64>,
+    /// Whether that attempt converged.
+    pub converged: bool,
+    /// Load steps (accepted and rejected) from λ₀ to λ₁.
+    pub steps: usize,
+    /// Newton iterations of the whole sweep 1 → λ₀ → λ₁.
+    pub iterations: usize,
+    /// Wall time per Newton iteration of the sweep \[s\].
+    pub seconds_per_iteration: f64,
+    /// Why λ₁ was not reached, if it was not.
+    pub failure: Option<String>,
+}
+
+/// The tangents the solver can use for a muscle: (name, material).
+type Variants<'a> = Vec<(&'static str, Box<dyn AxisymmetricMaterial + 'a>)>;
+
+impl FeLevel {
+    /// One line for `check`.
+    pub fn describe(&self) -> String {
+        format!(
+            "FE level: {} × {} cells, {} element(s) × {} bases × {} incompressibility, load step to λ = {}",
+            self.cells.0,
+            self.cells.1,
+            self.elements.len(),
+            self.bases.len(),
+            self.forms.len(),
+            self.stretch
+        )
+    }
+
+    /// λ₀ and the load step.
+    fn steps(&self) -> (f64, f64) {
+        let lambda_0 = 0.5 * (1.0 + self.stretch);
+        (lambda_0, (self.stretch - 1.0).abs() / 2.0)
+    }
+
+    /// Every configuration; one that fails is a failure, the others go on.
+    pub fn run(&self, models: &Models, h: &[f64], seed: u64, ctx: &RunContext) -> FeResult {
+        let label = Models {
+            approach: self.approach,
+            ..models.clone()
+        }
+        .label(&self.model);
+        let mut out = FeResult {
+            model: label.clone(),
+            stretches: (self.steps().0, self.stretch),
+            cells: self.cells,
+            configs: Vec::new(),
+            failures: Vec::new(),
+        };
+        for &element in &self.elements {
+            for &bases in &self.bases {
+                for form in &self.forms {
+                    let what = format!(
+                        "FE level, {element}, {} bases, {} incompressibility",
+                        bases_name(bases),
+                        form.0
+                    );
+                    ctx.progress.log(&what);
+                    match self.config(models, (element, bases, form), h, seed) {
+                        Ok(c) => out.configs.push(c),
+                        Err(e) => out.failures.push(Failure {
+                            model: format!("{label}, {what}"),
+                            message: e.to_string(),
+                        }),
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The muscle of the model with `frozen` as the frozen tangent.
+    fn muscle(&self, models: &Models, frozen: FrozenTangent) -> crate::Result<Muscle<Energy>> {
+        Models {
+            approach: self.approach,
+            frozen_tangent: frozen,
+            ..models.clone()
+        }
+        .muscle(self.model)
+    }
+
+    /// One configuration.
+    fn config(
+        &self,
+        models: &Models,
+        (element, bases, form): (Element, Bases, &(String, Option<Volumetric>)),
+        h: &[f64],
+        seed: u64,
+    ) -> Result<FeConfig, AppError> {
+        let exact = self.muscle(models, FrozenTangent::Exact)?;
+        let symmetric = self.muscle(models, FrozenTangent::Symmetric)?;
+        let mut variants: Variants = vec![("exact", Box::new(exact.clone()))];
+        if !exact.symmetric_tangent() {
+            variants.push(("symmetric frozen", Box::new(symmetric)));
+        }
+        variants.push(("finite differences", Box::new(CentralDifferences(&exact))));
+        let (lambda_0, step) = self.steps();
+        let mesh = Mesh::structured(self.size.0, self.size.1, self.cells.0, self.cells.1, 1.0)?;
+        let options = SolverOptions {
+            stepping: Stepping {
+                initial_step: step,
+                max_step: step,
+                max_iterations: self.max_iterations,
+                ..Stepping::default()
+            },
+            element,
+            volumetric: form.1,
+            ..SolverOptions::default()
+        };
+        let targets = [lambda_0, self.stretch];
+        let mut newton = Vec::new();
+        let mut states = None;
+        for (name, material) in &variants {
+            let (run, reached) =
+                newton_run(name, &mesh, bases, material.as_ref(), &options, &targets)?;
+            if *name == "exact" {
+                states = reached;
+            }
+            newton.push(run);
+        }
+        let (dofs, taylor) = match states {
+            Some((x0, x1)) => {
+                let mesh = mesh.clone().with_element(element);
+                let taylor = taylor_tests(
+                    &mesh,
+                    bases,
+                    form.1,
+                    &exact,
+                    &variants,
+                    (&x0, &x1),
+                    (lambda_0, self.stretch),
+                    h,
+                    seed,
+                )?;
+                (DofMap::new(&mesh, bases).n_free, taylor)
+            }
+            None => (
+                DofMap::new(&mesh.clone().with_element(element), bases).n_free,
+                Vec::new(),
+            ),
+        };
+        Ok(FeConfig {
+            element,
+            bases,
+            incompressibility: form.0.clone(),
+            dofs,
+            taylor,
+            newton,
+        })
+    }
+}
+
+/// Newton through 1 → λ₀ → λ₁ with `material`; the states at λ₀ and λ₁ when both were reached.
+fn newton_run(
+    name: &'static str,
+    mesh: &Mesh,
+    bases: Bases,
+    material: &dyn AxisymmetricMaterial,
+    options: &SolverOptions,
+    targets: &[f64; 2],
+) -> Result<(NewtonRun, Option<(Vec<f64>, Vec<f64>)>), AppError> {
+    let mut solver = AxisymmetricSolver::new(mesh.clone(), bases, material, options.clone())?;
+    let sweep = solver.sweep(targets)?;
+    let timings = solver.timings();
+    let at = |l: f64| sweep.results.iter().find(|r| (r.stretch - l).abs() < 1e-12);
+    let (first, last) = (at(targets[0]), at(targets[1]));
+    let steps = last.map_or(&[][..], |r| r.steps.as_slice());
+    let residuals = steps.first().map_or(Vec::new(), |s| {
+        std::iter::once(s.initial_residual)
+            .chain(s.iterations.iter().map(|i| i.residual))
+            .collect()
+    });
+    let run = NewtonRun {
+        tangent: name,
+        residuals,
+        converged: steps.first().is_some_and(|s| s.failure.is_none()),
+        steps: steps.len(),
+        iterations: timings.newton_iterations,
+        seconds_per_iteration: timings.per_newton_iteration(),
+        failure: sweep.failures.first().map(|e| e.to_string()),
+    };
+    let states = first
+        .zip(last)
+        .map(|(a, b)| (a.state.x.clone(), b.state.x.clone()));
+    Ok((run, states))
+}
+
+/// The Taylor tests of every tangent at the predictor and the converged state.
+#[allow(clippy::too_many_arguments)]
+fn taylor_tests(
+    mesh: &Mesh,
+    bases: Bases,
+    volumetric: Option<Volumetric>,
+    exact: &Muscle<Energy>,
+    variants: &Variants,
+    (x0, x1): (&[f64], &[f64]),
+    (lambda_0, lambda_1): (f64, f64),
+    h: &[f64],
+    seed: u64,
+) -> Result<Vec<FeTaylor>, AppError> {
+    let dofs = DofMap::new(mesh, bases);
+    let asm = crate::fem::assembly::Assembler::with_volumetric(mesh, &dofs, volumetric)?;
+    let linear = TangentSolver::new(asm.pattern.n, None, exact.symmetric_tangent(), 1);
+    let mut problem = MixedProblem::new(mesh.clone(), dofs, asm, linear, exact, 1e-6);
+    // The driver's tangent predictor from the converged λ₀: the tangent factorised there (by
+    // the Newton direction, ≈ 0 at a converged state), then dx/dλ.
+    problem.evaluate(x0, true)?;
+    let failed = |e: crate::fem::StepFailure| {
+        AppError::Invalid(format!("the load rate at λ₀ = {lambda_0}: {e}"))
+    };
+    let mut dx = vec![0.0; problem.dofs.n_free];
+    problem.newton_direction(&mut dx, true).map_err(failed)?;
+    let mut rate = vec![0.0; x0.len()];
+    problem.load_rate(&mut rate).map_err(failed)?;
+    let predictor: Vec<f64> = x0
+        .iter()
+        .zip(&rate)
+        .map(|(x, r)| x + (lambda_1 - lambda_0) * r)
+        .collect();
+    problem.evaluate(x1, false)?;
+    let sigma = problem.asm.stress_scale.max(1e-6);
+    let (nf, nu) = (problem.dofs.n_free, problem.dofs.n_free_u);
+    let mut s = Sampler::new(seed ^ 0xFE_1E_7E57);
+    let v: Vec<f64> = (0..nf)
+        .map(|k| s.normal() * if k < nu { mesh.length } else { sigma })
+        .collect();
+    let mut out = Vec::new();
+    for (state, x) in [("predictor", predictor.as_slice()), ("converged", x1)] {
+        for (name, material) in variants {
+            let outcome = assembled_taylor_test(
+                &mut problem.asm,
+                (&problem.mesh, &problem.dofs),
+                material.as_ref(),
+                x,
+                &v,
+                h,
+            )
+            .map_err(|e| e.to_string());
+            out.push(FeTaylor {
+                state,
+                tangent: name,
+                outcome,
+            });
+        }
+    }
+    Ok(out)
+}

@@ -1,0 +1,480 @@
+//! The tangent kind's outputs: its four tables, its figures (the remainders on log–log axes with
+//! slope-1 and slope-2 guides; with the FE level, Newton's residual per iteration with each
+//! tangent and the assembled residual's remainders) and its report section (per model: orders,
+//! central-difference error, asymmetry, approximate tangents, ellipticity, flagged states).
+
+use super::fe::FeResult;
+use super::run::{ModelTests, TangentResult};
+use crate::app_error::{finite, AppError};
+use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
+use crate::studies::cylinder::bases_name;
+use crate::studies::outputs::{each_study, prefixed, strokes, Context, KindOutput, Of, OwnTable};
+use crate::studies::spec::ApproachModel;
+use crate::text::{escape_html as escape, significant};
+use std::fmt::Write;
+
+/// The most unflagged remainder curves drawn (evenly chosen; every one is in tangent.csv).
+const MAX_SMOOTH_CURVES: usize = 300;
+/// The most flagged remainder curves drawn.
+const MAX_FLAGGED_CURVES: usize = 200;
+/// The most flagged states listed in the report (every one is in tangent_summary.csv).
+const MAX_LISTED: usize = 30;
+
+impl KindOutput for TangentResult {
+    fn own_table(&self, study: &str) -> Option<OwnTable> {
+        Some(OwnTable {
+            file: "tangent_summary.csv",
+            rows_are: "one row per tangent study, model and state",
+            table: self.summary_table(study),
+        })
+    }
+
+    fn own_tables(&self, study: &str) -> Vec<OwnTable> {
+        let mut out = vec![
+            OwnTable {
+                file: "tangent.csv",
+                rows_are: "one row per tangent study, model, state, direction and step h",
+                table: self.remainder_table(study),
+            },
+            OwnTable {
+                file: "tangent_summary.csv",
+                rows_are: "one row per tangent study, model and state",
+                table: self.summary_table(study),
+            },
+        ];
+        if let Some(t) = self.fe_table(study) {
+            out.push(OwnTable {
+                file: "tangent_fe.csv",
+                rows_are: "one row per FE configuration, state, tangent and step h",
+                table: t,
+            });
+        }
+        if let Some(t) = self.newton_table(study) {
+            out.push(OwnTable {
+                file: "tangent_newton.csv",
+                rows_are: "one row per FE configuration, tangent and Newton iteration",
+                table: t,
+            });
+        }
+        out
+    }
+
+    fn approach_models(&self) -> Vec<&ApproachModel> {
+        self.models.iter().map(|m| &m.model).collect()
+    }
+
+    fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
+        let mut out = each_study(studies, remainder_figure);
+        out.extend(each_study(studies, fe_figure));
+        out
+    }
+
+    fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
+        for s in studies {
+            section(h, s.name, s.result)?;
+        }
+        Ok(())
+    }
+}
+
+/// `(h, r/r(h₀))` of the remainders above `floor`, h₀ the largest such step.
+fn normalised(h: &[f64], r: &[Option<f64>], floor: f64) -> Vec<(f64, f64)> {
+    let valid: Vec<(f64, f64)> = h
+        .iter()
+        .zip(r)
+        .filter_map(|(h, r)| r.filter(|r| *r > floor).map(|r| (*h, r)))
+        .collect();
+    let Some(&(_, first)) = valid.first() else {
+        return Vec::new();
+    };
+    valid.iter().map(|(h, r)| (*h, r / first)).collect()
+}
+
+/// The slope-1 and slope-2 guides through (h₀, 1) over `h`.
+fn guides(h: &[f64]) -> Vec<Series> {
+    let (Some(&h0), Some(&h1)) = (h.first(), h.last()) else {
+        return Vec::new();
+    };
+    [(2.0, Stroke::Dashed), (1.0, Stroke::Dotted)]
+        .into_iter()
+        .map(|(p, stroke)| {
+            Series::new(
+                format!("slope {p}"),
+                vec![(h0, 1.0), (h1, (h1 / h0).powf(p))],
+                stroke,
+                GREY,
+            )
+        })
+        .collect()
+}
+
+/// The curves of one remainder (0 or 1): unflagged ones in grey, flagged ones coloured by the
+/// kind of their flag, each kind labelled once.
+fn remainder_series(r: &TangentResult, which: u8) -> (Vec<Series>, usize, usize) {
+    let (mut smooth, mut flagged) = (Vec::new(), Vec::new());
+    let mut kinds: Vec<&'static str> = Vec::new();
+    for m in &r.models {
+        for s in m.states.iter().flatten() {
+            for d in s.directions.iter().flatten() {
+                let values = if which == 0 { &d.r0 } else { &d.r1 };
+                let points = normalised(&d.h, values, d.floor);
+                match &d.flag {
+                    None => smooth.push(points),
+                    Some(f) => {
+                        let kind = f.kind();
+                        if !kinds.contains(&kind) {
+                            kinds.push(kind);
+                        }
+                        flagged.push((kind, points));
+                    }
+                }
+            }
+        }
+    }
+    let (n_smooth, n_flagged) = (smooth.len(), flagged.len());
+    let stride = n_smooth.div_ceil(MAX_SMOOTH_CURVES).max(1);
+    let mut out: Vec<Series> = smooth
+        .into_iter()
+        .step_by(stride)
+        .enumerate()
+        .map(|(i, p)| {
+            let label = if i == 0 {
+                format!("no flag ({n_smooth} tests)")
+            } else {
+                String::new()
+            };
+            Series::new(label, p, Stroke::Solid, GREY)
+        })
+        .collect();
+    let mut labelled: Vec<&str> = Vec::new();
+    for (kind, p) in flagged.into_iter().take(MAX_FLAGGED_CURVES) {
+        let colour = kinds.iter().position(|k| *k == kind).unwrap_or(0);
+        let count = kinds_count(r, kind);
+        let label = if labelled.contains(&kind) {
+            String::new()
+        } else {
+            format!("flag {kind} ({count} tests)")
+        };
+        labelled.push(kind);
+        out.push(Series::new(label, p, Stroke::Solid, colour % 8));
+    }
+    out.extend(guides(&r.h));
+    (out, n_smooth, n_flagged)
+}
+
+/// The tests flagged with `kind`.
+fn kinds_count(r: &TangentResult, kind: &str) -> usize {
+    r.models
+        .iter()
+        .flat_map(|m| m.states.iter().flatten())
+        .flat_map(|s| s.directions.iter().flatten())
+        .filter(|d| d.flag.as_ref().is_some_and(|f| f.kind() == kind))
+        .count()
+}
+
+/// A log–log panel.
+fn log_log(title: &str, x: &str, y: &str, series: Vec<Series>) -> Panel {
+    let mut p = Panel::new(title, x, y, series);
+    p.scale = Scale::LogLog;
+    p
+}
+
+/// The remainders of every model, state and direction, normalised by their value at the
+/// largest step, with the guides.
+pub fn remainder_figure(study: &str, r: &TangentResult) -> Option<Figure> {
+    let (one, n_smooth, n_flagged) = remainder_series(r, 1);
+    let (zero, _, _) = remainder_series(r, 0);
+    if n_smooth + n_flagged == 0 {
+        return None;
+    }
+    let panels = vec![
+        log_log(
+            "r₁(h) = ‖P(F + hΔF) − P(F) − h A:ΔF‖, over its value at the largest step",
+            "step h [-]",
+            "r₁(h)/r₁(h₀) [-]",
+            one,
+        ),
+        log_log(
+            "r₀(h) = ‖P(F + hΔF) − P(F)‖, over its value at the largest step",
+            "step h [-]",
+            "r₀(h)/r₀(h₀) [-]",
+            zero,
+        ),
+    ];
+    Some(Figure::new(
+        prefixed("tangent", study),
+        format!("Taylor remainders of every model (study \"{study}\")"),
+        format!(
+            "The Taylor test of the {} energy's models at {} states along {} directions: where a model is smooth and its tangent A the derivative of its stress P, r₁ falls as h² (the dashed guide) and r₀ as h (the dotted one). Each curve is divided by its value at the largest step above the rounding floor; points below the floor are not drawn. Grey: no flag ({n_smooth} tests{}); in colour: the {n_flagged} tests where an order dropped, by cause (tangent_summary.csv says why, state by state). Values in tangent.csv.",
+            r.energy,
+            r.states.len(),
+            r.directions.len(),
+            if n_smooth > MAX_SMOOTH_CURVES { format!(", {MAX_SMOOTH_CURVES} of them drawn") } else { String::new() },
+        ),
+        panels,
+    ))
+}
+
+/// The colour of a tangent.
+fn tangent_colour(name: &str) -> usize {
+    match name {
+        "exact" => 0,
+        "symmetric frozen" => 1,
+        _ => 2,
+    }
+}
+
+/// Newton's residual per iteration and the assembled residual's r₁ with each tangent.
+pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
+    let fe = r.fe.as_ref()?;
+    let mut newton = Vec::new();
+    let mut taylor = Vec::new();
+    for (i, c) in fe.configs.iter().enumerate() {
+        let config = format!(
+            "{}, {}, {}",
+            c.element,
+            bases_name(c.bases),
+            c.incompressibility
+        );
+        for n in &c.newton {
+            let points = n
+                .residuals
+                .iter()
+                .enumerate()
+                .map(|(k, v)| (k as f64, *v))
+                .collect();
+            let label = format!(
+                "{config}: {} ({} ms/iteration)",
+                n.tangent,
+                significant(n.seconds_per_iteration * 1e3, 3)
+            );
+            newton.push(Series::new(
+                label,
+                points,
+                strokes(i),
+                tangent_colour(n.tangent),
+            ));
+        }
+        for t in &c.taylor {
+            let Ok(a) = &t.outcome else { continue };
+            let stroke = if t.state == "converged" {
+                Stroke::Solid
+            } else {
+                Stroke::Dashed
+            };
+            let label = if i == 0 {
+                format!("{}, {}", t.tangent, t.state)
+            } else {
+                String::new()
+            };
+            taylor.push(Series::new(
+                label,
+                normalised(&a.h, &a.u.r1, a.floor),
+                stroke,
+                tangent_colour(t.tangent),
+            ));
+        }
+    }
+    taylor.extend(guides(&r.h));
+    let mut iterations = Panel::new(
+        "Newton over the load step λ₀ → λ₁: the solver's scaled residual per iteration",
+        "Newton iteration (0: the predictor) [-]",
+        "scaled residual [-]",
+        newton,
+    );
+    iterations.scale = Scale::LogY;
+    let panels = vec![
+        iterations,
+        log_log("Assembled residual, displacement rows: r₁(h) = ‖R(x + hv) − R(x) − h K v‖ over its value at the largest step (solid: converged state, dashed: predictor)", "step h [-]", "r₁(h)/r₁(h₀) [-]", taylor),
+    ];
+    Some(Figure::new(
+        prefixed("tangent_fe", study),
+        format!("What a tangent costs the Newton solver (study \"{study}\")"),
+        format!(
+            "The cylinder of the FE level ({} × {} cells), model {}, load step λ = {} → {}: Newton's residual with each tangent the solver can use (exact: quadratic; the frozen model's symmetric approximation: linear; central differences of the stress at every quadrature point: quadratic to their accuracy, at the cost per iteration in the legend), one stroke per element, bases and incompressibility. Below, the Taylor test of the assembled residual with each tangent: slope 2 (dashed guide) for an exact tangent, slope 1 (dotted) for an approximate one. Values in tangent_newton.csv and tangent_fe.csv.",
+            fe.cells.0, fe.cells.1, fe.model, significant(fe.stretches.0, 6), significant(fe.stretches.1, 6)
+        ),
+        panels,
+    ))
+}
+
+/// `x` with 3 significant digits, or `–` for none; a non-finite value is an error naming it.
+fn cell(x: Option<f64>, what: &str, study: &str) -> Result<String, AppError> {
+    match x {
+        None => Ok("–".into()),
+        Some(v) => Ok(significant(
+            finite(v, what, || format!("tangent study \"{study}\""))?,
+            3,
+        )),
+    }
+}
+
+/// The largest (or with `least`, the least) of a model's values over its states.
+fn over_states(
+    m: &ModelTests,
+    least: bool,
+    f: impl Fn(&super::StateTest) -> Option<f64>,
+) -> Option<f64> {
+    let values = m.states.iter().flatten().filter_map(f);
+    if least {
+        values.reduce(f64::min)
+    } else {
+        values.reduce(f64::max)
+    }
+}
+
+/// One row of the per-model table.
+fn model_row(h: &mut String, m: &ModelTests, study: &str) -> Result<(), AppError> {
+    let directions =
+        |s: &super::StateTest, f: fn(&crate::tangent_check::Remainders) -> Option<f64>| {
+            s.directions.iter().flatten().filter_map(f).reduce(f64::min)
+        };
+    let approximation = |names: &'static [&'static str]| {
+        over_states(m, false, |s| {
+            s.report
+                .approximations
+                .iter()
+                .find(|(n, _)| names.contains(&n.as_str()))
+                .map(|(_, e)| *e)
+        })
+    };
+    let flagged = m
+        .states
+        .iter()
+        .filter(|s| {
+            s.as_ref().map_or(true, |s| {
+                s.directions.iter().flatten().any(|d| d.flag.is_some())
+            })
+        })
+        .count();
+    let rate = m.rate.map_or(String::new(), |r| format!(", λ̇ = {r} 1/s"));
+    let _ = writeln!(
+        h,
+        "<tr><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{} of {}</td></tr>",
+        escape(&m.label),
+        escape(&rate),
+        cell(over_states(m, true, |s| directions(s, |r| r.order_0)), "order_0", study)?,
+        cell(over_states(m, true, |s| directions(s, |r| r.order_1)), "order_1", study)?,
+        cell(over_states(m, true, |s| directions(s, |r| r.least_order_1)), "order_1_least", study)?,
+        cell(over_states(m, false, |s| s.report.fd_error), "fd_error", study)?,
+        cell(over_states(m, false, |s| Some(s.report.asymmetry)), "asymmetry", study)?,
+        cell(approximation(&["symmetric frozen"]), "symmetric_frozen_error", study)?,
+        cell(approximation(&["tabulated law", "exact law"]), "table_error", study)?,
+        cell(over_states(m, true, |s| s.report.ellipticity.map(|e| e.relative)), "ellipticity", study)?,
+        flagged,
+        m.states.len()
+    );
+    Ok(())
+}
+
+/// The flagged states, up to [`MAX_LISTED`].
+fn flagged_list(h: &mut String, r: &TangentResult) {
+    let mut rows = Vec::new();
+    for m in &r.models {
+        for (state, s) in r.states.iter().zip(&m.states) {
+            let why = match s {
+                Err(e) => Some(format!("not evaluable: {e}")),
+                Ok(s) => s
+                    .directions
+                    .iter()
+                    .zip(&r.directions)
+                    .find_map(|(d, name)| {
+                        d.as_ref()
+                            .ok()?
+                            .flag
+                            .as_ref()
+                            .map(|f| format!("direction {name}: {}", f.reason()))
+                    }),
+            };
+            if let Some(why) = why {
+                rows.push((m.label.as_str(), state.name.as_str(), why));
+            }
+        }
+    }
+    if rows.is_empty() {
+        h.push_str("<p>No order dropped at any model, state and direction.</p>\n");
+        return;
+    }
+    let _ = writeln!(h, "<p>Where an order dropped ({} model–state pairs{}):</p>\n<table><tr><th>model</th><th>state</th><th>why</th></tr>", rows.len(), if rows.len() > MAX_LISTED { format!("; the first {MAX_LISTED}, every one in tangent_summary.csv") } else { String::new() });
+    for (model, state, why) in rows.iter().take(MAX_LISTED) {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td></tr>",
+            escape(model),
+            escape(state),
+            escape(why)
+        );
+    }
+    h.push_str("</table>\n");
+}
+
+/// The FE level's tables: the assembled residual's orders and Newton with each tangent.
+fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError> {
+    let _ = writeln!(h, "<h3>The finite-element level</h3>\n<p>{} × {} cells, model {}, the load step λ = {} → {}. Taylor test of the assembled residual (order of r₁, median over the steps; 2 for an exact tangent) at the step's predictor and at the converged state, and Newton over the step (the first attempt's iterations to the tolerance 1e-10; a cut step is said) with each tangent the solver can use.</p>\n<table><tr><th>element, bases, incompressibility</th><th>dofs</th><th>tangent</th><th>order r₁ at the predictor</th><th>order r₁ converged</th><th>Newton iterations</th><th>ms per iteration</th></tr>", fe.cells.0, fe.cells.1, escape(&fe.model), significant(fe.stretches.0, 6), significant(fe.stretches.1, 6));
+    for c in &fe.configs {
+        for n in &c.newton {
+            let order = |state: &str| {
+                c.taylor
+                    .iter()
+                    .find(|t| t.state == state && t.tangent == n.tangent)
+                    .and_then(|t| t.outcome.as_ref().ok())
+                    .and_then(|a| a.order_1)
+            };
+            let iterations = match (n.converged, &n.failure) {
+                (true, _) => format!("{}", n.residuals.len().saturating_sub(1)),
+                (false, None) => format!(
+                    "not within the limit: the step was cut ({} load steps)",
+                    n.steps
+                ),
+                (false, Some(e)) => format!("failed: {e}"),
+            };
+            let _ = writeln!(
+                h,
+                "<tr><td>{}, {}, {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                c.element,
+                bases_name(c.bases),
+                escape(&c.incompressibility),
+                c.dofs,
+                n.tangent,
+                cell(order("predictor"), "FE order", study)?,
+                cell(order("converged"), "FE order", study)?,
+                escape(&iterations),
+                cell(Some(n.seconds_per_iteration * 1e3), "seconds per iteration", study)?
+            );
+        }
+    }
+    h.push_str("</table>\n");
+    Ok(())
+}
+
+/// The report section of one tangent study.
+fn section(h: &mut String, study: &str, r: &TangentResult) -> Result<(), AppError> {
+    let pressure = match &r.volumetric {
+        None => "exactly incompressible, the pressure held fixed (its term −p F⁻ᵀ is the solver's)"
+            .to_string(),
+        Some(v) => format!("nearly incompressible, with U(J) = {}", escape(v)),
+    };
+    let frozen = match r.frozen_tangent {
+        crate::active::FrozenTangent::Exact => "exact",
+        crate::active::FrozenTangent::Symmetric => "symmetric",
+    };
+    let _ = writeln!(
+        h,
+        "<h2>Tangent check (study \"{}\")</h2>\n<p>The Taylor test of every model of the {} energy ({pressure}) at {} states along {} directions (unit Frobenius norm), steps h = {} … {}: r₀(h) = ‖P(F + hΔF) − P(F)‖ falls as h and r₁(h) = ‖P(F + hΔF) − P(F) − h A:ΔF‖ as h² where the model is smooth and its tangent A the derivative of its stress. Frozen models are tested with their exact tangent; the scene's solver uses the {frozen} one, and the symmetric approximation's distance from the exact tangent is in the table. Orders are medians over the pairs of steps above the rounding floor (the least over states and directions here); fd_error is ‖A_fd − A‖/‖A‖ with A_fd by central differences (≈ 1e-10 when A is right); asymmetry ‖A − Aᵀ‖/‖A‖ is not zero for the frozen coupling's exact tangent (its stress is not a gradient); ellipticity is the least a·Q(N)a/‖A‖ (negative: not strongly elliptic). Everything per state is in tangent_summary.csv, every remainder in tangent.csv.</p>\n<table><tr><th>model</th><th>order r₀</th><th>order r₁</th><th>least pair order r₁</th><th>largest fd_error</th><th>largest asymmetry</th><th>symmetric frozen error</th><th>table error</th><th>least ellipticity</th><th>flagged states</th></tr>",
+        escape(study),
+        escape(&r.energy),
+        r.states.len(),
+        r.directions.len(),
+        significant(r.h.first().copied().unwrap_or(0.0), 3),
+        significant(r.h.last().copied().unwrap_or(0.0), 3)
+    );
+    for m in &r.models {
+        model_row(h, m, study)?;
+    }
+    h.push_str("</table>\n");
+    flagged_list(h, r);
+    if let Some(fe) = &r.fe {
+        fe_section(h, fe, study)?;
+    }
+    Ok(())
+}

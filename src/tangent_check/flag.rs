@@ -1,0 +1,150 @@
+//! Why an observed order drops ([`Flag`]): the first pair of steps (largest h first) whose
+//! order of r₀ falls below 0.5 or of r₁ below 1.5 (expected: 1 and 2), with its cause, in this
+//! order of precedence:
+//!
+//! 1. the segment [F, F + hΔF] of that pair's larger step crosses an [`Edge`] of the material
+//!    (the fibre stretch |(F + tΔF) m| passes the edge's value for some t ∈ [0, h]);
+//! 2. the tangent is an approximation by choice ([`Known::approximate`]);
+//! 3. the tangent differs from central differences of the stress by more than
+//!    [`WRONG_TANGENT`] (relative): it is not the stress's derivative;
+//! 4. none of these: unexplained (for r₀, a jump of the stress the material does not know of).
+
+use super::material::{Edge, Known};
+use nalgebra::{Matrix3, Vector3};
+
+/// A pair order of r₀ below this is a drop (expected 1).
+pub const DROP_0: f64 = 0.5;
+/// A pair order of r₁ below this is a drop (expected 2).
+pub const DROP_1: f64 = 1.5;
+/// A central-difference tangent further than this from A (relative, Frobenius) says that A is
+/// not the stress's derivative; the differences themselves are ≈ 1e-10 accurate.
+pub const WRONG_TANGENT: f64 = 1e-6;
+
+/// Why an order dropped.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Cause {
+    /// The segment crosses a fibre stretch where the material is not smooth.
+    Edge(Edge),
+    /// The tangent is an approximation by choice (the reason).
+    Approximate(String),
+    /// The tangent is not the stress's derivative: central differences differ by `fd_error`.
+    Tangent {
+        /// ‖A_fd − A‖/‖A‖.
+        fd_error: f64,
+    },
+    /// No edge, and central differences agree with A (or could not be taken).
+    Unexplained {
+        /// ‖A_fd − A‖/‖A‖, if the differences could be taken.
+        fd_error: Option<f64>,
+    },
+}
+
+/// An order that dropped, where, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flag {
+    /// Which remainder: 0 (r₀) or 1 (r₁).
+    pub remainder: u8,
+    /// The order observed on the first pair that dropped.
+    pub order: f64,
+    /// That pair's larger step h.
+    pub h: f64,
+    /// Why.
+    pub cause: Cause,
+}
+
+impl Flag {
+    /// A short key for tables: the edge's kind, `approximate`, `wrong-tangent` or `unexplained`.
+    pub fn kind(&self) -> &'static str {
+        match &self.cause {
+            Cause::Edge(e) => e.kind,
+            Cause::Approximate(_) => "approximate",
+            Cause::Tangent { .. } => "wrong-tangent",
+            Cause::Unexplained { .. } => "unexplained",
+        }
+    }
+
+    /// The flag in words: which order, from which step, and the cause.
+    pub fn reason(&self) -> String {
+        let order = format!(
+            "r{} order {} from h = {}",
+            if self.remainder == 0 { "₀" } else { "₁" },
+            crate::text::significant(self.order, 3),
+            crate::text::significant(self.h, 3)
+        );
+        let cause = match &self.cause {
+            Cause::Edge(e) => format!("the segment [F, F + hΔF] crosses {}", e.what),
+            Cause::Approximate(why) => format!("the tangent is {why}"),
+            Cause::Tangent { fd_error } => format!(
+                "the tangent is not the stress's derivative: central differences of the stress differ from it by {} (relative)",
+                crate::text::significant(*fd_error, 3)
+            ),
+            Cause::Unexplained { fd_error } => format!(
+                "no edge of the model lies on the segment and central differences agree with the tangent to {}",
+                fd_error.map_or("(not computed)".to_string(), |e| crate::text::significant(e, 3))
+            ),
+        };
+        format!("{order}: {cause}")
+    }
+}
+
+/// The first pair whose order is below `limit`: (its index, its order).
+fn first_drop(orders: &[Option<f64>], limit: f64) -> Option<(usize, f64)> {
+    orders
+        .iter()
+        .enumerate()
+        .find_map(|(k, o)| o.filter(|o| *o < limit).map(|o| (k, o)))
+}
+
+/// Whether the fibre stretch |(F + tΔF) m| reaches `level` for some t ∈ [0, h]: its square
+/// a + 2bt + ct² (a = |Fm|², b = Fm·ΔFm, c = |ΔFm|²) spans [min, max] on the interval, the vertex
+/// included where it lies inside.
+pub fn crosses(f: &Matrix3<f64>, df: &Matrix3<f64>, m: &Vector3<f64>, h: f64, level: f64) -> bool {
+    let (fm, dm) = (f * m, df * m);
+    let (a, b, c) = (fm.norm_squared(), fm.dot(&dm), dm.norm_squared());
+    let at = |t: f64| a + 2.0 * b * t + c * t * t;
+    let mut values = vec![at(0.0), at(h)];
+    if c > 0.0 && -b / c > 0.0 && -b / c < h {
+        values.push(at(-b / c));
+    }
+    let (lo, hi) = values
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), v| {
+            (l.min(*v), u.max(*v))
+        });
+    let target = level * level;
+    lo <= target && target <= hi
+}
+
+/// The flag of a Taylor test at F along `df` (unit) with steps `h` and pair orders `orders_0`,
+/// `orders_1`, or `None` if no order dropped (module docs).
+pub fn attribute<const N: usize>(
+    (f, df): (&Matrix3<f64>, &Matrix3<f64>),
+    h: &[f64],
+    (orders_0, orders_1): (&[Option<f64>], &[Option<f64>]),
+    known: &Known<N>,
+    fd_error: Option<f64>,
+) -> Option<Flag> {
+    let (remainder, (k, order)) = first_drop(orders_0, DROP_0)
+        .map(|d| (0u8, d))
+        .or_else(|| first_drop(orders_1, DROP_1).map(|d| (1u8, d)))?;
+    let edge = known.fibre.and_then(|m| {
+        known
+            .edges
+            .iter()
+            .find(|e| crosses(f, df, &m, h[k], e.fibre_stretch))
+    });
+    let cause = match (edge, &known.approximate) {
+        (Some(e), _) => Cause::Edge(e.clone()),
+        (None, Some(why)) if remainder == 1 => Cause::Approximate(why.clone()),
+        _ => match fd_error {
+            Some(e) if remainder == 1 && e > WRONG_TANGENT => Cause::Tangent { fd_error: e },
+            _ => Cause::Unexplained { fd_error },
+        },
+    };
+    Some(Flag {
+        remainder,
+        order,
+        h: h[k],
+        cause,
+    })
+}
