@@ -6,7 +6,7 @@
 //! central-difference tangent's error, the major-symmetry defect with its reason, the error of
 //! the approximate tangents the solver can use (the frozen model's symmetric approximation, the
 //! other representation of a tabulated or exact law), strong ellipticity, and a flag with its
-//! cause where an order drops. Models are tested with the frozen model's exact tangent (its
+//! cause where an order leaves its band. Models are tested with the frozen model's exact tangent (its
 //! symmetric approximation is reported as an approximation); exactly incompressible models with
 //! the pressure held fixed, nearly incompressible ones with U(J).
 //!
@@ -56,7 +56,7 @@ pub struct TangentSpec {
     pub equibiaxial: Option<StretchSpec>,
     /// Seeded random states.
     pub random_states: Option<i64>,
-    /// Seeded random states with λ_f within 3 % of λ_min.
+    /// Seeded random states with λ_f within 1 % of λ_min.
     pub near_lambda_min: Option<i64>,
     /// Seeded random states with λ_f in [1.3, 1.5].
     pub large_fibre_stretch: Option<i64>,

@@ -1,6 +1,9 @@
-//! Why an observed order drops ([`Flag`]): the first pair of steps (largest h first) whose
-//! order of r₀ falls below 0.5 or of r₁ below 1.5 (expected: 1 and 2), with its cause, in this
-//! order of precedence:
+//! Why an observed order leaves its band ([`Flag`]): the first pair of steps (largest h first)
+//! where the order of r₀ lies outside [0.5, 2.5] or that of r₁ outside [1.5, 3.5] (expected: 1 and 2;
+//! a smooth remainder's higher terms can raise an order towards 3, never this far), with its
+//! cause. Below the band the order dropped (a kink or a jump inside the segment, a wrong
+//! tangent); above it, the remainder at the pair's larger step is inflated by a kink or a jump
+//! the smaller step does not reach. The cause, in this order of precedence:
 //!
 //! 1. the segment [F, F + hΔF] of that pair's larger step crosses an [`Edge`] of the material
 //!    (the fibre stretch |(F + tΔF) m| passes the edge's value for some t ∈ [0, h]);
@@ -12,10 +15,10 @@
 use super::material::{Edge, Known};
 use nalgebra::{Matrix3, Vector3};
 
-/// A pair order of r₀ below this is a drop (expected 1).
-pub const DROP_0: f64 = 0.5;
-/// A pair order of r₁ below this is a drop (expected 2).
-pub const DROP_1: f64 = 1.5;
+/// The band of the pair orders of r₀ (expected 1).
+pub const BAND_0: (f64, f64) = (0.5, 2.5);
+/// The band of the pair orders of r₁ (expected 2).
+pub const BAND_1: (f64, f64) = (1.5, 3.5);
 /// A central-difference tangent further than this from A (relative, Frobenius) says that A is
 /// not the stress's derivative; the differences themselves are ≈ 1e-10 accurate.
 pub const WRONG_TANGENT: f64 = 1e-6;
@@ -87,12 +90,12 @@ impl Flag {
     }
 }
 
-/// The first pair whose order is below `limit`: (its index, its order).
-fn first_drop(orders: &[Option<f64>], limit: f64) -> Option<(usize, f64)> {
+/// The first pair whose order lies outside `band`: (its index, its order).
+fn first_off(orders: &[Option<f64>], (lo, hi): (f64, f64)) -> Option<(usize, f64)> {
     orders
         .iter()
         .enumerate()
-        .find_map(|(k, o)| o.filter(|o| *o < limit).map(|o| (k, o)))
+        .find_map(|(k, o)| o.filter(|o| *o < lo || *o > hi).map(|o| (k, o)))
 }
 
 /// Whether the fibre stretch |(F + tΔF) m| reaches `level` for some t ∈ [0, h]: its square
@@ -116,7 +119,7 @@ pub fn crosses(f: &Matrix3<f64>, df: &Matrix3<f64>, m: &Vector3<f64>, h: f64, le
 }
 
 /// The flag of a Taylor test at F along `df` (unit) with steps `h` and pair orders `orders_0`,
-/// `orders_1`, or `None` if no order dropped (module docs).
+/// `orders_1`, or `None` if every order lies in its band (module docs).
 pub fn attribute<const N: usize>(
     (f, df): (&Matrix3<f64>, &Matrix3<f64>),
     h: &[f64],
@@ -124,9 +127,13 @@ pub fn attribute<const N: usize>(
     known: &Known<N>,
     fd_error: Option<f64>,
 ) -> Option<Flag> {
-    let (remainder, (k, order)) = first_drop(orders_0, DROP_0)
-        .map(|d| (0u8, d))
-        .or_else(|| first_drop(orders_1, DROP_1).map(|d| (1u8, d)))?;
+    // The pair of the largest step where either order leaves its band (r₀ first on a tie).
+    let (remainder, (k, order)) = match (first_off(orders_0, BAND_0), first_off(orders_1, BAND_1)) {
+        (Some(a), Some(b)) if b.0 < a.0 => (1u8, b),
+        (Some(a), _) => (0u8, a),
+        (None, Some(b)) => (1u8, b),
+        (None, None) => return None,
+    };
     let edge = known.fibre.and_then(|m| {
         known
             .edges

@@ -23,8 +23,9 @@
 //! approximate tangent Ã the solver can use instead (the frozen model's symmetric approximation,
 //! the other representation of a tabulated law); strong ellipticity.
 //!
-//! **Flags** ([`Flag`]): where an observed order drops (a pair of r₁ below 1.5, of r₀ below 0.5),
-//! the state is flagged with its cause — the segment crosses a fibre stretch where the model is
+//! **Flags** ([`Flag`]): where an observed order leaves its band (a pair of r₁ outside
+//! [1.5, 3.5], of r₀ outside [0.5, 2.5]: dropped, or raised by a kink that only the larger step
+//! of the pair reaches), the state is flagged with its cause — the segment crosses a fibre stretch where the model is
 //! not smooth ([`Edge`]: λ_min, the table ends of a tabulated law, the explicit law's zero
 //! crossing, the reversal of the stretch rate under force–velocity), or, with none, the tangent
 //! disagreeing with central differences — never averaged away.
@@ -35,7 +36,7 @@
 //! | [`muscle`] | a [`crate::Muscle`] in 3D with its fibre, volumetric energy and approximate tangents ([`MusclePoint`]) |
 //! | [`differences`] | central-difference tangents, at a point and as a material the FE solver can use |
 //! | [`taylor`] | [`taylor_test`]: the remainders, the orders, the state's report |
-//! | [`flag`] | why an order drops |
+//! | [`flag`] | why an order leaves its band |
 //! | [`assembled`] | the Taylor test of the FE solver's assembled residual and tangent |
 
 pub mod assembled;

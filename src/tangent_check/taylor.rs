@@ -302,7 +302,7 @@ pub fn check_state(f: &Matrix3<f64>) -> Result<()> {
 
 /// The Taylor test of `material` at F along ΔF = `df` (scaled to unit norm over the material's
 /// entries) for the steps `h` (each in (0, 1), e.g. [`halvings`]): the remainders and their
-/// orders, the flag where an order drops, and what is checked at the state. Errors: F not
+/// orders, the flag where an order leaves its band, and what is checked at the state. Errors: F not
 /// finite or det F ≤ 0, ΔF zero, non-finite or outside the material's entries, a step outside
 /// (0, 1), and the material's own error at F (a stress that cannot be evaluated at F + hΔF is a
 /// missing remainder instead, [`Remainders::unevaluable`]).

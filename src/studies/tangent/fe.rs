@@ -6,14 +6,15 @@
 //! - the Taylor test of the assembled residual and tangent
 //!   ([`crate::tangent_check::assembled_taylor_test`]) at the step's predictor
 //!   x(λ₀) + (λ₁ − λ₀) dx/dλ (the driver's tangent predictor, without its local relaxation) and
-//!   at the converged x(λ₁), along a seeded random v (displacements of the size of L,
+//!   at the converged x(λ₁), along a seeded random v (displacements of the size of a cell,
 //!   pressures of the largest stress at x(λ₁)), with each tangent the solver can use: the exact
 //!   one, the frozen model's symmetric approximation (frozen models whose law varies) and
 //!   central differences of the stress at every quadrature point
 //!   ([`crate::tangent_check::CentralDifferences`]);
-//! - Newton's convergence over the step with each of them: the scaled residual of the first
-//!   attempt at every iteration (quadratic with an exact tangent, linear with an approximate
-//!   one), whether the step had to be cut, and the wall time per Newton iteration of the sweep.
+//! - Newton from the predictor with each of them, full steps and the same LU for all: the
+//!   solver's scaled residual at every iteration (quadratic with an exact tangent, linear with an
+//!   approximate one) and the wall time per iteration (assembly with the tangent, factorisation,
+//!   solve).
 
 use crate::active::{Approach, FrozenTangent};
 use crate::app_error::{AppError, SpecError};
@@ -22,9 +23,7 @@ use crate::fem::continuation::NonlinearSystem;
 use crate::fem::dofs::DofMap;
 use crate::fem::problem::MixedProblem;
 use crate::fem::tangent_solver::TangentSolver;
-use crate::fem::{
-    AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions, Stepping,
-};
+use crate::fem::{AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions};
 use crate::models::{CouplingKind, IncompressibilitySpec, LawKind, ModelChoice, Models};
 use crate::random::Sampler;
 use crate::studies::cylinder::bases_name;
@@ -34,6 +33,7 @@ use crate::tangent_check::{assembled_taylor_test, AssembledTaylor, CentralDiffer
 use crate::volumetric::Volumetric;
 use crate::Muscle;
 use serde::{Deserialize, Serialize};
+use std::time::Instant;
 
 /// The most cells along r or z of the FE level's mesh (a check, not a simulation).
 pub const MAX_CELLS: i64 = 16;
@@ -66,7 +66,7 @@ pub struct FeSpec {
     pub coupling: Option<CouplingKind>,
     /// Damage (default: the first of `activation.damage`).
     pub damage: Option<f64>,
-    /// Newton iterations per load step before it is cut (default 50).
+    /// Newton iterations from the load step's predictor (default 50).
     pub max_iterations: Option<i64>,
 }
 
@@ -89,7 +89,7 @@ pub struct FeLevel {
     pub approach: Approach,
     /// The model.
     pub model: ModelChoice,
-    /// Newton iterations per load step.
+    /// Newton iterations from the predictor.
     pub max_iterations: usize,
 }
 
@@ -298,24 +298,25 @@ pub struct FeTaylor {
     pub outcome: Result<AssembledTaylor, String>,
 }
 
-/// Newton over the load step with one tangent.
+/// Newton over the load step with one tangent, from the step's predictor.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NewtonRun {
     /// The tangent.
     pub tangent: &'static str,
-    /// Scaled residuals of the step's first attempt: the predictor's, then one per iteration.
+    /// The solver's scaled residual at the predictor, then after each iteration.
     pub residuals: Vec<f64>,
-    /// Whether that attempt converged.
+    /// Whether it reached the tolerance within the iterations allowed.
     pub converged: bool,
-    /// Load steps (accepted and rejected) from λ₀ to λ₁.
-    pub steps: usize,
-    /// Newton iterations of the whole sweep 1 → λ₀ → λ₁.
-    pub iterations: usize,
-    /// Wall time per Newton iteration of the sweep \[s\].
+    /// Wall time per iteration (assembly with the tangent, factorisation, solve) \[s\].
     pub seconds_per_iteration: f64,
-    /// Why λ₁ was not reached, if it was not.
+    /// Why it stopped before the tolerance, if it did (divergence, a material error).
     pub failure: Option<String>,
 }
+
+/// The tolerance on the solver's scaled residual (the solver's default).
+const TOLERANCE: f64 = 1e-10;
+/// The solver's stress floor \[kPa\].
+const STRESS_FLOOR: f64 = 1e-6;
 
 /// The tangents the solver can use for a muscle: (name, material).
 type Variants<'a> = Vec<(&'static str, Box<dyn AxisymmetricMaterial + 'a>)>;
@@ -386,7 +387,8 @@ impl FeLevel {
         .muscle(self.model)
     }
 
-    /// One configuration.
+    /// One configuration: the exact solve to λ₀ and λ₁, the predictor, the Taylor tests and
+    /// Newton with each tangent.
     fn config(
         &self,
         models: &Models,
@@ -396,143 +398,193 @@ impl FeLevel {
     ) -> Result<FeConfig, AppError> {
         let exact = self.muscle(models, FrozenTangent::Exact)?;
         let symmetric = self.muscle(models, FrozenTangent::Symmetric)?;
-        let mut variants: Variants = vec![("exact", Box::new(exact.clone()))];
+        let mut variants: Variants<'_> = vec![("exact", Box::new(exact.clone()))];
         if !exact.symmetric_tangent() {
             variants.push(("symmetric frozen", Box::new(symmetric)));
         }
         variants.push(("finite differences", Box::new(CentralDifferences(&exact))));
-        let (lambda_0, step) = self.steps();
-        let mesh = Mesh::structured(self.size.0, self.size.1, self.cells.0, self.cells.1, 1.0)?;
-        let options = SolverOptions {
-            stepping: Stepping {
-                initial_step: step,
-                max_step: step,
-                max_iterations: self.max_iterations,
-                ..Stepping::default()
-            },
-            element,
-            volumetric: form.1,
-            ..SolverOptions::default()
-        };
-        let targets = [lambda_0, self.stretch];
-        let mut newton = Vec::new();
-        let mut states = None;
-        for (name, material) in &variants {
-            let (run, reached) =
-                newton_run(name, &mesh, bases, material.as_ref(), &options, &targets)?;
-            if *name == "exact" {
-                states = reached;
-            }
-            newton.push(run);
-        }
-        let (dofs, taylor) = match states {
-            Some((x0, x1)) => {
-                let mesh = mesh.clone().with_element(element);
-                let taylor = taylor_tests(
-                    &mesh,
-                    bases,
-                    form.1,
-                    &exact,
-                    &variants,
-                    (&x0, &x1),
-                    (lambda_0, self.stretch),
-                    h,
-                    seed,
-                )?;
-                (DofMap::new(&mesh, bases).n_free, taylor)
-            }
-            None => (
-                DofMap::new(&mesh.clone().with_element(element), bases).n_free,
-                Vec::new(),
-            ),
-        };
+        let mesh = Mesh::structured(self.size.0, self.size.1, self.cells.0, self.cells.1, 1.0)?
+            .with_element(element);
+        let at = (mesh, bases, form.1, self.cells);
+        let lambdas = (self.steps().0, self.stretch);
+        let (x0, x1) = converged(&at, &exact, lambdas)?;
+        let start = predictor(&at, &exact, &x0, lambdas)?;
+        let taylor = taylor_tests(
+            &at,
+            &variants,
+            [("predictor", &start), ("converged", &x1)],
+            h,
+            seed,
+        )?;
+        let newton = variants
+            .iter()
+            .map(|(name, material)| {
+                newton(name, &at, material.as_ref(), &start, self.max_iterations)
+            })
+            .collect();
         Ok(FeConfig {
             element,
             bases,
             incompressibility: form.0.clone(),
-            dofs,
+            dofs: DofMap::new(&at.0, bases).n_free,
             taylor,
             newton,
         })
     }
 }
 
-/// Newton through 1 → λ₀ → λ₁ with `material`; the states at λ₀ and λ₁ when both were reached.
-fn newton_run(
-    name: &'static str,
-    mesh: &Mesh,
-    bases: Bases,
-    material: &dyn AxisymmetricMaterial,
-    options: &SolverOptions,
-    targets: &[f64; 2],
-) -> Result<(NewtonRun, Option<(Vec<f64>, Vec<f64>)>), AppError> {
-    let mut solver = AxisymmetricSolver::new(mesh.clone(), bases, material, options.clone())?;
-    let sweep = solver.sweep(targets)?;
-    let timings = solver.timings();
-    let at = |l: f64| sweep.results.iter().find(|r| (r.stretch - l).abs() < 1e-12);
-    let (first, last) = (at(targets[0]), at(targets[1]));
-    let steps = last.map_or(&[][..], |r| r.steps.as_slice());
-    let residuals = steps.first().map_or(Vec::new(), |s| {
-        std::iter::once(s.initial_residual)
-            .chain(s.iterations.iter().map(|i| i.residual))
-            .collect()
-    });
-    let run = NewtonRun {
-        tangent: name,
-        residuals,
-        converged: steps.first().is_some_and(|s| s.failure.is_none()),
-        steps: steps.len(),
-        iterations: timings.newton_iterations,
-        seconds_per_iteration: timings.per_newton_iteration(),
-        failure: sweep.failures.first().map(|e| e.to_string()),
-    };
-    let states = first
-        .zip(last)
-        .map(|(a, b)| (a.state.x.clone(), b.state.x.clone()));
-    Ok((run, states))
+/// The mesh (with its element), bases, volumetric energy and cells (r, z) of a configuration.
+type At = (Mesh, Bases, Option<Volumetric>, (usize, usize));
+
+/// The mixed problem of `material` on a configuration, its tangent solved by LU.
+fn problem<'m, M: AxisymmetricMaterial + ?Sized>(
+    (mesh, bases, volumetric, _): &At,
+    material: &'m M,
+) -> Result<MixedProblem<'m, M>, AppError> {
+    let dofs = DofMap::new(mesh, *bases);
+    let asm = crate::fem::assembly::Assembler::with_volumetric(mesh, &dofs, *volumetric)?;
+    let linear = TangentSolver::new(asm.pattern.n, None, material.symmetric_tangent(), 1);
+    Ok(MixedProblem::new(
+        mesh.clone(),
+        dofs,
+        asm,
+        linear,
+        material,
+        STRESS_FLOOR,
+    ))
 }
 
-/// The Taylor tests of every tangent at the predictor and the converged state.
-#[allow(clippy::too_many_arguments)]
-fn taylor_tests(
-    mesh: &Mesh,
-    bases: Bases,
-    volumetric: Option<Volumetric>,
+/// The converged states at λ₀ and λ₁ (the solver's sweep with `exact`).
+fn converged(
+    at: &At,
     exact: &Muscle<Energy>,
-    variants: &Variants,
-    (x0, x1): (&[f64], &[f64]),
     (lambda_0, lambda_1): (f64, f64),
-    h: &[f64],
-    seed: u64,
-) -> Result<Vec<FeTaylor>, AppError> {
-    let dofs = DofMap::new(mesh, bases);
-    let asm = crate::fem::assembly::Assembler::with_volumetric(mesh, &dofs, volumetric)?;
-    let linear = TangentSolver::new(asm.pattern.n, None, exact.symmetric_tangent(), 1);
-    let mut problem = MixedProblem::new(mesh.clone(), dofs, asm, linear, exact, 1e-6);
-    // The driver's tangent predictor from the converged λ₀: the tangent factorised there (by
-    // the Newton direction, ≈ 0 at a converged state), then dx/dλ.
+) -> Result<(Vec<f64>, Vec<f64>), AppError> {
+    let options = SolverOptions {
+        element: at.0.element,
+        volumetric: at.2,
+        ..SolverOptions::default()
+    };
+    let mut solver = AxisymmetricSolver::new(at.0.clone(), at.1, exact, options)?;
+    let results = solver.sweep(&[lambda_0, lambda_1])?.into_result()?;
+    let state = |l: f64| {
+        results
+            .iter()
+            .find(|r| (r.stretch - l).abs() < 1e-12)
+            .map(|r| r.state.x.clone())
+            .ok_or_else(|| AppError::Invalid(format!("the sweep did not report λ = {l}")))
+    };
+    Ok((state(lambda_0)?, state(lambda_1)?))
+}
+
+/// The driver's tangent predictor of the step λ₀ → λ₁: x(λ₀) + (λ₁ − λ₀) dx/dλ, with dx/dλ
+/// from the exact tangent factorised at x(λ₀).
+fn predictor(
+    at: &At,
+    exact: &Muscle<Energy>,
+    x0: &[f64],
+    (lambda_0, lambda_1): (f64, f64),
+) -> Result<Vec<f64>, AppError> {
+    let mut problem = problem(at, exact)?;
     problem.evaluate(x0, true)?;
     let failed = |e: crate::fem::StepFailure| {
         AppError::Invalid(format!("the load rate at λ₀ = {lambda_0}: {e}"))
     };
+    // The Newton direction factorises the tangent (≈ 0 itself at a converged state).
     let mut dx = vec![0.0; problem.dofs.n_free];
     problem.newton_direction(&mut dx, true).map_err(failed)?;
     let mut rate = vec![0.0; x0.len()];
     problem.load_rate(&mut rate).map_err(failed)?;
-    let predictor: Vec<f64> = x0
+    Ok(x0
         .iter()
         .zip(&rate)
         .map(|(x, r)| x + (lambda_1 - lambda_0) * r)
-        .collect();
-    problem.evaluate(x1, false)?;
-    let sigma = problem.asm.stress_scale.max(1e-6);
+        .collect())
+}
+
+/// Newton from `start` with `material`'s tangent, full steps: the solver's scaled residual
+/// before and after each iteration, until it is ≤ [`TOLERANCE`], grows 10³-fold, or
+/// `max_iterations`; the median wall time of an iteration (factorisation, solve, assembly with
+/// the tangent), after one untimed factorisation at the start (the LU's symbolic analysis).
+fn newton(
+    name: &'static str,
+    at: &At,
+    material: &dyn AxisymmetricMaterial,
+    start: &[f64],
+    max_iterations: usize,
+) -> NewtonRun {
+    let mut run = NewtonRun {
+        tangent: name,
+        residuals: Vec::new(),
+        converged: false,
+        seconds_per_iteration: 0.0,
+        failure: None,
+    };
+    let mut times = Vec::new();
+    let mut iterate = || -> Result<(), AppError> {
+        let mut problem = problem(at, material)?;
+        let nf = problem.dofs.n_free;
+        let (mut x, mut dx) = (start.to_vec(), vec![0.0; nf]);
+        let direction = |problem: &mut MixedProblem<'_, dyn AxisymmetricMaterial>,
+                         dx: &mut [f64]| {
+            problem
+                .newton_direction(dx, true)
+                .map_err(|e| AppError::Invalid(e.to_string()))
+        };
+        problem.evaluate(&x, true)?;
+        run.residuals.push(problem.residual_norm(problem.scale()));
+        direction(&mut problem, &mut dx)?;
+        for _ in 0..max_iterations {
+            let clock = Instant::now();
+            direction(&mut problem, &mut dx)?;
+            for (xi, di) in x[..nf].iter_mut().zip(&dx) {
+                *xi += di;
+            }
+            problem.evaluate(&x, true)?;
+            times.push(clock.elapsed().as_secs_f64());
+            let r = problem.residual_norm(problem.scale());
+            run.residuals.push(r);
+            if r <= TOLERANCE {
+                run.converged = true;
+                break;
+            }
+            if !(r < 1e3 * run.residuals[0]) {
+                return Err(AppError::Invalid(format!(
+                    "diverged: scaled residual {r:.3e}"
+                )));
+            }
+        }
+        Ok(())
+    };
+    if let Err(e) = iterate() {
+        run.failure = Some(e.to_string());
+    }
+    run.seconds_per_iteration = crate::tangent_check::taylor::median(times).unwrap_or(0.0);
+    run
+}
+
+/// The Taylor tests of every tangent at each of `states`.
+fn taylor_tests(
+    at: &At,
+    variants: &Variants<'_>,
+    states: [(&'static str, &[f64]); 2],
+    h: &[f64],
+    seed: u64,
+) -> Result<Vec<FeTaylor>, AppError> {
+    let (name, exact) = &variants[0];
+    debug_assert_eq!(*name, "exact");
+    let mut problem = problem(at, exact.as_ref())?;
+    problem.evaluate(states[1].1, false)?;
+    let sigma = problem.asm.stress_scale.max(STRESS_FLOOR);
     let (nf, nu) = (problem.dofs.n_free, problem.dofs.n_free_u);
-    let mut s = Sampler::new(seed ^ 0xFE_1E_7E57);
+    // Displacements of the size of a cell (ΔF ≈ h), pressures of the largest stress.
+    let cell = (at.0.radius / at.3 .0 as f64).min(at.0.length / at.3 .1 as f64);
+    let mut s = Sampler::new(seed ^ 0xFE1E_7E57);
     let v: Vec<f64> = (0..nf)
-        .map(|k| s.normal() * if k < nu { mesh.length } else { sigma })
+        .map(|k| s.normal() * if k < nu { cell } else { sigma })
         .collect();
     let mut out = Vec::new();
-    for (state, x) in [("predictor", predictor.as_slice()), ("converged", x1)] {
+    for (state, x) in states {
         for (name, material) in variants {
             let outcome = assembled_taylor_test(
                 &mut problem.asm,

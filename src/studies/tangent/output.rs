@@ -77,22 +77,24 @@ impl KindOutput for TangentResult {
     }
 }
 
-/// `(h, r/r(h₀))` of the remainders above `floor`, h₀ the largest such step.
+/// `(h, r(h)/r(hₙ))` of the remainders above `floor`, hₙ the smallest such step: every curve
+/// ends at 1 where it is asymptotic, and a kink or jump that the larger steps reach shows as
+/// a departure above its slope.
 fn normalised(h: &[f64], r: &[Option<f64>], floor: f64) -> Vec<(f64, f64)> {
     let valid: Vec<(f64, f64)> = h
         .iter()
         .zip(r)
         .filter_map(|(h, r)| r.filter(|r| *r > floor).map(|r| (*h, r)))
         .collect();
-    let Some(&(_, first)) = valid.first() else {
+    let Some(&(_, last)) = valid.last() else {
         return Vec::new();
     };
-    valid.iter().map(|(h, r)| (*h, r / first)).collect()
+    valid.iter().map(|(h, r)| (*h, r / last)).collect()
 }
 
-/// The slope-1 and slope-2 guides through (h₀, 1) over `h`.
+/// The slope-1 and slope-2 guides through (hₙ, 1) over `h`, hₙ the smallest step.
 fn guides(h: &[f64]) -> Vec<Series> {
-    let (Some(&h0), Some(&h1)) = (h.first(), h.last()) else {
+    let (Some(&h0), Some(&hn)) = (h.first(), h.last()) else {
         return Vec::new();
     };
     [(2.0, Stroke::Dashed), (1.0, Stroke::Dotted)]
@@ -100,7 +102,7 @@ fn guides(h: &[f64]) -> Vec<Series> {
         .map(|(p, stroke)| {
             Series::new(
                 format!("slope {p}"),
-                vec![(h0, 1.0), (h1, (h1 / h0).powf(p))],
+                vec![(hn, 1.0), (h0, (h0 / hn).powf(p))],
                 stroke,
                 GREY,
             )
@@ -143,12 +145,13 @@ fn remainder_series(r: &TangentResult, which: u8) -> (Vec<Series>, usize, usize)
             } else {
                 String::new()
             };
-            Series::new(label, p, Stroke::Solid, GREY)
+            Series::new(label, p, Stroke::Solid, 0)
         })
         .collect();
     let mut labelled: Vec<&str> = Vec::new();
     for (kind, p) in flagged.into_iter().take(MAX_FLAGGED_CURVES) {
-        let colour = kinds.iter().position(|k| *k == kind).unwrap_or(0);
+        // Colour 0 is the tests without a flag.
+        let colour = 1 + kinds.iter().position(|k| *k == kind).unwrap_or(0);
         let count = kinds_count(r, kind);
         let label = if labelled.contains(&kind) {
             String::new()
@@ -156,7 +159,7 @@ fn remainder_series(r: &TangentResult, which: u8) -> (Vec<Series>, usize, usize)
             format!("flag {kind} ({count} tests)")
         };
         labelled.push(kind);
-        out.push(Series::new(label, p, Stroke::Solid, colour % 8));
+        out.push(Series::new(label, p, Stroke::Solid, colour));
     }
     out.extend(guides(&r.h));
     (out, n_smooth, n_flagged)
@@ -173,9 +176,16 @@ fn kinds_count(r: &TangentResult, kind: &str) -> usize {
 }
 
 /// A log–log panel.
+/// A log–log panel over the steps: its x range the steps' own, widened by a factor 1.5 (the
+/// default range is padded linearly, which a log axis over decades cannot take).
 fn log_log(title: &str, x: &str, y: &str, series: Vec<Series>) -> Panel {
+    let steps = series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let (lo, hi) = steps.fold((f64::INFINITY, 0.0f64), |(l, h), x| (l.min(x), h.max(x)));
     let mut p = Panel::new(title, x, y, series);
     p.scale = Scale::LogLog;
+    if lo > 0.0 && hi > lo {
+        p.x_range = Some((lo / 1.5, hi * 1.5));
+    }
     p
 }
 
@@ -189,15 +199,15 @@ pub fn remainder_figure(study: &str, r: &TangentResult) -> Option<Figure> {
     }
     let panels = vec![
         log_log(
-            "r₁(h) = ‖P(F + hΔF) − P(F) − h A:ΔF‖, over its value at the largest step",
+            "r₁(h) = ‖P(F + hΔF) − P(F) − h A:ΔF‖ over its value at the smallest step",
             "step h [-]",
-            "r₁(h)/r₁(h₀) [-]",
+            "r₁(h)/r₁(hₙ) [-]",
             one,
         ),
         log_log(
-            "r₀(h) = ‖P(F + hΔF) − P(F)‖, over its value at the largest step",
+            "r₀(h) = ‖P(F + hΔF) − P(F)‖, over its value at the smallest step",
             "step h [-]",
-            "r₀(h)/r₀(h₀) [-]",
+            "r₀(h)/r₀(hₙ) [-]",
             zero,
         ),
     ];
@@ -205,7 +215,7 @@ pub fn remainder_figure(study: &str, r: &TangentResult) -> Option<Figure> {
         prefixed("tangent", study),
         format!("Taylor remainders of every model (study \"{study}\")"),
         format!(
-            "The Taylor test of the {} energy's models at {} states along {} directions: where a model is smooth and its tangent A the derivative of its stress P, r₁ falls as h² (the dashed guide) and r₀ as h (the dotted one). Each curve is divided by its value at the largest step above the rounding floor; points below the floor are not drawn. Grey: no flag ({n_smooth} tests{}); in colour: the {n_flagged} tests where an order dropped, by cause (tangent_summary.csv says why, state by state). Values in tangent.csv.",
+            "The Taylor test of the {} energy's models at {} states along {} directions: where a model is smooth and its tangent A the derivative of its stress P, r₁ falls as h² (the dashed guide) and r₀ as h (the dotted one). Each curve is divided by its value at its smallest step above the rounding floor (points below the floor are not drawn), so that it ends at 1 where it is asymptotic: a kink or a jump of P that only the larger steps reach lifts the curve off its slope there. Blue: no flag ({n_smooth} tests{}); in other colours: the {n_flagged} tests where an order left its band (1 for r₀, 2 for r₁), by cause (tangent_summary.csv says why, state by state). Values in tangent.csv.",
             r.energy,
             r.states.len(),
             r.directions.len(),
@@ -213,6 +223,16 @@ pub fn remainder_figure(study: &str, r: &TangentResult) -> Option<Figure> {
         ),
         panels,
     ))
+}
+
+/// The drawing order of a tangent: the exact one last, on top of central differences that
+/// agree with it.
+fn tangent_order(name: &str) -> usize {
+    match name {
+        "exact" => 2,
+        "symmetric frozen" => 1,
+        _ => 0,
+    }
 }
 
 /// The colour of a tangent.
@@ -224,18 +244,24 @@ fn tangent_colour(name: &str) -> usize {
     }
 }
 
-/// Newton's residual per iteration and the assembled residual's r₁ with each tangent.
-pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
-    let fe = r.fe.as_ref()?;
-    let mut newton = Vec::new();
-    let mut taylor = Vec::new();
+/// The median over the configurations of a tangent's time per Newton iteration \[s\].
+fn median_time(fe: &FeResult, tangent: &str) -> Option<f64> {
+    let times: Vec<f64> = fe
+        .configs
+        .iter()
+        .flat_map(|c| c.newton.iter())
+        .filter(|n| n.tangent == tangent && n.residuals.len() > 1)
+        .map(|n| n.seconds_per_iteration)
+        .collect();
+    crate::tangent_check::taylor::median(times)
+}
+
+/// Newton's residual per iteration with each tangent (one line per configuration, the legend
+/// once per tangent with its median time per iteration).
+fn newton_series(fe: &FeResult) -> Vec<Series> {
+    let mut out = Vec::new();
+    let mut labelled: Vec<&str> = Vec::new();
     for (i, c) in fe.configs.iter().enumerate() {
-        let config = format!(
-            "{}, {}, {}",
-            c.element,
-            bases_name(c.bases),
-            c.incompressibility
-        );
         for n in &c.newton {
             let points = n
                 .residuals
@@ -243,18 +269,33 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
                 .enumerate()
                 .map(|(k, v)| (k as f64, *v))
                 .collect();
-            let label = format!(
-                "{config}: {} ({} ms/iteration)",
+            let label = match (labelled.contains(&n.tangent), median_time(fe, n.tangent)) {
+                (false, Some(t)) => {
+                    labelled.push(n.tangent);
+                    format!(
+                        "{} ({} ms per iteration)",
+                        n.tangent,
+                        significant(t * 1e3, 2)
+                    )
+                }
+                _ => String::new(),
+            };
+            out.push((
                 n.tangent,
-                significant(n.seconds_per_iteration * 1e3, 3)
-            );
-            newton.push(Series::new(
-                label,
-                points,
-                strokes(i),
-                tangent_colour(n.tangent),
+                Series::new(label, points, strokes(i), tangent_colour(n.tangent)),
             ));
         }
+    }
+    out.sort_by_key(|(t, _)| tangent_order(t));
+    out.into_iter().map(|(_, s)| s).collect()
+}
+
+/// Newton's residual per iteration and the assembled residual's r₁ with each tangent.
+pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
+    let fe = r.fe.as_ref()?;
+    let newton = newton_series(fe);
+    let mut taylor: Vec<(&str, Series)> = Vec::new();
+    for (i, c) in fe.configs.iter().enumerate() {
         for t in &c.taylor {
             let Ok(a) = &t.outcome else { continue };
             let stroke = if t.state == "converged" {
@@ -267,17 +308,16 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
             } else {
                 String::new()
             };
-            taylor.push(Series::new(
-                label,
-                normalised(&a.h, &a.u.r1, a.floor),
-                stroke,
-                tangent_colour(t.tangent),
-            ));
+            let points = normalised(&a.h, &a.u.r1, a.floor);
+            let series = Series::new(label, points, stroke, tangent_colour(t.tangent));
+            taylor.push((t.tangent, series));
         }
     }
+    taylor.sort_by_key(|(t, _)| tangent_order(t));
+    let mut taylor: Vec<Series> = taylor.into_iter().map(|(_, s)| s).collect();
     taylor.extend(guides(&r.h));
     let mut iterations = Panel::new(
-        "Newton over the load step λ₀ → λ₁: the solver's scaled residual per iteration",
+        "Newton from the predictor of the load step λ₀ → λ₁: the solver's scaled residual per iteration",
         "Newton iteration (0: the predictor) [-]",
         "scaled residual [-]",
         newton,
@@ -285,27 +325,37 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
     iterations.scale = Scale::LogY;
     let panels = vec![
         iterations,
-        log_log("Assembled residual, displacement rows: r₁(h) = ‖R(x + hv) − R(x) − h K v‖ over its value at the largest step (solid: converged state, dashed: predictor)", "step h [-]", "r₁(h)/r₁(h₀) [-]", taylor),
+        log_log(
+            "Assembled residual, displacement rows: r₁(h) = ‖R(x + hv) − R(x) − h K v‖ over r₁(hₙ)",
+            "step h [-]",
+            "r₁(h)/r₁(hₙ) [-]",
+            taylor,
+        ),
     ];
     Some(Figure::new(
         prefixed("tangent_fe", study),
         format!("What a tangent costs the Newton solver (study \"{study}\")"),
         format!(
-            "The cylinder of the FE level ({} × {} cells), model {}, load step λ = {} → {}: Newton's residual with each tangent the solver can use (exact: quadratic; the frozen model's symmetric approximation: linear; central differences of the stress at every quadrature point: quadratic to their accuracy, at the cost per iteration in the legend), one stroke per element, bases and incompressibility. Below, the Taylor test of the assembled residual with each tangent: slope 2 (dashed guide) for an exact tangent, slope 1 (dotted) for an approximate one. Values in tangent_newton.csv and tangent_fe.csv.",
-            fe.cells.0, fe.cells.1, fe.model, significant(fe.stretches.0, 6), significant(fe.stretches.1, 6)
+            "The cylinder of the FE level ({} × {} cells), model {}, load step λ = {} → {}: Newton's residual with each tangent the solver can use (exact: quadratic; the frozen model's symmetric approximation: linear; central differences of the stress at every quadrature point: quadratic to their accuracy, at the cost per iteration in the legend), one line per element, bases and incompressibility ({} of them; strokes cycle through solid, dashed, dotted), the time per iteration the median over them (each one's in tangent_newton.csv). Below, the Taylor test of the assembled residual's displacement rows with each tangent at the converged state (solid) and at the step's predictor (dashed): slope 2 (dashed guide) for an exact tangent, slope 1 (dotted guide) for an approximate one. Values in tangent_newton.csv and tangent_fe.csv.",
+            fe.cells.0, fe.cells.1, fe.model, significant(fe.stretches.0, 6), significant(fe.stretches.1, 6), fe.configs.len()
         ),
         panels,
     ))
 }
 
-/// `x` with 3 significant digits, or `–` for none; a non-finite value is an error naming it.
+/// `x` with 3 significant digits (below 1e-3 in scientific notation), or `–` for none; a
+/// non-finite value is an error naming it.
 fn cell(x: Option<f64>, what: &str, study: &str) -> Result<String, AppError> {
     match x {
         None => Ok("–".into()),
-        Some(v) => Ok(significant(
-            finite(v, what, || format!("tangent study \"{study}\""))?,
-            3,
-        )),
+        Some(v) => {
+            let v = finite(v, what, || format!("tangent study \"{study}\""))?;
+            Ok(if v != 0.0 && v.abs() < 1e-3 {
+                format!("{v:.2e}")
+            } else {
+                significant(v, 3)
+            })
+        }
     }
 }
 
@@ -392,10 +442,10 @@ fn flagged_list(h: &mut String, r: &TangentResult) {
         }
     }
     if rows.is_empty() {
-        h.push_str("<p>No order dropped at any model, state and direction.</p>\n");
+        h.push_str("<p>Every order lies in its band at every model, state and direction.</p>\n");
         return;
     }
-    let _ = writeln!(h, "<p>Where an order dropped ({} model–state pairs{}):</p>\n<table><tr><th>model</th><th>state</th><th>why</th></tr>", rows.len(), if rows.len() > MAX_LISTED { format!("; the first {MAX_LISTED}, every one in tangent_summary.csv") } else { String::new() });
+    let _ = writeln!(h, "<p>Where an order left its band ({} model–state pairs{}):</p>\n<table><tr><th>model</th><th>state</th><th>why</th></tr>", rows.len(), if rows.len() > MAX_LISTED { format!("; the first {MAX_LISTED}, every one in tangent_summary.csv") } else { String::new() });
     for (model, state, why) in rows.iter().take(MAX_LISTED) {
         let _ = writeln!(
             h,
@@ -410,7 +460,7 @@ fn flagged_list(h: &mut String, r: &TangentResult) {
 
 /// The FE level's tables: the assembled residual's orders and Newton with each tangent.
 fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError> {
-    let _ = writeln!(h, "<h3>The finite-element level</h3>\n<p>{} × {} cells, model {}, the load step λ = {} → {}. Taylor test of the assembled residual (order of r₁, median over the steps; 2 for an exact tangent) at the step's predictor and at the converged state, and Newton over the step (the first attempt's iterations to the tolerance 1e-10; a cut step is said) with each tangent the solver can use.</p>\n<table><tr><th>element, bases, incompressibility</th><th>dofs</th><th>tangent</th><th>order r₁ at the predictor</th><th>order r₁ converged</th><th>Newton iterations</th><th>ms per iteration</th></tr>", fe.cells.0, fe.cells.1, escape(&fe.model), significant(fe.stretches.0, 6), significant(fe.stretches.1, 6));
+    let _ = writeln!(h, "<h3>The finite-element level</h3>\n<p>{} × {} cells, model {}, the load step λ = {} → {}. Taylor test of the assembled residual (order of r₁, median over the steps, the least of the displacement and the pressure rows; 2 for an exact tangent) at the step's predictor and at the converged state, and Newton from the predictor with each tangent the solver can use (full steps, the same LU; iterations to a scaled residual of 1e-10).</p>\n<table><tr><th>element, bases, incompressibility</th><th>dofs</th><th>tangent</th><th>order r₁ at the predictor</th><th>order r₁ converged</th><th>Newton iterations</th><th>ms per iteration</th></tr>", fe.cells.0, fe.cells.1, escape(&fe.model), significant(fe.stretches.0, 6), significant(fe.stretches.1, 6));
     for c in &fe.configs {
         for n in &c.newton {
             let order = |state: &str| {
@@ -423,8 +473,11 @@ fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError
             let iterations = match (n.converged, &n.failure) {
                 (true, _) => format!("{}", n.residuals.len().saturating_sub(1)),
                 (false, None) => format!(
-                    "not within the limit: the step was cut ({} load steps)",
-                    n.steps
+                    "not converged in {}: residual {}",
+                    n.residuals.len().saturating_sub(1),
+                    n.residuals
+                        .last()
+                        .map_or("–".into(), |r| format!("{r:.2e}"))
                 ),
                 (false, Some(e)) => format!("failed: {e}"),
             };
@@ -450,8 +503,10 @@ fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError
 /// The report section of one tangent study.
 fn section(h: &mut String, study: &str, r: &TangentResult) -> Result<(), AppError> {
     let pressure = match &r.volumetric {
-        None => "exactly incompressible, the pressure held fixed (its term −p F⁻ᵀ is the solver's)"
-            .to_string(),
+        None => {
+            "exactly incompressible, with the pressure held fixed: its term −p F⁻ᵀ is the solver's"
+                .to_string()
+        }
         Some(v) => format!("nearly incompressible, with U(J) = {}", escape(v)),
     };
     let frozen = match r.frozen_tangent {

@@ -195,7 +195,7 @@ impl TangentResult {
             .number("symmetric_frozen_error", "-", "‖A_sym − A‖/‖A‖ of the frozen model's symmetric approximation", approximation(&["symmetric frozen"]))
             .number("table_error", "-", "‖A_other − A‖/‖A‖ with the law in its other representation (tabulated for an exact law, exact for a tabulated one)", approximation(&["tabulated law", "exact law"]))
             .number("ellipticity", "-", "least a·Q(N)a/‖A‖ over the sampled normals (negative: not strongly elliptic)", of(|s| s.report.ellipticity.map(|e| e.relative)))
-            .text("flag", "why an order drops (empty: none)", flags.iter().map(|f| f.0.clone()))
+            .text("flag", "why an order leaves its band (empty: none)", flags.iter().map(|f| f.0.clone()))
             .text("reason", "the flag in words", flags.iter().map(|f| f.1.clone()))
             .text("note", "what else the test found", flags.iter().map(|f| f.2.clone()))
     }
@@ -325,7 +325,7 @@ impl TangentResult {
                 .number(
                     "iteration",
                     "-",
-                    "Newton iteration of the load step's first attempt (0: the predictor)",
+                    "Newton iteration from the load step's predictor (0: the predictor)",
                     rows.iter().map(|r| Some(r.2 as f64)),
                 )
                 .number(
@@ -336,19 +336,13 @@ impl TangentResult {
                 )
                 .text(
                     "converged",
-                    "whether the first attempt converged (else the step was cut)",
+                    "whether the residual reached 1e-10 within the iterations allowed",
                     rows.iter().map(|r| Some(r.1.converged.to_string())),
-                )
-                .number(
-                    "load_steps",
-                    "-",
-                    "load steps (accepted and rejected) from λ₀ to λ₁",
-                    rows.iter().map(|r| Some(r.1.steps as f64)),
                 )
                 .number(
                     "seconds_per_iteration",
                     "s",
-                    "wall time per Newton iteration of the sweep",
+                    "wall time per Newton iteration (assembly with the tangent, factorisation, solve)",
                     rows.iter().map(|r| Some(r.1.seconds_per_iteration)),
                 ),
         )
