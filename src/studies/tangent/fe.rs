@@ -158,54 +158,29 @@ fn forms(
     Ok((out, specs))
 }
 
-/// Validates `spec` against the scene's defaults; keys relative to `fe`.
-pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecError> {
+/// The cylinder's radius, length and cells (nr, nz).
+fn mesh_of(spec: &FeSpec) -> Result<((f64, f64), (usize, usize)), SpecError> {
     let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
     let length = positive("length", spec.length.unwrap_or(3.0))?;
     let (nr, nz) = (spec.nr.unwrap_or(2), spec.nz.unwrap_or(4));
     for (key, n) in [("nr", nr), ("nz", nz)] {
         if n > MAX_CELLS {
-            return Err(SpecError::new(
-                key,
-                n,
-                format!(
-                    "at most {MAX_CELLS} cells: the FE level checks a tangent, a small mesh does"
-                ),
-            ));
+            let rule = format!(
+                "at most {MAX_CELLS} cells: the FE level checks a tangent, a small mesh does"
+            );
+            return Err(SpecError::new(key, n, rule));
         }
     }
-    let cells = (cell_count("nr", nr)?, cell_count("nz", nz)?);
-    let elements = named(
-        "elements",
-        spec.elements.as_deref(),
-        &Element::ALL,
-        Element::name,
-    )?;
-    let bases = named(
-        "bases",
-        spec.bases.as_deref(),
-        &[Bases::Clamped, Bases::Sliding],
-        bases_name,
-    )?;
-    let (forms, written) = forms(spec.incompressibility.as_deref(), d)?;
-    let configs = elements.len() * bases.len() * forms.len();
-    if configs > MAX_CONFIGS {
-        return Err(SpecError::new(
-            "elements",
-            configs,
-            format!("at most {MAX_CONFIGS} elements × bases × incompressibility configurations"),
-        ));
-    }
-    let stretch = spec.stretch.unwrap_or(1.1);
-    if !(stretch.is_finite() && stretch > 0.5 && stretch < 2.0 && stretch != 1.0) {
-        return Err(SpecError::new(
-            "stretch",
-            stretch,
-            "the load step's end λ₁ must lie in (0.5, 2) and differ from 1",
-        ));
-    }
+    Ok((
+        (radius, length),
+        (cell_count("nr", nr)?, cell_count("nz", nz)?),
+    ))
+}
+
+/// The model (default: the scene's law and coupling, its first damage), checked against the
+/// material.
+fn model_of(spec: &FeSpec, d: &Defaults) -> Result<ModelChoice, SpecError> {
     let law = spec.law.unwrap_or(d.law);
-    let coupling = spec.coupling.unwrap_or(d.coupling);
     let damage = spec
         .damage
         .unwrap_or(d.damage.first().copied().unwrap_or(0.0));
@@ -215,42 +190,66 @@ pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecErr
             .supports(law)
             .map_err(|rule| SpecError::new("law", format!("\"{}\"", law.name()), rule))?;
     }
+    Ok(ModelChoice {
+        law,
+        coupling: spec.coupling.unwrap_or(d.coupling),
+        damage,
+    })
+}
+
+/// Validates `spec` against the scene's defaults; keys relative to `fe`.
+pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecError> {
+    let (size, cells) = mesh_of(spec)?;
+    let elements = named(
+        "elements",
+        spec.elements.as_deref(),
+        &Element::ALL,
+        Element::name,
+    )?;
+    let both = [Bases::Clamped, Bases::Sliding];
+    let bases = named("bases", spec.bases.as_deref(), &both, bases_name)?;
+    let (forms, written) = forms(spec.incompressibility.as_deref(), d)?;
+    let configs = elements.len() * bases.len() * forms.len();
+    if configs > MAX_CONFIGS {
+        let rule =
+            format!("at most {MAX_CONFIGS} elements × bases × incompressibility configurations");
+        return Err(SpecError::new("elements", configs, rule));
+    }
+    let stretch = spec.stretch.unwrap_or(1.1);
+    if !(stretch.is_finite() && stretch > 0.5 && stretch < 2.0 && stretch != 1.0) {
+        let rule = "the load step's end λ₁ must lie in (0.5, 2) and differ from 1";
+        return Err(SpecError::new("stretch", stretch, rule));
+    }
+    let model = model_of(spec, d)?;
     let max_iterations = spec.max_iterations.unwrap_or(50);
     if !(1..=500).contains(&max_iterations) {
-        return Err(SpecError::new(
-            "max_iterations",
-            max_iterations,
-            "must be an integer in [1, 500]",
-        ));
+        let rule = "must be an integer in [1, 500]";
+        return Err(SpecError::new("max_iterations", max_iterations, rule));
     }
-    let level = FeLevel {
-        size: (radius, length),
-        cells,
-        elements: elements.clone(),
-        bases: bases.clone(),
-        forms,
-        stretch,
-        approach: d.models.approach,
-        model: ModelChoice {
-            law,
-            coupling,
-            damage,
-        },
-        max_iterations: max_iterations as usize,
-    };
     let written = FeSpec {
-        radius: Some(radius),
-        length: Some(length),
-        nr: Some(nr),
-        nz: Some(nz),
+        radius: Some(size.0),
+        length: Some(size.1),
+        nr: Some(cells.0 as i64),
+        nz: Some(cells.1 as i64),
         elements: Some(elements.iter().map(|e| e.name().to_string()).collect()),
         bases: Some(bases.iter().map(|b| bases_name(*b).to_string()).collect()),
         incompressibility: Some(written),
         stretch: Some(stretch),
-        law: Some(law),
-        coupling: Some(coupling),
-        damage: Some(damage),
+        law: Some(model.law),
+        coupling: Some(model.coupling),
+        damage: Some(model.damage),
         max_iterations: Some(max_iterations),
+    };
+    let level = FeLevel {
+        size,
+        cells,
+        elements,
+        bases,
+        forms,
+        stretch,
+        approach: d.models.approach,
+        model,
+        max_iterations: max_iterations as usize,
     };
     Ok((level, written))
 }
