@@ -198,22 +198,9 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     if results.ran_together() {
         say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
-    for (_, c) in results.cylinders() {
-        if c.bases != activemuscle::fem::Bases::Sliding {
-            continue;
-        }
-        for s in &c.sweeps {
-            if let Some((worst, _, _)) = s.worst_against_0d() {
-                say!(
-                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
-                    s.label
-                );
-            }
-        }
-    }
-    for (study, fits) in results.fits() {
-        for f in fits {
-            say!("{study} — {}", f.summary());
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
         }
     }
     for (study, f) in results.failures() {
@@ -485,45 +472,6 @@ fn tangent_scene(mut scene: Scene) -> Result<Scene, AppError> {
     Ok(scene)
 }
 
-/// Per tangent study: each model's least order of r₁ and its flagged states.
-fn tangent_summary(results: &Results) {
-    for s in &results.studies {
-        let StudyResult::Tangent(r) = &s.result else {
-            continue;
-        };
-        say!(
-            "\n{}: {} states × {} directions",
-            s.name,
-            r.states.len(),
-            r.directions.len()
-        );
-        for m in &r.models {
-            let tests = m
-                .states
-                .iter()
-                .flatten()
-                .flat_map(|t| t.directions.iter().flatten());
-            let least = tests.filter_map(|d| d.order_1).reduce(f64::min);
-            let flagged = m
-                .states
-                .iter()
-                .filter(|t| {
-                    t.as_ref().map_or(true, |t| {
-                        t.directions.iter().flatten().any(|d| d.flag.is_some())
-                    })
-                })
-                .count();
-            let rate = m.rate.map_or(String::new(), |r| format!(", rate {r} 1/s"));
-            say!(
-                "  {}{rate}: order of r1 ≥ {}; {flagged} of {} states flagged",
-                m.label,
-                least.map_or("–".into(), |o| activemuscle::text::significant(o, 3)),
-                m.states.len()
-            );
-        }
-    }
-}
-
 fn tangent_command(
     scene: Option<&Path>,
     out: &Path,
@@ -549,7 +497,11 @@ fn tangent_command(
     };
     write_run(&mut staging, &scene, &results, &meta)?;
     staging.commit()?;
-    tangent_summary(&results);
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
+        }
+    }
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
     }

@@ -4,7 +4,7 @@
 
 use crate::binary::run_args;
 use crate::scratch::scratch;
-use activemuscle::output::csv::tables;
+use activemuscle::output::csv::files;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::StudyResult;
 
@@ -58,13 +58,13 @@ fn a_tangent_study_writes_its_tables_and_flags_what_it_cannot_evaluate() {
         ),
         (2, 5, 1, 9)
     );
-    let files = tables(&results).unwrap();
+    let files = files(&results);
     let text = |name: &str| {
-        let (_, bytes) = files
+        let file = files
             .iter()
-            .find(|(f, _)| f == name)
+            .find(|f| f.file == name)
             .unwrap_or_else(|| panic!("{name}"));
-        String::from_utf8(bytes.clone()).unwrap()
+        String::from_utf8(file.bytes().unwrap()).unwrap()
     };
     let summary = rows(&text("tangent_summary.csv"));
     assert_eq!(summary.len(), 1 + 2 * 5);
@@ -213,9 +213,9 @@ fe = { nr = 2, nz = 2, elements = ["Q1/P0"], bases = ["clamped"], stretch = 1.06
             a.u.orders_1
         );
     }
-    let files = tables(&results).unwrap();
+    let files = files(&results);
     for name in ["tangent_fe.csv", "tangent_newton.csv"] {
-        assert!(files.iter().any(|(f, _)| f == name), "{name}");
+        assert!(files.iter().any(|f| f.file == name), "{name}");
     }
 }
 

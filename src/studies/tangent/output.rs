@@ -4,12 +4,14 @@
 //! central-difference error, asymmetry, approximate tangents, ellipticity, flagged states).
 
 use super::fe::FeResult;
-use super::run::{ModelTests, TangentResult};
+use super::run::{ModelTests, StateTest, TangentResult};
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
 use crate::studies::cylinder::bases_name;
-use crate::studies::outputs::{each_study, prefixed, strokes, Context, KindOutput, Of, OwnTable};
-use crate::studies::spec::ApproachModel;
+use crate::studies::outputs::{
+    each_study, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
+};
+use crate::tangent_check::Remainders;
 use crate::text::{escape_html as escape, significant};
 use std::fmt::Write;
 
@@ -21,46 +23,105 @@ const MAX_FLAGGED_CURVES: usize = 200;
 const MAX_LISTED: usize = 30;
 
 impl KindOutput for TangentResult {
-    fn own_table(&self, study: &str) -> Option<OwnTable> {
-        Some(OwnTable {
-            file: "tangent_summary.csv",
-            rows_are: "one row per tangent study, model and state",
-            table: self.summary_table(study),
-        })
-    }
-
-    fn own_tables(&self, study: &str) -> Vec<OwnTable> {
+    /// The summary is the study's `table`; the remainders, the FE level's remainders and its
+    /// Newton histories are `remainders`, `fe_remainders` and `newton` in Python.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        let table = |key, file: &str, rows_are, table| OwnTable {
+            key,
+            file: file.to_string(),
+            rows_are,
+            table,
+        };
         let mut out = vec![
-            OwnTable {
-                file: "tangent.csv",
-                rows_are: "one row per tangent study, model, state, direction and step h",
-                table: self.remainder_table(study),
-            },
-            OwnTable {
-                file: "tangent_summary.csv",
-                rows_are: "one row per tangent study, model and state",
-                table: self.summary_table(study),
-            },
+            table(
+                "table",
+                "tangent_summary.csv",
+                "one row per tangent study, model and state",
+                self.summary_table(study),
+            ),
+            table(
+                "remainders",
+                "tangent.csv",
+                "one row per tangent study, model, state, direction and step h",
+                self.remainder_table(study),
+            ),
         ];
         if let Some(t) = self.fe_table(study) {
-            out.push(OwnTable {
-                file: "tangent_fe.csv",
-                rows_are: "one row per FE configuration, state, tangent and step h",
-                table: t,
-            });
+            out.push(table(
+                "fe_remainders",
+                "tangent_fe.csv",
+                "one row per FE configuration, state, tangent and step h",
+                t,
+            ));
         }
         if let Some(t) = self.newton_table(study) {
-            out.push(OwnTable {
-                file: "tangent_newton.csv",
-                rows_are: "one row per FE configuration, tangent and Newton iteration",
-                table: t,
-            });
+            out.push(table(
+                "newton",
+                "tangent_newton.csv",
+                "one row per FE configuration, tangent and Newton iteration",
+                t,
+            ));
         }
         out
     }
 
-    fn approach_models(&self) -> Vec<&ApproachModel> {
-        self.models.iter().map(|m| &m.model).collect()
+    fn used(&self) -> Used {
+        Used {
+            models: self.models.iter().map(|m| m.model.clone()).collect(),
+            ..Used::default()
+        }
+    }
+
+    /// Per model: its least order of r₁ and its flagged states.
+    fn console(&self, study: &str) -> Vec<String> {
+        self.models
+            .iter()
+            .map(|m| {
+                let least = over_states(m, true, |s| least_over(s, |r| r.order_1));
+                let rate = m.rate.map_or(String::new(), |r| format!(", λ̇ = {r} 1/s"));
+                format!(
+                    "{study}: {}{rate}: order of r1 ≥ {}; {} of {} states flagged",
+                    m.label,
+                    least.map_or("–".into(), |o| significant(o, 3)),
+                    flagged(m),
+                    m.states.len()
+                )
+            })
+            .collect()
+    }
+
+    /// How many model–state pairs were flagged, by kind.
+    fn findings(&self) -> Vec<String> {
+        let mut kinds: Vec<(String, usize)> = Vec::new();
+        for m in &self.models {
+            for s in &m.states {
+                let kind = match s {
+                    Err(_) => Some("not-evaluable".to_string()),
+                    Ok(s) => s
+                        .directions
+                        .iter()
+                        .flatten()
+                        .find_map(|d| d.flag.as_ref().map(|f| f.kind().to_string())),
+                };
+                if let Some(kind) = kind {
+                    match kinds.iter_mut().find(|(k, _)| *k == kind) {
+                        Some((_, n)) => *n += 1,
+                        None => kinds.push((kind, 1)),
+                    }
+                }
+            }
+        }
+        let pairs = self.models.len() * self.states.len();
+        let flagged: usize = kinds.iter().map(|(_, n)| n).sum();
+        let by: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        vec![format!(
+            "{flagged} of {pairs} model–state pairs flagged{}",
+            if by.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", by.join(", "))
+            }
+        )]
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
@@ -75,6 +136,23 @@ impl KindOutput for TangentResult {
         }
         Ok(())
     }
+}
+
+/// The least of a remainder statistic over a state's directions.
+fn least_over(s: &StateTest, f: fn(&Remainders) -> Option<f64>) -> Option<f64> {
+    s.directions.iter().flatten().filter_map(f).reduce(f64::min)
+}
+
+/// The states of `m` flagged along some direction, or not evaluable.
+fn flagged(m: &ModelTests) -> usize {
+    m.states
+        .iter()
+        .filter(|s| {
+            s.as_ref().map_or(true, |s| {
+                s.directions.iter().flatten().any(|d| d.flag.is_some())
+            })
+        })
+        .count()
 }
 
 /// `(h, r(h)/r(hₙ))` of the remainders above `floor`, hₙ the smallest such step: every curve
@@ -360,11 +438,7 @@ fn cell(x: Option<f64>, what: &str, study: &str) -> Result<String, AppError> {
 }
 
 /// The largest (or with `least`, the least) of a model's values over its states.
-fn over_states(
-    m: &ModelTests,
-    least: bool,
-    f: impl Fn(&super::StateTest) -> Option<f64>,
-) -> Option<f64> {
+fn over_states(m: &ModelTests, least: bool, f: impl Fn(&StateTest) -> Option<f64>) -> Option<f64> {
     let values = m.states.iter().flatten().filter_map(f);
     if least {
         values.reduce(f64::min)
@@ -375,10 +449,7 @@ fn over_states(
 
 /// One row of the per-model table.
 fn model_row(h: &mut String, m: &ModelTests, study: &str) -> Result<(), AppError> {
-    let directions =
-        |s: &super::StateTest, f: fn(&crate::tangent_check::Remainders) -> Option<f64>| {
-            s.directions.iter().flatten().filter_map(f).reduce(f64::min)
-        };
+    let directions = least_over;
     let approximation = |names: &'static [&'static str]| {
         over_states(m, false, |s| {
             s.report
@@ -388,15 +459,7 @@ fn model_row(h: &mut String, m: &ModelTests, study: &str) -> Result<(), AppError
                 .map(|(_, e)| *e)
         })
     };
-    let flagged = m
-        .states
-        .iter()
-        .filter(|s| {
-            s.as_ref().map_or(true, |s| {
-                s.directions.iter().flatten().any(|d| d.flag.is_some())
-            })
-        })
-        .count();
+    let flagged = flagged(m);
     let rate = m.rate.map_or(String::new(), |r| format!(", λ̇ = {r} 1/s"));
     let _ = writeln!(
         h,

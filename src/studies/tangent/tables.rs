@@ -6,7 +6,7 @@
 //! `tangent_newton.csv` (Newton's residual per iteration with each tangent).
 
 use super::run::{ModelTests, StateTest, TangentResult};
-use crate::studies::table::Table;
+use crate::studies::table::{every_row, Table};
 
 /// Names of F's entries, row by row.
 const F_ENTRIES: [&str; 9] = [
@@ -16,35 +16,31 @@ const F_ENTRIES: [&str; 9] = [
 /// The model columns every point table starts with.
 fn model_columns(t: Table, study: &str, energy: &str, rows: &[&ModelTests]) -> Table {
     let cell = |i: usize| rows.iter().map(move |m| m.model.cells()[i].clone());
-    t.text(
-        "study",
-        "the study's name",
-        rows.iter().map(|_| Some(study.to_string())),
-    )
-    .text(
-        "energy",
-        "the passive energy",
-        rows.iter().map(|_| Some(energy.to_string())),
-    )
-    .text("approach", "activation approach (empty: passive)", cell(0))
-    .text(
-        "law",
-        "activation law (passive for the passive material; empty for active stress)",
-        cell(1),
-    )
-    .text("coupling", "coupling (empty: none)", cell(2))
-    .number(
-        "d",
-        "-",
-        "damage",
-        rows.iter().map(|m| m.model.model.map(|c| c.damage)),
-    )
-    .number(
-        "stretch_rate",
-        "1/s",
-        "fibre stretch rate λ̇ under force–velocity (empty: quasi-static)",
-        rows.iter().map(|m| m.rate),
-    )
+    t.text("study", "the study's name", every_row(study, rows.len()))
+        .text(
+            "energy",
+            "the passive energy",
+            every_row(energy, rows.len()),
+        )
+        .text("approach", "activation approach (empty: passive)", cell(0))
+        .text(
+            "law",
+            "activation law (passive for the passive material; empty for active stress)",
+            cell(1),
+        )
+        .text("coupling", "coupling (empty: none)", cell(2))
+        .number(
+            "d",
+            "-",
+            "damage",
+            rows.iter().map(|m| m.model.model.map(|c| c.damage)),
+        )
+        .number(
+            "stretch_rate",
+            "1/s",
+            "fibre stretch rate λ̇ under force–velocity (empty: quasi-static)",
+            rows.iter().map(|m| m.rate),
+        )
 }
 
 /// The summary's flag, its reason and the notes of one model at one state, over its directions.
@@ -214,15 +210,11 @@ impl TangentResult {
         }
         Some(
             Table::default()
-                .text(
-                    "study",
-                    "the study's name",
-                    rows.iter().map(|_| Some(study.to_string())),
-                )
+                .text("study", "the study's name", every_row(study, rows.len()))
                 .text(
                     "model",
                     "the FE level's model",
-                    rows.iter().map(|_| Some(fe.model.clone())),
+                    every_row(&fe.model, rows.len()),
                 )
                 .text(
                     "element",
@@ -294,12 +286,12 @@ impl TangentResult {
                 .text(
                     "study",
                     "the study's name",
-                    rows.iter().map(|_| Some(study.to_string())),
+                    every_row(study, rows.len()),
                 )
                 .text(
                     "model",
                     "the FE level's model",
-                    rows.iter().map(|_| Some(fe.model.clone())),
+                    every_row(&fe.model, rows.len()),
                 )
                 .text(
                     "element",
@@ -322,11 +314,10 @@ impl TangentResult {
                     "exact, symmetric frozen or finite differences",
                     rows.iter().map(|r| Some(r.1.tangent.to_string())),
                 )
-                .number(
+                .integer(
                     "iteration",
-                    "-",
                     "Newton iteration from the load step's predictor (0: the predictor)",
-                    rows.iter().map(|r| Some(r.2 as f64)),
+                    rows.iter().map(|r| Some(r.2 as i64)),
                 )
                 .number(
                     "residual",
@@ -334,10 +325,10 @@ impl TangentResult {
                     "the solver's scaled residual",
                     rows.iter().map(|r| Some(r.3)),
                 )
-                .text(
+                .boolean(
                     "converged",
                     "whether the residual reached 1e-10 within the iterations allowed",
-                    rows.iter().map(|r| Some(r.1.converged.to_string())),
+                    rows.iter().map(|r| Some(r.1.converged)),
                 )
                 .number(
                     "seconds_per_iteration",
