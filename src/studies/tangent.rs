@@ -84,7 +84,7 @@ pub struct TangentSpec {
     pub passive: Option<bool>,
     /// The finite-element level (default none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub fe: Option<FeSpec>,
+    pub fe: Option<Box<FeSpec>>,
 }
 
 /// `h = { largest = 0.015625, smallest = 9.5e-7 }`: the steps 2⁻ᵏ between them.
@@ -365,7 +365,7 @@ pub fn resolve(spec: &TangentSpec, d: &Defaults) -> Result<(TangentStudy, Tangen
     let fe = match &spec.fe {
         Some(f) => {
             let (level, written) = fe::resolve(f, d).map_err(|e| e.within("fe"))?;
-            resolved.fe = Some(written);
+            resolved.fe = Some(Box::new(written));
             Some(level)
         }
         None => None,
@@ -429,15 +429,17 @@ pub fn for_scene(
             super::Study::Cylinder(c) => Some(c),
             _ => None,
         })
-        .map(|c| FeSpec {
-            radius: Some(c.radius),
-            length: Some(c.length),
-            nr: Some(c.nr.min(4) as i64),
-            nz: Some(c.nz.min(8) as i64),
-            law: Some(c.law),
-            coupling: Some(c.coupling),
-            damage: c.damages.first().copied(),
-            ..FeSpec::default()
+        .map(|c| {
+            Box::new(FeSpec {
+                radius: Some(c.radius),
+                length: Some(c.length),
+                nr: Some(c.nr.min(4) as i64),
+                nz: Some(c.nz.min(8) as i64),
+                law: Some(c.law),
+                coupling: Some(c.coupling),
+                damage: c.damages.first().copied(),
+                ..FeSpec::default()
+            })
         });
     resolve(
         &TangentSpec {

@@ -12,7 +12,7 @@
 //! floor is 10³ ε √n (n free dofs) in the scaled norm, a bound on the rounding of R whose terms
 //! are at most of the scale σ.
 
-use super::taylor::{median, pair_orders, FLOOR_EPSILONS};
+use super::taylor::{orders, FLOOR_EPSILONS};
 use crate::fem::assembly::Assembler;
 use crate::fem::dofs::DofMap;
 use crate::fem::{AxisymmetricMaterial, Mesh};
@@ -62,16 +62,15 @@ pub struct AssembledTaylor {
 impl Rows {
     /// The orders of the remainders `r0`, `r1` above `floor`.
     fn new(h: &[f64], r0: Vec<Option<f64>>, r1: Vec<Option<f64>>, floor: f64) -> Self {
-        let (orders_0, orders_1) = (pair_orders(h, &r0, floor), pair_orders(h, &r1, floor));
-        let valid = |o: &[Option<f64>]| o.iter().flatten().copied().collect::<Vec<_>>();
+        let (orders_0, orders_1, order_0, order_1, least_order_1) = orders(h, &r0, &r1, floor);
         Self {
-            order_0: median(valid(&orders_0)),
-            order_1: median(valid(&orders_1)),
-            least_order_1: valid(&orders_1).into_iter().reduce(f64::min),
             r0,
             r1,
             orders_0,
             orders_1,
+            order_0,
+            order_1,
+            least_order_1,
         }
     }
 }

@@ -10,7 +10,9 @@
 //! 2. the tangent is an approximation by choice ([`Known::approximate`]);
 //! 3. the tangent differs from central differences of the stress by more than
 //!    [`WRONG_TANGENT`] (relative): it is not the stress's derivative;
-//! 4. none of these: unexplained (for r₀, a jump of the stress the material does not know of).
+//! 4. both orders lie in their bands on every smaller pair (at least two): the larger steps
+//!    reach beyond the scale on which the stress curves (`large-steps`);
+//! 5. none of these: unexplained (for r₀, a jump of the stress the material does not know of).
 
 use super::material::{Edge, Known};
 use nalgebra::{Matrix3, Vector3};
@@ -34,6 +36,13 @@ pub enum Cause {
     Tangent {
         /// ‖A_fd − A‖/‖A‖.
         fd_error: f64,
+    },
+    /// No edge, central differences agree with A, and both orders lie in their bands on every
+    /// smaller pair of steps (at least two), from `from` down: the larger steps reach beyond
+    /// the scale on which the stress curves (a stiff exponential or volumetric term).
+    LargeSteps {
+        /// The largest step from which the orders lie in their bands.
+        from: f64,
     },
     /// No edge, and central differences agree with A (or could not be taken).
     Unexplained {
@@ -62,6 +71,7 @@ impl Flag {
             Cause::Edge(e) => e.kind,
             Cause::Approximate(_) => "approximate",
             Cause::Tangent { .. } => "wrong-tangent",
+            Cause::LargeSteps { .. } => "large-steps",
             Cause::Unexplained { .. } => "unexplained",
         }
     }
@@ -81,6 +91,10 @@ impl Flag {
                 "the tangent is not the stress's derivative: central differences of the stress differ from it by {} (relative)",
                 crate::text::significant(*fd_error, 3)
             ),
+            Cause::LargeSteps { from } => format!(
+                "the orders lie in their bands from h = {} down, and no edge of the model lies on the segment: the larger steps reach beyond the scale on which the stress curves (a stiff exponential or volumetric term); a smaller h.largest tests the tangent",
+                crate::text::significant(*from, 3)
+            ),
             Cause::Unexplained { fd_error } => format!(
                 "no edge of the model lies on the segment and central differences agree with the tangent to {}",
                 fd_error.map_or("(not computed)".to_string(), |e| crate::text::significant(e, 3))
@@ -88,6 +102,22 @@ impl Flag {
         };
         format!("{order}: {cause}")
     }
+}
+
+/// The pair after `k` from which every pair of both orders lies in its band, if there are at
+/// least two such pairs and no pair after `k` leaves a band.
+fn settles((orders_0, orders_1): (&[Option<f64>], &[Option<f64>]), k: usize) -> Option<usize> {
+    let inside = |o: &[Option<f64>], (lo, hi): (f64, f64)| {
+        let v: Vec<f64> = o
+            .get(k + 1..)
+            .unwrap_or(&[])
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        v.len() >= 2 && v.iter().all(|x| *x >= lo && *x <= hi)
+    };
+    (inside(orders_0, BAND_0) && inside(orders_1, BAND_1)).then_some(k + 1)
 }
 
 /// The first pair whose order lies outside `band`: (its index, its order).
@@ -114,8 +144,10 @@ pub fn crosses(f: &Matrix3<f64>, df: &Matrix3<f64>, m: &Vector3<f64>, h: f64, le
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), v| {
             (l.min(*v), u.max(*v))
         });
+    // A segment that starts on the level crosses it: |Fm|² and (|Fm|)² may differ in the last bit.
     let target = level * level;
-    lo <= target && target <= hi
+    let touch = 1e-12 * target;
+    lo <= target + touch && target - touch <= hi
 }
 
 /// The flag of a Taylor test at F along `df` (unit) with steps `h` and pair orders `orders_0`,
@@ -145,7 +177,10 @@ pub fn attribute<const N: usize>(
         (None, Some(why)) if remainder == 1 => Cause::Approximate(why.clone()),
         _ => match fd_error {
             Some(e) if remainder == 1 && e > WRONG_TANGENT => Cause::Tangent { fd_error: e },
-            _ => Cause::Unexplained { fd_error },
+            _ => match settles((orders_0, orders_1), k) {
+                Some(from) => Cause::LargeSteps { from: h[from] },
+                None => Cause::Unexplained { fd_error },
+            },
         },
     };
     Some(Flag {

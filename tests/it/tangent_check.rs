@@ -4,10 +4,12 @@
 //! against that of central differences of P taken here; the neo-Hookean tangent against its
 //! closed form with and without a volumetric energy; the assembled FE tangent's order 2 (1 for
 //! the symmetric approximation); a ported, hand-derived tangent passing, and the same tangent
-//! with one entry perturbed reported with order 1 and its cause.
+//! with one entry perturbed reported with order 1 and its cause; under force–velocity a state at
+//! rest flagged where the stretch rate reverses.
 
 use activemuscle::active::{
-    ActiveCurve, Approach, BelowMinimum, Coupling, EnergyLaw, FrozenTangent, ImplicitLaw, Law,
+    ActiveCurve, Approach, BelowMinimum, Coupling, EnergyLaw, ForceVelocity, FrozenTangent,
+    ImplicitLaw, Law, StretchRate,
 };
 use activemuscle::energy::{GiantesioMusesti, NeoHookean, SHIPPED};
 use activemuscle::fem::assembly::Assembler;
@@ -139,6 +141,30 @@ fn a_state_on_either_side_of_lambda_min_is_flagged_with_that_cause() {
     assert_eq!(flag.kind(), "lambda-min-jump", "{}", flag.reason());
     assert_eq!(flag.remainder, 0);
     assert!(flag.order < 0.5 && flag.h >= 0.002, "{}", flag.reason());
+}
+
+#[test]
+fn a_state_at_rest_under_force_velocity_is_flagged_where_the_rate_reverses() {
+    let gm = GiantesioMusesti::paper();
+    // 4C's force–velocity: the slopes at λ̇ = 0, −d_e(1 + k_e k_c)/λ̇_min and −d_c(1 + k_c)/λ̇_min,
+    // differ (13/17 and 6/17 s), so the active stress has a kink where the rate reverses.
+    let law = ForceVelocity::new(-17.0, 5.0, 5.0, 0.5, 1.0).unwrap();
+    let (lambda, dt) = (1.1, 0.01);
+    let e11 = Matrix3::from_fn(|i, j| if i == 0 && j == 0 { 1.0 } else { 0.0 });
+    for (rate, flagged) in [(0.0, true), (-1.0, false)] {
+        let mut muscle = Muscle::active_stress(gm, ActiveCurve::paper(), 0.0).unwrap();
+        let previous = lambda - rate * dt;
+        muscle
+            .set_rate(Some(StretchRate { law, previous, dt }))
+            .unwrap();
+        let point = MusclePoint::new(muscle, Vector3::x()).unwrap();
+        let report = taylor_test(&point, &uniaxial(lambda), &e11, &steps()).unwrap();
+        match (&report.remainders.flag, flagged) {
+            (Some(f), true) => assert_eq!(f.kind(), "rate-reversal", "{}", f.reason()),
+            (None, false) => {}
+            (flag, _) => panic!("λ̇ = {rate}: {flag:?}"),
+        }
+    }
 }
 
 #[test]

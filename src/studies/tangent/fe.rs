@@ -82,7 +82,7 @@ pub struct FeLevel {
     /// Bases.
     pub bases: Vec<Bases>,
     /// Incompressibility: its name and volumetric energy (`None`: exact).
-    pub forms: Vec<(String, Option<Volumetric>)>,
+    pub forms: Forms,
     /// λ₁.
     pub stretch: f64,
     /// The scene's approach.
@@ -126,19 +126,19 @@ fn named<T: Copy>(
         .collect()
 }
 
-/// The incompressibility forms (default: the scene's).
+/// Incompressibility forms: each one's name and volumetric energy (`None`: exact).
+type Forms = Vec<(String, Option<Volumetric>)>;
+
+/// The cylinder's (radius, length) and cells (nr, nz).
+type Geometry = ((f64, f64), (usize, usize));
+
+/// The incompressibility forms (default: the scene's), and their specs written out.
 fn forms(
     given: Option<&[IncompressibilitySpec]>,
     d: &Defaults,
-) -> Result<
-    (
-        Vec<(String, Option<Volumetric>)>,
-        Vec<IncompressibilitySpec>,
-    ),
-    SpecError,
-> {
+) -> Result<(Forms, Vec<IncompressibilitySpec>), SpecError> {
     let specs = match given {
-        Some(g) if g.is_empty() => {
+        Some([]) => {
             return Err(SpecError::new(
                 "incompressibility",
                 "[]",
@@ -159,7 +159,7 @@ fn forms(
 }
 
 /// The cylinder's radius, length and cells (nr, nz).
-fn mesh_of(spec: &FeSpec) -> Result<((f64, f64), (usize, usize)), SpecError> {
+fn mesh_of(spec: &FeSpec) -> Result<Geometry, SpecError> {
     let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
     let length = positive("length", spec.length.unwrap_or(3.0))?;
     let (nr, nz) = (spec.nr.unwrap_or(2), spec.nz.unwrap_or(4));
@@ -547,7 +547,7 @@ fn newton(
                 run.converged = true;
                 break;
             }
-            if !(r < 1e3 * run.residuals[0]) {
+            if r.is_nan() || r >= 1e3 * run.residuals[0] {
                 return Err(AppError::Invalid(format!(
                     "diverged: scaled residual {r:.3e}"
                 )));

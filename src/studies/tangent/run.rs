@@ -182,10 +182,14 @@ impl TangentStudy {
             Some((r, _)) => r.iter().copied().map(Some).collect(),
             None => vec![None],
         };
+        // The passive material has no activation for a stretch rate to act on: tested once.
         let jobs: Vec<(&ApproachModel, Option<f64>)> = self
             .models
             .iter()
-            .flat_map(|m| rates.iter().map(move |r| (m, *r)))
+            .flat_map(|m| match m.model {
+                None => vec![(m, None)],
+                Some(_) => rates.iter().map(|r| (m, *r)).collect(),
+            })
             .collect();
         ctx.progress.start(&self.name, jobs.len() * states.len());
         let computed: Vec<Result<ModelTests, Failure>> = jobs

@@ -78,14 +78,12 @@ pub fn matrix(key: &str, v: &[f64], state: bool) -> Result<Matrix3<f64>, SpecErr
         return Err(SpecError::new(key, shown(), "every entry must be finite"));
     }
     let m = Matrix3::from_row_slice(v);
-    if state && !(m.determinant() > 0.0) {
+    let det = m.determinant();
+    if state && (det.is_nan() || det <= 0.0) {
         return Err(SpecError::new(
             key,
             shown(),
-            format!(
-                "det F = {} must be > 0",
-                crate::text::significant(m.determinant(), 6)
-            ),
+            format!("det F = {} must be > 0", crate::text::significant(det, 6)),
         ));
     }
     if !state && m.norm() == 0.0 {
@@ -133,6 +131,33 @@ fn along_fibre(m: &Vector3<f64>, s: f64) -> Matrix3<f64> {
     mm * s + (Matrix3::identity() - mm) / s.sqrt()
 }
 
+/// A named path: its words, its amounts and F̂ of an amount.
+type Path<'a> = (&'static str, &'a [f64], fn(f64) -> Matrix3<f64>);
+
+/// F̂ of uniaxial stretch λ along the fibre e₁: diag(λ, λ^-½, λ^-½).
+fn along(l: f64) -> Matrix3<f64> {
+    let r = 1.0 / l.sqrt();
+    Matrix3::from_diagonal(&Vector3::new(l, r, r))
+}
+
+/// F̂ of uniaxial stretch λ across the fibre, along e₂: diag(λ^-½, λ, λ^-½).
+fn across(l: f64) -> Matrix3<f64> {
+    let r = 1.0 / l.sqrt();
+    Matrix3::from_diagonal(&Vector3::new(r, l, r))
+}
+
+/// F̂ of simple shear k along the fibre: I + k e₁⊗e₂.
+fn shear(k: f64) -> Matrix3<f64> {
+    let mut fh = Matrix3::identity();
+    fh[(0, 1)] = k;
+    fh
+}
+
+/// F̂ of equibiaxial stretch λ in the plane (e₁, e₂): diag(λ, λ, λ⁻²).
+fn equibiaxial(l: f64) -> Matrix3<f64> {
+    Matrix3::from_diagonal(&Vector3::new(l, l, 1.0 / (l * l)))
+}
+
 impl StateSources {
     /// The number of states.
     pub fn len(&self) -> usize {
@@ -161,36 +186,16 @@ impl StateSources {
             .enumerate()
             .map(|(i, f)| named(format!("given {}", i + 1), *f))
             .collect();
-        for &l in &self.along {
-            let r = 1.0 / l.sqrt();
-            let fh = Matrix3::from_diagonal(&Vector3::new(l, r, r));
-            out.push(named(
-                format!("uniaxial along λ = {}", shortest(l)),
-                rotated(fh),
-            ));
-        }
-        for &l in &self.across {
-            let r = 1.0 / l.sqrt();
-            let fh = Matrix3::from_diagonal(&Vector3::new(r, l, r));
-            out.push(named(
-                format!("uniaxial across λ = {}", shortest(l)),
-                rotated(fh),
-            ));
-        }
-        for &k in &self.shear {
-            let mut fh = Matrix3::identity();
-            fh[(0, 1)] = k;
-            out.push(named(
-                format!("simple shear k = {}", shortest(k)),
-                rotated(fh),
-            ));
-        }
-        for &l in &self.equibiaxial {
-            let fh = Matrix3::from_diagonal(&Vector3::new(l, l, 1.0 / (l * l)));
-            out.push(named(
-                format!("equibiaxial λ = {}", shortest(l)),
-                rotated(fh),
-            ));
+        let paths: [Path<'_>; 4] = [
+            ("uniaxial along λ", &self.along, along),
+            ("uniaxial across λ", &self.across, across),
+            ("simple shear k", &self.shear, shear),
+            ("equibiaxial λ", &self.equibiaxial, equibiaxial),
+        ];
+        for (what, amounts, path) in paths {
+            for &a in amounts {
+                out.push(named(format!("{what} = {}", shortest(a)), rotated(path(a))));
+            }
         }
         out.extend(self.random_states(m, lambda_min, compressible));
         out

@@ -5,7 +5,9 @@
 //! and with the FE level `tangent_fe.csv` (the assembled residual's remainders) and
 //! `tangent_newton.csv` (Newton's residual per iteration with each tangent).
 
+use super::fe::{FeConfig, FeResult};
 use super::run::{ModelTests, StateTest, TangentResult};
+use crate::studies::cylinder::bases_name;
 use crate::studies::table::{every_row, Table};
 
 /// Names of F's entries, row by row.
@@ -40,6 +42,34 @@ fn model_columns(t: Table, study: &str, energy: &str, rows: &[&ModelTests]) -> T
             "1/s",
             "fibre stretch rate λ̇ under force–velocity (empty: quasi-static)",
             rows.iter().map(|m| m.rate),
+        )
+}
+
+/// The columns every FE level table starts with: the study, the model and each row's
+/// configuration.
+fn fe_columns(study: &str, fe: &FeResult, rows: &[&FeConfig]) -> Table {
+    let of = |f: fn(&FeConfig) -> String| rows.iter().map(move |c| Some(f(c)));
+    Table::default()
+        .text("study", "the study's name", every_row(study, rows.len()))
+        .text(
+            "model",
+            "the FE level's model",
+            every_row(&fe.model, rows.len()),
+        )
+        .text(
+            "element",
+            "the element",
+            of(|c| c.element.name().to_string()),
+        )
+        .text(
+            "bases",
+            "clamped or sliding",
+            of(|c| bases_name(c.bases).to_string()),
+        )
+        .text(
+            "incompressibility",
+            "exact or the volumetric form",
+            of(|c| c.incompressibility.clone()),
         )
 }
 
@@ -172,7 +202,7 @@ impl TangentResult {
         );
         for (k, name) in F_ENTRIES.iter().enumerate() {
             t = t.number(
-                *name,
+                name,
                 "-",
                 "the state's F, row by row",
                 rows.iter()
@@ -208,30 +238,9 @@ impl TangentResult {
                 }
             }
         }
+        let configs: Vec<&FeConfig> = rows.iter().map(|r| r.0).collect();
         Some(
-            Table::default()
-                .text("study", "the study's name", every_row(study, rows.len()))
-                .text(
-                    "model",
-                    "the FE level's model",
-                    every_row(&fe.model, rows.len()),
-                )
-                .text(
-                    "element",
-                    "the element",
-                    rows.iter().map(|r| Some(r.0.element.name().to_string())),
-                )
-                .text(
-                    "bases",
-                    "clamped or sliding",
-                    rows.iter()
-                        .map(|r| Some(crate::studies::cylinder::bases_name(r.0.bases).to_string())),
-                )
-                .text(
-                    "incompressibility",
-                    "exact or the volumetric form",
-                    rows.iter().map(|r| Some(r.0.incompressibility.clone())),
-                )
+            fe_columns(study, fe, &configs)
                 .text(
                     "state",
                     "predictor or converged",
@@ -281,34 +290,9 @@ impl TangentResult {
                 }
             }
         }
+        let configs: Vec<&FeConfig> = rows.iter().map(|r| r.0).collect();
         Some(
-            Table::default()
-                .text(
-                    "study",
-                    "the study's name",
-                    every_row(study, rows.len()),
-                )
-                .text(
-                    "model",
-                    "the FE level's model",
-                    every_row(&fe.model, rows.len()),
-                )
-                .text(
-                    "element",
-                    "the element",
-                    rows.iter().map(|r| Some(r.0.element.name().to_string())),
-                )
-                .text(
-                    "bases",
-                    "clamped or sliding",
-                    rows.iter()
-                        .map(|r| Some(crate::studies::cylinder::bases_name(r.0.bases).to_string())),
-                )
-                .text(
-                    "incompressibility",
-                    "exact or the volumetric form",
-                    rows.iter().map(|r| Some(r.0.incompressibility.clone())),
-                )
+            fe_columns(study, fe, &configs)
                 .text(
                     "tangent",
                     "exact, symmetric frozen or finite differences",
