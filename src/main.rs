@@ -3,7 +3,7 @@
 
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
-use activemuscle::studies::tradeoff::run_until as run_tradeoff;
+use activemuscle::studies::tradeoff::{run_until as run_tradeoff, scene_options};
 use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
@@ -395,19 +395,13 @@ fn tradeoff_command(
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
-    let options = scene.tradeoff_options().cloned().unwrap_or_default();
+    let options = scene_options(&scene.studies, &scene.defaults);
     let printing = Printing::new(true, false);
     let bar = printing.study();
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
     let stop = Stop::new();
     on_interrupt(&stop);
-    let results = run_tradeoff(
-        &scene.models,
-        &options,
-        &scene.fallback(),
-        progress,
-        Some(&stop),
-    )?;
+    let results = run_tradeoff(&scene.models, &options, progress, Some(&stop))?;
     let wall = started.elapsed().as_secs_f64();
     let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
     staging.commit()?;
@@ -450,13 +444,13 @@ fn tradeoff_command(
 /// study's scene with every default written out.
 fn tangent_scene(mut scene: Scene) -> Result<Scene, AppError> {
     let (study, spec) = {
-        let act = &scene.resolved.activation;
-        let damage = act.damage.clone().unwrap_or_else(|| vec![0.0]);
+        let choices = scene.resolved.activation.defaults();
         let defaults = activemuscle::studies::spec::Defaults {
             models: &scene.models,
-            law: act.law.unwrap_or_default(),
-            coupling: act.coupling.unwrap_or_default(),
-            damage: &damage,
+            approach: choices.approach,
+            law: choices.law,
+            coupling: choices.coupling,
+            damage: &choices.damage,
             base: Path::new(&scene.file).parent().unwrap_or(Path::new("")),
         };
         activemuscle::studies::tangent::for_scene(&scene.studies, &defaults)

@@ -64,7 +64,10 @@ pub fn write_run(
         staging.adopt(&rel)?;
         files.push(rel.display().to_string());
     }
-    if let Some(t) = results.tradeoff() {
+    if let Some((_, t)) = results
+        .of::<crate::studies::tradeoff::TradeoffResults>()
+        .next()
+    {
         let (staged, figures) = tradeoff::stage_pages(
             t,
             staging,

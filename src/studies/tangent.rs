@@ -26,7 +26,7 @@ mod tables;
 pub use fe::{FeConfig, FeLevel, FeResult, FeSpec, FeTaylor, NewtonRun};
 pub use run::{ModelTests, StateTest, TangentResult};
 
-use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
+use super::spec::{damages, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use crate::active::Approach;
 use crate::app_error::SpecError;
 use crate::models::{CouplingKind, LawKind, Models};
@@ -274,66 +274,53 @@ fn rates(spec: &mut TangentSpec, models: &Models) -> Result<Option<(Vec<f64>, f6
 }
 
 /// Every approach × law × coupling × damage `spec` asks for; without `laws`, every law each
-/// approach supports on this material.
+/// approach supports on this material; without `couplings`, both.
 fn models_of(spec: &mut TangentSpec, d: &Defaults) -> Result<Vec<ApproachModel>, SpecError> {
-    let approaches = spec
-        .approaches
-        .clone()
-        .unwrap_or_else(|| vec![d.models.approach]);
-    let couplings = spec
-        .couplings
-        .clone()
-        .unwrap_or_else(|| vec![CouplingKind::Frozen, CouplingKind::Consistent]);
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let approaches = spec.approaches.clone().unwrap_or_else(|| vec![d.approach]);
+    let both = [CouplingKind::Frozen, CouplingKind::Consistent];
+    let passive = spec.passive.unwrap_or(true);
     let mut models = Vec::new();
-    if spec.passive.unwrap_or(true) {
-        models.push(ApproachModel {
-            approach: d.models.approach,
-            model: None,
-        });
+    if passive {
+        models.push(ApproachModel::passive(d));
     }
-    match &spec.laws {
-        Some(laws) => {
-            couplings_for(laws, &couplings)?;
-            models.extend(approach_models(
-                d.models,
-                &approaches,
-                laws,
-                &couplings,
-                &damage,
-            )?);
+    let (mut laws, mut couplings, mut damage) = (Vec::new(), None, None);
+    for (j, approach) in approaches.iter().enumerate() {
+        let supported: Vec<LawKind> = approach
+            .laws()
+            .iter()
+            .copied()
+            .filter(|&l| d.models.supports(*approach, l).is_ok())
+            .collect();
+        let mut keys = ModelKeys {
+            approaches: Some(std::slice::from_ref(approach)),
+            ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
+        };
+        if supported.is_empty() && approach.laws().is_empty() && approaches.len() > 1 {
+            // An approach without a law among others: the laws are the others'.
+            (keys.laws, keys.couplings) = (None, None);
         }
-        None => {
-            let mut all = Vec::new();
-            for (j, &approach) in approaches.iter().enumerate() {
-                let m = Models {
-                    approach,
-                    ..d.models.clone()
-                };
-                let laws: Vec<LawKind> = [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
-                    .into_iter()
-                    .filter(|l| m.supports(*l).is_ok())
-                    .collect();
-                couplings_for(&laws, &couplings)?;
-                models.extend(
-                    approach_models(d.models, &[approach], &laws, &couplings, &damage).map_err(
-                        |e| SpecError {
-                            key: e.key.replace("[0]", &format!("[{j}]")),
-                            ..e
-                        },
-                    )?,
-                );
-                all.push(laws);
-            }
-            // One approach: its laws written out (with several, each takes its own).
-            if let [laws] = all.as_slice() {
-                spec.laws = Some(laws.clone());
-            }
+        let set = keys.resolve(d, &supported, &both).map_err(|e| SpecError {
+            key: e.key.replace("approaches[0]", &format!("approaches[{j}]")),
+            ..e
+        })?;
+        models.extend(set.choices.iter().copied().map(ApproachModel::of));
+        if let Some(l) = set.laws {
+            laws.push(l);
         }
+        couplings = couplings.or(set.couplings);
+        damage = Some(set.damage);
     }
-    (spec.approaches, spec.couplings, spec.damage) =
-        (Some(approaches), Some(couplings), Some(damage));
-    spec.passive = Some(spec.passive.unwrap_or(true));
+    // One lawful approach: its laws written out (with several, each takes its own).
+    if spec.laws.is_none() && laws.len() == 1 {
+        spec.laws = laws.pop();
+    }
+    spec.approaches = Some(approaches);
+    spec.couplings = spec.couplings.clone().or(couplings);
+    spec.damage = Some(match damage {
+        Some(d) => d,
+        None => damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?,
+    });
+    spec.passive = Some(passive);
     if models.is_empty() {
         return Err(SpecError::new(
             "",
@@ -435,9 +422,9 @@ pub fn for_scene(
                 length: Some(c.length),
                 nr: Some(c.nr.min(4) as i64),
                 nz: Some(c.nz.min(8) as i64),
-                law: Some(c.law),
-                coupling: Some(c.coupling),
-                damage: c.damages.first().copied(),
+                law: c.models.first().map(|m| m.law),
+                coupling: c.models.first().map(|m| m.coupling),
+                damage: c.models.first().map(|m| m.damage),
                 ..FeSpec::default()
             })
         });

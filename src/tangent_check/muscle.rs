@@ -255,10 +255,10 @@ impl<E: StrainEnergy> TangentMaterial<9> for MusclePoint<E> {
 }
 
 /// Whether the muscle's activation varies with the fibre stretch (a law other than none or a
-/// constant, or active stress, with the drive on).
+/// constant, or an approach's own energy of the fibre stretch, with the drive on).
 fn varies<E: StrainEnergy>(muscle: &Muscle<E>) -> bool {
-    let law = !matches!(muscle.law(), Law::Passive | Law::Constant(_))
-        || muscle.active_stress_curve().is_some();
+    let law =
+        !matches!(muscle.law(), Law::Passive | Law::Constant(_)) || muscle.fibre_energy().is_some();
     law && !muscle.drive().is_off()
 }
 
@@ -270,8 +270,11 @@ fn rebuilt<E: StrainEnergy>(
     coupling: Coupling,
 ) -> Result<Muscle<E>> {
     let mut out = Muscle::new(muscle.energy().clone(), law, muscle.damage(), coupling)?
-        .with_activation(muscle.activation_level())?
-        .with_map(muscle.map())?;
+        .with_activation(muscle.activation_level())?;
+    if let Some((approach, curve)) = muscle.fibre_energy() {
+        out = out.with_fibre_energy(approach, *curve);
+    }
+    let mut out = out.with_map(muscle.map())?;
     out.set_rate(muscle.drive().rate().copied())?;
     Ok(out)
 }
@@ -286,7 +289,7 @@ fn curve_of<E: StrainEnergy>(muscle: &Muscle<E>) -> Option<ActiveCurve> {
             SolvedLaw::Implicit(l) => Some(*l.curve()),
             SolvedLaw::Energy(l) => Some(*l.curve()),
         },
-        Law::Passive | Law::Constant(_) => muscle.active_stress_curve().copied(),
+        Law::Passive | Law::Constant(_) => muscle.fibre_energy().map(|(_, c)| *c),
     }
 }
 

@@ -16,7 +16,7 @@
 //!   approximate one) and the wall time per iteration (assembly with the tangent, factorisation,
 //!   solve).
 
-use crate::active::{Approach, FrozenTangent};
+use crate::active::FrozenTangent;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::fem::continuation::NonlinearSystem;
@@ -24,7 +24,7 @@ use crate::fem::dofs::DofMap;
 use crate::fem::problem::MixedProblem;
 use crate::fem::tangent_solver::TangentSolver;
 use crate::fem::{AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh, SolverOptions};
-use crate::models::{CouplingKind, IncompressibilitySpec, LawKind, ModelChoice, Models};
+use crate::models::{product, CouplingKind, IncompressibilitySpec, LawKind, ModelChoice, Models};
 use crate::random::Sampler;
 use crate::studies::cylinder::bases_name;
 use crate::studies::spec::{cell_count, positive, Defaults};
@@ -85,8 +85,6 @@ pub struct FeLevel {
     pub forms: Forms,
     /// λ₁.
     pub stretch: f64,
-    /// The scene's approach.
-    pub approach: Approach,
     /// The model.
     pub model: ModelChoice,
     /// Newton iterations from the predictor.
@@ -153,7 +151,7 @@ fn forms(
         let v = s
             .build(&d.models.energy)
             .map_err(|e| e.within(&format!("incompressibility[{j}]")))?;
-        out.push((s.kind.clone().unwrap_or_else(|| "exact".into()), v));
+        out.push((s.kind.unwrap_or_default().name().to_string(), v));
     }
     Ok((out, specs))
 }
@@ -185,16 +183,13 @@ fn model_of(spec: &FeSpec, d: &Defaults) -> Result<ModelChoice, SpecError> {
         .damage
         .unwrap_or(d.damage.first().copied().unwrap_or(0.0));
     crate::studies::spec::damages("damage", &[damage])?;
-    if d.models.approach.has_law() {
+    if !d.approach.laws().is_empty() {
         d.models
-            .supports(law)
+            .supports(d.approach, law)
             .map_err(|rule| SpecError::new("law", format!("\"{}\"", law.name()), rule))?;
     }
-    Ok(ModelChoice {
-        law,
-        coupling: spec.coupling.unwrap_or(d.coupling),
-        damage,
-    })
+    let coupling = spec.coupling.unwrap_or(d.coupling);
+    Ok(product(&[d.approach], &[law], &[coupling], &[damage])[0])
 }
 
 /// Validates `spec` against the scene's defaults; keys relative to `fe`.
@@ -247,7 +242,6 @@ pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecErr
         bases,
         forms,
         stretch,
-        approach: d.models.approach,
         model,
         max_iterations: max_iterations as usize,
     };
@@ -342,11 +336,7 @@ impl FeLevel {
 
     /// Every configuration; one that fails is a failure, the others go on.
     pub fn run(&self, models: &Models, h: &[f64], seed: u64, ctx: &RunContext) -> FeResult {
-        let label = Models {
-            approach: self.approach,
-            ..models.clone()
-        }
-        .label(&self.model);
+        let label = models.label(&self.model);
         let mut out = FeResult {
             model: label.clone(),
             stretches: (self.steps().0, self.stretch),
@@ -379,7 +369,6 @@ impl FeLevel {
     /// The muscle of the model with `frozen` as the frozen tangent.
     fn muscle(&self, models: &Models, frozen: FrozenTangent) -> crate::Result<Muscle<Energy>> {
         Models {
-            approach: self.approach,
             frozen_tangent: frozen,
             ..models.clone()
         }

@@ -97,7 +97,6 @@ where
 /// The muscle of `m` under test: the frozen model with its exact tangent.
 fn muscle_of(models: &Models, m: &ApproachModel) -> crate::Result<Muscle<Energy>> {
     let exact = Models {
-        approach: m.approach,
         frozen_tangent: FrozenTangent::Exact,
         ..models.clone()
     };
