@@ -44,3 +44,6 @@ def test_bad_input_is_an_error_naming_it():
         Material().taylor_test(F, DF, h=[2.0, 0.5, 0.25])
     with pytest.raises(ValueError):
         Material().taylor_test(np.diag([1.0, 1.0, -1.0]), DF)
+    # A non-finite entry of F: a floating-point error naming F, never NaN remainders.
+    with pytest.raises(FloatingPointError, match="entry of F"):
+        Material().taylor_test(np.diag([1.0, np.nan, 1.0]), DF)

@@ -127,7 +127,12 @@ fn a_tangent_study_writes_its_tables_and_flags_what_it_cannot_evaluate() {
 #[test]
 fn bad_input_is_refused_at_its_key() {
     let study = |keys: &str| format!("[[study]]\nkind = \"tangent\"\n{keys}\n");
+    let many = format!(
+        "deformations = [{}]",
+        ["[1, 0, 0, 0, 1, 0, 0, 0, 1]"; 201].join(", ")
+    );
     for (keys, key) in [
+        (many.as_str(), "states"),
         (
             "deformations = [[1, 0, 0, 0, 1, 0, 0, 0, -1]]",
             "deformations[0]",
@@ -139,7 +144,20 @@ fn bad_input_is_refused_at_its_key() {
         ("deformations = [[1, 0, 0, 0, 1]]", "deformations[0]"),
         ("h = { largest = 2.0, smallest = 1e-6 }", "h.largest"),
         ("h = { largest = 0.01, smallest = 0.0 }", "h.smallest"),
+        (
+            "deformations = [[1, 0, 0, 0, 0, 0, 0, 0, 1]]",
+            "deformations[0]",
+        ),
+        (
+            "deformations = [[1, 0, 0, 0, 1, 0, 0, 0, 1], [1, 0, 0, 0, inf, 0, 0, 0, 1]]",
+            "deformations[1]",
+        ),
+        ("h = { largest = 1.0, smallest = 1e-6 }", "h.largest"),
+        ("h = { largest = 0.01, smallest = -1e-6 }", "h.smallest"),
+        ("h = { largest = 0.01, smallest = 0.005 }", "h.smallest"),
         ("random_states = 1000", "random_states"),
+        ("random_states = -1", "random_states"),
+        ("random_directions = 17", "random_directions"),
         (
             "uniaxial_along = { from = 0.5, to = 1.5, step = 0.004 }",
             "states",
@@ -213,6 +231,24 @@ fe = { nr = 2, nz = 2, elements = ["Q1/P0"], bases = ["clamped"], stretch = 1.06
             a.u.orders_1
         );
     }
+    // What each tangent cost: the iterations are those the residual history takes to 1e-10.
+    let costs = fe.costs();
+    for n in &c.newton {
+        let to_tolerance = n.residuals.iter().position(|&r| r <= 1e-10);
+        let cost = costs.iter().find(|k| k.tangent == n.tangent).unwrap();
+        assert_eq!(cost.iterations, to_tolerance.map(|k| (k, k)), "{n:?}");
+        assert_eq!(cost.converged == 1, to_tolerance.is_some(), "{cost:?}");
+        assert!(cost
+            .seconds_per_iteration
+            .is_some_and(|s| s > 0.0 && s.is_finite()));
+    }
+    let console = results.studies[0].result.console("t");
+    assert!(
+        console.iter().any(|l| l
+            .starts_with("t: FE level, Newton from the predictor with the exact: ")
+            && l.contains("ms to 1e-10")),
+        "{console:?}"
+    );
     let files = files(&results);
     for name in ["tangent_fe.csv", "tangent_newton.csv"] {
         assert!(files.iter().any(|f| f.file == name), "{name}");

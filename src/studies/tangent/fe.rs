@@ -306,6 +306,86 @@ pub struct NewtonRun {
     pub failure: Option<String>,
 }
 
+impl NewtonRun {
+    /// Iterations to the tolerance (`None`: not reached).
+    pub fn iterations(&self) -> Option<usize> {
+        self.converged
+            .then(|| self.residuals.len().saturating_sub(1))
+    }
+
+    /// The time to the tolerance, iterations × time per iteration \[s\] (`None`: not reached).
+    pub fn seconds_to_converge(&self) -> Option<f64> {
+        self.iterations()
+            .map(|n| n as f64 * self.seconds_per_iteration)
+    }
+}
+
+/// What a tangent cost Newton over the FE level's configurations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TangentCost {
+    /// The tangent.
+    pub tangent: &'static str,
+    /// Configurations run with it.
+    pub runs: usize,
+    /// How many of them reached the tolerance.
+    pub converged: usize,
+    /// How many of them failed (diverged, or the material could not be evaluated).
+    pub failed: usize,
+    /// The fewest and most iterations to the tolerance, over those that reached it.
+    pub iterations: Option<(usize, usize)>,
+    /// The least and largest time to the tolerance, over those that reached it \[s\].
+    pub seconds_to_converge: Option<(f64, f64)>,
+    /// The median time per iteration \[s\].
+    pub seconds_per_iteration: Option<f64>,
+    /// Of the runs that did not reach it: the most iterations run and the largest residual left.
+    pub left: Option<(usize, f64)>,
+}
+
+/// The least and largest of `values`.
+fn range<T: Copy + PartialOrd>(values: impl Iterator<Item = T>) -> Option<(T, T)> {
+    values.fold(None, |r, v| match r {
+        None => Some((v, v)),
+        Some((lo, hi)) => Some((if v < lo { v } else { lo }, if v > hi { v } else { hi })),
+    })
+}
+
+impl FeResult {
+    /// Per tangent (in the order the configurations ran them), what it cost Newton.
+    pub fn costs(&self) -> Vec<TangentCost> {
+        let runs = || self.configs.iter().flat_map(|c| c.newton.iter());
+        let mut names: Vec<&'static str> = Vec::new();
+        for n in runs() {
+            if !names.contains(&n.tangent) {
+                names.push(n.tangent);
+            }
+        }
+        names
+            .into_iter()
+            .map(|tangent| {
+                let of: Vec<&NewtonRun> = runs().filter(|n| n.tangent == tangent).collect();
+                let missed = of.iter().filter(|n| !n.converged && n.failure.is_none());
+                TangentCost {
+                    tangent,
+                    runs: of.len(),
+                    converged: of.iter().filter(|n| n.converged).count(),
+                    failed: of.iter().filter(|n| n.failure.is_some()).count(),
+                    iterations: range(of.iter().filter_map(|n| n.iterations())),
+                    seconds_to_converge: range(of.iter().filter_map(|n| n.seconds_to_converge())),
+                    seconds_per_iteration: crate::tangent_check::taylor::median(
+                        of.iter()
+                            .filter(|n| n.residuals.len() > 1)
+                            .map(|n| n.seconds_per_iteration)
+                            .collect(),
+                    ),
+                    left: missed
+                        .filter_map(|n| Some((n.residuals.len() - 1, *n.residuals.last()?)))
+                        .reduce(|a, b| (a.0.max(b.0), a.1.max(b.1))),
+                }
+            })
+            .collect()
+    }
+}
+
 /// The tolerance on the solver's scaled residual (the solver's default).
 const TOLERANCE: f64 = 1e-10;
 /// The solver's stress floor \[kPa\].

@@ -3,7 +3,7 @@
 //! tangent and the assembled residual's remainders) and its report section (per model: orders,
 //! central-difference error, asymmetry, approximate tangents, ellipticity, flagged states).
 
-use super::fe::FeResult;
+use super::fe::{FeResult, TangentCost};
 use super::run::{ModelTests, StateTest, TangentResult};
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
@@ -72,8 +72,14 @@ impl KindOutput for TangentResult {
         }
     }
 
-    /// Per model: its least order of r₁ and its flagged states.
+    /// Per model: its least order of r₁ and its flagged states; with the FE level, what each
+    /// tangent cost Newton.
     fn console(&self, study: &str) -> Vec<String> {
+        let fe = self.fe.iter().flat_map(|fe| {
+            cost_words(fe)
+                .into_iter()
+                .map(move |w| format!("{study}: FE level, Newton from the predictor with the {w}"))
+        });
         self.models
             .iter()
             .map(|m| {
@@ -87,6 +93,7 @@ impl KindOutput for TangentResult {
                     m.states.len()
                 )
             })
+            .chain(fe)
             .collect()
     }
 
@@ -322,21 +329,47 @@ fn tangent_colour(name: &str) -> usize {
     }
 }
 
-/// The median over the configurations of a tangent's time per Newton iteration \[s\].
-fn median_time(fe: &FeResult, tangent: &str) -> Option<f64> {
-    let times: Vec<f64> = fe
-        .configs
+/// What each tangent cost Newton, in words: the iterations and the time to the tolerance
+/// (least–largest over the configurations that reached it), the median time per iteration, and
+/// how many configurations did not reach it, with the residual they left.
+pub fn cost_words(fe: &FeResult) -> Vec<String> {
+    let ms = |s: f64| significant(s * 1e3, 2);
+    let span = |lo: String, hi: String| if lo == hi { lo } else { format!("{lo}–{hi}") };
+    fe.costs()
         .iter()
-        .flat_map(|c| c.newton.iter())
-        .filter(|n| n.tangent == tangent && n.residuals.len() > 1)
-        .map(|n| n.seconds_per_iteration)
-        .collect();
-    crate::tangent_check::taylor::median(times)
+        .map(|c: &TangentCost| {
+            let mut w = format!("{}: ", c.tangent);
+            if let (Some((k0, k1)), Some((t0, t1))) = (c.iterations, c.seconds_to_converge) {
+                let _ = write!(
+                    w,
+                    "{} iterations, {} ms to 1e-10",
+                    span(k0.to_string(), k1.to_string()),
+                    span(ms(t0), ms(t1))
+                );
+                if c.converged < c.runs {
+                    let _ = write!(w, " in {} of {} configurations", c.converged, c.runs);
+                }
+                w.push_str(", ");
+            }
+            if let Some(t) = c.seconds_per_iteration {
+                let _ = write!(w, "{} ms per iteration", ms(t));
+            }
+            let missed = c.runs - c.converged - c.failed;
+            if let (true, Some((k, r))) = (missed > 0, c.left) {
+                let _ = write!(w, "; {missed} of {} configurations not at 1e-10 after {k} iterations (residual up to {r:.1e})", c.runs);
+            }
+            if c.failed > 0 {
+                let _ = write!(w, "; {} of {} failed", c.failed, c.runs);
+            }
+            w
+        })
+        .collect()
 }
 
 /// Newton's residual per iteration with each tangent (one line per configuration, the legend
 /// once per tangent with its median time per iteration).
 fn newton_series(fe: &FeResult) -> Vec<Series> {
+    let costs = fe.costs();
     let mut out = Vec::new();
     let mut labelled: Vec<&str> = Vec::new();
     for (i, c) in fe.configs.iter().enumerate() {
@@ -347,7 +380,11 @@ fn newton_series(fe: &FeResult) -> Vec<Series> {
                 .enumerate()
                 .map(|(k, v)| (k as f64, *v))
                 .collect();
-            let label = match (labelled.contains(&n.tangent), median_time(fe, n.tangent)) {
+            let time = costs
+                .iter()
+                .find(|c| c.tangent == n.tangent)
+                .and_then(|c| c.seconds_per_iteration);
+            let label = match (labelled.contains(&n.tangent), time) {
                 (false, Some(t)) => {
                     labelled.push(n.tangent);
                     format!(
@@ -414,7 +451,7 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
         prefixed("tangent_fe", study),
         format!("What a tangent costs the Newton solver (study \"{study}\")"),
         format!(
-            "The cylinder of the FE level ({} × {} cells), model {}, load step λ = {} → {}: Newton's residual with each tangent the solver can use (exact: quadratic; the frozen model's symmetric approximation: linear; central differences of the stress at every quadrature point: quadratic to their accuracy, at the cost per iteration in the legend), one line per element, bases and incompressibility ({} of them; strokes cycle through solid, dashed, dotted), the time per iteration the median over them (each one's in tangent_newton.csv). Below, the Taylor test of the assembled residual's displacement rows with each tangent at the converged state (solid) and at the step's predictor (dashed): slope 2 (dashed guide) for an exact tangent, slope 1 (dotted guide) for an approximate one. Values in tangent_newton.csv and tangent_fe.csv.",
+            "The cylinder of the FE level ({} × {} cells), model {}, load step λ = {} → {}: Newton's residual with each tangent the solver can use (exact: quadratic; the frozen model's symmetric approximation: linear; central differences of the stress at every quadrature point: quadratic to their accuracy, drawn under the exact tangent's lines where they coincide, at the cost per iteration in the legend), one line per element, bases and incompressibility ({} of them; strokes cycle through solid, dashed, dotted), the time per iteration the median over them (each one's in tangent_newton.csv). Below, the Taylor test of the assembled residual's displacement rows with each tangent at the converged state (solid) and at the step's predictor (dashed): slope 2 (dashed guide) for an exact tangent, slope 1 (dotted guide) for an approximate one. Values in tangent_newton.csv and tangent_fe.csv.",
             fe.cells.0, fe.cells.1, fe.model, significant(fe.stretches.0, 6), significant(fe.stretches.1, 6), fe.configs.len()
         ),
         panels,
@@ -523,7 +560,7 @@ fn flagged_list(h: &mut String, r: &TangentResult) {
 
 /// The FE level's tables: the assembled residual's orders and Newton with each tangent.
 fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError> {
-    let _ = writeln!(h, "<h3>The finite-element level</h3>\n<p>{} × {} cells, model {}, the load step λ = {} → {}. Taylor test of the assembled residual (order of r₁, median over the steps, the least of the displacement and the pressure rows; 2 for an exact tangent) at the step's predictor and at the converged state, and Newton from the predictor with each tangent the solver can use (full steps, the same LU; iterations to a scaled residual of 1e-10).</p>\n<table><tr><th>element, bases, incompressibility</th><th>dofs</th><th>tangent</th><th>order r₁ at the predictor</th><th>order r₁ converged</th><th>Newton iterations</th><th>ms per iteration</th></tr>", fe.cells.0, fe.cells.1, escape(&fe.model), significant(fe.stretches.0, 6), significant(fe.stretches.1, 6));
+    let _ = writeln!(h, "<h3>The finite-element level</h3>\n<p>{} × {} cells, model {}, the load step λ = {} → {}. Taylor test of the assembled residual (order of r₁, median over the steps, the least of the displacement and the pressure rows; 2 for an exact tangent) at the step's predictor and at the converged state, and Newton from the predictor with each tangent the solver can use (full steps, the same LU; iterations to a scaled residual of 1e-10).</p>\n<table><tr><th>element, bases, incompressibility</th><th>dofs</th><th>tangent</th><th>order r₁ at the predictor</th><th>order r₁ converged</th><th>Newton iterations</th><th>ms per iteration</th><th>ms to 1e-10</th></tr>", fe.cells.0, fe.cells.1, escape(&fe.model), significant(fe.stretches.0, 6), significant(fe.stretches.1, 6));
     for c in &fe.configs {
         for n in &c.newton {
             let order = |state: &str| {
@@ -546,7 +583,7 @@ fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError
             };
             let _ = writeln!(
                 h,
-                "<tr><td>{}, {}, {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr><td>{}, {}, {}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                 c.element,
                 bases_name(c.bases),
                 escape(&c.incompressibility),
@@ -555,11 +592,18 @@ fn fe_section(h: &mut String, fe: &FeResult, study: &str) -> Result<(), AppError
                 cell(order("predictor"), "FE order", study)?,
                 cell(order("converged"), "FE order", study)?,
                 escape(&iterations),
-                cell(Some(n.seconds_per_iteration * 1e3), "seconds per iteration", study)?
+                cell(Some(n.seconds_per_iteration * 1e3), "seconds per iteration", study)?,
+                cell(n.seconds_to_converge().map(|s| s * 1e3), "seconds to converge", study)?
             );
         }
     }
-    h.push_str("</table>\n");
+    h.push_str(
+        "</table>\n<p>What each tangent cost (least–largest over the configurations, the time per iteration their median):</p>\n<ul>\n",
+    );
+    for w in cost_words(fe) {
+        let _ = writeln!(h, "<li>{}</li>", escape(&w));
+    }
+    h.push_str("</ul>\n");
     Ok(())
 }
 
