@@ -292,3 +292,21 @@ fn the_tangent_command_checks_a_scenes_own_material() {
     let ran = std::fs::read_to_string(out.join("scene.toml")).unwrap();
     assert!(Scene::parse(&ran, "scene.toml").is_ok(), "{ran}");
 }
+
+#[test]
+fn the_example_scene_asks_for_every_approach_with_its_own_laws() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/examples/tangent_check.toml");
+    let scene = Scene::load(&path).unwrap();
+    let activemuscle::studies::Study::Tangent(t) = &scene.studies[0] else {
+        panic!("not a tangent study")
+    };
+    // passive; active strain and structural: 2 laws × 2 couplings × 2 damages each; active
+    // stress, which has no law: one per damage.
+    assert_eq!(t.models.len(), 1 + 8 + 2 + 8);
+    let active = t.models.iter().filter_map(|m| m.model);
+    let active_stress = active.filter(|c| c.activation_law().is_none()).count();
+    assert_eq!(active_stress, 2);
+    // Its states: 2 given, 4 + 1 + 1 + 1 on paths, 4 + 4 + 2 random.
+    assert_eq!(t.sources.len(), 19);
+}
