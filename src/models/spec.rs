@@ -140,7 +140,9 @@ fn visit_energy<'de, A: MapAccess<'de>>(
     while let Some(key) = map.next_key::<String>()? {
         match (key.as_str(), fibre.as_deref_mut()) {
             ("energy", _) => spec.energy = map.next_value()?,
-            ("fibre", Some(slot)) => *slot = Some(map.next_value()?),
+            ("fibre", Some(slot)) => {
+                *slot = Some(map.next_value::<crate::fixed_length::Exactly<f64, 3>>()?.0)
+            }
             _ => {
                 /// A parameter's value: a number, or anything else (a misspelt key).
                 #[derive(Deserialize)]
@@ -281,6 +283,7 @@ pub struct ActivationSpec {
     pub representation: Option<RepresentationKind>,
     /// Stretch range `[λ_lo, λ_hi]` [-] of the tables (default `[0.5, 1.6]`; the exact solve
     /// outside); only with `representation = "tabulated"`.
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub table_stretches: Option<[f64; 2]>,
     /// The force–velocity factor of activation-in-time studies (default none: f_v = 1).
     pub force_velocity: Option<ForceVelocity>,

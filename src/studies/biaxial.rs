@@ -39,6 +39,7 @@ pub struct BiaxialSpec {
     /// Stretches λ₁ along the fibres of the path.
     pub stretch: Option<StretchSpec>,
     /// (λ₁, λ₂) pairs, instead of `path` and `stretch`.
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub pairs: Option<Vec<[f64; 2]>>,
     /// Approaches (default `[activation.approach]`).
     pub approaches: Option<Vec<Approach>>,

@@ -89,7 +89,11 @@ pub struct CylinderSpec {
     /// e.g. mm) whose nodal displacements are reported (`[study.points]`; default none). Each
     /// must be a node of the mesh on the boundary of the meridian section (axis, lateral
     /// surface or a base).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::fixed_length::exact"
+    )]
     pub points: Option<BTreeMap<String, [f64; 2]>>,
     /// Regions of the meridian section with their own damage and/or activation level
     /// (`[[study.regions]]`; default none: the model's damage and a = 1 everywhere). A later
@@ -106,8 +110,10 @@ pub struct CylinderSpec {
 #[serde(deny_unknown_fields)]
 pub struct RegionSpec {
     /// [r0, r1] in units of R (default [0, 1]).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub r: Option<[f64; 2]>,
     /// [z0, z1] in units of L (default [0, 1]).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub z: Option<[f64; 2]>,
     /// Damage d inside [-] (default: the sweep's damage).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -22,6 +22,7 @@ use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits
 use crate::active::StretchRate;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
+use crate::fixed_length::Exactly;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
@@ -97,8 +98,8 @@ impl<'de> Deserialize<'de> for LoadingSpec {
             }
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<LoadingSpec, A::Error> {
                 let mut v = Vec::new();
-                while let Some(p) = seq.next_element::<[f64; 2]>()? {
-                    v.push(p);
+                while let Some(p) = seq.next_element::<Exactly<f64, 2>>()? {
+                    v.push(p.0);
                 }
                 Ok(LoadingSpec::Schedule(v))
             }
@@ -116,6 +117,7 @@ pub struct HistorySpec {
     /// Time steps t \[s\] (required): `[0, 0.1, 0.2]` or `{ from, to, step }`.
     pub time: Option<StretchSpec>,
     /// The activation schedule a_s: [t \[s\], value ∈ [0, 1]] points (default `[[0, 1]]`).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub schedule: Option<Vec<[f64; 2]>>,
     /// `constant` (default) or `linear` between schedule points.
     pub interpolation: Option<Interpolation>,

@@ -123,6 +123,7 @@ pub struct FitSpec {
     /// Starting values by parameter name (default: the model's values).
     pub start: Option<BTreeMap<String, f64>>,
     /// Bounds [lower, upper] by parameter name (default: the admissible range).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub bounds: Option<BTreeMap<String, [f64; 2]>>,
     /// `gauss-newton` (default) or `nelder-mead`.
     pub method: Option<Method>,

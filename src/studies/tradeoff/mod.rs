@@ -388,6 +388,7 @@ pub struct TradeoffSpec {
     /// Option groups to measure (default all).
     pub options: Option<Vec<OptionGroup>>,
     /// Meshes `[nr, nz]` of the mesh option, coarse to fine (the last is the reference).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub meshes: Option<Vec<[i64; 2]>>,
     /// Newton tolerances of the tolerance option, loose to tight (the last is the reference).
     pub tolerances: Option<Vec<f64>>,
