@@ -226,8 +226,13 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     }
 }
 
+/// The command line as the report shows it; an argument that is not UTF-8 (a path with byte
+/// 0xFF) is shown with U+FFFD in its place (the file itself is opened by its bytes).
 fn command_line() -> String {
-    std::env::args().collect::<Vec<_>>().join(" ")
+    std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The exit statuses, for `--help`.

@@ -12,7 +12,12 @@ use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec, MAX_SLUG_BYTES
 use crate::text::shortest;
 use std::path::Path;
 
-pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, SceneError> {
+pub(super) fn resolve(
+    spec: SceneSpec,
+    text: &str,
+    file: &str,
+    base: &Path,
+) -> Result<Scene, SceneError> {
     let error = |e: SpecError| SceneError {
         file: file.to_string(),
         line: line_of(text, &e.key),
@@ -27,7 +32,7 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         law: act.law.unwrap_or_default(),
         coupling: act.coupling.unwrap_or_default(),
         damage: &damage,
-        base: Path::new(file).parent().unwrap_or(Path::new("")),
+        base,
     };
     let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
     axial_fibres(models.fibre, &studies).map_err(error)?;

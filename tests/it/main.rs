@@ -54,6 +54,7 @@ mod input_caps;
 mod law_representation;
 mod library_run;
 mod nearly_incompressible;
+mod os_paths;
 mod paper_closed_forms;
 mod proptest_responses;
 mod report_follows_the_scene;
