@@ -48,6 +48,21 @@ pub fn trim_zeros(s: &str) -> String {
     }
 }
 
+/// `1.5 MiB`, `200 KiB`, `12 bytes`: a size for people, three significant digits.
+pub fn bytes(n: u64) -> String {
+    const UNITS: [&str; 5] = ["KiB", "MiB", "GiB", "TiB", "PiB"];
+    if n < 1024 {
+        return format!("{n} bytes");
+    }
+    let mut x = n as f64 / 1024.0;
+    let mut unit = 0;
+    while x >= 1024.0 && unit + 1 < UNITS.len() {
+        x /= 1024.0;
+        unit += 1;
+    }
+    format!("{} {}", significant(x, 3), UNITS[unit])
+}
+
 /// Escapes text for HTML.
 pub fn escape_html(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -59,6 +74,14 @@ pub fn escape_html(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::significant;
+
+    #[test]
+    fn sizes_are_written_for_people() {
+        assert_eq!(super::bytes(12), "12 bytes");
+        assert_eq!(super::bytes(200 * 1024), "200 KiB");
+        assert_eq!(super::bytes(3 * 1024 * 1024 / 2), "1.5 MiB");
+        assert_eq!(super::bytes(918_102 * 161), "141 MiB");
+    }
 
     #[test]
     fn significant_digits_without_the_binary_noise_or_trailing_zeros() {

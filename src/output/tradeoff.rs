@@ -5,7 +5,7 @@ use super::base64;
 use super::datapackage::{names, Field};
 use super::{Staging, Writer};
 use crate::app_error::AppError;
-use crate::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
+use crate::plot::{render_bytes, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use crate::studies::slug;
 use crate::studies::tradeoff::measure::{cell, ratio};
 use crate::studies::tradeoff::{Measurement, TradeoffResults};
@@ -347,9 +347,8 @@ pub fn html(
     h
 }
 
-/// Stages `tradeoff.csv`, `tradeoff.md` (the table), one figure per option and `tradeoff.html`
-/// in `staging` (committed by the caller); returns the files staged (relative names) and the
-/// figures with their PNG bytes (for embedding in a report).
+/// Stages every trade-off output, the data first: [`stage_data`], then [`stage_figures`].
+/// Returns the files written (relative names) and the rendered figures.
 pub fn stage(
     results: &TradeoffResults,
     staging: &mut Staging,
@@ -357,11 +356,32 @@ pub fn stage(
     command: &str,
     wall_s: f64,
 ) -> Result<(Vec<String>, Vec<Rendered>), AppError> {
-    let mut files = Vec::new();
+    let mut files = stage_data(results, staging)?;
+    let (more, figures) = stage_figures(results, staging, title, command, wall_s)?;
+    files.extend(more);
+    Ok((files, figures))
+}
+
+/// Stages the trade-off's data: `tradeoff.csv` and `tradeoff.md` (the table).
+pub fn stage_data(
+    results: &TradeoffResults,
+    staging: &mut Staging,
+) -> Result<Vec<String>, AppError> {
     staging.write("tradeoff.csv", &to_csv(&results.rows)?)?;
-    files.push("tradeoff.csv".to_string());
     staging.write("tradeoff.md", markdown(&results.rows).as_bytes())?;
-    files.push("tradeoff.md".to_string());
+    Ok(vec!["tradeoff.csv".to_string(), "tradeoff.md".to_string()])
+}
+
+/// Stages the trade-off's figures (one per option with a measured variant, PNG and SVG) and
+/// `tradeoff.html`; returns the files written and the rendered figures.
+pub fn stage_figures(
+    results: &TradeoffResults,
+    staging: &mut Staging,
+    title: &str,
+    command: &str,
+    wall_s: f64,
+) -> Result<(Vec<String>, Vec<Rendered>), AppError> {
+    let mut files = Vec::new();
     let mut figures = Vec::new();
     for option in options(&results.rows) {
         // No variant measured (every one failed, or the reference did): no empty frame.
@@ -373,13 +393,12 @@ pub fn stage(
             continue;
         }
         let f = figure(&option, &results.rows);
-        let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
-        let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
-        render(&f, &png, &svg)?;
-        let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
+        let (png, svg) = render_bytes(&f)?;
+        staging.write(&format!("{}.png", f.stem), &png)?;
+        staging.write(&format!("{}.svg", f.stem), svg.as_bytes())?;
         files.push(format!("{}.png", f.stem));
         files.push(format!("{}.svg", f.stem));
-        figures.push((f, bytes));
+        figures.push((f, png));
     }
     let pngs: Vec<(String, Vec<u8>)> = figures
         .iter()
