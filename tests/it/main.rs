@@ -47,6 +47,7 @@ mod fit_jacobian;
 mod fit_paper;
 mod fit_recovery;
 mod fixed_lengths;
+mod force_velocity_range;
 mod four_c_blocks;
 mod four_c_passive;
 mod full_disk;
