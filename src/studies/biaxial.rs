@@ -294,8 +294,10 @@ impl BiaxialStudy {
         let failure = first.map(|((l1, l2), why)| Failure {
             model: label,
             message: format!(
-                "{failed} of {} states failed; first at (λ₁, λ₂) = ({l1}, {l2}): {why}",
-                self.pairs.len()
+                "{failed} of {} states failed; first at (λ₁, λ₂) = ({}, {}): {why}",
+                self.pairs.len(),
+                crate::text::shortest(l1),
+                crate::text::shortest(l2)
             ),
         });
         Ok((

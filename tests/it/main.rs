@@ -19,6 +19,7 @@ mod bounded_loops;
 mod cauchy_stress;
 mod check_passes_run;
 mod cli_end_to_end;
+mod cli_exit_rules;
 mod cli_fit;
 mod cli_runs;
 mod cli_scene;

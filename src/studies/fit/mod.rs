@@ -242,6 +242,8 @@ pub struct Model {
     pub names: Vec<&'static str>,
     /// The model's own values of all parameters (the default starts).
     pub values: Vec<f64>,
+    /// The default bounds of each parameter (its admissible range), in the order of `names`.
+    pub bounds: Vec<crate::fit::Bounds>,
     /// The parameters freed when the scene does not say.
     pub default_free: Vec<&'static str>,
     /// y-axis label of the figure, with unit.

@@ -210,6 +210,23 @@ pub(super) fn setup(
                     format!("must lie within bounds.{name} = {}", fmt_list(b)),
                 ));
             }
+        } else if let Some(b) = model
+            .names
+            .iter()
+            .position(|n| n == name)
+            .and_then(|i| model.bounds.get(i))
+        {
+            if !b.contains(v) {
+                return Err(SpecError::new(
+                    key,
+                    v,
+                    format!(
+                        "must lie within the default bounds of {name}, its admissible range {}: \
+                         give a start within it, or bounds.{name}",
+                        fmt_list(&[b.lower, b.upper])
+                    ),
+                ));
+            }
         }
         setup = setup.start(name, v);
     }
