@@ -177,22 +177,9 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
     if results.ran_together() {
         say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
-    for (_, c) in results.cylinders() {
-        if c.bases != activemuscle::fem::Bases::Sliding {
-            continue;
-        }
-        for s in &c.sweeps {
-            if let Some((worst, _, _)) = s.worst_against_0d() {
-                say!(
-                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
-                    s.label
-                );
-            }
-        }
-    }
-    for (study, fits) in results.fits() {
-        for f in fits {
-            say!("{study} — {}", f.summary());
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
         }
     }
     for (study, f) in results.failures() {

@@ -96,6 +96,8 @@ impl StrainEnergy for EhretBolItskov {
 
 impl Shipped for EhretBolItskov {
     const NAME: &'static str = "ehret-bol-itskov";
+    const FORMULA: &'static str = "the Ehret–Böl–Itskov energy: the K_p − 1 term becomes [e^{β(K_p−1)} − 1]/β";
+    const CHAPTER: &'static str = "eq. (4)";
     const PARAMETERS: &'static [Parameter] = &[
         Parameter::positive("mu", "μ", "kPa", Some(Self::PAPER.mu)),
         Parameter::positive("alpha", "α", "-", Some(Self::PAPER.alpha)),

@@ -129,6 +129,10 @@ pub trait Parametric: StrainEnergy + Sized {
 pub trait Shipped: StrainEnergy + Sized {
     /// Name in scene files and outputs (`giantesio-musesti`).
     const NAME: &'static str;
+    /// What it is, with its formula, for the report's table of models.
+    const FORMULA: &'static str;
+    /// Where the chapter has it (`eq. (1); parameters Table 1`), or `not in the chapter`.
+    const CHAPTER: &'static str;
     /// The parameters, in the order of [`values`](Self::values).
     const PARAMETERS: &'static [Parameter];
     /// The parameter values.
@@ -160,6 +164,10 @@ impl<E: Shipped> Parametric for E {
 pub struct ShippedEnergy {
     /// Name in scene files (`energy = "..."`).
     pub name: &'static str,
+    /// What it is, with its formula ([`Shipped::FORMULA`]).
+    pub formula: &'static str,
+    /// Where the chapter has it ([`Shipped::CHAPTER`]).
+    pub chapter: &'static str,
     /// Its parameters.
     pub parameters: &'static [Parameter],
     build: fn(&[f64]) -> Result<Energy>,
@@ -251,6 +259,8 @@ macro_rules! shipped_energies {
         /// chapter's, the default of scene files).
         pub const SHIPPED: &[ShippedEnergy] = &[$(ShippedEnergy {
             name: $energy::NAME,
+            formula: $energy::FORMULA,
+            chapter: $energy::CHAPTER,
             parameters: $energy::PARAMETERS,
             build: |v| Ok(Energy::$energy($energy::from_values(v)?)),
         },)*];

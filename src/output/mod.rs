@@ -1,6 +1,7 @@
-//! Outputs of a run, from its typed results: `curves.csv` (tidy), `fits.csv`, `stability.csv`,
-//! the figures (PNG + SVG), the trade-off files, `report.html` (self-contained) and the
-//! cylinder's VTK fields, all written atomically through [`atomic::Staging`].
+//! Outputs of a run, from its typed results: the CSV files of the study kinds' tables
+//! (`curves.csv`, `fits.csv`, …) with `datapackage.json`, the figures (PNG + SVG), the
+//! trade-off pages, `report.html` (self-contained) and the cylinder's VTK fields, all written
+//! atomically through [`atomic::Staging`]. Each driver here iterates over the kinds.
 
 pub mod atomic;
 pub mod base64;
@@ -32,35 +33,31 @@ pub struct RunMeta {
 }
 
 /// Writes every output of a run into `staging` (committed by the caller), the data first so that
-/// a disk that fills up keeps it: `curves.csv`, the tables, `tradeoff.csv`, `scene.toml` (the
-/// scene as given) and `datapackage.json`; then the VTK files the solver wrote into `staging`'s
-/// `vtk/`, the figures, the trade-off's page and, last, `report.html`. Returns the number of
-/// rows of `curves.csv`. A full disk stops it with [`AppError::DiskFull`]; every file staged
-/// before is whole, and the caller may commit them ([`Staging::staged`]).
+/// a disk that fills up keeps it: the CSV files of the studies' tables (`curves.csv` first),
+/// `scene.toml` (the scene as given) and `datapackage.json`; then the VTK files the solver wrote
+/// into `staging`'s `vtk/`, the figures, the trade-off pages and, last, `report.html`. Returns
+/// the number of rows of `curves.csv`. A full disk stops it with [`AppError::DiskFull`]; every
+/// file staged before is whole, and the caller may commit them ([`Staging::staged`]).
 pub fn write_run(
     staging: &mut Staging,
     scene: &Scene,
     results: &Results,
     meta: &RunMeta,
 ) -> Result<usize, AppError> {
-    let rows = csv::rows(results);
+    let tables = csv::files(results);
     let mut files = Vec::new();
-    staging.write("curves.csv", &csv::to_csv(&rows)?)?;
-    files.push("curves.csv".to_string());
-    for (name, bytes) in csv::tables(results)? {
-        staging.write(&name, &bytes)?;
-        files.push(name);
-    }
-    if let Some(t) = results.tradeoff() {
-        files.extend(tradeoff::stage_data(t, staging)?);
+    for t in &tables {
+        staging.write(&t.file, &t.bytes()?)?;
+        files.push(t.file.clone());
     }
     staging.write("scene.toml", scene.source.as_bytes())?;
     files.push("scene.toml".to_string());
     // Every column's type and unit, for the CSV files written above.
-    let package = datapackage::descriptor(&scene.title, &csv::resources(results, &files))?;
+    let resources: Vec<datapackage::Resource> = tables.iter().map(csv::CsvFile::resource).collect();
+    let package = datapackage::descriptor(&scene.title, &resources)?;
     staging.write("datapackage.json", &package)?;
     files.push("datapackage.json".to_string());
-    for v in results.vtk_files() {
+    for v in results.studies.iter().flat_map(|s| s.result.vtk_files()) {
         let rel = Path::new("vtk").join(v);
         staging.adopt(&rel)?;
         files.push(rel.display().to_string());
@@ -75,7 +72,7 @@ pub fn write_run(
         rendered.push((f, png));
     }
     if let Some(t) = results.tradeoff() {
-        let (staged, figures) = tradeoff::stage_figures(
+        let (staged, figures) = tradeoff::stage_pages(
             t,
             staging,
             &scene.title,
@@ -91,9 +88,9 @@ pub fn write_run(
         version: env!("CARGO_PKG_VERSION").to_string(),
         rustc: meta.rustc.clone(),
         files,
-        rows: rows.len(),
+        tables: tables.iter().map(report::DataFile::of).collect(),
     };
     let page = report::html(scene, results, &rendered, &info)?;
     staging.write("report.html", page.as_bytes())?;
-    Ok(rows.len())
+    Ok(tables[0].rows())
 }

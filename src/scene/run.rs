@@ -2,17 +2,13 @@
 //! the models it needs (homogeneous curves and FE sweeps in parallel too), progress reported through [`crate::studies::Progress`].
 
 use super::Scene;
-use crate::studies::cylinder::CylinderResult;
-use crate::studies::fit::FitOutcome;
-use crate::studies::history::HistoryResult;
-use crate::studies::stability::StabilityCurve;
+use crate::studies::outputs::OfResult;
 use crate::studies::tradeoff::TradeoffResults;
-use crate::studies::uniaxial::UniaxialResult;
 use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, Study, StudyResult};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -57,69 +53,17 @@ impl Results {
             .flat_map(|s| s.failures.iter().map(move |f| (s.name.as_str(), f)))
     }
 
-    /// The uniaxial results, with their studies' names.
-    pub fn uniaxial(&self) -> impl Iterator<Item = (&str, &UniaxialResult)> {
-        self.studies.iter().filter_map(|s| match &s.result {
-            StudyResult::Uniaxial(r) => Some((s.name.as_str(), r)),
-            _ => None,
-        })
-    }
-
-    /// The cylinder results, with their studies' names.
-    pub fn cylinders(&self) -> impl Iterator<Item = (&str, &CylinderResult)> {
-        self.studies.iter().filter_map(|s| match &s.result {
-            StudyResult::Cylinder(r) => Some((s.name.as_str(), r)),
-            _ => None,
-        })
-    }
-
-    /// The fits, by study.
-    pub fn fits(&self) -> Vec<(&str, &[FitOutcome])> {
+    /// The results of kind `R` (a [`crate::studies::StudyResult`]'s payload, e.g.
+    /// `CylinderResult`), with their studies' names, in scene order.
+    pub fn of<'a, R: OfResult + 'a>(&'a self) -> impl Iterator<Item = (&'a str, &'a R)> + 'a {
         self.studies
             .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::Fit(f) => Some((s.name.as_str(), f.as_slice())),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The stability curves, by study.
-    pub fn stability(&self) -> Vec<(&str, &[StabilityCurve])> {
-        self.studies
-            .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::Stability(c) => Some((s.name.as_str(), c.as_slice())),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The activation-in-time histories, by study.
-    pub fn histories(&self) -> Vec<(&str, &HistoryResult)> {
-        self.studies
-            .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::ActivationInTime(h) => Some((s.name.as_str(), h)),
-                _ => None,
-            })
-            .collect()
+            .filter_map(|s| R::of(&s.result).map(|r| (s.name.as_str(), r)))
     }
 
     /// The trade-off study's measurements (a scene holds at most one).
     pub fn tradeoff(&self) -> Option<&TradeoffResults> {
-        self.studies.iter().find_map(|s| match &s.result {
-            StudyResult::Tradeoff(t) => Some(t),
-            _ => None,
-        })
-    }
-
-    /// The VTK files written, relative to the run's VTK directory.
-    pub fn vtk_files(&self) -> Vec<&Path> {
-        self.cylinders()
-            .flat_map(|(_, c)| c.sweeps.iter())
-            .flat_map(|s| s.vtk_files.iter().map(PathBuf::as_path))
-            .collect()
+        self.of::<TradeoffResults>().next().map(|(_, t)| t)
     }
 }
 

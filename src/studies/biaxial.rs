@@ -7,7 +7,7 @@
 mod output;
 
 use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
-use super::table::Table;
+use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -321,81 +321,20 @@ impl BiaxialResult {
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
         let at = |f: fn(&BiaxialPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
         Table::default()
-            .text(
-                "study",
-                "the study's name",
-                rows.iter().map(|_| Some(study.to_string())),
-            )
-            .text(
-                "energy",
-                "the passive energy",
-                rows.iter().map(|_| Some(self.energy.clone())),
-            )
-            .text(
-                "path",
-                "equibiaxial, strip or pairs",
-                rows.iter().map(|_| Some(self.path.to_string())),
-            )
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("energy", "the passive energy", every_row(&self.energy, rows.len()))
+            .text("path", "equibiaxial, strip or pairs", every_row(self.path, rows.len()))
             .text("approach", "activation approach (empty: passive)", cell(0))
-            .text(
-                "law",
-                "activation law (passive for the passive material)",
-                cell(1),
-            )
-            .text("coupling", "coupling", cell(2))
-            .number(
-                "d",
-                "-",
-                "damage",
-                rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)),
-            )
-            .number(
-                "lambda_1",
-                "-",
-                "stretch along the fibres λ₁",
-                at(|p| p.stretches[0]),
-            )
-            .number(
-                "lambda_2",
-                "-",
-                "stretch across the fibres λ₂",
-                at(|p| p.stretches[1]),
-            )
-            .number(
-                "lambda_3",
-                "-",
-                "stretch normal to the plane λ₃",
-                at(|p| p.stretches[2]),
-            )
-            .number(
-                "gamma",
-                "-",
-                "activation γ (ω for the structural approach)",
-                at(|p| p.gamma),
-            )
-            .number(
-                "P_11",
-                "kPa",
-                "nominal stress along the fibres",
-                at(|p| p.nominal[0]),
-            )
-            .number(
-                "P_22",
-                "kPa",
-                "nominal stress across the fibres",
-                at(|p| p.nominal[1]),
-            )
-            .number(
-                "sigma_11",
-                "kPa",
-                "Cauchy stress along the fibres",
-                at(|p| p.cauchy[0]),
-            )
-            .number(
-                "sigma_22",
-                "kPa",
-                "Cauchy stress across the fibres",
-                at(|p| p.cauchy[1]),
-            )
+            .text("law", "activation law (passive for the passive material; empty: an approach without a law, active stress)", cell(1))
+            .text("coupling", "frozen or consistent (empty: passive, or an approach without a law)", cell(2))
+            .number("d", "-", "damage", rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)))
+            .number("lambda_1", "-", "stretch along the fibres λ₁", at(|p| p.stretches[0]))
+            .number("lambda_2", "-", "stretch across the fibres λ₂", at(|p| p.stretches[1]))
+            .number("lambda_3", "-", "stretch normal to the plane λ₃", at(|p| p.stretches[2]))
+            .number("gamma", "-", "activation γ (ω for the structural approach)", at(|p| p.gamma))
+            .number("P_11", "kPa", "nominal stress along the fibres", at(|p| p.nominal[0]))
+            .number("P_22", "kPa", "nominal stress across the fibres", at(|p| p.nominal[1]))
+            .number("sigma_11", "kPa", "Cauchy stress along the fibres", at(|p| p.cauchy[0]))
+            .number("sigma_22", "kPa", "Cauchy stress across the fibres", at(|p| p.cauchy[1]))
     }
 }

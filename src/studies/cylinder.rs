@@ -542,6 +542,8 @@ impl Sweep {
 pub struct CylinderResult {
     /// The energy's name.
     pub energy: String,
+    /// The activation approach of every sweep.
+    pub approach: crate::active::Approach,
     /// Base conditions.
     pub bases: Bases,
     /// Finite element.
@@ -651,6 +653,7 @@ impl CylinderStudy {
         ctx.progress.finish();
         let mut result = CylinderResult {
             energy: crate::StrainEnergy::name(&models.energy).to_string(),
+            approach: models.approach,
             bases: self.bases,
             element: self.element,
             sweeps: Vec::with_capacity(sweeps.len()),

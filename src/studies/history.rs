@@ -444,6 +444,8 @@ pub struct HistoryResult {
     pub loading: &'static str,
     /// The energy's name.
     pub energy: String,
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
     pub volumetric: Option<VolumetricForm>,
     /// One history per damage value.
@@ -530,6 +532,7 @@ impl HistoryStudy {
             result: StudyResult::ActivationInTime(HistoryResult {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
+                approach: models.approach,
                 volumetric: models.volumetric.as_ref().map(Volumetric::form),
                 histories,
             }),

@@ -15,8 +15,18 @@
 //! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
 //!
 //! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
-//! and `impl KindStudy` for the study, and one line in `study_kinds!` below, which generates
-//! [`StudyKind`], [`StudySpec`], [`Study`], [`StudyResult`] and their dispatch.
+//! and `impl KindStudy` for the study, `impl outputs::KindOutput` for the result (in the
+//! module's `output.rs`: its tables, figures and report section), and one line in
+//! `study_kinds!` below, which generates [`StudyKind`], [`StudySpec`], [`Study`],
+//! [`StudyResult`] and their dispatch.
+//!
+//! A kind's tables: [`outputs::KindOutput::tables`] returns, per study, a
+//! [`table::Table`] built with its column builders (`text`, `number` with its unit, `integer`,
+//! `boolean`; each with its description) and the CSV file it goes to. From that one declaration
+//! the run writes the file (the tables of every study of the file appended), describes every
+//! column in `datapackage.json`, and Python returns the same columns as numpy arrays
+//! (`Study.table`); nothing else names the columns. `src/studies/shear.rs` (`ShearResult::table`)
+//! with `src/studies/shear/output.rs` is the model to follow.
 
 pub mod biaxial;
 pub mod curves;
@@ -221,18 +231,43 @@ macro_rules! study_kinds {
                 Ok(())
             }
 
-            /// The study's own table ([`outputs::KindOutput::own_table`]), if its kind has one.
-            pub fn own_table(&self, study: &str) -> Option<outputs::OwnTable> {
+            /// The study's tables ([`outputs::KindOutput::tables`]), none if it computed
+            /// nothing.
+            pub fn tables(&self, study: &str) -> Vec<outputs::OwnTable> {
                 match self {
-                    $(StudyResult::$variant(r) => outputs::KindOutput::own_table(r, study),)*
-                    StudyResult::Nothing => None,
+                    $(StudyResult::$variant(r) => outputs::KindOutput::tables(r, study),)*
+                    StudyResult::Nothing => Vec::new(),
                 }
             }
 
-            /// The (approach, model) pairs it computed ([`outputs::KindOutput::approach_models`]).
-            pub fn approach_models(&self) -> Vec<&spec::ApproachModel> {
+            /// What it computed with ([`outputs::KindOutput::used`]).
+            pub fn used(&self) -> outputs::Used {
                 match self {
-                    $(StudyResult::$variant(r) => outputs::KindOutput::approach_models(r),)*
+                    $(StudyResult::$variant(r) => outputs::KindOutput::used(r),)*
+                    StudyResult::Nothing => outputs::Used::default(),
+                }
+            }
+
+            /// The VTK files it wrote ([`outputs::KindOutput::vtk_files`]).
+            pub fn vtk_files(&self) -> Vec<&Path> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::vtk_files(r),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
+            /// Its lines for the command line ([`outputs::KindOutput::console`]).
+            pub fn console(&self, study: &str) -> Vec<String> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::console(r, study),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
+            /// What it found ([`outputs::KindOutput::findings`]).
+            pub fn findings(&self) -> Vec<String> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::findings(r),)*
                     StudyResult::Nothing => Vec::new(),
                 }
             }
@@ -364,9 +399,6 @@ impl KindStudy for tradeoff::TradeoffStudy {
         tradeoff::TradeoffStudy::run(self, models, fallback, ctx)
     }
 }
-
-/// A trade-off study's page and figures are its own (`output/tradeoff.rs`).
-impl outputs::KindOutput for tradeoff::TradeoffResults {}
 
 /// What a trade-off study takes from the other studies: the first cylinder study's cylinder and
 /// mesh, the first uniaxial study along the fibres' stretches (or the defaults).

@@ -10,7 +10,7 @@
 mod output;
 
 use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
-use super::table::Table;
+use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -311,15 +311,11 @@ impl ShearResult {
             .collect();
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
         Table::default()
-            .text(
-                "study",
-                "the study's name",
-                rows.iter().map(|_| Some(study.to_string())),
-            )
+            .text("study", "the study's name", every_row(study, rows.len()))
             .text(
                 "energy",
                 "the passive energy",
-                rows.iter().map(|_| Some(self.energy.clone())),
+                every_row(&self.energy, rows.len()),
             )
             .text("approach", "activation approach (empty: passive)", cell(0))
             .text(

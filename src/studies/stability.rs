@@ -148,6 +148,8 @@ pub struct StabilityPoint {
 /// The stability of one model along the fibres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilityCurve {
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The activation model; `None`: the passive material.
     pub model: Option<ModelChoice>,
     /// Points that could be computed.
@@ -219,7 +221,7 @@ impl StabilityStudy {
                     None => models.passive(),
                     Some(m) => models.muscle(*m)?,
                 };
-                Ok(self.curve(&muscle, *m))
+                Ok(self.curve(&muscle, models.approach, *m))
             })
             .collect();
         let mut curves = Vec::with_capacity(computed.len());
@@ -252,9 +254,11 @@ impl StabilityStudy {
     fn curve(
         &self,
         muscle: &crate::Muscle<Energy>,
+        approach: crate::active::Approach,
         model: Option<ModelChoice>,
     ) -> (StabilityCurve, Option<Failure>) {
         let mut curve = StabilityCurve {
+            approach,
             model,
             points: Vec::with_capacity(self.stretches.len()),
         };

@@ -179,6 +179,8 @@ pub struct Curve {
 pub struct UniaxialResult {
     /// Loading direction relative to the fibres.
     pub direction: Direction,
+    /// The activation approach of the active and constant-activation curves.
+    pub approach: crate::active::Approach,
     /// Curves: passive material, compared energies, constant γ, active models, in that order.
     pub curves: Vec<Curve>,
 }
@@ -272,6 +274,7 @@ impl UniaxialStudy {
         ctx.progress.finish();
         let mut result = UniaxialResult {
             direction: self.direction,
+            approach: models.approach,
             curves: Vec::with_capacity(computed.len()),
         };
         let mut failures = Vec::new();

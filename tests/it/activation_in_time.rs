@@ -258,8 +258,7 @@ fn run(text: &str) -> (Scene, activemuscle::scene::Results) {
 
 fn history(results: &activemuscle::scene::Results, name: &str) -> HistoryResult {
     results
-        .histories()
-        .into_iter()
+        .of::<HistoryResult>()
         .find(|(n, _)| *n == name)
         .map(|(_, h)| h.clone())
         .unwrap_or_else(|| panic!("no history {name}"))
@@ -291,7 +290,12 @@ coupling = "frozen"
         "{:?}",
         results.failures().collect::<Vec<_>>()
     );
-    let uni = results.uniaxial().next().unwrap().1.clone();
+    let uni = results
+        .of::<activemuscle::studies::uniaxial::UniaxialResult>()
+        .next()
+        .unwrap()
+        .1
+        .clone();
     let h = history(&results, "on-off");
     let m = models();
     let passive = m.passive();

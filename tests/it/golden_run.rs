@@ -57,13 +57,17 @@ use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
-/// cylinder's `P_0d`, `dofs`, `element` and `regions`).
+/// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 42 the activation `approach` of
+/// every row that names a law, issue 43 the fit's `termination`, which Python's table had).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
     (
         "curves.csv",
-        &["study", "cauchy", "J", "P_0d", "dofs", "element", "regions"],
+        &[
+            "study", "cauchy", "J", "P_0d", "dofs", "element", "regions", "approach",
+        ],
     ),
-    ("stability.csv", &["cauchy"]),
+    ("stability.csv", &["cauchy", "approach"]),
+    ("fits.csv", &["termination", "approach"]),
 ];
 
 /// A CSV file as its header and rows of text cells.

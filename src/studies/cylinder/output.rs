@@ -7,14 +7,132 @@ use crate::app_error::AppError;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind};
 use crate::plot::{short, Figure, Series, Stroke, GREY};
-use crate::studies::curves::sweep_curve;
+use crate::studies::curves::{self, sweep_curve};
 use crate::studies::outputs::{
-    chapter, derived, figure, key, list, panel, words, Context, KindOutput, Of, GAMMA, STRESS,
+    chapter, derived, figure, key, list, model_cells, panel, words, Context, KindOutput, Of,
+    OwnTable, Used, GAMMA, STRESS,
 };
+use crate::studies::slug;
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+impl CylinderResult {
+    /// The table of `points_<study>.csv`: the displacement (u_r, u_z) of each named point
+    /// (reference r, z; the mesh's length unit) per sweep and stretch.
+    pub fn points_table(&self, study: &str) -> Table {
+        let mut rows = Vec::new();
+        for sweep in &self.sweeps {
+            for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
+                for ((name, at), u) in self.points.iter().zip(u) {
+                    rows.push((sweep.model, name, *at, p.lambda, *u));
+                }
+            }
+        }
+        let cells = |m| model_cells(self.approach, Some(m));
+        let cell = |i: usize| rows.iter().map(move |r| cells(r.0)[i].clone());
+        let length = "the mesh's length unit";
+        Table::default()
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text(
+                "point",
+                "the point's name ([study.points])",
+                rows.iter().map(|r| Some(r.1.clone())),
+            )
+            .number(
+                "r",
+                length,
+                "reference radial position",
+                rows.iter().map(|r| Some(r.2[0])),
+            )
+            .number(
+                "z",
+                length,
+                "reference axial position",
+                rows.iter().map(|r| Some(r.2[1])),
+            )
+            .text(
+                "law",
+                "implicit, explicit or energy (empty: an approach without a law, active stress)",
+                cell(1),
+            )
+            .text(
+                "coupling",
+                "frozen or consistent (empty: an approach without a law)",
+                cell(2),
+            )
+            .number("d", "-", "damage d", rows.iter().map(|r| Some(r.0.damage)))
+            .number(
+                "lambda",
+                "-",
+                "imposed stretch L/L₀",
+                rows.iter().map(|r| Some(r.3)),
+            )
+            .number(
+                "u_r",
+                length,
+                "radial displacement",
+                rows.iter().map(|r| Some(r.4[0])),
+            )
+            .number(
+                "u_z",
+                length,
+                "axial displacement",
+                rows.iter().map(|r| Some(r.4[1])),
+            )
+            .text(
+                "approach",
+                "activation approach, active-strain, active-stress or structural",
+                cell(0),
+            )
+    }
+}
 
 impl KindOutput for CylinderResult {
+    /// Its rows of `curves.csv` and, if it names points, `points_<study>.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        let mut tables = vec![curves::own_table(&curves::cylinder_rows(study, self))];
+        if !self.points.is_empty() {
+            tables.push(OwnTable {
+                key: "named_points",
+                file: format!("points_{}.csv", slug(study)),
+                rows_are: "one row per named point, model and stretch: its displacement",
+                table: self.points_table(study),
+            });
+        }
+        tables
+    }
+
+    fn used(&self) -> Used {
+        Used::active(self.approach, self.sweeps.iter().map(|s| s.model))
+    }
+
+    fn vtk_files(&self) -> Vec<&Path> {
+        self.sweeps
+            .iter()
+            .flat_map(|s| s.vtk_files.iter().map(PathBuf::as_path))
+            .collect()
+    }
+
+    /// The verification of sliding bases: the largest |P_FE − P_0D| per sweep.
+    fn console(&self, _study: &str) -> Vec<String> {
+        if self.bases != Bases::Sliding {
+            return Vec::new();
+        }
+        self.sweeps
+            .iter()
+            .filter_map(|s| {
+                s.worst_against_0d().map(|(worst, _, _)| {
+                    format!(
+                        "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
+                        s.label
+                    )
+                })
+            })
+            .collect()
+    }
+
     fn figures(studies: &[Of<Self>], cx: &Context) -> Vec<Figure> {
         let mut out: Vec<Figure> = studies.iter().filter_map(|s| cylinder(cx, s)).collect();
         out.extend(fe_vs_0d(studies));

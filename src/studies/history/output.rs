@@ -4,12 +4,63 @@
 use super::{HistoryPoint, HistoryResult};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::outputs::{
-    derived, each_study, figure, prefixed, Context, KindOutput, Of, GAMMA, LAMBDA, STRESS,
+    derived, each_study, figure, model_cells, prefixed, Context, KindOutput, Of, OwnTable, Used,
+    GAMMA, LAMBDA, STRESS,
 };
+use crate::studies::table::{every_row, Table};
 
 impl KindOutput for HistoryResult {
+    /// Its rows of `history.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "history.csv",
+            "one row per activation-in-time model and time step",
+            self.table(study),
+        )]
+    }
+
+    fn used(&self) -> Used {
+        Used::active(self.approach, self.histories.iter().map(|h| h.model))
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         each_study(studies, history_figure)
+    }
+}
+
+impl HistoryResult {
+    /// The table of `history.csv` for study `study`: t [s], the schedule a_s and the activation
+    /// level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-], P_pas and the
+    /// target (1 − d)·a·P_act(λ) \[kPa\], per model and time step.
+    pub fn table(&self, study: &str) -> Table {
+        let rows: Vec<(&super::History, &HistoryPoint)> = self
+            .histories
+            .iter()
+            .flat_map(|h| h.points.iter().map(move |p| (h, p)))
+            .collect();
+        let cell = |i: usize| {
+            rows.iter()
+                .map(move |(h, _)| model_cells(self.approach, Some(h.model))[i].clone())
+        };
+        let at = |f: fn(&HistoryPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
+        Table::default()
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("loading", "prescribed (the stretch as scheduled) or free (no load)", every_row(self.loading, rows.len()))
+            .text("energy", "the strain energy's name", every_row(&self.energy, rows.len()))
+            .text("law", "implicit, explicit or energy (empty: an approach without a law, active stress)", cell(1))
+            .text("coupling", "frozen or consistent (empty: an approach without a law)", cell(2))
+            .number("d", "-", "damage d", rows.iter().map(|(h, _)| Some(h.model.damage)))
+            .number("t", "s", "time", at(|p| p.t))
+            .number("a_schedule", "-", "the activation schedule at t", at(|p| p.schedule))
+            .number("a", "-", "the activation level used at t", at(|p| p.level))
+            .number("lambda", "-", "stretch λ", at(|p| p.lambda))
+            .number("gamma", "-", "γ (ω for the structural approach, 0 for active stress)", at(|p| p.gamma))
+            .number("P", "kPa", "nominal stress along the stretch", at(|p| p.stress))
+            .number("cauchy", "kPa", "Cauchy stress σ₁₁ = P λ / J", at(|p| p.cauchy))
+            .number("J", "-", "volume ratio", at(|p| p.volume))
+            .number("P_pas", "kPa", "passive stress at λ", at(|p| p.passive))
+            .number("P_act", "kPa", "target active stress (1 − d)·a·f_v·P_act(λ), f_v the force–velocity factor at the step's stretch rate (1 without [activation.force_velocity])", at(|p| p.active_target))
+            .text("approach", "activation approach, active-strain, active-stress or structural", cell(0))
     }
 }
 

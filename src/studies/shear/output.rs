@@ -5,9 +5,8 @@ use super::{ShearCurve, ShearResult};
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series};
 use crate::studies::outputs::{
-    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable,
+    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
 };
-use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -15,16 +14,19 @@ const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
 impl KindOutput for ShearResult {
-    fn own_table(&self, study: &str) -> Option<OwnTable> {
-        Some(OwnTable {
-            file: "shear.csv",
-            rows_are: "one row per shear study, approach and amount of shear",
-            table: self.table(study),
-        })
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "shear.csv",
+            "one row per shear study, approach and amount of shear",
+            self.table(study),
+        )]
     }
 
-    fn approach_models(&self) -> Vec<&ApproachModel> {
-        self.curves.iter().map(|c| &c.model).collect()
+    fn used(&self) -> Used {
+        Used {
+            models: self.curves.iter().map(|c| c.model.clone()).collect(),
+            ..Used::default()
+        }
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {

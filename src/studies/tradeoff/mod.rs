@@ -28,6 +28,7 @@
 
 pub mod groups;
 pub mod measure;
+pub mod output;
 pub mod routes;
 
 pub use groups::{activation_law_fe_rows, fe_row, fe_run, FeRun};

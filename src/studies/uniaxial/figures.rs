@@ -5,13 +5,13 @@
 
 use super::{Curve, CurveModel, CurvePoint, UniaxialResult};
 use crate::active::drive::Drive;
-use crate::active::ActiveCurve;
+use crate::active::{ActiveCurve, Approach};
 use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::plot::{Figure, Panel, Scale, Series, Stroke};
-use crate::studies::curves::uniaxial_curve;
+use crate::studies::curves::{self, uniaxial_curve};
 use crate::studies::outputs::{
     chapter, coupling_stroke, curve_parameters_text, derived, figure, key, law_colour, list, panel,
-    sorted_unique, words, Context, KindOutput, Of, GAMMA, STRESS,
+    sorted_unique, words, Context, KindOutput, Of, OwnTable, Used, GAMMA, STRESS,
 };
 use crate::uniaxial::Direction;
 
@@ -26,6 +26,31 @@ struct Run<'a> {
 }
 
 impl KindOutput for UniaxialResult {
+    /// Its rows of `curves.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![curves::own_table(&curves::uniaxial_rows(study, self))]
+    }
+
+    fn used(&self) -> Used {
+        let mut used = Used::active(
+            self.approach,
+            self.curves.iter().filter_map(|c| match c.model {
+                CurveModel::Active(m) => Some(m),
+                _ => None,
+            }),
+        );
+        for c in &self.curves {
+            if !used.energies.contains(&c.energy) {
+                used.energies.push(c.energy.clone());
+            }
+        }
+        used.constant = self
+            .curves
+            .iter()
+            .any(|c| matches!(c.model, CurveModel::Constant(_)));
+        used
+    }
+
     /// Per study in order: its passive curves, constant γ, the active curve (once), the laws'
     /// figures and the loss of activation; then the transverse isotropy over all of them.
     fn figures(studies: &[Of<Self>], cx: &Context) -> Vec<Figure> {
@@ -38,6 +63,7 @@ impl KindOutput for UniaxialResult {
                 .map(|s| Uniaxial {
                     study: s.name,
                     direction: s.result.direction,
+                    approach: s.result.approach,
                     curves: &s.result.curves,
                     chapter_material: cx.chapter_material,
                 })
@@ -70,6 +96,7 @@ impl KindOutput for UniaxialResult {
 struct Uniaxial<'a> {
     study: &'a str,
     direction: Direction,
+    approach: Approach,
     curves: &'a [Curve],
     /// The scene's energy and active curve are the chapter's (see [`chapter`]).
     chapter_material: bool,
@@ -139,7 +166,7 @@ impl<'a> Uniaxial<'a> {
         (!points.is_empty()).then(|| {
             Series::new(label, points, stroke, colour).drawing(uniaxial_curve(
                 self.study,
-                self.direction,
+                (self.direction, self.approach),
                 c,
             ))
         })
