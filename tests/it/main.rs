@@ -36,6 +36,7 @@ mod fem_clamped;
 mod fem_condensation;
 mod fem_element;
 mod fem_fenics_reference;
+mod fem_fields;
 mod fem_geometry;
 mod fem_limits;
 mod fem_nearly_incompressible;
