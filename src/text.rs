@@ -63,6 +63,19 @@ pub fn bytes(n: u64) -> String {
     format!("{} {}", significant(x, 3), UNITS[unit])
 }
 
+/// `n` with its digits grouped by three, a space between groups: `918 102`.
+pub fn grouped(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// Escapes text for HTML.
 pub fn escape_html(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -74,6 +87,15 @@ pub fn escape_html(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::significant;
+
+    #[test]
+    fn large_counts_are_grouped_by_three_digits() {
+        assert_eq!(super::grouped(0), "0");
+        assert_eq!(super::grouped(999), "999");
+        assert_eq!(super::grouped(1000), "1 000");
+        assert_eq!(super::grouped(918_102), "918 102");
+        assert_eq!(super::grouped(18_362_040), "18 362 040");
+    }
 
     #[test]
     fn sizes_are_written_for_people() {

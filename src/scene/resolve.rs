@@ -35,6 +35,7 @@ pub(super) fn resolve(
         base,
     };
     let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
+    crate::studies::size::check(&studies).map_err(error)?;
     axial_fibres(models.fibre, &studies).map_err(error)?;
     let resolved = SceneSpec {
         title: spec.title.clone(),

@@ -1,6 +1,6 @@
 //! One exit rule for `run` and `tradeoff`, and failure lines that print numbers short.
 
-use crate::binary::run_args;
+use crate::binary::quietly;
 use crate::scratch::scratch;
 
 /// A trade-off of the frozen tangent alone, on a small mesh: its symmetric approximation does not
@@ -16,13 +16,7 @@ fn run_and_tradeoff_exit_alike_on_a_variant_that_does_not_converge() {
     let mut codes = Vec::new();
     for command in ["run", "tradeoff"] {
         let out = dir.join(command);
-        let o = run_args(&[
-            command.as_ref(),
-            scene.as_os_str(),
-            "--out".as_ref(),
-            out.as_os_str(),
-            "--quiet".as_ref(),
-        ]);
+        let o = quietly(command, &scene, &out);
         let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
         codes.push((o.status.code(), stdout));
     }
@@ -52,13 +46,7 @@ fn failure_lines_write_an_extreme_stretch_short() {
     )
     .unwrap();
     let out = dir.join("out");
-    let o = run_args(&[
-        "run".as_ref(),
-        scene.as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-        "--quiet".as_ref(),
-    ]);
+    let o = quietly("run", &scene, &out);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(3), "{stdout}");
     let failed: Vec<&str> = stdout.lines().filter(|l| l.starts_with("FAILED")).collect();

@@ -5,7 +5,7 @@
 //! them as a full disk does (ENOSPC); the binary's test build reads it from
 //! `ACTIVEMUSCLE_TEST_DISK_SPACE`.
 
-use crate::binary::run_args;
+use crate::binary::quietly;
 use crate::scratch::scratch;
 use activemuscle::output::{write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{RunOptions, Scene};
@@ -50,13 +50,7 @@ fn size(p: &Path) -> u64 {
 fn unlimited(out: &Path) -> u64 {
     let scene = out.parent().unwrap().join("scene.toml");
     std::fs::write(&scene, SCENE).unwrap();
-    let o = run_args(&[
-        "run".as_ref(),
-        scene.as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-        "--quiet".as_ref(),
-    ]);
+    let o = quietly("run", &scene, out);
     assert_eq!(
         o.status.code(),
         Some(0),

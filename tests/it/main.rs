@@ -79,3 +79,4 @@ mod tradeoff_machinery;
 mod truthful_reports;
 mod uniaxial;
 mod volumetric_outputs;
+mod work_bounds;

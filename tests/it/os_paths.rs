@@ -5,7 +5,7 @@
 
 #![cfg(unix)]
 
-use crate::binary::run_args;
+use crate::binary::{quietly, run_args};
 use crate::scratch::scratch;
 use std::ffi::OsString;
 use std::os::unix::ffi::OsStringExt;
@@ -29,13 +29,7 @@ fn run_writes_into_an_output_directory_whose_name_is_not_utf8() {
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, SCENE).unwrap();
     let out = not_utf8(&dir, "o", "ut");
-    let output = run_args(&[
-        "run".as_ref(),
-        scene.as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-        "--quiet".as_ref(),
-    ]);
+    let output = quietly("run", &scene, &out);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(0), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
@@ -71,13 +65,7 @@ fn a_scene_in_a_directory_whose_name_is_not_utf8_reads_its_data_file_beside_it()
         String::from_utf8_lossy(&check.stderr)
     );
     let out = dir.join("out");
-    let output = run_args(&[
-        "run".as_ref(),
-        scene.as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-        "--quiet".as_ref(),
-    ]);
+    let output = quietly("run", &scene, &out);
     assert_eq!(
         output.status.code(),
         Some(0),
@@ -99,13 +87,7 @@ fn tradeoff_writes_into_an_output_directory_whose_name_is_not_utf8() {
     )
     .unwrap();
     let out = not_utf8(&dir, "t", "");
-    let output = run_args(&[
-        "tradeoff".as_ref(),
-        scene.as_os_str(),
-        "--out".as_ref(),
-        out.as_os_str(),
-        "--quiet".as_ref(),
-    ]);
+    let output = quietly("tradeoff", &scene, &out);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(0), "{stderr}");
     let html = std::fs::read_to_string(out.join("tradeoff.html")).unwrap();

@@ -32,3 +32,15 @@ pub fn run_args<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
         .output()
         .expect("run binary")
 }
+
+/// `activemuscle COMMAND SCENE --out OUT --quiet` (`run` or `tradeoff`) without any assertion:
+/// its output, status included.
+pub fn quietly(command: &str, scene: &Path, out: &Path) -> Output {
+    run_args(&[
+        command.as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ])
+}
