@@ -3,7 +3,7 @@
 
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
-use activemuscle::studies::tradeoff::run_until as run_tradeoff;
+use activemuscle::studies::tradeoff::{run_until as run_tradeoff, scene_options};
 use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
@@ -474,17 +474,11 @@ fn tradeoff_command(
         staging = staging.with_space(space);
     }
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
-    let options = scene.tradeoff_options().cloned().unwrap_or_default();
+    let options = scene_options(&scene.studies, &scene.defaults);
     let printing = Printing::new(true, false);
     let bar = printing.study();
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
-    let results = run_tradeoff(
-        &scene.models,
-        &options,
-        &scene.fallback(),
-        progress,
-        Some(&stop),
-    )?;
+    let results = run_tradeoff(&scene.models, &options, progress, Some(&stop))?;
     let wall = started.elapsed().as_secs_f64();
     let full = match tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall) {
         Ok(_) => None,

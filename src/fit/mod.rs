@@ -27,6 +27,7 @@ mod explicit;
 mod levenberg;
 mod parametric;
 mod passive;
+mod problem;
 pub mod solver;
 
 pub use crate::uniaxial::Direction;
@@ -43,7 +44,8 @@ pub use parametric::{parameter_bounds, Parametric};
 pub use passive::{
     across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
 };
-pub use solver::{least_squares, residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
+pub use problem::{residuals_and_jacobian, Bounds, Residuals};
+pub use solver::{least_squares, FitOptions, Method};
 
 use crate::Scalar;
 use std::fmt;

@@ -71,7 +71,10 @@ pub fn write_run(
         files.push(format!("{}.svg", f.stem));
         rendered.push((f, png));
     }
-    if let Some(t) = results.tradeoff() {
+    if let Some((_, t)) = results
+        .of::<crate::studies::tradeoff::TradeoffResults>()
+        .next()
+    {
         let (staged, figures) = tradeoff::stage_pages(
             t,
             staging,

@@ -170,17 +170,6 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
-    // The approaches of the studies other than the scene's (shear and biaxial compare them).
-    let mut approaches: Vec<crate::active::Approach> = vec![scene.models.approach];
-    for m in used.models.iter().filter(|m| m.model.is_some()) {
-        if !approaches.contains(&m.approach) {
-            approaches.push(m.approach);
-            rows.push(approach_row(&crate::models::Models {
-                approach: m.approach,
-                ..scene.models.clone()
-            }));
-        }
-    }
     if let Some(v) = &scene.models.volumetric {
         let form = v.form().formula();
         rows.push((
@@ -242,17 +231,21 @@ fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
 fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
     let m = &scene.models;
     let constant = used.constant;
-    // Every activation model, and those with a law (active stress has none).
-    let activated = used.models.iter().any(|a| a.model.is_some());
-    let chosen: Vec<ModelChoice> = used
-        .models
-        .iter()
-        .filter(|a| a.approach.has_law())
-        .filter_map(|a| a.model)
-        .collect();
+    // Every activation model (of any approach; active stress has no law).
+    let chosen: Vec<ModelChoice> = used.models.iter().filter_map(|a| a.model).collect();
+    // The scene's approach first, then the others its studies used, each as the registry
+    // describes it.
+    let mut approaches = Vec::new();
+    if constant || !chosen.is_empty() {
+        approaches.push(scene.defaults.approach);
+    }
+    for a in chosen.iter().map(|c| c.approach) {
+        if !approaches.contains(&a) {
+            approaches.push(a);
+        }
+    }
     let mut rows: Vec<ModelRow> = Vec::new();
-    if activated || constant {
-        rows.push(approach_row(m));
+    if !approaches.is_empty() {
         rows.push((
             "λ_f, fibre stretch".into(),
             "λ_f = √(C:M), the argument of the activation laws and of the active curve".into(),
@@ -264,20 +257,20 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             "eqs. (10), (11)".into(),
         ));
     }
-    if activated {
+    if !chosen.is_empty() {
         rows.extend(curve_rows(m));
     }
-    if !m.approach.has_law() {
-        return rows;
-    }
     rows.extend(law_rows(m, &chosen, constant));
-    // The rows are written with the active-strain γ; the structural approach's variable is ω.
-    if let Ok(map) = m.activation_map() {
-        for row in rows.iter_mut().skip(1) {
-            row.1 = row.1.replace('γ', map.variable());
+    // The rows are written with the active-strain γ; the scene's approach may name its
+    // variable otherwise (the structural ω).
+    if let Some(v) = scene.defaults.approach.variable().filter(|v| *v != "γ") {
+        for row in &mut rows {
+            row.1 = row.1.replace('γ', v);
         }
     }
-    rows
+    let mut all: Vec<ModelRow> = approaches.iter().map(|a| approach_row(*a, m)).collect();
+    all.extend(rows);
+    all
 }
 
 /// The rows of the active curve, the damage and the force–velocity factor.
@@ -315,10 +308,15 @@ fn curve_rows(m: &crate::models::Models) -> Vec<ModelRow> {
     rows
 }
 
-/// The rows of constant γ and of the laws and couplings of `chosen`.
+/// The rows of the constant γ, the laws and the couplings the `chosen` models (of approaches
+/// that have a law) used.
 fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -> Vec<ModelRow> {
+    let laws: Vec<(LawKind, CouplingKind)> = chosen
+        .iter()
+        .filter_map(ModelChoice::activation_law)
+        .collect();
+    let used = |law: LawKind| laws.iter().any(|x| x.0 == law);
     let mut rows: Vec<ModelRow> = Vec::new();
-    let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
     if constant {
         rows.push(("constant γ".into(), "γ held fixed".into(), "Fig. 5".into()));
     }
@@ -346,17 +344,14 @@ fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -
             "not in the chapter (Giantesio & Musesti 2017, strain-dependent internal parameters)".into(),
         ));
     }
-    if chosen.iter().any(|x| x.coupling == CouplingKind::Frozen) {
+    if laws.iter().any(|x| x.1 == CouplingKind::Frozen) {
         rows.push((
             "frozen coupling".into(),
             "P = ∂Ŵ/∂F − p F⁻ᵀ at γ = g(λ_f) held: the chapter's model (not a gradient)".into(),
             "eq. (7)".into(),
         ));
     }
-    if chosen
-        .iter()
-        .any(|x| x.coupling == CouplingKind::Consistent)
-    {
+    if laws.iter().any(|x| x.1 == CouplingKind::Consistent) {
         rows.push((
             "consistent coupling".into(),
             "the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))), differentiated through the law".into(),
@@ -366,31 +361,10 @@ fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -
     rows
 }
 
-/// The row of the scene's activation approach and map.
-fn approach_row(m: &crate::models::Models) -> ModelRow {
-    use crate::active::{ActiveStrainMap, Approach};
-    match (m.approach, m.map) {
-        (Approach::ActiveStress, _) => (
-            "active stress".into(),
-            "Ψ = W_pas(C) + (1 − d) ∫_{λ_min}^{λ_f} P_act, P = ∂W_pas/∂F + (1 − d) P_act(λ_f) F M/λ_f (FEBio, Blemker): no activation variable, no law; hyperelastic".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::Structural, _) => (
-            "ω, activation".into(),
-            "activation in the structural tensor (Ehret, Böl & Itskov 2011; 4C's MAT_Muscle_Weickenmeier): W with I = C:(L + ωM), L = (w0/3) I + (1 − w0) M, ω = g(λ_f)".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::VolumePreserving) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a with the volume-preserving F_a = (1 − γ) m⊗m + (1 − γ)^(−½)(I − m⊗m) (Weickenmeier et al. 2014; 4C's MAT_Muscle_Giantesio), Ŵ(F, γ) = W(C_e)".into(),
-            "eqs. (5)–(6) with another F_a".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::Chapter) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
-            "eqs. (5)–(6)".into(),
-        ),
-    }
+/// The row of an activation approach, with the scene's map, as the registry describes it.
+fn approach_row(approach: crate::active::Approach, m: &crate::models::Models) -> ModelRow {
+    let [name, what, chapter] = approach.row(m.map);
+    (name.into(), what.into(), chapter.into())
 }
 
 /// The figures (embedded) and the list of data files.

@@ -6,9 +6,8 @@ use super::{Staging, Writer};
 use crate::app_error::AppError;
 use crate::plot::{render_bytes, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use crate::studies::slug;
-use crate::studies::tradeoff::measure::{cell, ratio};
 use crate::studies::tradeoff::{Measurement, TradeoffResults};
-use crate::text::escape_html as escape;
+use crate::text::{cell, escape_html as escape, ratio};
 use std::fmt::Write;
 use std::path::Path;
 

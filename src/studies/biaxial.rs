@@ -6,7 +6,7 @@
 
 mod output;
 
-use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
+use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
@@ -120,36 +120,12 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
             }
         }
     };
-    let approaches = spec
-        .approaches
-        .clone()
-        .unwrap_or_else(|| vec![d.models.approach]);
-    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
-    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
-    couplings_for(&laws, &couplings)?;
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let passive = spec.passive.unwrap_or(true);
-    let mut models = Vec::new();
-    if passive {
-        models.push(ApproachModel {
-            approach: d.models.approach,
-            model: None,
-        });
-    }
-    models.extend(approach_models(
-        d.models,
-        &approaches,
-        &laws,
-        &couplings,
-        &damage,
-    )?);
-    if models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a biaxial study needs passive = true or approaches",
-        ));
-    }
+    let keys = ModelKeys {
+        approaches: spec.approaches.as_deref(),
+        ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
+    };
+    let (models, set) = approach_models(keys, passive, d, &[d.approach], "biaxial")?;
     let name = spec.name.clone().unwrap_or_else(|| "planar biaxial".into());
     let resolved = BiaxialSpec {
         name: Some(name.clone()),
@@ -159,10 +135,10 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
             .then(|| spec.path.unwrap_or(BiaxialPath::Equibiaxial)),
         stretch: spec.stretch.clone(),
         pairs: spec.pairs.clone(),
-        approaches: Some(approaches),
-        laws: Some(laws),
-        couplings: Some(couplings),
-        damage: Some(damage),
+        approaches: Some(set.approaches),
+        laws: set.laws,
+        couplings: set.couplings,
+        damage: Some(set.damage),
         passive: Some(passive),
     };
     Ok((
@@ -264,15 +240,7 @@ impl BiaxialStudy {
         ctx: &RunContext,
     ) -> Result<(BiaxialCurve, Option<Failure>), AppError> {
         let label = m.label(models);
-        let muscle = match m.model {
-            None => models.passive(),
-            Some(c) => Models {
-                approach: m.approach,
-                ..models.clone()
-            }
-            .muscle(c)
-            .map_err(|e| AppError::from(e).within(format!("{}: {label}", self.name)))?,
-        };
+        let muscle = m.muscle(models, &self.name)?;
         let mut points = Vec::with_capacity(self.pairs.len());
         let mut first: Option<((f64, f64), String)> = None;
         let mut failed = 0usize;

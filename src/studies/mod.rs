@@ -42,10 +42,10 @@ pub mod table;
 pub mod tradeoff;
 pub mod uniaxial;
 
+use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
 use crate::fem::Cancel;
 use crate::models::Models;
-use crate::uniaxial::Direction;
 use serde::{Deserialize, Deserializer, Serialize};
 use spec::Defaults;
 use std::path::Path;
@@ -59,21 +59,40 @@ pub trait KindSpec: Sized {
     type Study;
     /// Keys in errors are relative to the study.
     fn resolve(&self, defaults: &Defaults) -> Result<(Self::Study, Self), SpecError>;
+    /// Once every study of the scene is resolved (`studies`, among them this one, `study`): the
+    /// study and its resolved spec completed from the others, where it takes what it leaves out
+    /// from them (`None`: nothing to complete, the default).
+    fn completed(
+        &self,
+        _study: &Self::Study,
+        _resolved: &Self,
+        _studies: &[Study],
+        _defaults: &Defaults,
+    ) -> Result<Option<(Self::Study, Self)>, SpecError> {
+        Ok(None)
+    }
 }
 
 /// A validated study of some kind.
 pub trait KindStudy {
+    /// Whether it runs alone, after the others (it measures run times).
+    const ALONE: bool = false;
+    /// Whether it is driven in time: the stretch rate, hence force–velocity, applies.
+    const IN_TIME: bool = false;
+    /// Why a scene holds at most one study of its kind, if it does (`None`: any number).
+    const ONE_PER_SCENE: Option<&'static str> = None;
+    /// Whether it solves the axisymmetric FE cylinder, whose fibres run along its axis.
+    const AXIAL_FIBRES: bool = false;
     /// Its label.
     fn name(&self) -> &str;
     /// What it will compute, in one line.
     fn describe(&self) -> String;
-    /// Runs it on `models`; `fallback` completes a trade-off study.
-    fn run(
-        &self,
-        models: &Models,
-        fallback: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError>;
+    /// The activation approaches it uses besides the scene's (empty: the scene's only).
+    fn approaches(&self) -> Vec<Approach> {
+        Vec::new()
+    }
+    /// Runs it on `models`.
+    fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError>;
 }
 
 /// The study kinds: `study_kinds! { Variant("name", module::Spec, module::Study, Result, "doc"), ... }`
@@ -95,6 +114,36 @@ macro_rules! study_kinds {
             pub fn name(self) -> &'static str {
                 match self {
                     $(StudyKind::$variant => $name,)*
+                }
+            }
+
+            /// Whether its studies are driven in time ([`KindStudy::IN_TIME`]).
+            pub fn in_time(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::IN_TIME,)*
+                }
+            }
+
+            /// Why a scene holds at most one study of this kind, if it does
+            /// ([`KindStudy::ONE_PER_SCENE`]).
+            pub fn one_per_scene(self) -> Option<&'static str> {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::ONE_PER_SCENE,)*
+                }
+            }
+
+            /// Whether its studies solve the axisymmetric FE cylinder, whose fibres run along
+            /// its axis ([`KindStudy::AXIAL_FIBRES`]).
+            pub fn axial_fibres(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::AXIAL_FIBRES,)*
+                }
+            }
+
+            /// Whether its studies run alone, after the others ([`KindStudy::ALONE`]).
+            pub fn runs_alone(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::ALONE,)*
                 }
             }
 
@@ -153,6 +202,24 @@ macro_rules! study_kinds {
                     })*
                 })
             }
+
+            /// The study at `own` of the resolved `studies` and its `resolved` spec, completed
+            /// from the others ([`KindSpec::completed`]; `None`: nothing to complete).
+            pub fn completed(
+                &self,
+                resolved: &StudySpec,
+                own: usize,
+                studies: &[Study],
+                defaults: &Defaults,
+            ) -> Result<Option<(Study, StudySpec)>, SpecError> {
+                Ok(match (self, &studies[own], resolved) {
+                    $((StudySpec::$variant(s), Study::$variant(study), StudySpec::$variant(r)) => {
+                        KindSpec::completed(s, study, r, studies, defaults)?
+                            .map(|(a, b)| (Study::$variant(a), StudySpec::$variant(b)))
+                    })*
+                    _ => None,
+                })
+            }
         }
 
         /// A validated study, ready to run.
@@ -183,15 +250,22 @@ macro_rules! study_kinds {
                 }
             }
 
-            /// Runs the study on `models`; `fallback` completes a trade-off study.
-            pub fn run(
-                &self,
-                models: &Models,
-                fallback: &tradeoff::Fallback,
-                ctx: &RunContext,
-            ) -> Result<Outcome, AppError> {
+            /// Whether it is driven in time ([`KindStudy::IN_TIME`]).
+            pub fn in_time(&self) -> bool {
+                self.kind().in_time()
+            }
+
+            /// The approaches it uses besides the scene's ([`KindStudy::approaches`]).
+            pub fn approaches(&self) -> Vec<Approach> {
                 match self {
-                    $(Study::$variant(s) => KindStudy::run(s, models, fallback, ctx),)*
+                    $(Study::$variant(s) => KindStudy::approaches(s),)*
+                }
+            }
+
+            /// Runs the study on `models`.
+            pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+                match self {
+                    $(Study::$variant(s) => KindStudy::run(s, models, ctx),)*
                 }
             }
         }
@@ -298,9 +372,10 @@ study_kinds! {
 }
 
 /// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
-/// whose study has `name`, `describe()` and `run(models, ctx)`.
+/// whose study has `name`, `describe()` and `run(models, ctx)`; a block after them holds the
+/// study's other `KindStudy` items (`IN_TIME`, `approaches`).
 macro_rules! plain_kind {
-    ($spec:ty, $study:ty, $resolve:path) => {
+    ($spec:ty, $study:ty, $resolve:path $(, { $($items:tt)* })?) => {
         impl KindSpec for $spec {
             type Study = $study;
             fn resolve(&self, d: &Defaults) -> Result<($study, Self), SpecError> {
@@ -308,18 +383,14 @@ macro_rules! plain_kind {
             }
         }
         impl KindStudy for $study {
+            $($($items)*)?
             fn name(&self) -> &str {
                 &self.name
             }
             fn describe(&self) -> String {
                 <$study>::describe(self)
             }
-            fn run(
-                &self,
-                models: &Models,
-                _: &tradeoff::Fallback,
-                ctx: &RunContext,
-            ) -> Result<Outcome, AppError> {
+            fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
                 <$study>::run(self, models, ctx)
             }
         }
@@ -334,7 +405,10 @@ plain_kind!(
 plain_kind!(
     cylinder::CylinderSpec,
     cylinder::CylinderStudy,
-    cylinder::resolve
+    cylinder::resolve,
+    {
+        const AXIAL_FIBRES: bool = true;
+    }
 );
 plain_kind!(
     stability::StabilitySpec,
@@ -344,13 +418,25 @@ plain_kind!(
 plain_kind!(
     history::HistorySpec,
     history::HistoryStudy,
-    history::resolve
+    history::resolve,
+    {
+        const IN_TIME: bool = true;
+    }
 );
-plain_kind!(shear::ShearSpec, shear::ShearStudy, shear::resolve);
+plain_kind!(shear::ShearSpec, shear::ShearStudy, shear::resolve, {
+    fn approaches(&self) -> Vec<Approach> {
+        spec::ApproachModel::approaches(&self.models)
+    }
+});
 plain_kind!(
     biaxial::BiaxialSpec,
     biaxial::BiaxialStudy,
-    biaxial::resolve
+    biaxial::resolve,
+    {
+        fn approaches(&self) -> Vec<Approach> {
+            spec::ApproachModel::approaches(&self.models)
+        }
+    }
 );
 
 impl KindSpec for fit::FitSpec {
@@ -367,62 +453,9 @@ impl KindStudy for fit::FitStudy {
     fn describe(&self) -> String {
         fit::FitStudy::describe(self)
     }
-    fn run(
-        &self,
-        _: &Models,
-        _: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError> {
+    fn run(&self, _: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         fit::FitStudy::run(self, ctx)
     }
-}
-
-impl KindSpec for tradeoff::TradeoffSpec {
-    type Study = tradeoff::TradeoffStudy;
-    fn resolve(&self, _: &Defaults) -> Result<(tradeoff::TradeoffStudy, Self), SpecError> {
-        tradeoff::resolve(self)
-    }
-}
-
-impl KindStudy for tradeoff::TradeoffStudy {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn describe(&self) -> String {
-        tradeoff::TradeoffStudy::describe(self)
-    }
-    fn run(
-        &self,
-        models: &Models,
-        fallback: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError> {
-        tradeoff::TradeoffStudy::run(self, models, fallback, ctx)
-    }
-}
-
-/// What a trade-off study takes from the other studies: the first cylinder study's cylinder and
-/// mesh, the first uniaxial study along the fibres' stretches (or the defaults).
-pub fn fallback(studies: &[Study]) -> tradeoff::Fallback {
-    let mut f = tradeoff::Fallback::default();
-    if let Some(c) = studies.iter().find_map(|s| match s {
-        Study::Cylinder(c) => Some(c),
-        _ => None,
-    }) {
-        f.geometry = tradeoff::Geometry {
-            radius: c.radius,
-            length: c.length,
-            grading: c.grading,
-        };
-        f.cells = (c.nr, c.nz);
-    }
-    if let Some(u) = studies.iter().find_map(|s| match s {
-        Study::Uniaxial(u) if u.direction == Direction::Along => Some(u),
-        _ => None,
-    }) {
-        f.curve_stretches = u.stretches.clone();
-    }
-    f
 }
 
 /// Where a run reports its progress: log lines and one progress count per study. Every method

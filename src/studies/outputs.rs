@@ -248,6 +248,12 @@ pub fn words(law: LawKind, coupling: CouplingKind) -> String {
     format!("{} law, {} coupling", law.name(), coupling.name())
 }
 
+/// The law and coupling of `m` in [`words`], or its approach if it has no law (`active-stress`).
+pub fn model_words(m: &ModelChoice) -> String {
+    m.activation_law()
+        .map_or_else(|| m.approach.name().to_string(), |(l, c)| words(l, c))
+}
+
 /// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.
 pub fn derived(
     label: impl Into<String>,

@@ -152,7 +152,7 @@ pub fn size_of(study: &Study) -> Size {
             ..Size::default()
         },
         Study::ActivationInTime(h) => Size {
-            rows: n(h.times.len() * h.damages.len()),
+            rows: n(h.times.len() * h.models.len()),
             figures: 1,
             tables: 1,
             ..Size::default()
@@ -197,7 +197,7 @@ fn uniaxial(u: &super::uniaxial::UniaxialStudy) -> Size {
 /// A cylinder study: a row per damage and stretch (and per named point), a VTK file per damage
 /// and field stretch (and a series per sweep), a sweep per damage.
 fn cylinder(c: &super::cylinder::CylinderStudy) -> Size {
-    let sweeps = c.damages.len() as u64;
+    let sweeps = c.models.len() as u64;
     let stretches = c.stretches.len() as u64;
     let memory = MemoryEstimate::structured(
         c.nr,

@@ -8,7 +8,7 @@ use activemuscle::active::time::{
     ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule,
 };
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, Drive, FrozenTangent, ImplicitLaw, Law,
+    ActivationLaw, ActivationMap, ActiveCurve, Coupling, Drive, FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{Kinematics, FULL};
@@ -199,7 +199,7 @@ fn a_muscle_answers_at_its_current_activation_level_however_it_was_set() {
     let muscle = muscle
         .with_activation(0.25)
         .unwrap()
-        .with_map(ActiveStrainMap::Chapter)
+        .with_map(ActivationMap::Chapter)
         .unwrap();
     check(&muscle, d, 0.25);
     check(&muscle.clone(), d, 0.25);
@@ -216,6 +216,7 @@ fn models() -> Models {
 
 fn choice(damage: f64) -> ModelChoice {
     ModelChoice {
+        approach: activemuscle::active::Approach::ActiveStrain,
         law: LawKind::Implicit,
         coupling: CouplingKind::Frozen,
         damage,
@@ -375,9 +376,7 @@ fn a_stop_request_ends_the_history_with_what_was_solved() {
         stop: Some(&stop),
     };
     let study = &scene.studies[0];
-    let outcome = study
-        .run(&scene.models, &scene.fallback(), &ctx)
-        .expect("runs");
+    let outcome = study.run(&scene.models, &ctx).expect("runs");
     assert_eq!(outcome.points, 0);
     assert!(outcome.failures[0].message.contains("time limit"));
     assert!(matches!(outcome.result, StudyResult::ActivationInTime(_)));

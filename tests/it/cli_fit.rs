@@ -238,6 +238,7 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
     let curve = StabilityCurve {
         approach: Approach::ActiveStrain,
         model: Some(ModelChoice {
+            approach: activemuscle::active::Approach::ActiveStrain,
             law: LawKind::Implicit,
             coupling: CouplingKind::Frozen,
             damage: 0.5,

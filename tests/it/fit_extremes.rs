@@ -300,7 +300,9 @@ fn an_endless_data_stream_is_refused_after_the_byte_limit() {
         Data::from_csv_reader(std::io::repeat(b'0'), "zeros").map(|d| d.len())
     });
     match e {
-        Err(FitError::DataTooLarge { source_name, what }) => {
+        Err(FitError::DataTooLarge {
+            source_name, what, ..
+        }) => {
             assert_eq!(source_name, "zeros");
             assert!(what.contains(&MAX_DATA_BYTES.to_string()), "{what}");
         }

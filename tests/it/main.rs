@@ -15,6 +15,7 @@ mod activation_laws;
 mod active_curves;
 mod active_strain_map;
 mod approach_column;
+mod approach_registry;
 mod approaches;
 mod bounded_loops;
 mod cauchy_stress;

@@ -9,7 +9,7 @@ use crate::models::{CouplingKind, LawKind};
 use crate::plot::{short, Figure, Series, Stroke, GREY};
 use crate::studies::curves::{self, sweep_curve};
 use crate::studies::outputs::{
-    chapter, derived, figure, key, list, model_cells, panel, words, Context, KindOutput, Of,
+    chapter, derived, figure, key, list, model_cells, model_words, panel, Context, KindOutput, Of,
     OwnTable, Used, GAMMA, STRESS,
 };
 use crate::studies::slug;
@@ -171,23 +171,7 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
             .collect()
     };
     let mut fibre = by_damage(|p| p.fibre_stretch_centre);
-    let lambdas: Vec<f64> = c
-        .sweeps
-        .iter()
-        .flat_map(|s| s.points.iter().map(|p| p.lambda))
-        .collect();
-    let (lo, hi) = lambdas
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &l| {
-            (a.0.min(l), a.1.max(l))
-        });
-    let lmin = cx.curve.lambda_min();
-    fibre.push(derived(
-        format!("λ_min = {lmin}"),
-        vec![(lo, lmin), (hi, lmin)],
-        Stroke::Dashed,
-        GREY,
-    ));
+    fibre.push(lambda_min_line(c, cx.curve.lambda_min()));
     let mut p = by_damage(|p| p.stress);
     for (i, s) in c.sweeps.iter().enumerate() {
         p.push(derived(
@@ -203,35 +187,78 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
     p.push(key("dashed: homogeneous (0D)", Stroke::Dashed));
     let m = c.sweeps.first()?.model;
     let ds: Vec<f64> = c.sweeps.iter().map(|s| s.model.damage).collect();
+    let lawful = m.activation_law().is_some();
     let like_fig_12 = c.bases == Bases::Clamped
-        && m.law == LawKind::Explicit
-        && m.coupling == CouplingKind::Frozen;
+        && m.activation_law() == Some((LawKind::Explicit, CouplingKind::Frozen));
     let geometry = details.first().map_or(String::new(), |d| format!(" ({d})"));
     figure(
         "fig_cylinder",
         format!(
             "The cylinder \"{study}\": {} bases, {}, d = {}{}",
             bases_name(c.bases),
-            words(m.law, m.coupling),
+            model_words(&m),
             list(&ds),
-            if like_fig_12 { chapter(12, &c.energy, cx.chapter_material) } else { String::new() }
-        ),
-        format!(
-            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: {}.",
-            c.energy,
-            match c.regions_in_words() {
-                None => "the homogeneous uniaxial (0D) curve of the same model".to_string(),
-                Some(regions) => format!(
-                    "the homogeneous uniaxial (0D) curve of the uniform model at the sweep's d, \
-                     without the regions ({regions}): a reference, not the same body"
-                ),
+            if like_fig_12 {
+                chapter(12, &c.energy, cx.chapter_material)
+            } else {
+                String::new()
             }
         ),
+        caption(c, &geometry, lawful),
         vec![
-            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre)),
-            panel("Fibre stretch λ_f at the centre", "fibre stretch λ_f [-]", fibre),
+            lawful
+                .then(|| {
+                    panel(
+                        "γ at the centre of the cylinder",
+                        GAMMA,
+                        by_damage(|p| p.gamma_centre),
+                    )
+                })
+                .flatten(),
+            panel(
+                "Fibre stretch λ_f at the centre",
+                "fibre stretch λ_f [-]",
+                fibre,
+            ),
             panel("Nominal axial stress", STRESS, p),
         ],
+    )
+}
+
+/// The dashed line at λ_f = `lmin` across the stretches of `c`.
+fn lambda_min_line(c: &CylinderResult, lmin: f64) -> Option<Series> {
+    let (lo, hi) = c
+        .sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.lambda))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, l| {
+            (a.0.min(l), a.1.max(l))
+        });
+    derived(
+        format!("λ_min = {lmin}"),
+        vec![(lo, lmin), (hi, lmin)],
+        Stroke::Dashed,
+        GREY,
+    )
+}
+
+/// The caption of [`cylinder`]: what its panels show (no γ panel for a model without a law).
+fn caption(c: &CylinderResult, geometry: &str, lawful: bool) -> String {
+    format!(
+        "Axisymmetric FE cylinder{geometry}, energy {}. {}; bottom: nominal axial stress (axial reaction / πR²), dashed: {}.",
+        c.energy,
+        if lawful {
+            "Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min)"
+        } else {
+            "Top: the fibre stretch λ_f at the quadrature point nearest the centre of the cylinder, the argument of the active stress (0 where λ_f ≤ λ_min): the approach has no activation variable"
+        },
+        match c.regions_in_words() {
+            None => "the homogeneous uniaxial (0D) curve of the same model".to_string(),
+            Some(regions) => format!(
+                "the homogeneous uniaxial (0D) curve of the uniform model at the sweep's d, \
+                 without the regions ({regions}): a reference, not the same body"
+            ),
+        }
     )
 }
 

@@ -2,10 +2,11 @@
 //! and γ(t) per damage (and J(t) for a nearly incompressible block).
 
 use super::{HistoryPoint, HistoryResult};
+use crate::models::ModelChoice;
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::outputs::{
-    derived, each_study, figure, model_cells, prefixed, Context, KindOutput, Of, OwnTable, Used,
-    GAMMA, LAMBDA, STRESS,
+    derived, each_study, figure, model_cells, model_words, prefixed, Context, KindOutput, Of,
+    OwnTable, Used, GAMMA, LAMBDA, STRESS,
 };
 use crate::studies::table::{every_row, Table};
 
@@ -64,6 +65,43 @@ impl HistoryResult {
     }
 }
 
+/// The stretch axis of a free contraction from its deepest shortening up to rest (λ = 1
+/// wherever a = 0).
+fn down_to_rest(p: &mut Panel) {
+    let low = p
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|q| q.1))
+        .fold(1.0, f64::min);
+    let pad = 0.05 * (1.0 - low).max(1e-3);
+    p.y_range = Some((low - pad, 1.0 + pad));
+}
+
+/// The caption of [`history_figure`]: the block, its model, its loading.
+fn caption(r: &HistoryResult, m: &ModelChoice, free: bool) -> String {
+    let block = match &r.volumetric {
+        None => "A homogeneous incompressible block".to_string(),
+        Some(v) => format!(
+            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
+            v.formula()
+        ),
+    };
+    format!(
+        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+        model_words(m),
+        if m.activation_law().is_some() {
+            "the laws evaluated at each step with"
+        } else {
+            "no law:"
+        },
+        if free {
+            "Zero axial load: the stretch solves P(λ) = 0 at each step."
+        } else {
+            "Prescribed stretch λ(t): the stress history."
+        }
+    )
+}
+
 /// The figure of an activation-in-time study: a(t) with its schedule, then per damage value the
 /// stress history (prescribed stretch) or the stretch history (free contraction), and γ(t).
 fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
@@ -120,27 +158,15 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
     };
     let mut response = over(title.into(), y_label, response);
     if let (true, Some(p)) = (free, response.as_mut()) {
-        // λ = 1 wherever a = 0: the whole range, from the deepest shortening to rest.
-        let low = p
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|q| q.1))
-            .fold(1.0, f64::min);
-        let pad = 0.05 * (1.0 - low).max(1e-3);
-        p.y_range = Some((low - pad, 1.0 + pad));
+        down_to_rest(p);
     }
     let m = first.model;
-    let block = match &r.volumetric {
-        None => "A homogeneous incompressible block".to_string(),
-        Some(v) => format!(
-            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
-            v.formula()
-        ),
-    };
     let mut panels = vec![
         over("Activation level".into(), "activation level a [-]", level),
         response,
-        over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
+        // An approach without a law has no γ (≡ 0) to draw.
+        m.activation_law()
+            .and_then(|_| over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma))),
     ];
     if r.volumetric.is_some() {
         panels.push(over(
@@ -152,16 +178,7 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
     figure(
         &prefixed("history", study),
         format!("Activation in time (study \"{study}\")"),
-        format!(
-            "{block} along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
-            m.law.name(),
-            m.coupling.name(),
-            if free {
-                "Zero axial load: the stretch solves P(λ) = 0 at each step."
-            } else {
-                "Prescribed stretch λ(t): the stress history."
-            }
-        ),
+        caption(r, &m, free),
         panels,
     )
 }
