@@ -139,44 +139,7 @@ fn rustc_version() -> Option<String> {
 /// them; else the run stopped writing, said after); says whether the run is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool) {
     say!();
-    // Columns as wide as their longest entry (study names and kinds such as
-    // activation-in-time are the scene's).
-    let name_w = results
-        .studies
-        .iter()
-        .map(|s| s.name.chars().count())
-        .fold(5, usize::max);
-    let kind_w = results
-        .studies
-        .iter()
-        .map(|s| s.kind.name().len())
-        .fold(4, usize::max);
-    say!(
-        "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9}",
-        "study",
-        "kind",
-        "models",
-        "points",
-        "wall [s]"
-    );
-    say!("{}", "-".repeat(name_w + kind_w + 34));
-    for s in &results.studies {
-        let points = match s.result {
-            StudyResult::Nothing => "FAILED".to_string(),
-            _ => format!("{}/{}", s.points, s.requested),
-        };
-        say!(
-            "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9.2}",
-            s.name,
-            s.kind.name(),
-            s.models,
-            points,
-            s.elapsed.as_secs_f64()
-        );
-    }
-    if results.ran_together() {
-        say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
-    }
+    study_table(results);
     for s in &results.studies {
         for line in s.result.console(&s.name) {
             say!("{line}");
@@ -217,6 +180,48 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
              everything computed was written",
             results.studies.len()
         );
+    }
+}
+
+/// The table of studies: name, kind, models, points computed of those requested, wall time.
+fn study_table(results: &Results) {
+    // Columns as wide as their longest entry (study names and kinds such as
+    // activation-in-time are the scene's).
+    let name_w = results
+        .studies
+        .iter()
+        .map(|s| s.name.chars().count())
+        .fold(5, usize::max);
+    let kind_w = results
+        .studies
+        .iter()
+        .map(|s| s.kind.name().len())
+        .fold(4, usize::max);
+    say!(
+        "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9}",
+        "study",
+        "kind",
+        "models",
+        "points",
+        "wall [s]"
+    );
+    say!("{}", "-".repeat(name_w + kind_w + 34));
+    for s in &results.studies {
+        let points = match s.result {
+            StudyResult::Nothing => "FAILED".to_string(),
+            _ => format!("{}/{}", s.points, s.requested),
+        };
+        say!(
+            "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9.2}",
+            s.name,
+            s.kind.name(),
+            s.models,
+            points,
+            s.elapsed.as_secs_f64()
+        );
+    }
+    if results.ran_together() {
+        say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
 }
 

@@ -736,19 +736,7 @@ impl CylinderStudy {
                     continue;
                 }
             };
-            details.push(format!(
-                "d = {}: {}/{} stretches, {} dofs, {}{}",
-                sweep.model.damage,
-                sweep.points.len(),
-                self.stretches.len(),
-                sweep.dofs,
-                against_0d(&sweep),
-                if stops.is_empty() {
-                    ""
-                } else {
-                    " (stopped: see \"Where a model stopped\")"
-                }
-            ));
+            details.push(self.sweep_detail(&sweep, !stops.is_empty()));
             failures.extend(stops);
             result.sweeps.push(sweep);
         }
@@ -764,6 +752,24 @@ impl CylinderStudy {
             failures,
             result: StudyResult::Cylinder(result),
         })
+    }
+
+    /// A sweep's line of the study's details: its stretches, unknowns and the distance from the
+    /// 0D curve; whether it `stopped` early.
+    fn sweep_detail(&self, sweep: &Sweep, stopped: bool) -> String {
+        format!(
+            "d = {}: {}/{} stretches, {} dofs, {}{}",
+            sweep.model.damage,
+            sweep.points.len(),
+            self.stretches.len(),
+            sweep.dofs,
+            against_0d(sweep),
+            if stopped {
+                " (stopped: see \"Where a model stopped\")"
+            } else {
+                ""
+            }
+        )
     }
 
     /// The study's facts before its sweeps': geometry, mesh, bases, stretches, regions.

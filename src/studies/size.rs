@@ -248,94 +248,97 @@ pub fn check_within(
     available: Option<u64>,
     threads: usize,
 ) -> Result<(), SpecError> {
-    let total = scene_size(studies);
-    // The error's key is the study that contributes the most: its [[study]] line.
-    let refuse = |what: String, of: fn(&Size) -> f64| {
-        let (i, study) = studies
-            .iter()
-            .enumerate()
-            .max_by(|a, b| of(&size_of(a.1)).total_cmp(&of(&size_of(b.1))))
-            .ok_or_else(|| SpecError::new("study", "", what.clone()))?;
-        Err(SpecError::new(
-            format!("study[{i}]"),
-            format!("{:?}", study.name()),
-            format!(
-                "{what}; this study contributes the most ({}). The limits keep a typo from \
-                 running for days or filling a disk: split the scene, or take coarser steps \
-                 (docs/running.md, \"Limits\")",
-                study.describe()
-            ),
-        ))
+    match beyond_limits(&scene_size(studies), available, threads) {
+        Some(exceeded) => Err(refusal(studies, exceeded)),
+        None => Ok(()),
+    }
+}
+
+/// The refusal of a scene for `what`, at the [[study]] line of the study that contributes the
+/// most to it (by `of`).
+fn refusal(studies: &[Study], (what, of): Exceeded) -> SpecError {
+    let most = studies
+        .iter()
+        .enumerate()
+        .max_by(|a, b| of(&size_of(a.1)).total_cmp(&of(&size_of(b.1))));
+    let Some((i, study)) = most else {
+        return SpecError::new("study", "", what);
     };
+    SpecError::new(
+        format!("study[{i}]"),
+        format!("{:?}", study.name()),
+        format!(
+            "{what}; this study contributes the most ({}). The limits keep a typo from \
+             running for days or filling a disk: split the scene, or take coarser steps \
+             (docs/running.md, \"Limits\")",
+            study.describe()
+        ),
+    )
+}
+
+/// A limit exceeded: what the refusal says, and the measure of a study that ranks the studies.
+type Exceeded = (String, fn(&Size) -> f64);
+
+/// The first limit of [`LIMITS`] (or the memory `available`) that `total` exceeds: what the
+/// refusal says, with the estimate and the bound, and the measure that ranks the studies.
+fn beyond_limits(total: &Size, available: Option<u64>, threads: usize) -> Option<Exceeded> {
     if total.rows > LIMITS.rows {
-        return refuse(
-            format!(
-                "this scene would write {} rows (≈ {} of CSV); the limit is {} rows",
-                grouped(total.rows),
-                bytes(total.rows * ROW_BYTES),
-                grouped(LIMITS.rows)
-            ),
-            |s| s.rows as f64,
+        let what = format!(
+            "this scene would write {} rows (≈ {} of CSV); the limit is {} rows",
+            grouped(total.rows),
+            bytes(total.rows * ROW_BYTES),
+            grouped(LIMITS.rows)
         );
+        return Some((what, |s| s.rows as f64));
     }
     if total.figures > LIMITS.figures {
-        return refuse(
-            format!(
-                "this scene would draw up to {} figures (a report.html of ≈ {}); the limit is {}",
-                grouped(total.figures),
-                bytes(total.report_bytes()),
-                LIMITS.figures
-            ),
-            |s| s.figures as f64,
+        let what = format!(
+            "this scene would draw up to {} figures (a report.html of ≈ {}); the limit is {}",
+            grouped(total.figures),
+            bytes(total.report_bytes()),
+            LIMITS.figures
         );
+        return Some((what, |s| s.figures as f64));
     }
     if total.files() > LIMITS.files {
-        return refuse(
-            format!(
-                "this scene would write {} files ({} of them VTK); the limit is {}",
-                grouped(total.files()),
-                grouped(total.vtk_files),
-                grouped(LIMITS.files)
-            ),
-            |s| s.files() as f64,
+        let what = format!(
+            "this scene would write {} files ({} of them VTK); the limit is {}",
+            grouped(total.files()),
+            grouped(total.vtk_files),
+            grouped(LIMITS.files)
         );
+        return Some((what, |s| s.files() as f64));
     }
     if total.output_bytes() > LIMITS.output_bytes {
-        return refuse(
-            format!(
-                "this scene would write ≈ {} ({} of VTK files); the limit is {}",
-                bytes(total.output_bytes()),
-                bytes(total.vtk_bytes),
-                bytes(LIMITS.output_bytes)
-            ),
-            |s| s.output_bytes() as f64,
+        let what = format!(
+            "this scene would write ≈ {} ({} of VTK files); the limit is {}",
+            bytes(total.output_bytes()),
+            bytes(total.vtk_bytes),
+            bytes(LIMITS.output_bytes)
         );
+        return Some((what, |s| s.output_bytes() as f64));
     }
     if total.fe_work > LIMITS.fe_work {
-        return refuse(
-            format!(
-                "this scene's FE sweeps would solve {:.2e} unknowns × stretches (≈ {:.0} h on 2 \
-                 cores); the limit is {:.0e}",
-                total.fe_work,
-                total.fe_work * FE_SECONDS / 3600.0,
-                LIMITS.fe_work
-            ),
-            |s| s.fe_work,
+        let what = format!(
+            "this scene's FE sweeps would solve {:.2e} unknowns × stretches (≈ {:.0} h on 2 \
+             cores); the limit is {:.0e}",
+            total.fe_work,
+            total.fe_work * FE_SECONDS / 3600.0,
+            LIMITS.fe_work
         );
+        return Some((what, |s| s.fe_work));
     }
-    match available {
-        Some(a) if total.memory(threads) > a => refuse(
-            format!(
-                "this scene would hold ≈ {} in memory ({} rows, the report, {} FE solves at a time \
-                 of up to {} each); {} are available",
-                bytes(total.memory(threads)),
-                grouped(total.rows),
-                total.sweeps.min(threads as u64),
-                bytes(total.fe_memory as u64),
-                bytes(a)
-            ),
-            |s| s.memory(1) as f64,
-        ),
-        _ => Ok(()),
-    }
+    let a = available?;
+    (total.memory(threads) > a).then(|| {
+        let what = format!(
+            "this scene would hold ≈ {} in memory ({} rows, the report, {} FE solves at a time \
+             of up to {} each); {} are available",
+            bytes(total.memory(threads)),
+            grouped(total.rows),
+            total.sweeps.min(threads as u64),
+            bytes(total.fe_memory as u64),
+            bytes(a)
+        );
+        (what, (|s: &Size| s.memory(1) as f64) as fn(&Size) -> f64)
+    })
 }
