@@ -5,7 +5,7 @@
 //! them as a full disk does (ENOSPC); the binary's test build reads it from
 //! `ACTIVEMUSCLE_TEST_DISK_SPACE`.
 
-use crate::binary::quietly;
+use crate::binary::{quietly, SMALL_TRADEOFF};
 use crate::scratch::scratch;
 use activemuscle::output::{write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{RunOptions, Scene};
@@ -160,12 +160,7 @@ fn run_on_a_full_disk_exits_4_with_one_line_naming_the_disk_the_file_and_the_fre
 fn tradeoff_on_a_full_disk_keeps_its_table_and_exits_4() {
     let dir = scratch("full-disk-tradeoff");
     let scene = dir.join("tradeoff.toml");
-    std::fs::write(
-        &scene,
-        "[[study]]\nkind = \"tradeoff\"\noptions = [\"newton-tolerance\"]\nstretch = [1.1]\n\
-         nr = 1\nnz = 4\ntolerances = [1e-6, 1e-10]\n",
-    )
-    .unwrap();
+    std::fs::write(&scene, SMALL_TRADEOFF).unwrap();
     let out = dir.join("out");
     let o = Command::new(env!("CARGO_BIN_EXE_activemuscle"))
         .arg("tradeoff")

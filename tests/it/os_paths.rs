@@ -5,7 +5,7 @@
 
 #![cfg(unix)]
 
-use crate::binary::{quietly, run_args};
+use crate::binary::{quietly, run_args, SMALL_TRADEOFF};
 use crate::scratch::scratch;
 use std::ffi::OsString;
 use std::os::unix::ffi::OsStringExt;
@@ -80,12 +80,7 @@ fn a_scene_in_a_directory_whose_name_is_not_utf8_reads_its_data_file_beside_it()
 fn tradeoff_writes_into_an_output_directory_whose_name_is_not_utf8() {
     let dir = scratch("os-paths-tradeoff");
     let scene = dir.join("tradeoff.toml");
-    std::fs::write(
-        &scene,
-        "[[study]]\nkind = \"tradeoff\"\noptions = [\"newton-tolerance\"]\nstretch = [1.1]\n\
-         nr = 1\nnz = 4\ntolerances = [1e-6, 1e-10]\n",
-    )
-    .unwrap();
+    std::fs::write(&scene, SMALL_TRADEOFF).unwrap();
     let out = not_utf8(&dir, "t", "");
     let output = quietly("tradeoff", &scene, &out);
     let stderr = String::from_utf8_lossy(&output.stderr);
