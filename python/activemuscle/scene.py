@@ -39,7 +39,7 @@ class Study:
     study's ``table`` is tangent_summary.csv; ``remainders``, ``fe_remainders`` and ``newton``
     are tangent.csv, tangent_fe.csv and tangent_newton.csv (the last two with its ``fe`` level).
     ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
-    ``out``; none without it). ``findings``: what a trade-off study found."""
+    ``out``; none without it): a ``.vtu`` per stretch asked for and a ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
 
     name: str
     kind: str
