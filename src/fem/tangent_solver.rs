@@ -272,6 +272,7 @@ impl TangentSolver {
 
     /// GMRES on K preconditioned by the held factorisation, at most `max_iter` iterations;
     /// restores `rhs` and returns None if it does not converge.
+    #[allow(clippy::too_many_arguments)]
     fn krylov(
         &mut self,
         pattern: &Pattern,

@@ -68,6 +68,11 @@ impl ExplicitLaw {
         (self.a, self.b)
     }
 
+    /// The active curve the law reproduces.
+    pub fn curve(&self) -> &ActiveCurve {
+        &self.curve
+    }
+
     /// P_pas(λ) of eq. D:Ppas \[kPa\].
     fn passive_stress<T: Scalar>(&self, l: T) -> T {
         let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
@@ -146,8 +151,9 @@ impl ExplicitLaw {
                 quantity: "explicit activation gamma",
                 value: gamma.re(),
                 context: format!(
-                    "at lambda = {}, d = {damage}: eq. (14) left its domain (a logarithm or square root of a non-positive number)",
-                    lambda.re()
+                    "at lambda = {}, d = {}: eq. (14) left its domain (a logarithm or square root of a non-positive number)",
+                    crate::text::shortest(lambda.re()),
+                    crate::text::shortest(damage)
                 ),
             });
         }
