@@ -30,6 +30,7 @@ mod cylinder_muscle;
 mod cylinder_points;
 mod cylinder_regions;
 mod datapackage;
+mod docs;
 mod energy_battery;
 mod extremes;
 mod fem_clamped;
