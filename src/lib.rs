@@ -7,7 +7,7 @@
 //! activation through a damage d scaling the active stress; and the formulations other codes ship
 //! (active stress, structural activation, volumetric energies, activation in time).
 //!
-//! The user guide is in the repository's `docs/` (start at its README); this documentation is the
+//! The user guide is the repository's README.md and its `docs/` pages; this documentation is the
 //! API.
 //!
 //! ## A material point
@@ -29,16 +29,18 @@
 //! impl StrainEnergy for FibreReinforced {
 //!     fn energy<T: Scalar>(&self, c: &Invariants<T>) -> T {
 //!         let fibre = c.c_m - 1.0;
-//!         (c.tr_c - 3.0) * self.c1 + (fibre * fibre * self.k2).exp_m1() * (self.k1 / (2.0 * self.k2))
+//!         let matrix = (c.tr_c - 3.0) * self.c1;
+//!         matrix + (fibre * fibre * self.k2).exp_m1() * (self.k1 / (2.0 * self.k2))
 //!     }
 //! }
 //!
-//! // The chapter's implicit law makes the frozen model reproduce P_pas + (1 − d) P_act along the
-//! // fibres, for any energy.
+//! // The chapter's implicit law makes the frozen model reproduce P_pas + (1 − d) P_act
+//! // along the fibres, for any energy.
 //! let energy = FibreReinforced { c1: 0.5, k1: 2.0, k2: 3.0 };
 //! let curve = ActiveCurve::paper();
 //! let law = Law::Implicit(ImplicitLaw::new(energy.clone(), curve));
-//! let muscle = Muscle::new(energy.clone(), law, 0.0, Coupling::Frozen(FrozenTangent::Exact))?;
+//! let frozen = Coupling::Frozen(FrozenTangent::Exact);
+//! let muscle = Muscle::new(energy.clone(), law, 0.0, frozen)?; // damage d = 0
 //! let passive = Muscle::passive(energy);
 //! let (active, rest) = (along_fibres(&muscle, 1.1)?, along_fibres(&passive, 1.1)?);
 //! assert!((active.stress - (rest.stress + curve.value(1.1))).abs() < 1e-8);
@@ -68,7 +70,9 @@
 //! )?;
 //! let results = scene.run(&RunOptions::default());
 //! assert!(results.complete());
-//! let StudyResult::Uniaxial(uniaxial) = &results.studies[0].result else { unreachable!() };
+//! let StudyResult::Uniaxial(uniaxial) = &results.studies[0].result else {
+//!     unreachable!("a uniaxial study")
+//! };
 //! assert_eq!(uniaxial.curves.len(), 3); // the passive curve and one per damage
 //! # Ok::<(), activemuscle::scene::SceneError>(())
 //! ```

@@ -192,3 +192,50 @@ fn readme_scene_checks_and_runs_as_the_readme_says() {
     let curves = std::fs::read_to_string(out.join("curves.csv")).expect("curves.csv");
     assert_eq!(curves.lines().count(), 1 + 31 * 3, "{curves}");
 }
+
+/// The README's two commands are `cargo run --release` and the test command exactly as CI runs
+/// it (the line of `.ci/run` marked as the README's).
+#[test]
+fn readme_test_command_is_the_one_ci_runs() {
+    let ci = std::fs::read_to_string(Path::new(ROOT).join(".ci/run")).expect(".ci/run");
+    let command = ci
+        .lines()
+        .find(|l| l.contains("the README's test command"))
+        .and_then(|l| l.split('#').next())
+        .map(str::trim)
+        .expect(".ci/run marks the README's test command");
+    let readme = std::fs::read_to_string(Path::new(ROOT).join("README.md")).expect("README");
+    let two = format!("```sh\ncargo run --release\n{command}\n```");
+    assert!(
+        readme.contains(&two),
+        "README.md does not show the two commands as\n{two}"
+    );
+}
+
+/// The README's table of what is inside names every entry of every registry: energies, active
+/// curves, approaches, study kinds, elements and volumetric forms.
+#[test]
+fn readme_names_every_registry_entry() {
+    use activemuscle::active::{Approach, CURVES};
+    use activemuscle::energy::SHIPPED;
+    use activemuscle::fem::Element;
+    let readme = std::fs::read_to_string(Path::new(ROOT).join("README.md")).expect("README");
+    let forms =
+        activemuscle::scene::reference::keys_of::<activemuscle::models::IncompressibilityKind>()
+            .map_or(&[][..], |(_, v)| v);
+    let mut names: Vec<&str> = SHIPPED.iter().map(|e| e.name).collect();
+    names.extend(CURVES.iter().map(|c| c.name));
+    names.extend(Approach::NAMES.iter().copied());
+    names.extend(StudyKind::ALL.iter().map(|k| k.name()));
+    names.extend(Element::ALL.iter().map(|e| e.name()));
+    names.extend(forms.iter().copied());
+    let missing: Vec<&str> = names
+        .into_iter()
+        .filter(|n| !readme.contains(&format!("`{n}`")))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "README.md's \"What is inside\" misses {missing:?}"
+    );
+    assert!(forms.len() >= 4, "{forms:?}");
+}

@@ -30,7 +30,7 @@ impl KindOutput for HistoryResult {
 }
 
 impl HistoryResult {
-    /// The table of `history.csv` for study `study`: t [s], the schedule a_s and the activation
+    /// The table of `history.csv` for study `study`: t \[s\], the schedule a_s and the activation
     /// level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-], P_pas and the
     /// target (1 − d)·a·P_act(λ) \[kPa\], per model and time step.
     pub fn table(&self, study: &str) -> Table {
