@@ -37,7 +37,7 @@ class Study:
     column's unit and meaning is in the run's ``datapackage.json``. ``named_points`` (cylinder
     studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise.
     ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
-    ``out``; none without it). ``findings``: what a trade-off study found."""
+    ``out``; none without it): a ``.vtu`` per stretch asked for and a ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
 
     name: str
     kind: str

@@ -210,10 +210,16 @@ fn field_in(source: &str, key: &str) -> Option<(String, String)> {
             continue;
         }
         let mut doc = Vec::new();
+        // Attributes (`#[serde(...)]`, also over several lines) between the doc and the field.
+        let mut in_attribute = false;
         for above in lines[..i].iter().rev() {
             let a = above.trim();
-            if let Some(d) = a.strip_prefix("///") {
+            if in_attribute {
+                in_attribute = !a.starts_with("#[");
+            } else if let Some(d) = a.strip_prefix("///") {
                 doc.push(d.trim());
+            } else if a.ends_with(")]") && !a.starts_with("#[") {
+                in_attribute = true;
             } else if !a.starts_with("#[") {
                 break;
             }

@@ -239,3 +239,56 @@ fn readme_names_every_registry_entry() {
     );
     assert!(forms.len() >= 4, "{forms:?}");
 }
+
+/// A heading's anchor as the repository's host makes it: lower case, punctuation dropped,
+/// spaces as hyphens.
+fn anchor(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter(|c| c.is_alphanumeric() || matches!(c, '-' | '_' | ' '))
+        .map(|c| if c == ' ' { '-' } else { c })
+        .collect()
+}
+
+/// Every relative link of README.md, BENCHMARKS.md, CHANGELOG.md and docs/ reaches a file, and
+/// its `#anchor` a heading of that file (the links outside code blocks).
+#[test]
+fn every_relative_link_of_the_docs_reaches_its_file_and_heading() {
+    let mut docs = documents();
+    docs.push(Path::new(ROOT).join("CHANGELOG.md"));
+    let mut broken = Vec::new();
+    for doc in &docs {
+        let text = std::fs::read_to_string(doc).expect("read a doc");
+        let prose: String = text.split("```").step_by(2).collect::<Vec<_>>().join("\n");
+        for (i, _) in prose.match_indices("](") {
+            let rest = &prose[i + 2..];
+            let Some(end) = rest.find(')') else { continue };
+            let target = &rest[..end];
+            if target.starts_with("http") || target.contains(' ') {
+                continue;
+            }
+            let (path, fragment) = target.split_once('#').unwrap_or((target, ""));
+            let file = if path.is_empty() {
+                doc.clone()
+            } else {
+                doc.parent().expect("a doc's directory").join(path)
+            };
+            if !file.exists() {
+                broken.push(format!("{}: {target}", doc.display()));
+            } else if !fragment.is_empty() && file.extension().is_some_and(|e| e == "md") {
+                let headings = std::fs::read_to_string(&file).expect("read a linked doc");
+                let found = headings
+                    .lines()
+                    .filter_map(|l| l.strip_prefix('#'))
+                    .map(|h| anchor(h.trim_start_matches('#')))
+                    .any(|a| a == fragment);
+                if !found {
+                    broken.push(format!("{}: {target} (no such heading)", doc.display()));
+                }
+            }
+        }
+    }
+    assert!(broken.is_empty(), "broken links: {broken:#?}");
+}
