@@ -38,6 +38,8 @@ pub const SOURCES: &[&str] = &[
     include_str!("../studies/history.rs"),
     include_str!("../studies/shear.rs"),
     include_str!("../studies/biaxial.rs"),
+    include_str!("../studies/tangent.rs"),
+    include_str!("../studies/tangent/fe.rs"),
 ];
 
 /// A table of a scene: its name in the file, the spec type's name and the keys serde accepts.
@@ -163,6 +165,14 @@ pub fn tables() -> Vec<Table> {
     push(
         "motor_units = [{ … }] (activation-in-time)".into(),
         keys_of::<crate::studies::history::MotorUnitSpec>(),
+    );
+    push(
+        "h = { … } (tangent)".into(),
+        keys_of::<crate::studies::tangent::StepsSpec>(),
+    );
+    push(
+        "fe = { … } (tangent)".into(),
+        keys_of::<crate::studies::tangent::FeSpec>(),
     );
     out
 }
@@ -295,6 +305,7 @@ fn scene_type(rust: &str) -> String {
         "[f64;3]" => "[number, number, number]".into(),
         "Vec<[f64;2]>" => "list of [number, number]".into(),
         "Vec<[i64;2]>" => "list of [integer, integer]".into(),
+        "Vec<Vec<f64>>" => "list of lists of numbers".into(),
         "StretchSpec" => "list of numbers, or { from, to, step, extra }".into(),
         "LoadingSpec" => "number, list of [t, λ], or `\"free\"`".into(),
         "EnergySpec" => "table: energy = \"name\" and its parameters".into(),
@@ -456,14 +467,10 @@ fn studies_section(h: &mut String, tables: &[Table]) {
         names(StudyKind::ALL, StudyKind::name),
         names(&Element::ALL, Element::name)
     );
-    for t in tables.iter().filter(|t| t.heading.starts_with("[[study")) {
-        let _ = writeln!(h, "### `{}`\n", t.heading);
-        key_table(h, t);
-    }
-    for t in tables
-        .iter()
-        .filter(|t| t.heading.starts_with("motor_units"))
-    {
+    // The kinds, then the tables inside studies (`… (kind)`).
+    let kinds = tables.iter().filter(|t| t.heading.starts_with("[[study]]"));
+    let inside = tables.iter().filter(|t| t.heading.ends_with(')'));
+    for t in kinds.chain(inside) {
         let _ = writeln!(h, "### `{}`\n", t.heading);
         key_table(h, t);
     }
