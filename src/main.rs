@@ -184,6 +184,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
     }
     for s in &results.studies {
+        for l in &s.left_domain {
+            say!("OUTSIDE: {} — {}: {}", s.name, l.model, l.message);
+        }
+    }
+    for s in &results.studies {
         if s.failures.is_empty() && s.points < s.requested {
             say!(
                 "FAILED: {} — {} of {} requested points computed",

@@ -91,6 +91,7 @@ pub fn html(
 
     studies_table(&mut h, results);
     failures(&mut h, results);
+    left_domain(&mut h, results);
     models_table(&mut h, scene, results);
     StudyResult::report(&results.studies, &super::figures::context(scene), &mut h)?;
 
@@ -147,6 +148,29 @@ fn failures(h: &mut String, results: &Results) {
             e(study),
             e(&n.model),
             e(&n.message)
+        );
+    }
+}
+
+/// The models computed outside the domain their law holds on (none: no section).
+fn left_domain(h: &mut String, results: &Results) {
+    let e = escape;
+    let notes: Vec<_> = results
+        .studies
+        .iter()
+        .flat_map(|s| s.left_domain.iter().map(move |l| (&s.name, l)))
+        .collect();
+    if notes.is_empty() {
+        return;
+    }
+    h.push_str("<h2>Where a law left its domain</h2>\n<p>Computed and written all the same, each row flagged <code>in_domain = false</code> in its table (see <code>docs/explicit_law.md</code>).</p>\n");
+    for (study, l) in notes {
+        let _ = writeln!(
+            h,
+            "<div class=\"note\"><b>{}</b> — {}:<br>{}</div>",
+            e(study),
+            e(&l.model),
+            e(&l.message)
         );
     }
 }

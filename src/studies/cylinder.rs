@@ -4,13 +4,17 @@
 
 mod output;
 
+use super::domain::{lines, Tally, Words};
 use super::spec::StretchSpec;
 use super::spec::{cell_count, grading, positive, required_stretches, Defaults, ModelKeys};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
+use crate::active::OutsideDomain;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
+use crate::fem::material::axial_stretch;
 use crate::fem::solver::MIN_TOLERANCE;
+use crate::fem::QuadraturePoint;
 use crate::fem::{
     AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh,
     Progress as FemProgress, Region, Regions, SolverOptions, Stepping, VtkOutput,
@@ -194,6 +198,43 @@ fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
     Ok(out)
 }
 
+/// Refuses a region that takes a model whose law has a domain ([`LawKind::domain`]: the
+/// explicit law's) outside it: d_eff = d + (1 − d)(1 − a) ∉ [0, 0.5] and ≠ 1 inside the region
+/// for one of the sweeps' damages (`models`), as a weakly recruited core does.
+fn regions_in_domain(regions: &[StudyRegion], models: &[ModelChoice]) -> Result<(), SpecError> {
+    for m in models {
+        let Some(domain) = m.activation_law().and_then(|(law, _)| law.domain()) else {
+            continue;
+        };
+        for (i, g) in regions.iter().enumerate() {
+            let d = g.damage.unwrap_or(m.damage);
+            let d_eff = d + (1.0 - d) * (1.0 - g.activation);
+            if domain.holds_at_damage(d_eff) {
+                continue;
+            }
+            let key = if g.activation < 1.0 {
+                "activation"
+            } else {
+                "damage"
+            };
+            return Err(SpecError::new(
+                format!("regions[{i}].{key}"),
+                if g.activation < 1.0 { g.activation } else { d },
+                format!(
+                    "inside it (d = {d}, a = {}) the {} law would see d_eff = d + (1 − d)(1 − a) = {}, and it holds for {} ({}): keep (1 − d)·a in [{}, 1] or at 0, or use the implicit or the energy law",
+                    g.activation,
+                    m.law.name(),
+                    crate::text::significant(d_eff, 6),
+                    domain.describe(),
+                    domain.why,
+                    1.0 - domain.effective_damage[1],
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Refuses a region that governs no quadrature point of `mesh` (none lies inside it, or later
 /// regions cover all that do): its damage and activation would have no effect on the solve.
 fn regions_take_effect(
@@ -375,6 +416,7 @@ pub fn resolve(
     let coupling = set.couplings.as_ref().and_then(|c| c.first().copied());
     let vtk = vtk_stretches(spec.vtk.as_deref().unwrap_or_default(), &stretches)?;
     let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
+    regions_in_domain(&regions, &set.choices)?;
     let name = spec.name.clone().unwrap_or_else(|| {
         let model = match (law, coupling) {
             (Some(law), Some(coupling)) => format!("{} {}", law.name(), coupling.name()),
@@ -520,6 +562,9 @@ pub struct SweepPoint {
     pub passive_0d: Option<f64>,
     /// The target active stress (1 − d) P_act(λ) \[kPa\].
     pub active_0d: f64,
+    /// The lowest and the highest fibre stretch over the quadrature points at which the law
+    /// there is outside its domain, if any is (the explicit law's: [`crate::active::Domain`]).
+    pub outside: [Option<OutsideDomain>; 2],
 }
 
 /// The sweep of one model.
@@ -585,6 +630,50 @@ impl CylinderResult {
                 .join("; ")
         })
     }
+}
+
+/// The lowest and the highest fibre stretch among the quadrature points `qps` at which the law
+/// of the muscle there (`muscle_at` their reference (r, z)) leaves its domain.
+fn outside_domain<'m>(
+    qps: &[QuadraturePoint],
+    muscle_at: impl Fn([f64; 2]) -> &'m Muscle<Energy>,
+) -> [Option<OutsideDomain>; 2] {
+    let value = |o: &OutsideDomain| match *o {
+        OutsideDomain::Stretch(v) | OutsideDomain::EffectiveDamage(v) => v,
+    };
+    let outside: Vec<OutsideDomain> = qps
+        .iter()
+        .filter_map(|q| muscle_at([q.r, q.z]).outside_domain(axial_stretch(&q.f)))
+        .collect();
+    [
+        outside
+            .iter()
+            .copied()
+            .min_by(|a, b| value(a).total_cmp(&value(b))),
+        outside
+            .iter()
+            .copied()
+            .max_by(|a, b| value(a).total_cmp(&value(b))),
+    ]
+}
+
+/// How a cylinder study's line names its points.
+const WORDS: Words = Words {
+    points: "stretches with quadrature points",
+    x: "λ",
+    unit: "",
+    target: "",
+    file: super::curves::FILE,
+};
+
+/// Where the quadrature points of `sweep` left its law's domain (`None`: a law that holds
+/// everywhere).
+fn sweep_tally(sweep: &Sweep) -> Option<Tally> {
+    let mut tally = Tally::of(&sweep.model)?;
+    for p in &sweep.points {
+        tally.add(p.lambda, p.outside.into_iter().flatten(), None);
+    }
+    Some(tally)
 }
 
 /// How far a sweep is from its 0D curve, in words: the largest |P_FE − P_0D| in kPa and where,
@@ -669,7 +758,7 @@ impl CylinderStudy {
             points: self.points.iter().map(|p| (p.name.clone(), p.at)).collect(),
             regions: self.regions.clone(),
         };
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         let mut details = self.geometry_details();
         for (s, m) in sweeps.into_iter().zip(choices) {
             // A sweep that cannot start (model, mesh, memory) costs only its own model.
@@ -701,6 +790,7 @@ impl CylinderStudy {
                 }
             ));
             failures.extend(stops);
+            tallies.extend(sweep_tally(&sweep).map(|t| (sweep.label.clone(), t)));
             result.sweeps.push(sweep);
         }
         let points = result.sweeps.iter().map(|s| s.points.len()).sum();
@@ -713,6 +803,7 @@ impl CylinderStudy {
             elapsed: Default::default(),
             details,
             failures,
+            left_domain: lines(tallies, &WORDS),
             result: StudyResult::Cylinder(result),
         })
     }
@@ -819,6 +910,7 @@ impl CylinderStudy {
             }
         })?;
         let passive = models.passive();
+        let bounded = m.activation_law().and_then(|(l, _)| l.domain()).is_some();
         let mut points = Vec::with_capacity(sweep.results.len());
         let mut vtk_files = Vec::new();
         let node_u = &solver.dofs().node_u;
@@ -848,6 +940,15 @@ impl CylinderStudy {
                     .ok()
                     .map(|p| p.stress),
                 active_0d: Drive::from(m.damage).target(&models.curve, r.stretch),
+                outside: match (bounded, &regional) {
+                    (false, _) => [None; 2],
+                    (true, None) => {
+                        outside_domain(&solver.quadrature_points(&r.state), |_| &muscle)
+                    }
+                    (true, Some(g)) => {
+                        outside_domain(&solver.quadrature_points(&r.state), |at| g.at(at).0)
+                    }
+                },
             });
             if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
                 vtk_files.push(sub.join(file));

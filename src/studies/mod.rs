@@ -31,6 +31,7 @@
 pub mod biaxial;
 pub mod curves;
 pub mod cylinder;
+pub mod domain;
 pub mod fit;
 pub mod history;
 pub mod outputs;
@@ -562,6 +563,9 @@ pub struct Outcome {
     pub details: Vec<String>,
     /// What could not be computed, and why.
     pub failures: Vec<Failure>,
+    /// The models computed outside the domain their law holds on, one line each (the points
+    /// are computed and written all the same: [`domain`]).
+    pub left_domain: Vec<domain::LeftDomain>,
     /// The result.
     pub result: StudyResult,
 }
@@ -582,6 +586,7 @@ impl Outcome {
                 model: "the whole study".into(),
                 message,
             }],
+            left_domain: Vec::new(),
             result: StudyResult::Nothing,
         }
     }

@@ -9,10 +9,11 @@
 
 mod output;
 
+use super::domain::{in_domain, lines, Tally, Words, IN_DOMAIN};
 use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
-use crate::active::Approach;
+use crate::active::{Approach, OutsideDomain};
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::simple_shear;
 use crate::models::{CouplingKind, LawKind, Models};
@@ -144,6 +145,9 @@ pub struct ShearPoint {
     pub fibre_stretch: f64,
     /// Cauchy stresses σ₁₂, σ₁₁, σ₂₂, σ₃₃ \[kPa\].
     pub sigma: [f64; 4],
+    /// Where the law at λ_f is outside its domain, if it is (the explicit law's:
+    /// [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// One curve: a model at one fibre angle.
@@ -155,6 +159,18 @@ pub struct ShearCurve {
     pub angle: f64,
     /// The amounts of shear that could be computed.
     pub points: Vec<ShearPoint>,
+}
+
+impl ShearCurve {
+    /// Where its points left its law's domain (`None`: passive, or a law that holds
+    /// everywhere).
+    fn tally(&self) -> Option<Tally> {
+        let mut tally = Tally::of(self.model.model.as_ref()?)?;
+        for p in &self.points {
+            tally.add(p.k, p.outside, None);
+        }
+        Some(tally)
+    }
 }
 
 /// What a shear study computed.
@@ -196,12 +212,23 @@ impl ShearStudy {
             .collect();
         ctx.progress.finish();
         let mut curves = Vec::with_capacity(computed.len());
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for c in computed {
             let (curve, failure) = c?;
+            tallies.extend(curve.tally().map(|t| {
+                let label = format!("{}, θ = {}°", curve.model.label(models), curve.angle);
+                (label, t)
+            }));
             curves.push(curve);
             failures.extend(failure);
         }
+        let words = Words {
+            points: "points",
+            x: "k",
+            unit: "",
+            target: "",
+            file: output::FILE,
+        };
         let points = curves.iter().map(|c| c.points.len()).sum();
         Ok(Outcome {
             name: self.name.clone(),
@@ -212,6 +239,7 @@ impl ShearStudy {
             elapsed: Default::default(),
             details: vec![self.describe()],
             failures,
+            left_domain: lines(tallies, &words),
             result: StudyResult::Shear(ShearResult {
                 energy: models.energy.name().to_string(),
                 curves,
@@ -244,6 +272,7 @@ impl ShearStudy {
                         s.cauchy[(1, 1)],
                         s.cauchy[(2, 2)],
                     ],
+                    outside: muscle.outside_domain(s.fibre_stretch),
                 }),
                 Err(e) => {
                     failed += 1;
@@ -345,6 +374,12 @@ impl ShearResult {
                 "kPa",
                 "Cauchy normal stress σ₃₃ (0: traction free)",
                 rows.iter().map(|(_, p)| Some(p.sigma[3])),
+            )
+            .boolean(
+                "in_domain",
+                IN_DOMAIN,
+                rows.iter()
+                    .map(|(c, p)| in_domain(c.model.model.as_ref(), p.outside)),
             )
     }
 }

@@ -436,6 +436,7 @@ impl<'a> ModelKeys<'a> {
             .couplings
             .map_or_else(|| default_couplings.to_vec(), <[_]>::to_vec);
         couplings_for(&laws, &couplings)?;
+        self.damages_in_domain(&laws, &damage)?;
         let choices = product(&approaches, &laws, &couplings, &damage);
         Ok(ModelSet {
             approaches,
@@ -444,6 +445,37 @@ impl<'a> ModelKeys<'a> {
             damage,
             choices,
         })
+    }
+
+    /// Refuses a damage outside the domain of one of `laws` ([`LawKind::domain`]: the explicit
+    /// law's d ≤ 0.5, or 1): every point of such a model would leave it.
+    fn damages_in_domain(&self, laws: &[LawKind], damage: &[f64]) -> Result<(), SpecError> {
+        for law in laws {
+            let Some(domain) = law.domain() else {
+                continue;
+            };
+            if let Some(i) = damage.iter().position(|&d| !domain.holds_at_damage(d)) {
+                let (key, value) = match self.damage {
+                    Some(_) => (format!("damage[{i}]"), crate::text::shortest(damage[i])),
+                    None => (
+                        "damage".to_string(),
+                        format!("{} (left out: activation.damage)", damage[i]),
+                    ),
+                };
+                return Err(SpecError::new(
+                    key,
+                    value,
+                    format!(
+                        "the {} law holds for {} ({}): give it d ≤ {} (d = 1, no activation, is exact), or use the implicit or the energy law",
+                        law.name(),
+                        domain.describe(),
+                        domain.why,
+                        domain.effective_damage[1]
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Refuses `laws` and `couplings` given to a study none of whose `approaches` has a law.

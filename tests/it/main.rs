@@ -31,6 +31,7 @@ mod cylinder_points;
 mod cylinder_regions;
 mod datapackage;
 mod energy_battery;
+mod explicit_law_domain;
 mod extremes;
 mod fem_clamped;
 mod fem_condensation;

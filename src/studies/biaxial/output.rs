@@ -10,10 +10,13 @@ use crate::studies::outputs::{
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
+/// The file.
+pub const FILE: &str = "biaxial.csv";
+
 impl KindOutput for BiaxialResult {
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "biaxial.csv",
+            FILE,
             "one row per biaxial study, model and stretch pair",
             self.table(study),
         )]

@@ -14,10 +14,13 @@ use std::fmt::Write;
 const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
+/// The file.
+pub const FILE: &str = "shear.csv";
+
 impl KindOutput for ShearResult {
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "shear.csv",
+            FILE,
             "one row per shear study, approach and amount of shear",
             self.table(study),
         )]

@@ -290,6 +290,33 @@ fn largest_error(stretches: &[f64], (p, g): Curves2, (p_ref, g_ref): Curves2) ->
     )
 }
 
+/// `, 16 of them outside its domain …` when some of a law's stretches are (`outside`, per
+/// stretch), else nothing.
+fn outside_words(outside: &[bool]) -> String {
+    match outside.iter().filter(|o| **o).count() {
+        0 => String::new(),
+        n => format!(
+            ", {n} of them outside its domain {}",
+            crate::active::ExplicitLaw::DOMAIN.describe()
+        ),
+    }
+}
+
+/// `, inside its domain 13.37 kPa`: the largest |P − P_ref| over the stretches not `outside`
+/// its law's domain, when some are.
+fn inside_error(p_ref: &[f64], p: &[f64], outside: &[bool]) -> String {
+    if !outside.contains(&true) {
+        return String::new();
+    }
+    let inside = p_ref
+        .iter()
+        .zip(p)
+        .zip(outside)
+        .filter(|(_, o)| !**o)
+        .fold(0.0f64, |m, ((a, b), _)| m.max((a - b).abs()));
+    format!(", inside its domain {inside:.2} kPa")
+}
+
 /// P(λ) and γ(λ) of a 0D sweep, borrowed.
 type Curves2<'a> = (&'a [f64], &'a [f64]);
 
@@ -351,7 +378,14 @@ pub(super) fn activation_law(
             findings.push(format!("explicit law (0D) not measured: {why}."));
             continue;
         }
-        let (t, (p, g)) = match muscle(models, o.approach, law, coupling).and_then(|m| curve(&m)) {
+        let measured = muscle(models, o.approach, law, coupling).and_then(|m| {
+            let outside: Vec<bool> = stretches
+                .iter()
+                .map(|&l| m.outside_domain(l).is_some())
+                .collect();
+            Ok((curve(&m)?, outside))
+        });
+        let ((t, (p, g)), outside) = match measured {
             Ok(c) => c,
             Err(e) => {
                 findings.push(format!("{} law (0D): failed: {e}.", law.name()));
@@ -366,11 +400,13 @@ pub(super) fn activation_law(
         if law == LawKind::Explicit {
             r.note = largest_error(stretches, (&p, &g), (&p_ref, &g_ref));
             findings.push(format!(
-                "Explicit law (0D, {} stretches): {}; stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
+                "Explicit law (0D, {} stretches{}): {}; stress error max {:.2} kPa ({:.1} % rel.){}, γ error max {:.2e}.",
                 stretches.len(),
+                outside_words(&outside),
                 t.against(&t_ref, "the implicit law"),
                 e.max_abs,
                 100.0 * e.max_rel,
+                inside_error(&p_ref, &p, &outside),
                 ge
             ));
         }
