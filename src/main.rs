@@ -94,6 +94,11 @@ enum Command {
         /// Write into DIR even if it holds files that no activemuscle run wrote.
         #[arg(long)]
         force: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the group
+        /// measuring then is finished, the groups after it are listed as not run, what was
+        /// measured is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
     },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
@@ -137,44 +142,7 @@ fn rustc_version() -> Option<String> {
 /// is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     say!();
-    // Columns as wide as their longest entry (study names and kinds such as
-    // activation-in-time are the scene's).
-    let name_w = results
-        .studies
-        .iter()
-        .map(|s| s.name.chars().count())
-        .fold(5, usize::max);
-    let kind_w = results
-        .studies
-        .iter()
-        .map(|s| s.kind.name().len())
-        .fold(4, usize::max);
-    say!(
-        "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9}",
-        "study",
-        "kind",
-        "models",
-        "points",
-        "wall [s]"
-    );
-    say!("{}", "-".repeat(name_w + kind_w + 34));
-    for s in &results.studies {
-        let points = match s.result {
-            StudyResult::Nothing => "FAILED".to_string(),
-            _ => format!("{}/{}", s.points, s.requested),
-        };
-        say!(
-            "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9.2}",
-            s.name,
-            s.kind.name(),
-            s.models,
-            points,
-            s.elapsed.as_secs_f64()
-        );
-    }
-    if results.ran_together() {
-        say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
-    }
+    studies_table(results);
     for s in &results.studies {
         for line in s.result.console(&s.name) {
             say!("{line}");
@@ -215,6 +183,48 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
              everything computed was written",
             results.studies.len()
         );
+    }
+}
+
+/// The summary's table: a row per study (name, kind, models, points, wall time).
+fn studies_table(results: &Results) {
+    // Columns as wide as their longest entry (study names and kinds such as
+    // activation-in-time are the scene's).
+    let name_w = results
+        .studies
+        .iter()
+        .map(|s| s.name.chars().count())
+        .fold(5, usize::max);
+    let kind_w = results
+        .studies
+        .iter()
+        .map(|s| s.kind.name().len())
+        .fold(4, usize::max);
+    say!(
+        "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9}",
+        "study",
+        "kind",
+        "models",
+        "points",
+        "wall [s]"
+    );
+    say!("{}", "-".repeat(name_w + kind_w + 34));
+    for s in &results.studies {
+        let points = match s.result {
+            StudyResult::Nothing => "FAILED".to_string(),
+            _ => format!("{}/{}", s.points, s.requested),
+        };
+        say!(
+            "{:<name_w$} {:>kind_w$} {:>7} {:>14} {:>9.2}",
+            s.name,
+            s.kind.name(),
+            s.models,
+            points,
+            s.elapsed.as_secs_f64()
+        );
+    }
+    if results.ran_together() {
+        say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
 }
 
@@ -371,9 +381,14 @@ fn tradeoff_command(
     out: &Path,
     quiet: bool,
     force: bool,
+    max_seconds: Option<f64>,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
     let scene = load(scene)?;
+    let stop = Stop::new();
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
@@ -381,7 +396,6 @@ fn tradeoff_command(
     let printing = Printing::new(true, false);
     let bar = printing.study();
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
-    let stop = Stop::new();
     on_interrupt(&stop);
     let results = run_tradeoff(&scene.models, &options, progress, Some(&stop))?;
     let wall = started.elapsed().as_secs_f64();
@@ -406,11 +420,10 @@ fn tradeoff_command(
         say!("FAILED: {}: {}", f.model, f.message);
     }
     let signal = STOPPED_BY.load(Ordering::SeqCst);
-    if signal != 0 {
-        say!(
-            "STOPPED: {}; what was measured before is written",
-            interrupted(signal)
-        );
+    // A time limit reached after the last group is no stop.
+    let reason = stop.reason().filter(|_| signal != 0 || !failed.is_empty());
+    if let Some(reason) = reason {
+        say!("STOPPED: {reason}; what was measured before is written");
     }
     Ok(if signal != 0 {
         Ended::Interrupted(signal)
@@ -449,7 +462,8 @@ fn main() -> ExitCode {
             out,
             quiet,
             force,
-        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
+            max_seconds,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
     };
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,

@@ -195,15 +195,15 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
     if let Some(v) = &scene.models.volumetric {
-        let form = v.form().formula();
         rows.push((
             format!("incompressibility: {}", v.form().name()),
             format!(
-                "nearly incompressible: Ŵ + U(J), U = {form}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
-                match v.shift() {
-                    0.0 => String::new(),
-                    c if c > 0.0 => format!(" + {c} kPa (J − 1) (stress-free reference)"),
-                    c => format!(" − {} kPa (J − 1) (stress-free reference)", -c),
+                "nearly incompressible: Ŵ + U(J), U = {}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
+                v.formula(),
+                if v.shift() == 0.0 {
+                    ""
+                } else {
+                    " (the linear term makes the reference stress free)"
                 },
                 v.bulk_modulus()
             ),
@@ -355,7 +355,7 @@ fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -
         rows.push((
             "explicit law".into(),
             format!(
-                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min)",
+                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min), on its domain 0.7 ≤ λ_f ≤ 1.5, d_eff = d + (1 − d)(1 − a) ≤ 0.5 only (docs/explicit_law.md)",
                 m.explicit.0, m.explicit.1
             ),
             "eq. (14)".into(),

@@ -27,7 +27,7 @@ use crate::Muscle;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Scene names of [`Bases`] (serde's remote definition: the FE solver's own type).
 #[derive(Serialize, Deserialize)]
@@ -676,18 +676,60 @@ fn sweep_tally(sweep: &Sweep) -> Option<Tally> {
     Some(tally)
 }
 
-/// How far a sweep is from its 0D curve, in words: the largest |P_FE − P_0D| in kPa and where,
-/// the same number the report's table "FE vs homogeneous (0D) tension" gives over all
-/// stretches; "no stretch converged" when there is nothing to compare.
-fn against_0d(sweep: &Sweep) -> String {
+/// How far a sweep is from its 0D curve, in words: what the two are (a body with `bases`, with
+/// regions or not, against homogeneous tension), the largest |P_FE − P_0D| in kPa and where, the
+/// same number the report's table "FE vs homogeneous (0D) tension" gives over all stretches;
+/// "no stretch converged" when there is nothing to compare.
+fn against_0d(sweep: &Sweep, bases: Bases, regions: bool) -> String {
+    let what = match (regions, bases) {
+        (true, _) => {
+            "the body with its regions against the uniform model's homogeneous tension (0D)"
+        }
+        (false, Bases::Clamped) => {
+            "the clamped body against homogeneous tension (0D), the end effect"
+        }
+        (false, Bases::Sliding) => "sliding bases against homogeneous tension (0D), a verification",
+    };
     match sweep.worst_against_0d() {
         None => "no stretch converged: nothing to compare with the 0D curve".into(),
         Some((difference, lambda, zero)) => format!(
-            "largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
+            "{what}: largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
             crate::text::significant(difference, 4),
             crate::text::significant(100.0 * difference / zero.abs().max(1e-300), 4)
         ),
     }
+}
+
+/// Where the FE `sweep` of `muscle` (the model `label`) stopped, one failure each: why, by an
+/// interruption's reason where it was one, and the material's diagnosis at the failed trial.
+fn stop_failures(
+    sweep: &crate::fem::solver::Sweep,
+    muscle: &Muscle<Energy>,
+    label: &str,
+    ctx: &RunContext,
+) -> Vec<Failure> {
+    sweep
+        .failures
+        .iter()
+        .zip(&sweep.failed_trials)
+        .map(|(f, trial)| {
+            let mut message = describe_failure(f);
+            if let (FemError::Cancelled { .. }, Some(reason)) =
+                (f, ctx.stop.and_then(|s| s.reason()))
+            {
+                message = format!("{reason}: {message}; the stretches solved before are kept");
+            }
+            if let Some(points) = trial {
+                let f: Vec<_> = points.iter().map(|q| q.f).collect();
+                let diagnosis = diagnose_axisymmetric(muscle, &f, 100);
+                message.push_str(&format!("; material diagnosis: {diagnosis}"));
+            }
+            Failure {
+                model: label.to_string(),
+                message,
+            }
+        })
+        .collect()
 }
 
 /// A sweep that stopped, in words: how far it got and why.
@@ -776,19 +818,7 @@ impl CylinderStudy {
                     continue;
                 }
             };
-            details.push(format!(
-                "d = {}: {}/{} stretches, {} dofs, {}{}",
-                sweep.model.damage,
-                sweep.points.len(),
-                self.stretches.len(),
-                sweep.dofs,
-                against_0d(&sweep),
-                if stops.is_empty() {
-                    ""
-                } else {
-                    " (stopped: see \"Where a model stopped\")"
-                }
-            ));
+            details.push(self.sweep_details(&sweep, !stops.is_empty()));
             failures.extend(stops);
             tallies.extend(sweep_tally(&sweep).map(|t| (sweep.label.clone(), t)));
             result.sweeps.push(sweep);
@@ -806,6 +836,24 @@ impl CylinderStudy {
             left_domain: lines(tallies, &WORDS),
             result: StudyResult::Cylinder(result),
         })
+    }
+
+    /// A sweep's line of the study's facts: its stretches, dofs and how far it is from its 0D
+    /// curve, and whether it `stopped`.
+    fn sweep_details(&self, sweep: &Sweep, stopped: bool) -> String {
+        format!(
+            "d = {}: {}/{} stretches, {} dofs, {}{}",
+            sweep.model.damage,
+            sweep.points.len(),
+            self.stretches.len(),
+            sweep.dofs,
+            against_0d(sweep, self.bases, !self.regions.is_empty()),
+            if stopped {
+                " (stopped: see \"Where a model stopped\")"
+            } else {
+                ""
+            }
+        )
     }
 
     /// The study's facts before its sweeps': geometry, mesh, bases, stretches, regions.
@@ -860,6 +908,58 @@ impl CylinderStudy {
     }
 
     /// The sweep of model `m`, with the failures of the directions that stopped.
+    /// The solver's options of a sweep whose VTK files go to `sub` under the run's VTK
+    /// directory.
+    fn solver_options(&self, models: &Models, ctx: &RunContext, sub: &Path) -> SolverOptions {
+        let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
+            (Some(dir), false) => Some(VtkOutput {
+                directory: dir.join(sub),
+                stretches: self.vtk.clone(),
+            }),
+            _ => None,
+        };
+        SolverOptions {
+            stepping: Stepping {
+                tolerance: self.tolerance,
+                ..Stepping::default()
+            },
+            element: self.element,
+            vtk,
+            cancel: ctx.stop.map(|s| s.flag().clone()),
+            volumetric: models.volumetric,
+            ..SolverOptions::default()
+        }
+    }
+
+    /// A progress line for each stretch the sweep of model `label` solved.
+    fn solved(&self, ctx: &RunContext, label: &str, p: FemProgress<'_>) {
+        if let FemProgress::Stretch(r) = p {
+            ctx.progress.point(&format!(
+                "{}: {label}: lambda = {} solved, P = {:.4} kPa",
+                self.name, r.stretch, r.nominal_stress
+            ));
+        }
+    }
+
+    /// The nodal displacements (u_r, u_z) of the named points at each stretch `sweep` solved.
+    fn displacements(
+        &self,
+        solver: &AxisymmetricSolver<'_, impl AxisymmetricMaterial + ?Sized>,
+        sweep: &crate::fem::solver::Sweep,
+    ) -> Vec<Vec<[f64; 2]>> {
+        let node_u = &solver.dofs().node_u;
+        sweep
+            .results
+            .iter()
+            .map(|r| {
+                self.points
+                    .iter()
+                    .map(|p| node_u[p.node].map(|g| r.state.x[g as usize]))
+                    .collect()
+            })
+            .collect()
+    }
+
     fn sweep(
         &self,
         models: &Models,
@@ -874,24 +974,7 @@ impl CylinderStudy {
             slug(&self.name),
             crate::text::shortest(m.damage)
         ));
-        let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
-            (Some(dir), false) => Some(VtkOutput {
-                directory: dir.join(&sub),
-                stretches: self.vtk.clone(),
-            }),
-            _ => None,
-        };
-        let options = SolverOptions {
-            stepping: Stepping {
-                tolerance: self.tolerance,
-                ..Stepping::default()
-            },
-            element: self.element,
-            vtk,
-            cancel: ctx.stop.map(|s| s.flag().clone()),
-            volumetric: models.volumetric,
-            ..SolverOptions::default()
-        };
+        let options = self.solver_options(models, ctx, &sub);
         // The uniform cylinder solves the muscle itself; regions wrap one muscle per region.
         let regional = self.regional(models, m)?;
         let material: &dyn AxisymmetricMaterial = match &regional {
@@ -901,29 +984,11 @@ impl CylinderStudy {
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, material, options)?;
         let dofs = solver.n_free_dofs();
         let label = models.label(m);
-        let sweep = solver.sweep_with(&self.stretches, &mut |p| {
-            if let FemProgress::Stretch(r) = p {
-                ctx.progress.point(&format!(
-                    "{}: {label}: lambda = {} solved, P = {:.4} kPa",
-                    self.name, r.stretch, r.nominal_stress
-                ));
-            }
-        })?;
+        let sweep = solver.sweep_with(&self.stretches, &mut |p| self.solved(ctx, &label, p))?;
         let passive = models.passive();
         let bounded = m.activation_law().and_then(|(l, _)| l.domain()).is_some();
         let mut points = Vec::with_capacity(sweep.results.len());
-        let mut vtk_files = Vec::new();
-        let node_u = &solver.dofs().node_u;
-        let displacements: Vec<Vec<[f64; 2]>> = sweep
-            .results
-            .iter()
-            .map(|r| {
-                self.points
-                    .iter()
-                    .map(|p| node_u[p.node].map(|g| r.state.x[g as usize]))
-                    .collect()
-            })
-            .collect();
+        let displacements = self.displacements(&solver, &sweep);
         for r in &sweep.results {
             points.push(SweepPoint {
                 lambda: r.stretch,
@@ -950,32 +1015,14 @@ impl CylinderStudy {
                     }
                 },
             });
-            if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
-                vtk_files.push(sub.join(file));
-            }
         }
-        let failures = sweep
-            .failures
+        let vtk_files = sweep
+            .results
             .iter()
-            .zip(&sweep.failed_trials)
-            .map(|(f, trial)| {
-                let mut message = describe_failure(f);
-                if let (FemError::Cancelled { .. }, Some(reason)) =
-                    (f, ctx.stop.and_then(|s| s.reason()))
-                {
-                    message = format!("{reason}: {message}; the stretches solved before are kept");
-                }
-                if let Some(points) = trial {
-                    let f: Vec<_> = points.iter().map(|q| q.f).collect();
-                    let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);
-                    message.push_str(&format!("; material diagnosis: {diagnosis}"));
-                }
-                Failure {
-                    model: label.clone(),
-                    message,
-                }
-            })
+            .filter_map(|r| r.vtk_file.as_ref().and_then(|f| f.file_name()))
+            .map(|file| sub.join(file))
             .collect();
+        let failures = stop_failures(&sweep, &muscle, &label, ctx);
         Ok((
             Sweep {
                 model: *m,

@@ -26,7 +26,7 @@ use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
-use crate::volumetric::{Volumetric, VolumetricForm};
+use crate::volumetric::Volumetric;
 use crate::Muscle;
 use rayon::prelude::*;
 use serde::de::{self, SeqAccess, Visitor};
@@ -492,7 +492,7 @@ pub struct HistoryResult {
     /// The activation approach.
     pub approach: crate::active::Approach,
     /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
-    pub volumetric: Option<VolumetricForm>,
+    pub volumetric: Option<Volumetric>,
     /// One history per damage value.
     pub histories: Vec<History>,
 }
@@ -572,13 +572,45 @@ impl HistoryStudy {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
                 approach: self.approach,
-                volumetric: models.volumetric.as_ref().map(Volumetric::form),
+                volumetric: models.volumetric,
                 histories,
             }),
         })
     }
 
     /// The history of model `m`, and the failure that ended it early, if any.
+    /// The step at time t with activation level a (`at` = (t, a)) where `muscle` solved `p`,
+    /// the passive stress there being `passive`.
+    fn point(
+        &self,
+        models: &Models,
+        muscle: &Muscle<Energy>,
+        (t, level): (f64, f64),
+        p: &UniaxialPoint,
+        passive: f64,
+    ) -> HistoryPoint {
+        let drive = muscle.drive();
+        HistoryPoint {
+            t,
+            schedule: self.activation.schedule().value(t),
+            level,
+            lambda: p.lambda,
+            gamma: p.gamma,
+            stress: p.stress,
+            cauchy: p.cauchy,
+            volume: p.lambda * p.lateral[0] * p.lateral[1],
+            passive,
+            active_target: drive.target(&models.curve, p.lambda),
+            rate: models
+                .force_velocity
+                .map(|_| drive.rate().map_or(0.0, |r| r.rate(p.fibre_stretch))),
+            velocity_factor: models
+                .force_velocity
+                .map(|_| drive.velocity_factor(p.fibre_stretch)),
+            outside: muscle.outside_domain(p.fibre_stretch),
+        }
+    }
+
     fn history(
         &self,
         models: &Models,
@@ -634,28 +666,7 @@ impl HistoryStudy {
                     return Ok((history, Some(failure)));
                 }
             };
-            let point = HistoryPoint {
-                t,
-                schedule: self.activation.schedule().value(t),
-                level,
-                lambda: p.lambda,
-                gamma: p.gamma,
-                stress: p.stress,
-                cauchy: p.cauchy,
-                volume: p.lambda * p.lateral[0] * p.lateral[1],
-                passive: passive_stress,
-                active_target: muscle.drive().target(&models.curve, p.lambda),
-                rate: models.force_velocity.map(|_| {
-                    muscle
-                        .drive()
-                        .rate()
-                        .map_or(0.0, |r| r.rate(p.fibre_stretch))
-                }),
-                velocity_factor: models
-                    .force_velocity
-                    .map(|_| muscle.drive().velocity_factor(p.fibre_stretch)),
-                outside: muscle.outside_domain(p.fibre_stretch),
-            };
+            let point = self.point(models, &muscle, (t, level), &p, passive_stress);
             history.points.push(point);
             previous = Some((t, p.fibre_stretch));
             if i % every == 0 || i + 1 == self.times.len() {

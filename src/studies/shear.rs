@@ -98,6 +98,20 @@ pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec)
             "must be finite (degrees)",
         ));
     }
+    for (j, a) in angles.iter().enumerate() {
+        // θ and θ + 180° give the same fibre tensor M = a⊗a: the same curve twice.
+        let same = |b: &f64| {
+            let r = (a - b).rem_euclid(180.0);
+            r.min(180.0 - r) < 1e-9
+        };
+        if let Some(i) = angles[..j].iter().position(same) {
+            return Err(SpecError::new(
+                format!("fibre_angles[{j}]"),
+                a,
+                format!("fibre_angles[{i}] = {} is the same fibre (θ and θ + 180° give the same M = a⊗a): each angle is one curve per model, give it once", angles[i]),
+            ));
+        }
+    }
     if d.models.volumetric.is_some() {
         return Err(SpecError::new(
             "kind",
@@ -196,6 +210,20 @@ impl ShearStudy {
         )
     }
 
+    /// The study in words, and, for a scene whose `material.fibre` is not e₁, that simple shear
+    /// sets its own fibres.
+    fn details(&self, models: &Models) -> Vec<String> {
+        let mut details = vec![self.describe()];
+        if models.fibre != [1.0, 0.0, 0.0] {
+            let shown: Vec<String> = models.fibre.iter().map(|x| format!("{x:.4}")).collect();
+            details.push(format!(
+                "material.fibre = [{}] does not apply: simple shear sets the fibre in the shear plane at the fibre angles to the shear direction e₁",
+                shown.join(", ")
+            ));
+        }
+        details
+    }
+
     /// Every curve, in parallel; a state that cannot be computed is counted in a failure.
     pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         ctx.progress.log(&self.describe());
@@ -237,7 +265,7 @@ impl ShearStudy {
             points,
             requested: jobs.len() * self.shear.len(),
             elapsed: Default::default(),
-            details: vec![self.describe()],
+            details: self.details(models),
             failures,
             left_domain: lines(tallies, &words),
             result: StudyResult::Shear(ShearResult {
@@ -307,6 +335,13 @@ impl ShearResult {
             .flat_map(|c| c.points.iter().map(move |p| (c, p)))
             .collect();
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
+        let at = |f: fn(&ShearPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
+        let sigma = |i: usize| rows.iter().map(move |(_, p)| Some(p.sigma[i]));
+        let damage = rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage));
+        let angle = rows.iter().map(|(c, _)| Some(c.angle));
+        let domain = rows
+            .iter()
+            .map(|(c, p)| in_domain(c.model.model.as_ref(), p.outside));
         Table::default()
             .text("study", "the study's name", every_row(study, rows.len()))
             .text(
@@ -321,65 +356,40 @@ impl ShearResult {
                 cell(1),
             )
             .text("coupling", "coupling", cell(2))
-            .number(
-                "d",
-                "-",
-                "damage",
-                rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)),
-            )
+            .number("d", "-", "damage", damage)
             .number(
                 "fibre_angle",
                 "degree",
                 "fibre angle θ to the shear direction e₁",
-                rows.iter().map(|(c, _)| Some(c.angle)),
+                angle,
             )
             .number(
                 "shear",
                 "-",
                 "amount of shear k, F = I + k e₁⊗e₂",
-                rows.iter().map(|(_, p)| Some(p.k)),
+                at(|p| p.k),
             )
             .number(
                 "gamma",
                 "-",
                 "activation γ (ω for the structural approach)",
-                rows.iter().map(|(_, p)| Some(p.gamma)),
+                at(|p| p.gamma),
             )
             .number(
                 "fibre_stretch",
                 "-",
                 "fibre stretch λ_f = |F m|",
-                rows.iter().map(|(_, p)| Some(p.fibre_stretch)),
+                at(|p| p.fibre_stretch),
             )
-            .number(
-                "sigma_12",
-                "kPa",
-                "Cauchy shear stress σ₁₂",
-                rows.iter().map(|(_, p)| Some(p.sigma[0])),
-            )
-            .number(
-                "sigma_11",
-                "kPa",
-                "Cauchy normal stress σ₁₁",
-                rows.iter().map(|(_, p)| Some(p.sigma[1])),
-            )
-            .number(
-                "sigma_22",
-                "kPa",
-                "Cauchy normal stress σ₂₂",
-                rows.iter().map(|(_, p)| Some(p.sigma[2])),
-            )
+            .number("sigma_12", "kPa", "Cauchy shear stress σ₁₂", sigma(0))
+            .number("sigma_11", "kPa", "Cauchy normal stress σ₁₁", sigma(1))
+            .number("sigma_22", "kPa", "Cauchy normal stress σ₂₂", sigma(2))
             .number(
                 "sigma_33",
                 "kPa",
                 "Cauchy normal stress σ₃₃ (0: traction free)",
-                rows.iter().map(|(_, p)| Some(p.sigma[3])),
+                sigma(3),
             )
-            .boolean(
-                "in_domain",
-                IN_DOMAIN,
-                rows.iter()
-                    .map(|(c, p)| in_domain(c.model.model.as_ref(), p.outside)),
-            )
+            .boolean("in_domain", IN_DOMAIN, domain)
     }
 }

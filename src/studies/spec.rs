@@ -388,6 +388,13 @@ impl<'a> ModelKeys<'a> {
             .approaches
             .map_or_else(|| vec![d.approach], <[_]>::to_vec);
         for (j, &a) in approaches.iter().enumerate() {
+            if let Some(i) = approaches[..j].iter().position(|b| *b == a) {
+                return Err(SpecError::new(
+                    format!("approaches[{j}]"),
+                    format!("{:?}", a.name()),
+                    format!("approaches[{i}] is the same approach: each approach is one set of models and curves, give it once"),
+                ));
+            }
             d.models.activation_map(a).map_err(|rule| {
                 SpecError::new(
                     self.key("approaches", "approach", j),

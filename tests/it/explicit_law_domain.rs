@@ -254,4 +254,7 @@ fn force_velocity_that_moves_d_eff_out_is_flagged_with_its_rate_and_factor() {
             && stdout.contains("d_eff = 0.857143 at t = 0.5–1 s"),
         "{stdout}"
     );
+    // The history figure's caption names the factor the target was scaled by.
+    let report = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
+    assert!(report.contains("scaled by (1 − d)·a(t)·f_v(λ̇)"), "{report}");
 }

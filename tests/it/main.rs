@@ -70,6 +70,7 @@ mod stability;
 mod study_names;
 mod tabulated_law;
 mod tangents;
+mod texts;
 mod tradeoff_machinery;
 mod truthful_reports;
 mod uniaxial;

@@ -94,13 +94,24 @@ fn caption(r: &HistoryResult, m: &ModelChoice, free: bool) -> String {
             v.formula()
         ),
     };
+    // With force–velocity every point has its factor (`HistoryPoint::velocity_factor`).
+    let velocity = r
+        .histories
+        .iter()
+        .flat_map(|h| &h.points)
+        .any(|p| p.velocity_factor.is_some());
     format!(
-        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by {}. {} Values per step in history.csv.",
         model_words(m),
         if m.activation_law().is_some() {
             "the laws evaluated at each step with"
         } else {
             "no law:"
+        },
+        if velocity {
+            "(1 − d)·a(t)·f_v(λ̇), f_v the force–velocity factor at the step's fibre stretch rate λ̇ (backward Euler, 0 at the first step; columns lambda_rate and f_v)"
+        } else {
+            "(1 − d)·a(t)"
         },
         if free {
             "Zero axial load: the stretch solves P(λ) = 0 at each step."
