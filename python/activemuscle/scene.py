@@ -36,7 +36,9 @@ class Study:
     of names), values that do not apply to a row masked (``numpy.ma``, missing in pandas); every
     column's unit and meaning is in the run's ``datapackage.json``. ``named_points`` (cylinder
     studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise.
-    ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
+    ``failures``: columns ``model`` and ``message``. ``outside_domain``: the models evaluated
+    outside their law's domain (the explicit law's, docs/explicit_law.md), columns ``model`` and
+    ``message``; their rows are computed all the same, ``in_domain`` false. ``vtk``: the VTK files written (under
     ``out``; none without it). ``findings``: what a trade-off study found."""
 
     name: str
@@ -52,6 +54,7 @@ class Study:
     findings: List[str] = field(default_factory=list)
     named_points: Dict[str, Any] = field(default_factory=dict)
     files: Dict[str, str] = field(default_factory=dict)
+    outside_domain: Dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass
