@@ -28,8 +28,9 @@ fn implicit() -> Muscle<GiantesioMusesti> {
     muscle(Law::Implicit(law))
 }
 
-/// `activemuscle check` on `scene`: its exit status and stderr.
-fn check(name: &str, scene: &str) -> (i32, String) {
+/// `activemuscle check` on `scene` (written into a scratch directory `name`): its exit status
+/// and stderr.
+pub(crate) fn check(name: &str, scene: &str) -> (i32, String) {
     let dir = scratch(name);
     let path = dir.join("scene.toml");
     std::fs::write(&path, scene).unwrap();

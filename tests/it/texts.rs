@@ -3,22 +3,11 @@
 //! scene it was given.
 
 use crate::binary;
+use crate::explicit_law_domain::check;
 use crate::scratch::scratch;
 use activemuscle::volumetric::{Volumetric, VolumetricForm};
 use std::ffi::OsStr;
 use std::path::Path;
-
-/// `activemuscle check` on `scene`: its exit status and stderr.
-fn check(name: &str, scene: &str) -> (i32, String) {
-    let dir = scratch(name);
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, scene).unwrap();
-    let out = binary::run_args(&[OsStr::new("check"), path.as_os_str()]);
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 /// A quiet run of `scene` into `dir/out`: its stdout and report.html.
 fn run(scene: &str, dir: &Path) -> (String, String) {
