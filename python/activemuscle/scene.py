@@ -38,8 +38,9 @@ class Study:
     studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise.
     ``failures``: columns ``model`` and ``message``. ``outside_domain``: the models evaluated
     outside their law's domain (the explicit law's, docs/explicit_law.md), columns ``model`` and
-    ``message``; their rows are computed all the same, ``in_domain`` false. ``vtk``: the VTK files written (under
-    ``out``; none without it). ``findings``: what a trade-off study found."""
+    ``message``; their rows are computed all the same, ``in_domain`` false. ``vtk``: the VTK
+    files written (under ``out``; none without it): a ``.vtu`` per stretch asked for and a
+    ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
 
     name: str
     kind: str

@@ -36,6 +36,7 @@ pub mod fit;
 pub mod history;
 pub mod outputs;
 pub mod shear;
+pub mod size;
 pub mod spec;
 pub mod stability;
 pub mod table;

@@ -25,6 +25,7 @@ impl Problem for ExplicitLawFit {
             kind: FitKind::ExplicitLaw,
             names: vec!["a", "b"],
             values: vec![a, b],
+            bounds: vec![crate::fit::COEFFICIENT_BOUNDS; 2],
             default_free: vec!["a", "b"],
             y_label: "activation γ [-]",
             reference_label: "chapter's (a, b)",

@@ -29,6 +29,7 @@ impl Problem for Passive {
             default_free: default_passive_free(&names),
             names,
             values: self.energy.parameter_values(),
+            bounds: crate::fit::parameter_bounds(&self.energy),
             y_label: "P_pas [kPa]",
             reference_label: "scene's material",
             unit: "kPa",
