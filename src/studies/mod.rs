@@ -13,6 +13,7 @@
 //! | `activation-in-time` | [`history`] | a 0D block driven in time by a(t) |
 //! | `shear` | [`shear`] | simple shear per approach and fibre angle |
 //! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
+//! | `tangent` | [`tangent`] | Taylor tests of every model's tangent at chosen states |
 //!
 //! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
 //! and `impl KindStudy` for the study, `impl outputs::KindOutput` for the result (in the
@@ -40,6 +41,7 @@ pub mod size;
 pub mod spec;
 pub mod stability;
 pub mod table;
+pub mod tangent;
 pub mod tradeoff;
 pub mod uniaxial;
 
@@ -370,6 +372,8 @@ study_kinds! {
     Shear("shear", shear::ShearSpec, shear::ShearStudy, shear::ShearResult, shear::HINTS),
     /// Homogeneous planar biaxial stretch.
     Biaxial("biaxial", biaxial::BiaxialSpec, biaxial::BiaxialStudy, biaxial::BiaxialResult, biaxial::HINTS),
+    /// Tangent accuracy: Taylor remainders of every model at chosen states.
+    Tangent("tangent", tangent::TangentSpec, tangent::TangentStudy, tangent::TangentResult, tangent::HINTS),
 }
 
 /// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
@@ -438,6 +442,11 @@ plain_kind!(
             spec::ApproachModel::approaches(&self.models)
         }
     }
+);
+plain_kind!(
+    tangent::TangentSpec,
+    tangent::TangentStudy,
+    tangent::resolve
 );
 
 impl KindSpec for fit::FitSpec {

@@ -75,6 +75,8 @@ mod shipped_scenes;
 mod stability;
 mod study_names;
 mod tabulated_law;
+mod tangent_check;
+mod tangent_study;
 mod tangents;
 mod texts;
 mod thread_pool;

@@ -103,6 +103,11 @@ impl ExplicitLaw {
         (self.a, self.b)
     }
 
+    /// The active curve the law reproduces.
+    pub fn curve(&self) -> &ActiveCurve {
+        &self.curve
+    }
+
     /// P_pas(λ) of eq. D:Ppas \[kPa\].
     fn passive_stress<T: Scalar>(&self, l: T) -> T {
         let (mu, al, w0) = (self.passive.mu(), self.passive.alpha(), self.passive.w0());
