@@ -96,6 +96,11 @@ enum Command {
         /// Write into DIR even if it holds files that no activemuscle run wrote.
         #[arg(long)]
         force: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the group
+        /// measuring then is finished, the groups after it are listed as not run, what was
+        /// measured is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
     },
     /// Check the tangents of a scene's own material: the Taylor test of every model it can build.
     ///
@@ -125,6 +130,10 @@ enum Command {
         /// Scene file (TOML).
         scene: PathBuf,
     },
+    /// Print the scene reference: every key a scene file takes, its type and what it is, and
+    /// the shipped energies, curves, approaches and study kinds (Markdown, as
+    /// docs/scene-reference.md).
+    Keys,
 }
 
 fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
@@ -170,6 +179,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
     }
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
+    }
+    for s in &results.studies {
+        for l in &s.left_domain {
+            say!("OUTSIDE: {} — {}: {}", s.name, l.model, l.message);
+        }
     }
     for s in &results.studies {
         if s.failures.is_empty() && s.points < s.requested {
@@ -491,11 +505,15 @@ fn tradeoff_command(
     out: &Path,
     quiet: bool,
     force: bool,
+    max_seconds: Option<f64>,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
     let stop = Stop::new();
     on_interrupt(&stop);
     let scene = load(scene)?;
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     if let Some(space) = simulated_disk() {
@@ -537,11 +555,10 @@ fn tradeoff_command(
         say!("FAILED: {}: {}", f.model, f.message);
     }
     let signal = STOPPED_BY.load(Ordering::SeqCst);
-    if signal != 0 {
-        say!(
-            "STOPPED: {}; what was measured before is written",
-            interrupted(signal)
-        );
+    // A time limit reached after the last group is no stop.
+    let reason = stop.reason().filter(|_| signal != 0 || !failed.is_empty());
+    if let Some(reason) = reason {
+        say!("STOPPED: {reason}; what was measured before is written");
     }
     Ok(if signal != 0 {
         Ended::Interrupted(signal)
@@ -651,6 +668,10 @@ fn main() -> ExitCode {
             max_seconds,
         }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
         Some(Command::Check { scene }) => check(scene),
+        Some(Command::Keys) => {
+            say!("{}", activemuscle::scene::reference::markdown().trim_end());
+            Ok(Ended::Complete)
+        }
         Some(Command::Tangent {
             scene,
             out,
@@ -662,7 +683,8 @@ fn main() -> ExitCode {
             out,
             quiet,
             force,
-        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
+            max_seconds,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
     };
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,

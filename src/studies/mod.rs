@@ -32,6 +32,7 @@
 pub mod biaxial;
 pub mod curves;
 pub mod cylinder;
+pub mod domain;
 pub mod fit;
 pub mod history;
 pub mod outputs;
@@ -572,6 +573,9 @@ pub struct Outcome {
     pub details: Vec<String>,
     /// What could not be computed, and why.
     pub failures: Vec<Failure>,
+    /// The models computed outside the domain their law holds on, one line each (the points
+    /// are computed and written all the same: [`domain`]).
+    pub left_domain: Vec<domain::LeftDomain>,
     /// The result.
     pub result: StudyResult,
 }
@@ -592,6 +596,7 @@ impl Outcome {
                 model: "the whole study".into(),
                 message,
             }],
+            left_domain: Vec::new(),
             result: StudyResult::Nothing,
         }
     }

@@ -228,6 +228,8 @@ impl TangentStudy {
             elapsed: Default::default(),
             details,
             failures,
+            // A tangent check compares derivatives of each model with themselves: no target.
+            left_domain: Vec::new(),
             result: StudyResult::Tangent(TangentResult {
                 energy: models.energy.name().to_string(),
                 volumetric: models.volumetric.map(|v| v.form().formula()),
