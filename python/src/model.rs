@@ -10,11 +10,13 @@ use activemuscle::active::{ConstantLaw, CurveEntry, ForceVelocity, Law, CURVES};
 use activemuscle::app_error::SpecError;
 use activemuscle::energy::{Energy, ShippedEnergy, SHIPPED};
 use activemuscle::models::{
-    ActivationSpec, CouplingKind, ExplicitSpec, LawKind, MaterialSpec, ModelChoice, Models,
+    ActivationSpec, CouplingKind, DeclaredSpec, ExplicitSpec, LawKind, MaterialSpec, ModelChoice,
+    Models,
 };
 use activemuscle::Muscle;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use serde::de::value::{Error as ValueError, StrDeserializer};
 use serde::de::{DeserializeOwned, IntoDeserializer};
 use std::collections::HashMap;
@@ -137,6 +139,9 @@ pub struct Choices {
 /// The keywords that are options (not parameters), as the error for an unknown one lists them.
 const OPTIONS: &[&str] = &[
     "energy",
+    "W",
+    "parameters",
+    "name",
     "approach",
     "curve",
     "law",
@@ -164,6 +169,9 @@ impl Choices {
         let act = &mut self.activation;
         match key {
             "energy" => self.material.energy.energy = text()?,
+            "W" => self.material.energy.formula.formula = Some(text()?),
+            "name" => self.material.energy.formula.name = Some(text()?),
+            "parameters" => self.material.energy.formula.parameters = declared(value)?,
             "curve" => act.curve = Some(text()?),
             "law" => self.law = Some(text()?),
             "gamma" => self.gamma = Some(value.extract()?),
@@ -229,11 +237,11 @@ impl Choices {
                 if !known {
                     let mut names: Vec<&str> = SHIPPED
                         .iter()
-                        .flat_map(|e| e.parameters.iter().map(|p| p.name))
+                        .flat_map(|e| e.parameters.iter().map(|p| p.name.as_ref()))
                         .chain(
                             CURVES
                                 .iter()
-                                .flat_map(|c| c.parameters.iter().map(|p| p.name)),
+                                .flat_map(|c| c.parameters.iter().map(|p| p.name.as_ref())),
                         )
                         .collect();
                     names.sort_unstable();
@@ -280,4 +288,61 @@ impl Choices {
             self.damage,
         )
     }
+}
+
+/// `parameters = {"mu": 0.2, "k1": {"value": 1.0, "unit": "kPa", "range": [0, inf], "bounds":
+/// [0, 50], "symbol": "k₁"}}`: a formula energy's declared parameters (a number is the value).
+fn declared(value: &Bound<'_, PyAny>) -> PyResult<Vec<(String, DeclaredSpec)>> {
+    let table = value.cast::<PyDict>().map_err(|_| {
+        keyword_error(
+            "parameters",
+            "a dict {name: value or {value, unit, symbol, range, bounds}}",
+        )
+    })?;
+    let mut out = Vec::with_capacity(table.len());
+    for (name, entry) in table.iter() {
+        let name: String = name.extract()?;
+        if let Ok(v) = entry.extract::<f64>() {
+            let spec = DeclaredSpec {
+                value: Some(v),
+                ..DeclaredSpec::default()
+            };
+            out.push((name, spec));
+            continue;
+        }
+        let fields = entry.cast::<PyDict>().map_err(|_| {
+            keyword_error(
+                &format!("parameters.{name}"),
+                "a number (the value) or a dict {value, unit, symbol, range, bounds}",
+            )
+        })?;
+        let mut spec = DeclaredSpec::default();
+        for (field, v) in fields.iter() {
+            let field: String = field.extract()?;
+            let pair = |v: &Bound<'_, PyAny>| -> PyResult<[f64; 2]> {
+                let p: Vec<f64> = v.extract()?;
+                <[f64; 2]>::try_from(p).map_err(|_| {
+                    keyword_error(
+                        &format!("parameters.{name}.{field}"),
+                        "[lower, upper]: two numbers (±inf allowed)",
+                    )
+                })
+            };
+            match field.as_str() {
+                "value" => spec.value = Some(v.extract()?),
+                "unit" => spec.unit = Some(v.extract()?),
+                "symbol" => spec.symbol = Some(v.extract()?),
+                "range" => spec.range = Some(pair(&v)?),
+                "bounds" => spec.bounds = Some(pair(&v)?),
+                _ => {
+                    return Err(keyword_error(
+                        &format!("parameters.{name}.{field}"),
+                        "unknown key: a parameter has value, unit, symbol, range, bounds",
+                    ))
+                }
+            }
+        }
+        out.push((name, spec));
+    }
+    Ok(out)
 }

@@ -78,7 +78,7 @@ pub enum FitError {
         /// The name asked for.
         name: String,
         /// The model's parameter names.
-        available: Vec<&'static str>,
+        available: Vec<String>,
     },
     /// Nothing to fit.
     #[error("no free parameter selected")]

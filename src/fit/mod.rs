@@ -173,14 +173,14 @@ impl FitSetup {
     /// Resolves the selection against a model's parameters.
     pub(crate) fn resolve(
         &self,
-        names: &[&'static str],
+        names: &[&str],
         values: &[f64],
         bounds: &[Bounds],
         default_free: &[&str],
     ) -> Result<Selection, FitError> {
         let unknown = |name: &str| FitError::UnknownParameter {
             name: name.to_string(),
-            available: names.to_vec(),
+            available: names.iter().map(|n| n.to_string()).collect(),
         };
         let free: Vec<String> = match &self.free {
             Some(f) => f.clone(),

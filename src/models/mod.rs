@@ -13,10 +13,12 @@
 
 pub mod choice;
 pub mod factory;
+pub mod formula;
 pub mod spec;
 
 pub use choice::{product, CouplingKind, LawKind, ModelChoice, RepresentationKind};
 pub use factory::Models;
+pub use formula::{DeclaredSpec, FormulaSpec};
 pub use spec::{
     curve_parameter_names, ActivationSpec, EnergySpec, ExplicitSpec, IncompressibilitySpec,
     MaterialSpec,

@@ -46,6 +46,7 @@ mod fit_extremes;
 mod fit_jacobian;
 mod fit_paper;
 mod fit_recovery;
+mod formula_energy;
 mod four_c_blocks;
 mod four_c_passive;
 mod golden_run;

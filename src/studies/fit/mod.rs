@@ -238,11 +238,11 @@ pub struct Model {
     /// What is fitted.
     pub kind: FitKind,
     /// Names of all the model's parameters, in order.
-    pub names: Vec<&'static str>,
+    pub names: Vec<String>,
     /// The model's own values of all parameters (the default starts).
     pub values: Vec<f64>,
     /// The parameters freed when the scene does not say.
-    pub default_free: Vec<&'static str>,
+    pub default_free: Vec<String>,
     /// y-axis label of the figure, with unit.
     pub y_label: &'static str,
     /// Label of the model at the reference values in the figure.

@@ -108,12 +108,12 @@ pub(super) fn check_keys(spec: &FitSpec, kind: FitKind) -> Result<(), SpecError>
 /// The free parameters: given or the fit's default, each a parameter of the model, once.
 pub(super) fn free_parameters(
     spec: &FitSpec,
-    names: &[&str],
-    default_free: &[&str],
+    names: &[String],
+    default_free: &[String],
 ) -> Result<Vec<String>, SpecError> {
     let free: Vec<String> = match &spec.free {
         Some(f) => f.clone(),
-        None => default_free.iter().map(|n| n.to_string()).collect(),
+        None => default_free.to_vec(),
     };
     if free.is_empty() {
         return Err(SpecError::new(
@@ -123,7 +123,7 @@ pub(super) fn free_parameters(
         ));
     }
     for (j, f) in free.iter().enumerate() {
-        if !names.contains(&f.as_str()) {
+        if !names.contains(f) {
             return Err(SpecError::new(
                 format!("free[{j}]"),
                 format!("{f:?}"),
