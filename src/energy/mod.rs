@@ -134,6 +134,10 @@ pub trait Shipped: StrainEnergy + Sized {
     const NAME: &'static str;
     /// The parameters, in the order of [`values`](Self::values).
     const PARAMETERS: &'static [Parameter];
+    /// The same energy in the formula language ([`formula`]), over the parameters' names: what
+    /// [`Energy::as_formula`] builds (the trade-off study's convenience-against-speed group
+    /// times the two; a test checks that they agree to rounding).
+    const FORMULA: &'static str;
     /// The parameter values.
     fn values(&self) -> Vec<f64>;
     /// The energy with these parameter values (in the order of [`PARAMETERS`](Self::PARAMETERS)),
@@ -165,6 +169,8 @@ pub struct ShippedEnergy {
     pub name: &'static str,
     /// Its parameters.
     pub parameters: &'static [Parameter],
+    /// The energy in the formula language ([`Shipped::FORMULA`]).
+    pub formula: &'static str,
     build: fn(&[f64]) -> Result<Energy>,
 }
 
@@ -262,11 +268,33 @@ macro_rules! shipped_energies {
             }
         }
 
+        impl Energy {
+            /// This energy written as a formula: a shipped energy's [`Shipped::FORMULA`] with
+            /// its parameters at their values (named `<name> (formula)`); a formula energy is
+            /// itself.
+            pub fn as_formula(&self) -> std::result::Result<FormulaEnergy, FormulaError> {
+                let (text, parameters, name) = match self {
+                    $(Energy::$energy(_) => ($energy::FORMULA, $energy::PARAMETERS, $energy::NAME),)*
+                    Energy::Formula(f) => return Ok(f.clone()),
+                };
+                let declared = parameters
+                    .iter()
+                    .zip(self.parameter_values())
+                    .map(|(p, v)| Parameter {
+                        default: Some(v),
+                        ..p.clone()
+                    })
+                    .collect();
+                FormulaEnergy::new(text, declared)?.named(&format!("{name} (formula)"))
+            }
+        }
+
         /// The shipped energies, in the order of [`Energy`]'s variants (the first is the
         /// chapter's, the default of scene files).
         pub const SHIPPED: &[ShippedEnergy] = &[$(ShippedEnergy {
             name: $energy::NAME,
             parameters: $energy::PARAMETERS,
+            formula: $energy::FORMULA,
             build: |v| Ok(Energy::$energy($energy::from_values(v)?)),
         },)*];
     };

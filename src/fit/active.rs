@@ -83,7 +83,7 @@ pub fn fit_active_curve(
         selection: &selection,
         data,
     };
-    let report = selection.solve(&problem, &setup.options)?;
+    let report = selection.solve(&problem, setup, data.stress())?;
     let v = selection.assemble_values(&report.values);
     let curve = curve.rebuilt(&v)?;
     Ok(ActiveFit { curve, report })

@@ -16,10 +16,13 @@
 //! (one evaluation per free parameter, exact), see [`solver`]. Results are [`FitReport`]s with
 //! the parameters, residual norm, RMS error, standard errors s²(JᵀJ)⁻¹, the correlation matrix,
 //! iterations and the convergence flag; a fit that does not converge is an error
-//! ([`FitError::NotConverged`]) carrying the best point found, never a result.
+//! ([`FitError::NotConverged`]) carrying the best point found, never a result. A minimum on a
+//! bound is a result, with the parameter marked [`AtBound`] ([`bounded`]). Residuals may be
+//! weighted ([`Weights`]: relative, or by each point's standard deviation).
 
 mod active;
 mod biaxial;
+mod bounded;
 mod damage;
 mod data;
 mod error;
@@ -28,10 +31,12 @@ mod levenberg;
 mod parametric;
 mod passive;
 pub mod solver;
+mod weights;
 
 pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit};
 pub use biaxial::{biaxial_stress_with, fit_passive_biaxial, BiaxialData, BIAXIAL_HEADER};
+pub use bounded::{least_squares, AtBound};
 pub use damage::{fit_damage, DamageFit};
 pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
 pub use error::{FitError, NotConverged};
@@ -41,7 +46,8 @@ pub use parametric::{parameter_bounds, Parametric};
 pub use passive::{
     across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
 };
-pub use solver::{least_squares, residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
+pub use solver::{residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
+pub use weights::Weights;
 
 use crate::Scalar;
 use std::fmt;
@@ -65,10 +71,18 @@ pub struct FitReport {
     pub rms: f64,
     /// Solver iterations (Nelder–Mead plus Levenberg–Marquardt).
     pub iterations: u64,
-    /// True only if the final Gauss–Newton step is negligible (see [`solver`]).
+    /// True only if the final Gauss–Newton step is negligible (see [`solver`]), the parameters
+    /// held at a bound aside ([`bounded`]).
     pub converged: bool,
     /// How the solver(s) stopped.
     pub termination: String,
+    /// Per parameter: the bound it is held at, if the minimum lies beyond it (its standard error
+    /// and correlations are then NaN: it is not estimated).
+    pub at_bound: Vec<Option<AtBound>>,
+    /// The scale σ_i each residual was divided by in the fit (`None`: equal weights); the
+    /// residuals, their norm and RMS above are in the data's unit, the standard errors from
+    /// the weighted residuals ([`Weights`]).
+    pub sigma: Option<Vec<f64>>,
 }
 
 impl FitReport {
@@ -95,11 +109,21 @@ impl fmt::Display for FitReport {
             "parameter", "value", "std. error"
         )?;
         for i in 0..self.names.len() {
-            writeln!(
-                f,
-                "{:<12} {:>14.6} {:>12.3e}",
-                self.names[i], self.values[i], self.standard_errors[i]
-            )?;
+            match self.at_bound.get(i).copied().flatten() {
+                Some(b) => writeln!(
+                    f,
+                    "{:<12} {:>14.6} at its bound {} (the minimum lies beyond, at {})",
+                    self.names[i],
+                    self.values[i],
+                    crate::text::shortest(b.bound),
+                    crate::text::significant(b.beyond, 6)
+                )?,
+                None => writeln!(
+                    f,
+                    "{:<12} {:>14.6} {:>12.3e}",
+                    self.names[i], self.values[i], self.standard_errors[i]
+                )?,
+            }
         }
         if self.names.len() > 1 {
             write!(f, "correlation:")?;
@@ -138,6 +162,8 @@ pub struct FitSetup {
     bounds: Vec<(String, Bounds)>,
     /// Solver settings.
     pub options: FitOptions,
+    /// How the residuals are weighted (default: equally).
+    pub weights: Weights,
 }
 
 impl FitSetup {
@@ -167,6 +193,12 @@ impl FitSetup {
     /// Solver settings.
     pub fn options(mut self, options: FitOptions) -> Self {
         self.options = options;
+        self
+    }
+
+    /// How the residuals are weighted.
+    pub fn weights(mut self, weights: Weights) -> Self {
+        self.weights = weights;
         self
     }
 
@@ -237,13 +269,28 @@ pub(crate) struct Selection {
 }
 
 impl Selection {
-    /// Fits `problem` over the selected free parameters from their starts within their bounds.
+    /// Fits `problem` over the selected free parameters from their starts within their bounds,
+    /// its residuals weighted as `setup` says (`observed`: the data, one per residual, which
+    /// relative weights divide by).
     pub fn solve<R: Residuals>(
         &self,
         problem: &R,
-        options: &FitOptions,
+        setup: &FitSetup,
+        observed: &[f64],
     ) -> Result<FitReport, FitError> {
-        least_squares(problem, &self.names, &self.start, &self.bounds, options)
+        let (names, start, bounds) = (&self.names, &self.start, &self.bounds);
+        match setup.weights.scales(observed)? {
+            None => least_squares(problem, names, start, bounds, &setup.options),
+            Some(sigma) => {
+                let weighted = weights::Weighted {
+                    problem,
+                    sigma: &sigma,
+                };
+                least_squares(&weighted, names, start, bounds, &setup.options)
+                    .map(|r| weights::unweighted(r, &sigma))
+                    .map_err(|e| weights::unweighted_error(e, &sigma))
+            }
+        }
     }
 
     /// All parameters as scalars: the free ones from θ, the others fixed.

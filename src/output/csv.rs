@@ -135,7 +135,7 @@ pub fn to_csv(rows: &[Row]) -> Result<Vec<u8>, AppError> {
 }
 
 /// The columns of `fits.csv`: one row per fitted parameter.
-pub const FIT_FIELDS: [Field; 14] = [
+pub const FIT_FIELDS: [Field; 16] = [
     Field::text("study", "the study's name"),
     Field::text("fit", "what was fitted (the fit kind)"),
     Field::text("case", "the data set or case fitted"),
@@ -150,10 +150,12 @@ pub const FIT_FIELDS: [Field; 14] = [
     Field::number("residual_norm", "see rms_unit", "Euclidean norm of the residual vector"),
     Field::count("iterations", "iterations of the least-squares solver"),
     Field::count("points", "data points fitted"),
+    Field::number("at_bound", "the parameter's unit", "the bound the parameter is held at, the least-squares minimum lying beyond it (empty: estimated inside its bounds)"),
+    Field::text("weights", "how the residuals were weighted: equal, relative (to the datum) or sigma (each datum's standard deviation)"),
 ];
 
 /// The header of `fits.csv`.
-pub const FIT_COLUMNS: [&str; 14] = names(&FIT_FIELDS);
+pub const FIT_COLUMNS: [&str; 16] = names(&FIT_FIELDS);
 
 /// The columns of `stability.csv`: one row per model and stretch.
 pub const STABILITY_FIELDS: [Field; 12] = [
@@ -230,6 +232,11 @@ pub fn fits_csv(studies: &[(&str, &[FitOutcome])]) -> Result<Vec<u8>, AppError> 
                     text(f.residual_norm, "residual norm", origin)?,
                     f.iterations.to_string(),
                     f.points.to_string(),
+                    opt(
+                        f.at_bound.get(j).copied().flatten().map(|b| b.bound),
+                        "bound",
+                    )?,
+                    f.weights.name().to_string(),
                 ])
                 .map_err(&fail)?;
             }

@@ -6,10 +6,7 @@
 //! its key and line.
 
 use activemuscle::active::{ActiveStrainMap, Approach};
-use activemuscle::energy::{
-    EhretBolItskov, FormulaEnergy, FourCPassive, GiantesioMusesti, NeoHookean, Parameter,
-    Parametric,
-};
+use activemuscle::energy::{FormulaEnergy, NeoHookean, Parameter, Parametric, SHIPPED};
 use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, SolverOptions};
 use activemuscle::homogeneous::simple_shear;
 use activemuscle::invariants::{Kinematics, FULL};
@@ -23,7 +20,6 @@ use activemuscle::{Energy, Muscle, StrainEnergy};
 use nalgebra::{DMatrix, Matrix3};
 
 const POSITIVE: (f64, f64) = (0.0, f64::INFINITY);
-const FRACTION: (f64, f64) = (0.0, 1.0);
 
 fn formula(text: &str, parameters: &[(&str, &str, f64, (f64, f64))]) -> FormulaEnergy {
     let declared = parameters
@@ -33,45 +29,28 @@ fn formula(text: &str, parameters: &[(&str, &str, f64, (f64, f64))]) -> FormulaE
     FormulaEnergy::new(text, declared).unwrap_or_else(|e| panic!("{text}: {e}"))
 }
 
-const CHAPTER: &str = "Ip = w0/3*tr_c + (1 - w0)*c_m;
-     Kp = w0/3*tr_c_inv + (1 - w0)*c_inv_m;
-     mu/4*(expm1(alpha*(Ip - 1))/alpha + Kp - 1)";
-const EBI: &str = "Ip = w0/3*tr_c + (1 - w0)*c_m;
-     Kp = w0/3*tr_c_inv + (1 - w0)*c_inv_m;
-     mu/4*(expm1(alpha*(Ip - 1))/alpha + expm1(beta*(Kp - 1))/beta)";
-const FOUR_C: &str = "I = w0/3*tr_c + (1 - w0)*c_m;
-     Jc = det_c*(w0/3*tr_c_inv + (1 - w0)*c_inv_m);
-     mu/4*(expm1(alpha*(I - 1))/alpha + expm1(beta*(Jc - 1))/beta)";
-
-/// Each shipped energy and the same energy written as a formula, at other parameters than the
-/// chapter's where a formula could hide a default.
+/// Each shipped energy and the same energy written as a formula (its registry entry's formula,
+/// [`Energy::as_formula`]), at other parameters than the chapter's where a formula could hide a
+/// default.
 fn twins() -> Vec<(Energy, Energy)> {
-    let (mu, alpha, beta, w0) = (0.21, 14.5, 1.7, 0.66);
-    let four = [
-        ("mu", "kPa", mu, POSITIVE),
-        ("alpha", "-", alpha, POSITIVE),
-        ("beta", "-", beta, POSITIVE),
-        ("w0", "-", w0, FRACTION),
-    ];
-    let three = [four[0], four[1], four[3]];
-    vec![
-        (
-            Energy::GiantesioMusesti(GiantesioMusesti::new(mu, alpha, w0).unwrap()),
-            Energy::Formula(formula(CHAPTER, &three)),
-        ),
-        (
-            Energy::EhretBolItskov(EhretBolItskov::new(mu, alpha, beta, w0).unwrap()),
-            Energy::Formula(formula(EBI, &four)),
-        ),
-        (
-            Energy::NeoHookean(NeoHookean::new(mu).unwrap()),
-            Energy::Formula(formula("mu/2*(I1 - 3)", &[four[0]])),
-        ),
-        (
-            Energy::FourCPassive(FourCPassive::new(mu, alpha, beta, w0).unwrap()),
-            Energy::Formula(formula(FOUR_C, &four)),
-        ),
-    ]
+    let values = |name: &str| match name {
+        "mu" => 0.21,
+        "alpha" => 14.5,
+        "beta" => 1.7,
+        "w0" => 0.66,
+        other => panic!("a value for {other}"),
+    };
+    let twins: Vec<(Energy, Energy)> = SHIPPED
+        .iter()
+        .map(|e| {
+            let v: Vec<f64> = e.parameters.iter().map(|p| values(&p.name)).collect();
+            let shipped = e.build(&v).unwrap();
+            let written = Energy::Formula(shipped.as_formula().unwrap());
+            (shipped, written)
+        })
+        .collect();
+    assert!(twins.len() >= 4);
+    twins
 }
 
 fn relative(a: &[f64], b: &[f64]) -> f64 {

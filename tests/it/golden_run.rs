@@ -57,13 +57,15 @@ use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
-/// cylinder's `P_0d`, `dofs`, `element` and `regions`).
+/// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 44 the fits' `at_bound` and
+/// `weights`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
     (
         "curves.csv",
         &["study", "cauchy", "J", "P_0d", "dofs", "element", "regions"],
     ),
     ("stability.csv", &["cauchy"]),
+    ("fits.csv", &["at_bound", "weights"]),
 ];
 
 /// A CSV file as its header and rows of text cells.

@@ -47,6 +47,7 @@ mod fit_jacobian;
 mod fit_paper;
 mod fit_recovery;
 mod formula_energy;
+mod formula_fit;
 mod four_c_blocks;
 mod four_c_passive;
 mod golden_run;

@@ -617,6 +617,27 @@ impl<'g, 'a> Emitter<'g, 'a> {
         self.constants.len() - 1
     }
 
+    /// The constant-tape result 1/b of parameter-only node `b` (not 0: checked when the
+    /// division was built).
+    fn reciprocal(&mut self, b: usize) -> usize {
+        let info = self.graph.info[b];
+        let node = match self.graph.value(b) {
+            Some(y) => Node::Literal(1.0 / y),
+            None => {
+                let one = self.graph.intern(
+                    Node::Literal(1.0),
+                    Info {
+                        sign: Sign::POSITIVE,
+                        ..info
+                    },
+                );
+                Node::Binary(BinaryOp::Div, one, b)
+            }
+        };
+        let r = self.graph.intern(node, info);
+        self.constant(r)
+    }
+
     /// The energy-tape result of node `n`, which depends on the invariants.
     fn variable(&mut self, n: usize) -> usize {
         if let Some(&k) = self.op_of.get(&n) {
@@ -644,16 +665,18 @@ impl<'g, 'a> Emitter<'g, 'a> {
             (true, true) => Op::Binary(op, self.variable(a), self.variable(b)),
             (true, false) => {
                 let x = self.variable(a);
-                if let (BinaryOp::Pow, Some(y)) = (op, self.graph.value(b)) {
-                    return Op::PowF(x, y);
+                match (op, self.graph.value(b)) {
+                    (BinaryOp::Pow, Some(y)) => return Op::PowF(x, y),
+                    // A dual number times a number costs less than over it.
+                    (BinaryOp::Div, _) => return Op::MulC(x, self.reciprocal(b)),
+                    _ => {}
                 }
                 let k = self.constant(b);
                 match op {
                     BinaryOp::Add => Op::AddC(x, k),
                     BinaryOp::Sub => Op::SubC(x, k),
                     BinaryOp::Mul => Op::MulC(x, k),
-                    BinaryOp::Div => Op::DivC(x, k),
-                    BinaryOp::Pow => Op::PowC(x, k),
+                    _ => Op::PowC(x, k),
                 }
             }
             _ => {

@@ -156,6 +156,17 @@ impl FormulaEnergy {
         &self.definition.formula
     }
 
+    /// The formula on one line, its comments left out (for tables and legends).
+    pub fn formula_line(&self) -> String {
+        self.definition
+            .formula
+            .lines()
+            .map(|l| l.split('#').next().unwrap_or(""))
+            .flat_map(str::split_whitespace)
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
     /// The hydrostatic stress s₀ at F = I \[kPa\]: P(I) = s₀ I (0 for a stress-free reference).
     pub fn reference_stress(&self) -> f64 {
         self.reference_stress

@@ -56,8 +56,6 @@ pub enum Op {
     CSub(usize, usize),
     /// a · c_k.
     MulC(usize, usize),
-    /// a / c_k.
-    DivC(usize, usize),
     /// c_k / a.
     CDiv(usize, usize),
     /// aⁿ, n an integer.
@@ -129,7 +127,6 @@ impl Program {
                 Op::SubC(a, k) => v[a] - c[k],
                 Op::CSub(a, k) => -v[a] + c[k],
                 Op::MulC(a, k) => v[a] * c[k],
-                Op::DivC(a, k) => v[a] / c[k],
                 Op::CDiv(a, k) => v[a].recip() * c[k],
                 Op::PowI(a, n) => v[a].powi(n),
                 Op::PowF(a, x) => v[a].powf(x),

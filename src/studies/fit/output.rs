@@ -1,16 +1,25 @@
-//! The fit kind's figures (data, the fitted model, the model at the reference values) and its
-//! report table (values ± standard errors, correlations, RMS, convergence).
+//! The fit kind's figures (data, the fitted model, the model at the reference values), its
+//! report table (values ± standard errors, or at a bound; correlations, RMS, weights,
+//! convergence) and its own table, `fit_points.csv` ([`super::points`]).
 
 use super::{correlations, FitCurves, FitKind, FitOutcome};
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::outputs::{
-    derived, each_study, figure, panel_over, prefixed, Context, KindOutput, Of,
+    derived, each_study, figure, panel_over, prefixed, Context, KindOutput, Of, OwnTable,
 };
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<FitOutcome> {
+    fn own_table(&self, study: &str) -> Option<OwnTable> {
+        Some(OwnTable {
+            file: "fit_points.csv",
+            rows_are: "one row per datum of a fit (with the fitted model there and the residual) and per point of its fitted curve",
+            table: super::points::points_table(study, self),
+        })
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         each_study(studies, |name, fits| fit_figure(name, fits))
     }
@@ -65,7 +74,11 @@ fn fit_status(f: &FitOutcome) -> String {
         .names
         .iter()
         .zip(&f.values)
-        .map(|(n, v)| format!("{n} = {v:.4}"))
+        .enumerate()
+        .map(|(j, (n, v))| match f.at_bound.get(j).copied().flatten() {
+            Some(b) => format!("{n} = {v:.4} (at its bound {})", b.bound),
+            None => format!("{n} = {v:.4}"),
+        })
         .collect();
     format!(
         "fit: {}{}",
@@ -151,7 +164,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
         return Ok(());
     }
     let e = escape;
-    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹), of the weighted residuals where the fit weights them; a parameter <b>at its bound</b> is held there, the minimum lying beyond it (it has no standard error, the others are fitted with it held); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution. Each datum with the fitted model and the residual, and the fitted curve, are in <code>fit_points.csv</code>.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
     for (study, f) in studies
         .iter()
         .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
@@ -160,9 +173,17 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
         let n = f.names.len();
         for j in 0..n {
             let value = finite(f.values[j], "fitted value", origin)?;
-            let se = match f.standard_errors.get(j).copied().flatten() {
-                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
-                None => " ± (n/a)".into(),
+            let se = match (
+                f.at_bound.get(j).copied().flatten(),
+                f.standard_errors.get(j).copied().flatten(),
+            ) {
+                (Some(b), _) => format!(
+                    " <b>at its bound</b> {} (the minimum lies beyond, at {})",
+                    crate::text::shortest(b.bound),
+                    crate::text::significant(b.beyond, 6)
+                ),
+                (None, Some(s)) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
+                (None, None) => " ± (n/a)".into(),
             };
             let reference = match f.reference.get(j).copied().flatten() {
                 Some(r) => finite(r, "reference value", origin)?.to_string(),
@@ -180,6 +201,9 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
                 } else {
                     format!("<b>NOT converged</b> ({})", e(&f.termination))
                 };
+                if f.weights != super::WeightsKind::Equal {
+                    status.push_str(&format!("<br>residuals weighted: {}", f.weights.name()));
+                }
                 for x in &f.extra {
                     status.push_str(&format!("<br>{}", e(x)));
                 }
