@@ -381,7 +381,8 @@ fn named_points(t: &Columns, c: &CylinderResult) -> PyResult<()> {
 }
 
 /// One row per fitted parameter, as `fits.csv`: kind, case, parameter, value, standard error,
-/// reference value, converged, RMS error, unit, residual norm, iterations, points.
+/// reference value, converged, RMS error, unit, residual norm, iterations, points, the bound a
+/// parameter is held at, the weights.
 fn fits(t: &Columns, fits: &[FitOutcome]) -> PyResult<()> {
     let rows: Vec<_> = fits
         .iter()
@@ -427,6 +428,16 @@ fn fits(t: &Columns, fits: &[FitOutcome]) -> PyResult<()> {
     .names(
         "termination",
         rows.iter().map(|(f, _)| Some(&f.termination)).collect(),
+    )?
+    .optional(
+        "at_bound",
+        rows.iter()
+            .map(|(f, j)| f.at_bound.get(*j).copied().flatten().map(|b| b.bound))
+            .collect(),
+    )?
+    .names(
+        "weights",
+        rows.iter().map(|(f, _)| Some(f.weights.name())).collect(),
     )?;
     Ok(())
 }
