@@ -228,36 +228,41 @@ impl Choices {
                     dc: get("dc")?,
                 });
             }
-            _ => {
-                let known = SHIPPED
-                    .iter()
-                    .flat_map(|e| e.parameters.iter())
-                    .chain(CURVES.iter().flat_map(|c| c.parameters.iter()))
-                    .any(|p| p.name == key);
-                if !known {
-                    let mut names: Vec<&str> = SHIPPED
-                        .iter()
-                        .flat_map(|e| e.parameters.iter().map(|p| p.name.as_ref()))
-                        .chain(
-                            CURVES
-                                .iter()
-                                .flat_map(|c| c.parameters.iter().map(|p| p.name.as_ref())),
-                        )
-                        .collect();
-                    names.sort_unstable();
-                    names.dedup();
-                    return Err(keyword_error(
-                        key,
-                        format!(
-                            "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
-                            OPTIONS.join(", "),
-                            names.join(", ")
-                        ),
-                    ));
-                }
-                self.parameters.push((key.to_string(), value.extract()?));
-            }
+            _ => self.parameter(key, value)?,
         }
+        Ok(())
+    }
+
+    /// A numeric keyword that is no option: a parameter of an energy or a curve, sorted out in
+    /// [`Self::muscle`]; any other name is refused with the list of keywords.
+    fn parameter(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let known = SHIPPED
+            .iter()
+            .flat_map(|e| e.parameters.iter())
+            .chain(CURVES.iter().flat_map(|c| c.parameters.iter()))
+            .any(|p| p.name == key);
+        if !known {
+            let mut names: Vec<&str> = SHIPPED
+                .iter()
+                .flat_map(|e| e.parameters.iter().map(|p| p.name.as_ref()))
+                .chain(
+                    CURVES
+                        .iter()
+                        .flat_map(|c| c.parameters.iter().map(|p| p.name.as_ref())),
+                )
+                .collect();
+            names.sort_unstable();
+            names.dedup();
+            return Err(keyword_error(
+                key,
+                format!(
+                    "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
+                    OPTIONS.join(", "),
+                    names.join(", ")
+                ),
+            ));
+        }
+        self.parameters.push((key.to_string(), value.extract()?));
         Ok(())
     }
 

@@ -75,7 +75,7 @@ impl StrainEnergy for FourCPassive {
 
 impl Shipped for FourCPassive {
     const NAME: &'static str = "4c-passive";
-    const FORMULA: &'static str = "I = w0/3*tr_c + (1 - w0)*c_m; Jc = det_c*(w0/3*tr_c_inv + (1 - w0)*c_inv_m); mu/4*(expm1(alpha*(I - 1))/alpha + expm1(beta*(Jc - 1))/beta)";
+    const FORMULA: Option<&'static str> = Some("I = w0/3*tr_c + (1 - w0)*c_m; Jc = det_c*(w0/3*tr_c_inv + (1 - w0)*c_inv_m); mu/4*(expm1(alpha*(I - 1))/alpha + expm1(beta*(Jc - 1))/beta)");
     const PARAMETERS: &'static [Parameter] = EhretBolItskov::PARAMETERS;
     fn values(&self) -> Vec<f64> {
         self.0.values()

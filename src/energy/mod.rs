@@ -134,10 +134,11 @@ pub trait Shipped: StrainEnergy + Sized {
     const NAME: &'static str;
     /// The parameters, in the order of [`values`](Self::values).
     const PARAMETERS: &'static [Parameter];
-    /// The same energy in the formula language ([`formula`]), over the parameters' names: what
-    /// [`Energy::as_formula`] builds (the trade-off study's convenience-against-speed group
-    /// times the two; a test checks that they agree to rounding).
-    const FORMULA: &'static str;
+    /// The same energy in the formula language ([`formula`]), over the parameters' names, if
+    /// it can be written there: what [`Energy::as_formula`] builds (the trade-off study's
+    /// convenience-against-speed group times the two; a test checks that they agree to
+    /// rounding).
+    const FORMULA: Option<&'static str> = None;
     /// The parameter values.
     fn values(&self) -> Vec<f64>;
     /// The energy with these parameter values (in the order of [`PARAMETERS`](Self::PARAMETERS)),
@@ -169,8 +170,8 @@ pub struct ShippedEnergy {
     pub name: &'static str,
     /// Its parameters.
     pub parameters: &'static [Parameter],
-    /// The energy in the formula language ([`Shipped::FORMULA`]).
-    pub formula: &'static str,
+    /// The energy in the formula language, if it has one ([`Shipped::FORMULA`]).
+    pub formula: Option<&'static str>,
     build: fn(&[f64]) -> Result<Energy>,
 }
 
@@ -271,11 +272,18 @@ macro_rules! shipped_energies {
         impl Energy {
             /// This energy written as a formula: a shipped energy's [`Shipped::FORMULA`] with
             /// its parameters at their values (named `<name> (formula)`); a formula energy is
-            /// itself.
+            /// itself. An error for a shipped energy without a formula.
             pub fn as_formula(&self) -> std::result::Result<FormulaEnergy, FormulaError> {
                 let (text, parameters, name) = match self {
                     $(Energy::$energy(_) => ($energy::FORMULA, $energy::PARAMETERS, $energy::NAME),)*
                     Energy::Formula(f) => return Ok(f.clone()),
+                };
+                let Some(text) = text else {
+                    return Err(FormulaError {
+                        key: "energy".into(),
+                        value: name.into(),
+                        rule: "this energy is not written in the formula language (Shipped::FORMULA)".into(),
+                    });
                 };
                 let declared = parameters
                     .iter()

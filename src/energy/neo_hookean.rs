@@ -44,7 +44,7 @@ impl StrainEnergy for NeoHookean {
 
 impl Shipped for NeoHookean {
     const NAME: &'static str = "neo-hookean";
-    const FORMULA: &'static str = "mu/2*(I1 - 3)";
+    const FORMULA: Option<&'static str> = Some("mu/2*(I1 - 3)");
     /// μ has no chapter value: a scene must give it.
     const PARAMETERS: &'static [Parameter] = &[Parameter::positive("mu", "μ", "kPa", None)];
     fn values(&self) -> Vec<f64> {

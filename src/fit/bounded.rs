@@ -53,6 +53,105 @@ fn max_rounds(p: usize) -> usize {
     2 * p + 2
 }
 
+/// The state of an active-set fit: where it is, which parameters are held at which bound.
+struct ActiveSet<'a, R> {
+    problem: &'a R,
+    names: &'a [String],
+    bounds: &'a [Bounds],
+    options: &'a FitOptions,
+    at: Vec<f64>,
+    held: Vec<Option<AtBound>>,
+    iterations: u64,
+    notes: Vec<String>,
+}
+
+impl<R: Residuals> ActiveSet<'_, R> {
+    fn free(&self) -> Vec<usize> {
+        (0..self.at.len())
+            .filter(|&k| self.held[k].is_none())
+            .collect()
+    }
+
+    /// One search over the parameters not held, from where the fit is (none if all are held).
+    fn search(&self, free: &[usize]) -> Option<Result<FitReport, FitError>> {
+        if free.is_empty() {
+            return None;
+        }
+        let sub = Held {
+            problem: self.problem,
+            at: self.at.clone(),
+            free: free.to_vec(),
+        };
+        let start: Vec<f64> = free.iter().map(|&k| self.at[k]).collect();
+        let names: Vec<String> = free.iter().map(|&k| self.names[k].clone()).collect();
+        let bounds: Vec<Bounds> = free.iter().map(|&k| self.bounds[k]).collect();
+        let budget = FitOptions {
+            max_iterations: self
+                .options
+                .max_iterations
+                .saturating_sub(self.iterations)
+                .max(1),
+            ..*self.options
+        };
+        Some(search(&sub, &names, &start, &bounds, &budget))
+    }
+
+    /// Moves to the free parameters' `values` after a search of `iterations`.
+    fn moved(&mut self, free: &[usize], values: &[f64], iterations: u64) {
+        for (i, &f) in free.iter().enumerate() {
+            self.at[f] = values[i];
+        }
+        self.iterations += iterations;
+    }
+
+    /// Holds parameter `j` at its bound (or where it is, if the model cannot be evaluated there).
+    fn hold(&mut self, j: usize, hold: AtBound) {
+        if evaluable(self.problem, &self.at, j, hold.bound) {
+            self.at[j] = hold.bound;
+        }
+        self.held[j] = Some(hold);
+        self.notes.push(format!(
+            "{} held at its bound {} (the Gauss-Newton step points beyond, to {})",
+            self.names[j],
+            crate::text::shortest(hold.bound),
+            crate::text::significant(hold.beyond, 6)
+        ));
+    }
+
+    /// Releases the held parameters whose minimum has moved inside; whether there were any.
+    fn release_misplaced(&mut self) -> Result<bool, FitError> {
+        let inside = misplaced(self.problem, &self.at, &self.held)?;
+        for &j in &inside {
+            self.notes.push(format!(
+                "{} released from its bound (the minimum moved inside)",
+                self.names[j]
+            ));
+            self.held[j] = None;
+        }
+        Ok(!inside.is_empty())
+    }
+
+    /// After a search over `free` that ended in `e`: a parameter stalled at its bound is held;
+    /// stalled elsewhere with a held parameter that belongs inside, that one is released; else
+    /// the error stands (its best point expanded to every parameter).
+    fn stalled(&mut self, free: &[usize], e: FitError) -> Result<(), FitError> {
+        let FitError::NotConverged { best, .. } = &e else {
+            return Err(expanded(e, self.names, &self.at, free, &self.held));
+        };
+        let names: Vec<String> = free.iter().map(|&k| self.names[k].clone()).collect();
+        let before = self.at.clone();
+        self.moved(free, &best.values.clone(), best.iterations);
+        if let Some((k, hold)) = stalled_at_bound(&e, &names) {
+            self.hold(free[k], hold);
+            return Ok(());
+        }
+        if self.release_misplaced()? {
+            return Ok(());
+        }
+        Err(expanded(e, self.names, &before, free, &self.held))
+    }
+}
+
 /// Minimises ‖r(θ)‖² over the free parameters named `names`, from `start`, within `bounds`
 /// (see [`super::solver`]); a minimum beyond a bound is held there and reported [`AtBound`].
 ///
@@ -70,92 +169,35 @@ pub fn least_squares<R: Residuals>(
     options: &FitOptions,
 ) -> Result<FitReport, FitError> {
     let p = start.len();
-    let mut at = start.to_vec();
-    let mut held: Vec<Option<AtBound>> = vec![None; p];
-    let (mut iterations, mut notes) = (0, Vec::new());
+    let mut fit = ActiveSet {
+        problem,
+        names,
+        bounds,
+        options,
+        at: start.to_vec(),
+        held: vec![None; p],
+        iterations: 0,
+        notes: Vec::new(),
+    };
     for _ in 0..max_rounds(p) {
-        let free: Vec<usize> = (0..p).filter(|&k| held[k].is_none()).collect();
-        let fitted = if free.is_empty() {
-            None
-        } else {
-            let sub = Held {
-                problem,
-                at: at.clone(),
-                free: free.clone(),
-            };
-            let pick = |v: &[f64]| free.iter().map(|&k| v[k]).collect::<Vec<_>>();
-            let sub_names: Vec<String> = free.iter().map(|&k| names[k].clone()).collect();
-            let sub_bounds: Vec<Bounds> = free.iter().map(|&k| bounds[k]).collect();
-            let budget = FitOptions {
-                max_iterations: options.max_iterations.saturating_sub(iterations).max(1),
-                ..*options
-            };
-            match search(&sub, &sub_names, &pick(&at), &sub_bounds, &budget) {
-                Ok(report) => Some(report),
-                Err(e) => {
-                    let FitError::NotConverged { best, .. } = &e else {
-                        return Err(expanded(e, names, &at, &free, &held));
-                    };
-                    let mut here = at.clone();
-                    for (i, &f) in free.iter().enumerate() {
-                        here[f] = best.values[i];
-                    }
-                    let Some((k, hold)) = stalled_at_bound(&e, &sub_names) else {
-                        // Stalled away from a bound: with a held parameter whose minimum has
-                        // moved inside, release it and search again; else the search failed.
-                        let inside = misplaced(problem, &here, &held)?;
-                        if inside.is_empty() {
-                            return Err(expanded(e, names, &at, &free, &held));
-                        }
-                        iterations += best.iterations;
-                        at = here;
-                        for j in inside {
-                            notes.push(format!(
-                                "{} released from its bound (the minimum moved inside)",
-                                names[j]
-                            ));
-                            held[j] = None;
-                        }
-                        continue;
-                    };
-                    iterations += best.iterations;
-                    at = here;
-                    let j = free[k];
-                    if evaluable(problem, &at, j, hold.bound) {
-                        at[j] = hold.bound;
-                    }
-                    held[j] = Some(hold);
-                    notes.push(format!(
-                        "{} held at its bound {} (the Gauss-Newton step points beyond, to {})",
-                        names[j],
-                        crate::text::shortest(hold.bound),
-                        crate::text::significant(hold.beyond, 6)
-                    ));
-                    continue;
-                }
+        let free = fit.free();
+        let last = match fit.search(&free) {
+            None => String::new(),
+            Some(Ok(report)) => {
+                fit.moved(&free, &report.values, report.iterations);
+                report.termination
+            }
+            Some(Err(e)) => {
+                fit.stalled(&free, e)?;
+                continue;
             }
         };
-        if let Some(report) = &fitted {
-            for (i, &f) in free.iter().enumerate() {
-                at[f] = report.values[i];
-            }
-            iterations += report.iterations;
-        }
-        let inside = misplaced(problem, &at, &held)?;
-        if inside.is_empty() {
-            let last = fitted.map(|r| r.termination).unwrap_or_default();
-            notes.push(last);
-            return finish(problem, names, &at, held, iterations, notes);
-        }
-        for j in inside {
-            notes.push(format!(
-                "{} released from its bound (the minimum moved inside)",
-                names[j]
-            ));
-            held[j] = None;
+        if !fit.release_misplaced()? {
+            fit.notes.push(last);
+            return finish(problem, names, &fit.at, fit.held, fit.iterations, fit.notes);
         }
     }
-    let report = finish(problem, names, &at, held, iterations, notes)?;
+    let report = finish(problem, names, &fit.at, fit.held, fit.iterations, fit.notes)?;
     Err(FitError::NotConverged {
         reason: NotConverged::Solver {
             message: format!(
@@ -295,6 +337,10 @@ fn expanded(
     free: &[usize],
     held: &[Option<AtBound>],
 ) -> FitError {
+    if held.iter().all(Option::is_none) {
+        // Every parameter was free: the search's own error, its Gauss–Newton step included.
+        return e;
+    }
     match e {
         FitError::NotConverged { reason, best, .. } => {
             expanded_best(&best, names, at, free, held, reason)

@@ -1,7 +1,7 @@
-//! From the syntax tree to the [`Program`]: names resolved (definitions, parameters, invariants,
-//! derived invariants), numbers folded, equal subexpressions computed once, the parameter-only
-//! subexpressions moved to the constant tape, and what can be refused before any evaluation
-//! refused there.
+//! From the syntax tree to an expression graph: names resolved (definitions, parameters,
+//! invariants, derived invariants), numbers folded, equal subexpressions one node, and what can
+//! be refused before any evaluation refused there ([`super::emit`] turns the graph into the
+//! [`super::program::Program`]).
 //!
 //! **Refused at compile time** (each with where it is in the formula): an unknown name or
 //! function (with the nearest known one); a definition that redefines a word of the language, a
@@ -11,12 +11,10 @@
 //! parameters alone that may leave its domain for parameter values within their ranges: a
 //! division by, or a negative power of, an expression that may be 0, the logarithm of one that
 //! may be ≤ 0, the square root of one that may be < 0, a non-integer or parameter power of a base
-//! that may be ≤ 0. That last check is a sign analysis: each parameter's sign follows from its
-//! open range (lower, upper), each invariant is positive, and signs propagate through the
-//! operations (a sum of positives is positive, a product of non-zeros non-zero, eˣ positive, ...).
-//! An expression it cannot prove non-zero is refused; the cure is a range that excludes 0.
+//! that may be ≤ 0. That last check is a sign analysis ([`super::sign`]); an expression it cannot
+//! prove non-zero is refused, and the cure is a range that excludes 0.
 
-use super::program::{ConstantOp, Op, Program};
+use super::sign::Sign;
 use super::symbols::{self, Function};
 use super::syntax::{self, excerpt, place, BinaryOp, Expr, ExprKind};
 use super::FormulaError;
@@ -24,18 +22,24 @@ use std::collections::HashMap;
 
 /// A node of the expression graph (operands are earlier nodes).
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum Node {
+pub enum Node {
+    /// A number.
     Literal(f64),
+    /// Parameter k.
     Parameter(usize),
+    /// Invariant k.
     Invariant(usize),
+    /// f(a).
     Unary(Function, usize),
+    /// a ∘ b.
     Binary(BinaryOp, usize, usize),
+    /// aⁿ, n an integer.
     PowI(usize, i32),
 }
 
 /// [`Node`] with its number as bits, to find equal nodes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-enum Key {
+pub enum Key {
     Literal(u64),
     Parameter(usize),
     Invariant(usize),
@@ -57,107 +61,17 @@ impl Node {
     }
 }
 
-/// The signs a value may take over every admissible state and parameter set.
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Sign {
-    negative: bool,
-    zero: bool,
-    positive: bool,
-}
-
-impl Sign {
-    const POSITIVE: Sign = Sign {
-        negative: false,
-        zero: false,
-        positive: true,
-    };
-    const ANY: Sign = Sign {
-        negative: true,
-        zero: true,
-        positive: true,
-    };
-
-    fn of_value(x: f64) -> Sign {
-        Sign {
-            negative: x < 0.0,
-            zero: x == 0.0,
-            positive: x > 0.0,
-        }
-    }
-
-    /// A value in the open interval (lower, upper).
-    fn of_range((lower, upper): (f64, f64)) -> Sign {
-        Sign {
-            negative: lower < 0.0,
-            zero: lower < 0.0 && upper > 0.0,
-            positive: upper > 0.0,
-        }
-    }
-
-    fn negated(self) -> Sign {
-        Sign {
-            negative: self.positive,
-            zero: self.zero,
-            positive: self.negative,
-        }
-    }
-
-    fn sum(a: Sign, b: Sign) -> Sign {
-        Sign {
-            negative: a.negative || b.negative,
-            zero: (a.zero && b.zero) || (a.negative && b.positive) || (a.positive && b.negative),
-            positive: a.positive || b.positive,
-        }
-    }
-
-    fn product(a: Sign, b: Sign) -> Sign {
-        Sign {
-            negative: (a.positive && b.negative) || (a.negative && b.positive),
-            zero: a.zero || b.zero,
-            positive: (a.positive && b.positive) || (a.negative && b.negative),
-        }
-    }
-
-    fn power(a: Sign, n: i32) -> Sign {
-        if n % 2 == 0 {
-            Sign {
-                negative: false,
-                zero: a.zero,
-                positive: a.positive || a.negative,
-            }
-        } else {
-            a
-        }
-    }
-
-    fn unary(f: Function, a: Sign) -> Sign {
-        match f {
-            Function::Neg => a.negated(),
-            Function::Exp | Function::Cosh => Sign::POSITIVE,
-            Function::Sqrt => Sign {
-                negative: false,
-                zero: a.zero,
-                positive: a.positive,
-            },
-            Function::Ln => Sign::ANY,
-            Function::ExpM1
-            | Function::Ln1p
-            | Function::Cbrt
-            | Function::Sinh
-            | Function::Tanh
-            | Function::Atan => a,
-        }
-    }
-}
-
 /// What is known of a node: whether it depends on the invariants, its sign, its text.
 #[derive(Debug, Clone, Copy)]
-struct Info {
-    varies: bool,
-    sign: Sign,
+pub struct Info {
+    /// It depends on the invariants.
+    pub varies: bool,
+    /// Its sign.
+    pub sign: Sign,
     /// Bytes of the formula it was first read from (derived invariants: the name using them).
-    start: usize,
-    end: usize,
+    pub start: usize,
+    /// End of that text (exclusive).
+    pub end: usize,
 }
 
 /// A name in scope: a definition (and whether it was used) or a derived invariant.
@@ -166,18 +80,23 @@ struct Scope {
     derived: HashMap<&'static str, usize>,
 }
 
-/// The expression graph under construction.
-struct Graph<'a> {
+/// The expression graph: its nodes (operands first) and what is known of each.
+pub struct Graph<'a> {
     text: &'a str,
     parameters: &'a [(String, (f64, f64))],
     used: Vec<bool>,
-    nodes: Vec<Node>,
-    info: Vec<Info>,
+    /// The nodes.
+    pub nodes: Vec<Node>,
+    /// What is known of each node.
+    pub info: Vec<Info>,
     index: HashMap<Key, usize>,
 }
 
-/// Compiles `text` for the parameters `(name, open range)`, in order.
-pub fn compile(text: &str, parameters: &[(String, (f64, f64))]) -> Result<Program, FormulaError> {
+/// The graph of `text` for the parameters `(name, open range)`, in order, and the node of W.
+pub fn compile<'a>(
+    text: &'a str,
+    parameters: &'a [(String, (f64, f64))],
+) -> Result<(Graph<'a>, usize), FormulaError> {
     let source = syntax::parse(text)?;
     let mut g = Graph {
         text,
@@ -204,7 +123,7 @@ pub fn compile(text: &str, parameters: &[(String, (f64, f64))]) -> Result<Progra
             "W does not depend on the deformation: write it in the invariants (tr_c, c_m, tr_c_inv, c_inv_m, det_c, I1, I4, J, ...)",
         ));
     }
-    Ok(Emitter::new(&mut g).program(root))
+    Ok((g, root))
 }
 
 impl Graph<'_> {
@@ -260,7 +179,7 @@ impl Graph<'_> {
     }
 
     /// The node of `node`, shared with an equal one built before.
-    fn intern(&mut self, node: Node, info: Info) -> usize {
+    pub fn intern(&mut self, node: Node, info: Info) -> usize {
         if let Some(&i) = self.index.get(&node.key()) {
             return i;
         }
@@ -289,7 +208,7 @@ impl Graph<'_> {
         Ok(self.intern(Node::Literal(x), info))
     }
 
-    fn value(&self, n: usize) -> Option<f64> {
+    pub fn value(&self, n: usize) -> Option<f64> {
         match self.nodes[n] {
             Node::Literal(x) => Some(x),
             _ => None,
@@ -565,142 +484,5 @@ fn place_at(e: &mut Expr, start: usize, end: usize) {
             place_at(b, start, end);
         }
         ExprKind::Number(_) | ExprKind::Name(_) => {}
-    }
-}
-
-/// Emits the two tapes from the graph, each node once, operands first.
-struct Emitter<'g, 'a> {
-    graph: &'g mut Graph<'a>,
-    constants: Vec<ConstantOp>,
-    constant_of: HashMap<usize, usize>,
-    ops: Vec<Op>,
-    op_of: HashMap<usize, usize>,
-}
-
-impl<'g, 'a> Emitter<'g, 'a> {
-    fn new(graph: &'g mut Graph<'a>) -> Self {
-        Self {
-            graph,
-            constants: Vec::new(),
-            constant_of: HashMap::new(),
-            ops: Vec::new(),
-            op_of: HashMap::new(),
-        }
-    }
-
-    fn program(mut self, root: usize) -> Program {
-        self.variable(root);
-        Program {
-            constants: self.constants,
-            ops: self.ops,
-        }
-    }
-
-    /// The constant-tape result of parameter-only node `n`.
-    fn constant(&mut self, n: usize) -> usize {
-        if let Some(&k) = self.constant_of.get(&n) {
-            return k;
-        }
-        let op = match self.graph.nodes[n] {
-            Node::Literal(x) => ConstantOp::Literal(x),
-            Node::Parameter(k) => ConstantOp::Parameter(k),
-            Node::Unary(f, a) => ConstantOp::Unary(f, self.constant(a)),
-            Node::PowI(a, m) => ConstantOp::PowI(self.constant(a), m),
-            Node::Binary(BinaryOp::Pow, a, b) if self.graph.value(b).is_some() => {
-                ConstantOp::PowF(self.constant(a), self.graph.value(b).unwrap_or(1.0))
-            }
-            Node::Binary(op, a, b) => ConstantOp::Binary(op, self.constant(a), self.constant(b)),
-            Node::Invariant(_) => unreachable!("the constant tape holds parameter-only nodes"),
-        };
-        self.constants.push(op);
-        self.constant_of.insert(n, self.constants.len() - 1);
-        self.constants.len() - 1
-    }
-
-    /// The constant-tape result 1/b of parameter-only node `b` (not 0: checked when the
-    /// division was built).
-    fn reciprocal(&mut self, b: usize) -> usize {
-        let info = self.graph.info[b];
-        let node = match self.graph.value(b) {
-            Some(y) => Node::Literal(1.0 / y),
-            None => {
-                let one = self.graph.intern(
-                    Node::Literal(1.0),
-                    Info {
-                        sign: Sign::POSITIVE,
-                        ..info
-                    },
-                );
-                Node::Binary(BinaryOp::Div, one, b)
-            }
-        };
-        let r = self.graph.intern(node, info);
-        self.constant(r)
-    }
-
-    /// The energy-tape result of node `n`, which depends on the invariants.
-    fn variable(&mut self, n: usize) -> usize {
-        if let Some(&k) = self.op_of.get(&n) {
-            return k;
-        }
-        let op = match self.graph.nodes[n] {
-            Node::Invariant(k) => Op::Invariant(k),
-            Node::Unary(f, a) => Op::Unary(f, self.variable(a)),
-            Node::PowI(a, m) => Op::PowI(self.variable(a), m),
-            Node::Binary(op, a, b) => self.mixed(op, a, b),
-            Node::Literal(_) | Node::Parameter(_) => {
-                unreachable!("parameter-only nodes enter the energy tape as constants")
-            }
-        };
-        self.ops.push(op);
-        self.op_of.insert(n, self.ops.len() - 1);
-        self.ops.len() - 1
-    }
-
-    /// a ∘ b where at least one operand depends on the invariants: the other, if it does not,
-    /// enters as a constant.
-    fn mixed(&mut self, op: BinaryOp, a: usize, b: usize) -> Op {
-        let varies = |s: &Self, n: usize| s.graph.info[n].varies;
-        match (varies(self, a), varies(self, b)) {
-            (true, true) => Op::Binary(op, self.variable(a), self.variable(b)),
-            (true, false) => {
-                let x = self.variable(a);
-                match (op, self.graph.value(b)) {
-                    (BinaryOp::Pow, Some(y)) => return Op::PowF(x, y),
-                    // A dual number times a number costs less than over it.
-                    (BinaryOp::Div, _) => return Op::MulC(x, self.reciprocal(b)),
-                    _ => {}
-                }
-                let k = self.constant(b);
-                match op {
-                    BinaryOp::Add => Op::AddC(x, k),
-                    BinaryOp::Sub => Op::SubC(x, k),
-                    BinaryOp::Mul => Op::MulC(x, k),
-                    _ => Op::PowC(x, k),
-                }
-            }
-            _ => {
-                let y = self.variable(b);
-                if op == BinaryOp::Pow {
-                    // c^y = e^{y ln c}; the base is positive (checked when it was built).
-                    let info = self.graph.info[a];
-                    let ln = self.graph.intern(
-                        Node::Unary(Function::Ln, a),
-                        Info {
-                            sign: Sign::ANY,
-                            ..info
-                        },
-                    );
-                    return Op::ExpMulC(y, self.constant(ln));
-                }
-                let k = self.constant(a);
-                match op {
-                    BinaryOp::Add => Op::AddC(y, k),
-                    BinaryOp::Sub => Op::CSub(y, k),
-                    BinaryOp::Mul => Op::MulC(y, k),
-                    _ => Op::CDiv(y, k),
-                }
-            }
-        }
     }
 }

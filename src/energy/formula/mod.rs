@@ -13,18 +13,20 @@
 //! - **Names**: the invariants [`INVARIANTS`] (those every energy sees), the derived ones
 //!   [`DERIVED`] (I1, I2, I3, J, I4, λ_f and the isochoric ones), the declared parameters and the
 //!   definitions.
-//! - **Compiled once** ([`compile`]) into two tapes ([`program`]): the parameter-only
+//! - **Compiled once** ([`compile`], [`emit`]) into two tapes ([`program`]): the parameter-only
 //!   subexpressions, evaluated once per parameter set, and the energy's instructions over the
 //!   invariants, evaluated per call with the constants entering as plain numbers.
 //! - **Checked** when read ([`compile`]: names, unused parameters and definitions, operations on
-//!   parameters that may leave their domain) and whenever the parameters change ([`check`]:
+//!   parameters that may leave their domain, [`sign`]) and whenever the parameters change ([`check`]:
 //!   finite W, ∂W/∂j, ∂²W/∂j² at F = I; W(I) = 0; no stress along the fibres at I; each value in
 //!   its range).
 
 mod check;
 mod compile;
+mod emit;
 mod error;
 mod program;
+mod sign;
 mod symbols;
 mod syntax;
 
@@ -92,11 +94,12 @@ impl FormulaEnergy {
             .iter()
             .map(|p| (p.name.to_string(), p.range))
             .collect();
-        let program = compile::compile(formula, &ranges)?;
+        let (mut graph, root) = compile::compile(formula, &ranges)?;
+        let program = emit::program(&mut graph, root);
         let definition = Arc::new(Definition {
             name: FORMULA.to_string(),
             formula: formula.to_string(),
-            uses_det_c: program.uses_det_c(),
+            uses_det_c: program.uses_det_c,
             parameters,
             program,
         });

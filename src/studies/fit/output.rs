@@ -154,6 +154,38 @@ fn whole_range(y: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     (hi > lo).then_some((lo - pad, hi + pad))
 }
 
+/// ` ± 1.2e-3`, ` at its bound 0 (the minimum lies beyond, at -0.03)` or ` ± (n/a)`: what the
+/// report says of the estimate of parameter `j` of `f`.
+fn error_cell(f: &FitOutcome, j: usize, origin: &dyn Fn() -> String) -> Result<String, AppError> {
+    let held = f.at_bound.get(j).copied().flatten();
+    Ok(match (held, f.standard_errors.get(j).copied().flatten()) {
+        (Some(b), _) => format!(
+            " <b>at its bound</b> {} (the minimum lies beyond, at {})",
+            crate::text::shortest(b.bound),
+            crate::text::significant(b.beyond, 6)
+        ),
+        (None, Some(s)) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
+        (None, None) => " ± (n/a)".into(),
+    })
+}
+
+/// Converged or not (and why), the weights, the fit's further facts.
+fn status_cell(f: &FitOutcome) -> String {
+    let e = escape;
+    let mut status = if f.converged {
+        "converged".to_string()
+    } else {
+        format!("<b>NOT converged</b> ({})", e(&f.termination))
+    };
+    if f.weights != super::WeightsKind::Equal {
+        status.push_str(&format!("<br>residuals weighted: {}", f.weights.name()));
+    }
+    for x in &f.extra {
+        status.push_str(&format!("<br>{}", e(x)));
+    }
+    status
+}
+
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
 fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), AppError> {
     let studies: Vec<(&str, &[FitOutcome])> = studies
@@ -173,18 +205,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
         let n = f.names.len();
         for j in 0..n {
             let value = finite(f.values[j], "fitted value", origin)?;
-            let se = match (
-                f.at_bound.get(j).copied().flatten(),
-                f.standard_errors.get(j).copied().flatten(),
-            ) {
-                (Some(b), _) => format!(
-                    " <b>at its bound</b> {} (the minimum lies beyond, at {})",
-                    crate::text::shortest(b.bound),
-                    crate::text::significant(b.beyond, 6)
-                ),
-                (None, Some(s)) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
-                (None, None) => " ± (n/a)".into(),
-            };
+            let se = error_cell(f, j, &origin)?;
             let reference = match f.reference.get(j).copied().flatten() {
                 Some(r) => finite(r, "reference value", origin)?.to_string(),
                 None => String::new(),
@@ -196,17 +217,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
                 None => String::new(),
             };
             if j == 0 {
-                let mut status = if f.converged {
-                    "converged".to_string()
-                } else {
-                    format!("<b>NOT converged</b> ({})", e(&f.termination))
-                };
-                if f.weights != super::WeightsKind::Equal {
-                    status.push_str(&format!("<br>residuals weighted: {}", f.weights.name()));
-                }
-                for x in &f.extra {
-                    status.push_str(&format!("<br>{}", e(x)));
-                }
+                let status = status_cell(f);
                 // Biaxial rows give two stresses each.
                 let points = if f.plot.iter().any(|c| c.at_rows) {
                     "rows of (P₁₁, P₂₂)"
