@@ -10,7 +10,7 @@ mod point;
 
 use activemuscle::active::active_energy;
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    ActivationLaw, ActivationMap, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
     FrozenTangent, ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use activemuscle::energy::{GiantesioMusesti, Invariants, StrainEnergy};
@@ -263,7 +263,7 @@ fn constitutive(c: &mut Criterion) {
     // The active-strain map: the same muscle at constant γ with the chapter's and the
     // volume-preserving map (P + tangent + dP/dγ from F), axisymmetric and 3D.
     let mut g = group_config(c, "map");
-    for map in [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving] {
+    for map in [ActivationMap::Chapter, ActivationMap::VolumePreserving] {
         let muscle = Muscle::new(
             energy,
             Law::Constant(ConstantLaw::new(GAMMA).unwrap()),

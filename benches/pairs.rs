@@ -11,7 +11,7 @@ mod closed_form;
 mod point;
 
 use activemuscle::active::{
-    ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
+    ActivationMap, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw, FrozenTangent,
     ImplicitLaw, Law, LawRepresentation, TableSpec,
 };
 use activemuscle::energy::GiantesioMusesti;
@@ -149,8 +149,8 @@ fn main() {
         .unwrap()
     };
     let (chapter, volume_preserving) = (
-        mapped(ActiveStrainMap::Chapter),
-        mapped(ActiveStrainMap::VolumePreserving),
+        mapped(ActivationMap::Chapter),
+        mapped(ActivationMap::VolumePreserving),
     );
     report(
         "Muscle::respond tangent, axisym, constant gamma: chapter map, volume-preserving map",

@@ -3,7 +3,7 @@
 
 use activemuscle::output::{tradeoff, write_run, RunMeta, Staging, Writer};
 use activemuscle::scene::{Printing, Results, RunOptions, Scene};
-use activemuscle::studies::tradeoff::run_until as run_tradeoff;
+use activemuscle::studies::tradeoff::{run_until as run_tradeoff, scene_options};
 use activemuscle::studies::{Silent, Stop, StudyResult};
 use activemuscle::AppError;
 use clap::{Parser, Subcommand};
@@ -175,22 +175,9 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     if results.ran_together() {
         say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
-    for (_, c) in results.cylinders() {
-        if c.bases != activemuscle::fem::Bases::Sliding {
-            continue;
-        }
-        for s in &c.sweeps {
-            if let Some((worst, _, _)) = s.worst_against_0d() {
-                say!(
-                    "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
-                    s.label
-                );
-            }
-        }
-    }
-    for (study, fits) in results.fits() {
-        for f in fits {
-            say!("{study} — {}", f.summary());
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
         }
     }
     for (study, f) in results.failures() {
@@ -385,19 +372,13 @@ fn tradeoff_command(
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
-    let options = scene.tradeoff_options().cloned().unwrap_or_default();
+    let options = scene_options(&scene.studies, &scene.defaults);
     let printing = Printing::new(true, false);
     let bar = printing.study();
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
     let stop = Stop::new();
     on_interrupt(&stop);
-    let results = run_tradeoff(
-        &scene.models,
-        &options,
-        &scene.fallback(),
-        progress,
-        Some(&stop),
-    )?;
+    let results = run_tradeoff(&scene.models, &options, progress, Some(&stop))?;
     let wall = started.elapsed().as_secs_f64();
     let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
     staging.commit()?;

@@ -1,10 +1,10 @@
 //! A muscle material: an energy, an activation law, a damage and a coupling, answering at a point.
 
-use crate::active::approach::active_stress_terms;
+use crate::active::approach::Approach;
 use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::curve::ActiveCurve;
-use crate::active::drive::{Drive, StretchRate};
-use crate::active::law::{check_damage, ActivationLaw, Law, LawValue};
+use crate::active::drive::{check_damage, Drive, StretchRate};
+use crate::active::law::{ActivationLaw, Law, LawValue};
 use crate::active::map::ActivationMap;
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
@@ -14,10 +14,13 @@ use nalgebra::{SMatrix, SVector};
 
 /// Active skeletal muscle, by one of the approaches of [`crate::active::approach`]:
 ///
-/// - an activation map (active strain or structural): Ŵ(F, γ) = φ(γ) W(A(γ) j) with
-///   γ = g(λ_f, drive) ([`ActivationMap`]), coupled frozen or consistently (see
-///   [`crate::active::coupling`]);
-/// - active stress ([`Muscle::active_stress`]): Ψ = W(C) + E(λ_f) with dE/dλ = T(λ_f), no law.
+/// Ψ(F) = φ(γ) W(A(γ) j) + E(C:M), with
+///
+/// - an activation map (active strain or structural): γ = g(λ_f, drive) ([`ActivationMap`]),
+///   coupled frozen or consistently (see [`crate::active::coupling`]);
+/// - the energy of the fibre stretch an approach adds of its own, E ([`Approach::fibre_energy`]):
+///   active stress ([`Muscle::active_stress`]), with dE/dλ = T(λ_f) and no law (γ ≡ 0); none
+///   (E = 0) for the approaches whose activation is the map's.
 ///
 /// The target active stress is T = (1 − d)·a·f_v·P_act ([`Drive`]): damage d, activation level a
 /// (default 1) and, in a time study with force–velocity, the stretch-rate state.
@@ -28,8 +31,9 @@ pub struct Muscle<E> {
     drive: Drive,
     coupling: Coupling,
     map: ActivationMap,
-    /// The active curve of the active-stress approach (`None`: the activation map's approach).
-    active_stress: Option<ActiveCurve>,
+    /// The approach that adds an energy of the fibre stretch E(C:M), and the active curve that
+    /// energy is scaled from (`None`: E = 0, the activation is the map's).
+    fibre_energy: Option<(Approach, ActiveCurve)>,
 }
 
 /// A muscle's answer at one point over the entries of F in use.
@@ -61,7 +65,7 @@ impl<E: StrainEnergy> Muscle<E> {
             law,
             drive: Drive::from(damage),
             coupling,
-            active_stress: None,
+            fibre_energy: None,
         })
     }
 
@@ -70,10 +74,19 @@ impl<E: StrainEnergy> Muscle<E> {
     /// P = ∂W/∂F + T(λ_f) F M/λ_f (− p F⁻ᵀ under the constraint). No law: the target is met by
     /// construction along the fibres. Hyperelastic without force–velocity (symmetric tangent).
     pub fn active_stress(energy: E, curve: ActiveCurve, damage: f64) -> Result<Self> {
-        let mut muscle = Self::passive(energy);
+        let mut muscle = Self::passive(energy).with_fibre_energy(Approach::ActiveStress, curve);
         muscle.drive = Drive::from(check_damage(damage)?);
-        muscle.active_stress = Some(curve);
         Ok(muscle)
+    }
+
+    /// The same muscle with the energy of the fibre stretch that `approach` adds, scaled from
+    /// `curve` under the muscle's drive ([`Approach::fibre_energy`]); nothing changes for an
+    /// approach that adds none.
+    pub fn with_fibre_energy(self, approach: Approach, curve: ActiveCurve) -> Self {
+        Self {
+            fibre_energy: approach.adds_fibre_energy().then_some((approach, curve)),
+            ..self
+        }
     }
 
     /// The same muscle at activation level a ≥ 0 (the fraction of the optimal active stress
@@ -115,9 +128,9 @@ impl<E: StrainEnergy> Muscle<E> {
                 law_map: own.name(),
                 map: map.name(),
             }),
-            _ if self.active_stress.is_some() && map != ActivationMap::Chapter => {
+            _ if self.fibre_energy.is_some() && map != ActivationMap::Chapter => {
                 Err(crate::Error::MapMismatch {
-                    law: "active-stress",
+                    law: self.fibre_energy.map_or("", |(a, _)| a.name()),
                     law_map: "none",
                     map: map.name(),
                 })
@@ -134,7 +147,7 @@ impl<E: StrainEnergy> Muscle<E> {
             drive: Drive::from(0.0),
             coupling: Coupling::Consistent,
             map: ActivationMap::Chapter,
-            active_stress: None,
+            fibre_energy: None,
         }
     }
 
@@ -162,9 +175,10 @@ impl<E: StrainEnergy> Muscle<E> {
     pub fn drive(&self) -> &Drive {
         &self.drive
     }
-    /// The active curve of an active-stress muscle (`None` for the other approaches).
-    pub fn active_stress_curve(&self) -> Option<&ActiveCurve> {
-        self.active_stress.as_ref()
+    /// The approach that adds an energy of the fibre stretch, with its curve (active stress;
+    /// `None` for the approaches whose activation is the map's).
+    pub fn fibre_energy(&self) -> Option<(Approach, &ActiveCurve)> {
+        self.fibre_energy.as_ref().map(|(a, c)| (*a, c))
     }
     /// The coupling.
     pub fn coupling(&self) -> Coupling {
@@ -222,10 +236,10 @@ impl<E: StrainEnergy> Muscle<E> {
         let law = self.law_value(fibre_stretch, order)?;
         let j = SVector::from(kinematics.invariants);
         let mut d = unchecked_derivatives(&self.energy, self.map, &j, law.gamma, order)?;
-        if let Some(curve) = &self.active_stress {
-            // Ψ = W + E(C:M): the map is the identity at γ = 0, so Ŵ_jj = H and the term adds
-            // to the C:M entries of the gradient and of H.
-            let (e, e_c, e_cc) = active_stress_terms(&self.drive, curve, j[1]);
+        if let Some((approach, curve)) = &self.fibre_energy {
+            // Ψ = Ŵ + E(C:M): an approach that adds E has no law (γ ≡ 0), so the map is the
+            // identity, Ŵ_jj = H, and the term adds to the C:M entries of the gradient and of H.
+            let (e, e_c, e_cc) = approach.fibre_energy(&self.drive, curve, j[1]);
             d.energy += e;
             d.d_j[1] += e_c;
             if let Some(s) = d.second.as_mut() {

@@ -1,5 +1,5 @@
-//! Numbers as text for people (messages, figure labels): a fixed count of significant digits,
-//! trailing zeros dropped. (The CSV files write every digit: [`crate::output::csv::shortest`].)
+//! Numbers as text for people (messages, figure labels, table cells): a fixed count of
+//! significant digits, trailing zeros dropped. (The CSV files write every digit: [`crate::output::csv::shortest`].)
 
 /// `x` with `digits` significant digits, trailing zeros (and a trailing point) dropped:
 /// `significant(1.1070312500000001, 10)` = `1.10703125`, `significant(73.5201, 4)` = `73.52`;
@@ -45,6 +45,25 @@ pub fn trim_zeros(s: &str) -> String {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
         s.to_string()
+    }
+}
+
+/// A table cell of a measured number: scientific notation with `digits` digits; `failed` for an
+/// infinite one (a measurement that failed), `–` for none.
+pub fn cell(x: Option<f64>, digits: usize) -> String {
+    match x {
+        Some(v) if v.is_finite() => format!("{v:.digits$e}"),
+        Some(v) if v.is_infinite() => "failed".into(),
+        _ => "–".into(),
+    }
+}
+
+/// A ratio (a speed-up): fixed-point in [0.1, 1000), scientific outside ([`cell`]).
+pub fn ratio(x: f64) -> String {
+    if (0.1..1000.0).contains(&x.abs()) {
+        format!("{x:.2}")
+    } else {
+        cell(Some(x), 1)
     }
 }
 

@@ -21,11 +21,16 @@ lambda_min, lambda_opt, k, p_opt; map ("chapter" | "volume-preserving"); represe
 columns of numpy arrays (``pandas.DataFrame(r["name"].table)``); ``check_scene`` returns the
 resolved scene (``activemuscle.scene``).
 
+``Volumetric(material, kind, kappa, mu)`` is a scene's ``[incompressibility]`` with a volumetric
+energy U(J) (near incompressibility), for finite element codes that impose it themselves;
+``material.uniaxial(stretches, volumetric)`` gives its homogeneous curve.
+
 ``activemuscle.felupe`` adapts a Material to felupe (``MuscleMaterial``, and ``Incompressible``
-for the exact incompressibility of the chapter's mixed u–p formulation).
+for the exact incompressibility of the chapter's mixed u–p formulation);
+``activemuscle.dolfinx`` runs the material in DOLFINx under MPI (docs/distributed.md).
 """
 
-from ._native import Material
+from ._native import Material, Volumetric
 from .scene import Results, Study, check_scene, run_scene
 
-__all__ = ["Material", "Results", "Study", "check_scene", "run_scene"]
+__all__ = ["Material", "Results", "Study", "Volumetric", "check_scene", "run_scene"]

@@ -29,12 +29,15 @@ Source = Union[str, "os.PathLike[str]", Mapping[str, Any]]
 
 @dataclass
 class Study:
-    """One study's outcome. ``vtk``: the VTK files written (under ``out``; none without it).
-    ``table``: one column (numpy array) per field, one row per point —
-    names as object arrays, values that do not apply to a row masked (``numpy.ma``, missing in
-    pandas). ``failures``: columns ``model`` and ``message``. ``named_points`` (cylinder studies
-    with ``[study.points]``): columns sweep, point, r, z, law, coupling, d, lambda, u_r, u_z, as
-    ``points_<study>.csv``."""
+    """One study's outcome. ``table``: the study's rows of its CSV file (``files["table"]``:
+    curves.csv for uniaxial and cylinder studies, fits.csv, stability.csv, history.csv,
+    shear.csv, biaxial.csv, tradeoff.csv), with exactly the file's columns, names, types and
+    values: one numpy array per column (float64 numbers, int64 counts, bool flags, object arrays
+    of names), values that do not apply to a row masked (``numpy.ma``, missing in pandas); every
+    column's unit and meaning is in the run's ``datapackage.json``. ``named_points`` (cylinder
+    studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise.
+    ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
+    ``out``; none without it). ``findings``: what a trade-off study found."""
 
     name: str
     kind: str
@@ -48,6 +51,7 @@ class Study:
     vtk: List[Path] = field(default_factory=list)
     findings: List[str] = field(default_factory=list)
     named_points: Dict[str, Any] = field(default_factory=dict)
+    files: Dict[str, str] = field(default_factory=dict)
 
 
 @dataclass

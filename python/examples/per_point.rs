@@ -27,6 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .unwrap_or(100_000);
     let law = named("law", args.get(2).map_or("explicit", String::as_str))?;
     let material = Models::paper().muscle(ModelChoice {
+        approach: activemuscle::active::Approach::ActiveStrain,
         law,
         coupling: CouplingKind::Frozen,
         damage: 0.0,

@@ -11,6 +11,7 @@
 mod layout;
 pub mod model;
 mod scene;
+mod volumetric;
 
 use activemuscle::active::Law;
 use activemuscle::energy::Energy;
@@ -262,12 +263,19 @@ impl Material {
             .zip(e.parameter_values())
             .map(|(n, v)| format!("{n}={v}"))
             .collect();
+        // An approach without a law (active stress) is named, never a law it does not have.
+        let model = match self.muscle.fibre_energy() {
+            Some((approach, _)) => format!("approach={:?}", approach.name()),
+            None => format!(
+                "law={:?}, coupling={:?}",
+                self.muscle.law().name(),
+                self.muscle.coupling().name()
+            ),
+        };
         format!(
-            "Material(energy={:?}, {}, law={:?}, coupling={:?}, damage={})",
+            "Material(energy={:?}, {}, {model}, damage={})",
             e.name(),
             params.join(", "),
-            self.muscle.law().name(),
-            self.muscle.coupling().name(),
             self.muscle.damage()
         )
     }
@@ -512,14 +520,27 @@ impl Material {
         Ok(d)
     }
 
-    /// Homogeneous uniaxial tension along the fibres at each stretch λ (incompressible, lateral
-    /// faces traction-free): a dict of arrays "stretch", "stress" (nominal P [kPa]), "gamma".
-    fn uniaxial<'py>(&self, py: Python<'py>, stretches: Vec<f64>) -> PyResult<Bound<'py, PyDict>> {
+    /// Homogeneous uniaxial tension along the fibres at each stretch λ (lateral faces
+    /// traction-free; incompressible, or nearly so with a `Volumetric` energy): a dict of arrays
+    /// "stretch", "stress" (nominal P [kPa]), "gamma".
+    #[pyo3(signature = (stretches, volumetric = None))]
+    fn uniaxial<'py>(
+        &self,
+        py: Python<'py>,
+        stretches: Vec<f64>,
+        volumetric: Option<PyRef<'py, volumetric::Volumetric>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
         let mut stress = Vec::with_capacity(stretches.len());
         let mut gamma = Vec::with_capacity(stretches.len());
+        let volumetric = volumetric.as_ref().map(|v| &v.inner);
         for &l in &stretches {
-            let point = activemuscle::uniaxial::along_fibres(&self.muscle, l)
-                .map_err(|e| py_error(&e, &format!("stretch {l}: ")))?;
+            let point = activemuscle::uniaxial::point(
+                &self.muscle,
+                volumetric,
+                activemuscle::uniaxial::Direction::Along,
+                l,
+            )
+            .map_err(|e| py_error(&e, &format!("stretch {l}: ")))?;
             stress.push(point.stress);
             gamma.push(point.gamma);
         }
@@ -569,6 +590,7 @@ fn convention_of(shape: &[usize], layout: Option<&str>) -> PyResult<Convention> 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Material>()?;
+    m.add_class::<volumetric::Volumetric>()?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::check_scene, m)?)?;
     m.add("__doc__", "activemuscle's material point on numpy arrays")?;

@@ -1,25 +1,26 @@
 //! Keyword choices → a core [`Muscle`], through the scene's own models
 //! ([`activemuscle::models`]): the keywords are the keys of a scene's `[material]` and
-//! `[activation]` tables, gathered into a [`MaterialSpec`] and an [`ActivationSpec`] and resolved
-//! by [`Models::from_spec`], the function that resolves a scene's. Names, defaults (the
-//! chapter's values), rules and messages are therefore the scene's; an error names the keyword
-//! (`mu = -1: ...`) where a scene names `material.mu`. Beyond a scene's laws, `law` takes
-//! `"passive"` and `"constant"` (with `gamma`): a uniaxial study's passive and constant-γ curves.
+//! `[activation]` tables, gathered into a [`MaterialSpec`] and an [`ActivationSpec`] (its keys
+//! and their types are the scene's own table, [`ActivationSpec::KEYS`] and
+//! [`ActivationSpec::set`]) and resolved by [`Models::from_spec`], the function that resolves a
+//! scene's. Names, defaults (the chapter's values), rules and messages are therefore the scene's;
+//! an error names the keyword (`mu = -1: ...`) where a scene names `material.mu`, and a keyword
+//! that does not apply to the approach is refused as a scene refuses it. Beyond a scene's laws,
+//! `law` takes `"passive"` and `"constant"` (with `gamma`): a uniaxial study's passive and
+//! constant-γ curves; `damage` is one value.
 
-use activemuscle::active::{ConstantLaw, CurveEntry, ForceVelocity, Law, CURVES};
+use activemuscle::active::{ConstantLaw, CurveEntry, Law, CURVES};
 use activemuscle::app_error::SpecError;
 use activemuscle::energy::{Energy, ShippedEnergy, SHIPPED};
 use activemuscle::models::{
-    ActivationSpec, CouplingKind, DeclaredSpec, ExplicitSpec, LawKind, MaterialSpec, ModelChoice,
-    Models,
+    ActivationSpec, DeclaredSpec, LawKind, MaterialSpec, ModelChoice, Models,
 };
 use activemuscle::Muscle;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde::de::value::{Error as ValueError, StrDeserializer};
 use serde::de::{DeserializeOwned, IntoDeserializer};
-use std::collections::HashMap;
 
 /// What `law = "..."` names.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -40,16 +41,15 @@ pub fn named<T: DeserializeOwned>(key: &str, value: &str) -> Result<T, SpecError
 }
 
 impl LawChoice {
-    /// `law`: `"passive"`, `"constant"` or a scene's law; `None` is the scene's default law.
-    pub fn parse(law: Option<&str>) -> Result<Self, SpecError> {
+    /// `law`: `"passive"`, `"constant"` or a scene's law.
+    pub fn parse(law: &str) -> Result<Self, SpecError> {
         Ok(match law {
-            Some("passive") => LawChoice::Passive,
-            Some("constant") => LawChoice::Constant,
-            Some(name) => LawChoice::Active(named("law", name).map_err(|e| SpecError {
+            "passive" => LawChoice::Passive,
+            "constant" => LawChoice::Constant,
+            name => LawChoice::Active(named("law", name).map_err(|e| SpecError {
                 rule: format!("{} (or \"passive\", or \"constant\" with gamma)", e.rule),
                 ..e
             })?),
-            None => LawChoice::Active(LawKind::default()),
         })
     }
 }
@@ -63,18 +63,25 @@ fn as_keyword(e: SpecError) -> SpecError {
     SpecError { key, ..e }
 }
 
-/// The muscle of `material` and `activation` (the activation's `coupling`, `None` the scene's
-/// default) with activation law `law` (`gamma` for the constant law only) and damage `damage`.
+/// The muscle of `material` and `activation` (its approach and coupling, `None` the scene's
+/// defaults) with activation law `law` (`gamma` for the constant law only) and damage `damage`.
 pub fn muscle(
     material: &MaterialSpec,
     activation: &ActivationSpec,
-    law: LawChoice,
+    law: Option<LawChoice>,
     gamma: Option<f64>,
     damage: f64,
 ) -> Result<Muscle<Energy>, SpecError> {
-    let models = Models::from_spec(material, activation).map_err(as_keyword)?;
-    let coupling: CouplingKind = activation.coupling.unwrap_or_default();
-    if let (Some(g), false) = (gamma, law == LawChoice::Constant) {
+    let models = Models::from_spec(material, activation, None).map_err(as_keyword)?;
+    let defaults = activation.defaults();
+    let approach = defaults.approach;
+    activation
+        .refuse_inapplicable(&[approach])
+        .map_err(as_keyword)?;
+    let map = models
+        .activation_map(approach)
+        .map_err(|rule| SpecError::new("approach", format!("{:?}", approach.name()), rule))?;
+    if let (Some(g), false) = (gamma, law == Some(LawChoice::Constant)) {
         return Err(SpecError::new(
             "gamma",
             g,
@@ -82,44 +89,71 @@ pub fn muscle(
         ));
     }
     let model = |e: activemuscle::Error| SpecError::model("", e);
-    // A law without a map of its own (passive, constant) takes the scene's active-strain map.
+    // A law without a map of its own (passive, constant) takes the approach's map.
     let fixed = |law: Law<Energy>| {
         Muscle::new(
             models.energy.clone(),
             law,
             damage,
-            models.coupling(coupling),
+            models.coupling(defaults.coupling),
         )
-        .and_then(|m| m.with_map(models.map))
+        .and_then(|m| m.with_map(map))
         .map_err(model)
     };
     match law {
-        LawChoice::Passive => fixed(Law::Passive),
-        LawChoice::Constant => {
-            let gamma = gamma.ok_or_else(|| {
-                SpecError::new(
-                    "gamma",
-                    "(missing)",
-                    "law = \"constant\" needs gamma in [0, 1)",
-                )
-            })?;
-            fixed(Law::Constant(
-                ConstantLaw::new(gamma).map_err(|e| SpecError::model("gamma", e))?,
-            ))
-        }
-        LawChoice::Active(law) => {
+        Some(LawChoice::Passive) => fixed(Law::Passive),
+        Some(LawChoice::Constant) => fixed(constant(approach, gamma)?),
+        Some(LawChoice::Active(law)) => {
             models
-                .supports(law)
+                .supports(approach, law)
                 .map_err(|rule| SpecError::new("law", format!("{:?}", law.name()), rule))?;
             models
                 .muscle(ModelChoice {
+                    approach,
                     law,
-                    coupling,
+                    coupling: defaults.coupling,
                     damage,
                 })
                 .map_err(model)
         }
+        // Left out: the scene's default law (an approach without a law reads none).
+        None => models
+            .muscle(ModelChoice {
+                approach,
+                law: defaults.law,
+                coupling: defaults.coupling,
+                damage,
+            })
+            .map_err(model),
     }
+}
+
+/// The constant law γ = `gamma` of `approach` (which must have an activation variable).
+fn constant(
+    approach: activemuscle::active::Approach,
+    gamma: Option<f64>,
+) -> Result<Law<Energy>, SpecError> {
+    if approach.variable().is_none() {
+        return Err(SpecError::new(
+            "law",
+            "\"constant\"",
+            format!(
+                "a constant activation holds the approach's activation variable; approach = {:?} has none: {}",
+                approach.name(),
+                approach.no_law()
+            ),
+        ));
+    }
+    let gamma = gamma.ok_or_else(|| {
+        SpecError::new(
+            "gamma",
+            "(missing)",
+            "law = \"constant\" needs gamma in [0, 1)",
+        )
+    })?;
+    Ok(Law::Constant(
+        ConstantLaw::new(gamma).map_err(|e| SpecError::model("gamma", e))?,
+    ))
 }
 
 /// The keywords of `Material(...)`, gathered into a scene's tables: every parameter name comes
@@ -136,97 +170,64 @@ pub struct Choices {
     parameters: Vec<(String, f64)>,
 }
 
-/// The keywords that are options (not parameters), as the error for an unknown one lists them.
-const OPTIONS: &[&str] = &[
+/// The keywords Python reads itself (the others are the `[activation]` keys,
+/// [`ActivationSpec::KEYS`], and the energies' and curves' parameters); `W`, `name` and
+/// `parameters` are a formula energy's.
+const OWN: &[&str] = &[
     "energy",
     "W",
-    "parameters",
     "name",
-    "approach",
-    "curve",
+    "parameters",
     "law",
     "gamma",
-    "coupling",
-    "frozen_tangent",
     "damage",
-    "explicit",
-    "below_minimum",
-    "map",
-    "representation",
-    "table_stretches",
-    "force_velocity",
 ];
 
 fn keyword_error(key: &str, rule: impl Into<String>) -> PyErr {
     PyValueError::new_err(SpecError::new(key, "(given)", rule.into()).to_string())
 }
 
+/// A Python value as the TOML value a scene would hold (a bool, a number, a string, a list, a
+/// dict of string keys), for [`ActivationSpec::set`].
+fn toml_value(value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    Ok(if value.is_instance_of::<PyBool>() {
+        toml::Value::Boolean(value.extract()?)
+    } else if value.is_instance_of::<PyInt>() {
+        toml::Value::Integer(value.extract()?)
+    } else if value.is_instance_of::<PyFloat>() {
+        toml::Value::Float(value.extract()?)
+    } else if value.is_instance_of::<PyString>() {
+        toml::Value::String(value.extract()?)
+    } else if let Ok(d) = value.cast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, v) in d.iter() {
+            table.insert(k.extract()?, toml_value(&v)?);
+        }
+        toml::Value::Table(table)
+    } else if value.is_instance_of::<PyList>() || value.is_instance_of::<PyTuple>() {
+        let items: PyResult<Vec<toml::Value>> =
+            value.try_iter()?.map(|v| toml_value(&v?)).collect();
+        toml::Value::Array(items?)
+    } else {
+        // numpy scalars and other numbers.
+        toml::Value::Float(value.extract()?)
+    })
+}
+
 impl Choices {
     /// Takes one keyword.
     pub fn take(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-        let text = || -> PyResult<String> { value.extract() };
         let err = |e: SpecError| PyValueError::new_err(e.to_string());
-        let act = &mut self.activation;
         match key {
-            "energy" => self.material.energy.energy = text()?,
-            "W" => self.material.energy.formula.formula = Some(text()?),
-            "name" => self.material.energy.formula.name = Some(text()?),
+            "energy" => self.material.energy.energy = value.extract()?,
+            "W" => self.material.energy.formula.formula = Some(value.extract()?),
+            "name" => self.material.energy.formula.name = Some(value.extract()?),
             "parameters" => self.material.energy.formula.parameters = declared(value)?,
-            "curve" => act.curve = Some(text()?),
-            "law" => self.law = Some(text()?),
+            "law" => self.law = Some(value.extract()?),
             "gamma" => self.gamma = Some(value.extract()?),
             "damage" => self.damage = value.extract()?,
-            "approach" => act.approach = Some(named("approach", &text()?).map_err(err)?),
-            "coupling" => act.coupling = Some(named("coupling", &text()?).map_err(err)?),
-            "frozen_tangent" => {
-                act.frozen_tangent = Some(named("frozen_tangent", &text()?).map_err(err)?)
-            }
-            "below_minimum" => {
-                act.below_minimum = Some(named("below_minimum", &text()?).map_err(err)?)
-            }
-            "map" => act.map = Some(named("map", &text()?).map_err(err)?),
-            "representation" => {
-                act.representation = Some(named("representation", &text()?).map_err(err)?)
-            }
-            "table_stretches" => act.table_stretches = Some(value.extract()?),
-            "explicit" => {
-                let m: HashMap<String, f64> = value.extract()?;
-                if let Some(k) = m.keys().find(|k| *k != "a" && *k != "b") {
-                    return Err(err(SpecError::new(
-                        format!("explicit.{k}"),
-                        m[k],
-                        "unknown key: eq. (14) has coefficients a and b",
-                    )));
-                }
-                act.explicit = Some(ExplicitSpec {
-                    a: m.get("a").copied(),
-                    b: m.get("b").copied(),
-                });
-            }
-            "force_velocity" => {
-                let m: HashMap<String, f64> = value.extract()?;
-                let keys = ["min_rate", "ke", "kc", "de", "dc"];
-                if let Some(k) = m.keys().find(|k| !keys.contains(&k.as_str())) {
-                    return Err(keyword_error(
-                        &format!("force_velocity.{k}"),
-                        format!("unknown key: the keys are {}", keys.join(", ")),
-                    ));
-                }
-                let get = |k: &str| {
-                    m.get(k).copied().ok_or_else(|| {
-                        keyword_error(
-                            &format!("force_velocity.{k}"),
-                            "missing: give all of min_rate [1/s], ke, kc, de, dc",
-                        )
-                    })
-                };
-                act.force_velocity = Some(ForceVelocity {
-                    min_rate: get("min_rate")?,
-                    ke: get("ke")?,
-                    kc: get("kc")?,
-                    de: get("de")?,
-                    dc: get("dc")?,
-                });
+            _ if ActivationSpec::KEYS.contains(&key) => {
+                self.activation.set(key, toml_value(value)?).map_err(err)?
             }
             _ => self.parameter(key, value)?,
         }
@@ -253,11 +254,13 @@ impl Choices {
                 .collect();
             names.sort_unstable();
             names.dedup();
+            let mut options: Vec<&str> = OWN.to_vec();
+            options.extend(ActivationSpec::KEYS.iter().filter(|k| !OWN.contains(k)));
             return Err(keyword_error(
                 key,
                 format!(
                     "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
-                    OPTIONS.join(", "),
+                    options.join(", "),
                     names.join(", ")
                 ),
             ));
@@ -288,7 +291,7 @@ impl Choices {
         muscle(
             &self.material,
             &self.activation,
-            LawChoice::parse(self.law.as_deref())?,
+            self.law.as_deref().map(LawChoice::parse).transpose()?,
             self.gamma,
             self.damage,
         )

@@ -238,7 +238,7 @@ BAD_CHOICES = [
     (dict(coupling="loose"), 'coupling = "loose"'),
     (dict(frozen_tangent="bfgs"), 'frozen_tangent = "bfgs"'),
     (dict(below_minimum="never"), 'below_minimum = "never"'),
-    (dict(law="explicit", explicit={"c": 1.0}), "explicit.c = 1: unknown key"),
+    (dict(law="explicit", explicit={"c": 1.0}), "explicit = { c = 1.0 }: unknown field `c`"),
     (dict(law="bogus"), 'law = "bogus": unknown variant'),
     (dict(lambda_min=1.5), "lambda_opt = 1.1704: must be > lambda_min"),
 ]
@@ -367,6 +367,12 @@ def test_curve_and_its_parameters_are_keywords_from_the_registry():
         np.testing.assert_allclose(got, target, rtol=1e-10, err_msg=str(choices))
 
 
+# An approach without a law (active stress) is never shown with one.
+def test_active_stress_is_shown_by_its_approach_not_a_law():
+    shown = repr(am.Material(approach="active-stress", damage=0.2))
+    assert 'approach="active-stress"' in shown and "law=" not in shown, shown
+
+
 def test_energy_parameters_of_any_shipped_energy_are_keywords():
     m = am.Material(energy="4c-passive", mu=5.0, alpha=15.0, beta=1.0, w0=0.8, law="passive")
     assert 'energy="4c-passive"' in repr(m) and "mu=5" in repr(m)
@@ -378,8 +384,14 @@ def test_energy_parameters_of_any_shipped_energy_are_keywords():
     (dict(approach="sideways"), 'approach = "sideways"'),
     (dict(tau=1.0), "tau = (given): unknown keyword"),
     (dict(approach="structural", energy="neo-hookean", mu=1.0), "structural approach"),
-    (dict(force_velocity={"min_rate": -17.0}), "force_velocity.ke"),
+    (dict(force_velocity={"min_rate": -17.0}), "missing field `ke`"),
     (dict(force_velocity={"min_rate": 17.0, "ke": 5, "kc": 5, "de": 0.5, "dc": 1}), "min_rate"),
+    # A keyword that does not apply to the approach is refused as a scene refuses it.
+    (dict(approach="active-stress", law="explicit"), 'law = "explicit": the explicit law does not apply to approach = "active-stress"'),
+    (dict(approach="active-stress", coupling="consistent"), 'coupling = "consistent": coupling does not apply to approach = "active-stress"'),
+    (dict(approach="active-stress", law="constant", gamma=0.2), "has none"),
+    (dict(approach="structural", map="volume-preserving"), "map does not apply to approach = \"structural\""),
+    (dict(approach="structural", law="explicit"), "fitted for active strain"),
 ], ids=lambda c: c[1])
 def test_bad_registry_keywords_name_the_keyword(case):
     choices, message = case

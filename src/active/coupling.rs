@@ -49,6 +49,31 @@ impl Coupling {
     }
 }
 
+/// A coupling by name (`coupling = "frozen"`); the frozen model's tangent is the scene's
+/// `frozen_tangent`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CouplingKind {
+    /// The chapter's model: γ held in the stress ([`Coupling::Frozen`]).
+    #[default]
+    Frozen,
+    /// Truly hyperelastic: Ψ(F) = Ŵ(F, g(λ_f(F))) ([`Coupling::Consistent`]).
+    Consistent,
+}
+
+impl CouplingKind {
+    /// Every coupling, in the order of the enum.
+    pub const ALL: [CouplingKind; 2] = [CouplingKind::Frozen, CouplingKind::Consistent];
+
+    /// Name in scene files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            CouplingKind::Frozen => "frozen",
+            CouplingKind::Consistent => "consistent",
+        }
+    }
+}
+
 /// dγ/dj₂ and d²γ/dj₂² from dγ/dλ and d²γ/dλ² at λ = √j₂.
 pub fn invariant_slopes(law: &LawValue, fibre_stretch: f64) -> (f64, f64) {
     let l = fibre_stretch;

@@ -109,6 +109,19 @@ impl StretchRate {
     }
 }
 
+/// Rejects d ∉ [0, 1].
+pub fn check_damage(damage: f64) -> Result<f64> {
+    if (0.0..=1.0).contains(&damage) {
+        Ok(damage)
+    } else {
+        Err(Error::InvalidParameter {
+            name: "damage",
+            value: damage,
+            rule: "must lie in [0, 1]",
+        })
+    }
+}
+
 /// What scales the active curve at a point: damage d, activation level a and, in a time
 /// study with force–velocity, the rate state. `Drive::from(d)` is the chapter's tetanised
 /// muscle at damage d, quasi-static (a = 1, f_v = 1).
@@ -168,7 +181,7 @@ impl Drive {
 
     /// Rejects d ∉ [0, 1] and a < 0 or non-finite.
     pub fn check(&self) -> Result<()> {
-        crate::active::law::check_damage(self.damage)?;
+        check_damage(self.damage)?;
         if !(self.level.is_finite() && self.level >= 0.0) {
             return Err(Error::InvalidParameter {
                 name: "activation level",

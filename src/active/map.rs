@@ -8,14 +8,15 @@
 //! | `VolumePreserving` | active strain, F_a = (1 − γ) M + (1 − γ)^(−½)(I − M) | γ ∈ [0, 1) | invariants of C_e | 1 |
 //! | `Structural` | Ehret, Böl & Itskov (2011): I = C:(L + ω M) | ω ≥ 0 | C:M ↦ (1 + ω/f) C:M | 1 |
 //!
-//! The active-strain maps are tabulated in [`crate::active::strain`]. The structural one acts on
+//! The active-strain maps are tabulated in [`crate::active::strain`]; a scene chooses between
+//! them with `[activation] map = "chapter" | "volume-preserving"` (the structural map is the
+//! structural approach's own, [`crate::active::approach`]). The structural one acts on
 //! an energy whose only dependence on C:M is through I = C:L, L = (w0/3) I + (1 − w0) M (the
 //! chapter's, Ehret–Böl–Itskov's and 4C's energies; [`StrainEnergy::structural_fibre_weight`]
 //! returns f = 1 − w0): then C:(L + ωM) = I + ω C:M = (w0/3) tr C + f (1 + ω/f) C:M. It changes
 //! neither J = cof C : L (4C's MAT_Muscle_Weickenmeier) nor K_p. The map is owned by the
 //! framework: any energy plugs in unchanged.
 
-use crate::active::strain::fibre_path_invariants;
 use crate::energy::{Invariants, StrainEnergy};
 use crate::{Error, Result, Scalar};
 use nalgebra::{SMatrix, SVector};
@@ -38,7 +39,10 @@ pub enum ActivationMap {
 }
 
 impl ActivationMap {
-    /// Name used in logs and output files: chapter, volume-preserving, structural.
+    /// The maps a scene chooses by name (`map = "..."`): the active-strain maps.
+    pub const NAMED: [ActivationMap; 2] = [ActivationMap::Chapter, ActivationMap::VolumePreserving];
+
+    /// Name used in scenes, logs and output files: chapter, volume-preserving, structural.
     pub fn name(&self) -> &'static str {
         match self {
             ActivationMap::Chapter => "chapter",
@@ -53,14 +57,6 @@ impl ActivationMap {
             .structural_fibre_weight()
             .filter(|f| *f > 0.0 && *f <= 1.0)
             .map(|fibre_weight| ActivationMap::Structural { fibre_weight })
-    }
-
-    /// Symbol of the activation variable: γ (active strain) or ω (structural).
-    pub fn variable(&self) -> &'static str {
-        match self {
-            ActivationMap::Structural { .. } => "ω",
-            _ => "γ",
-        }
     }
 
     /// The (open) upper end of the variable's range: 1 for γ, ∞ for ω.
@@ -136,6 +132,44 @@ impl ActivationMap {
     ) -> T {
         self.active_energy(energy, &fibre_path_invariants(lambda), gamma)
     }
+}
+
+/// Written by its name.
+impl serde::Serialize for ActivationMap {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+/// Read by name, one of [`ActivationMap::NAMED`].
+impl<'de> serde::Deserialize<'de> for ActivationMap {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        Self::NAMED
+            .into_iter()
+            .find(|m| m.name() == name)
+            .ok_or_else(|| {
+                serde::de::Error::unknown_variant(&name, &["chapter", "volume-preserving"])
+            })
+    }
+}
+
+/// The invariants j = [tr C, C:M, tr C⁻¹, C⁻¹:M, det C] = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1] of the
+/// incompressible uniaxial path along the fibres, F = diag(λ, λ^-½, λ^-½), m = e₁.
+pub fn fibre_path_invariants<T: Scalar>(lambda: T) -> [T; 5] {
+    let inv = lambda.recip();
+    [
+        lambda * lambda + inv * 2.0,
+        lambda * lambda,
+        inv * inv + lambda * 2.0,
+        inv * inv,
+        T::one(),
+    ]
 }
 
 /// The activation map at a fixed activation γ (or ω), Ie = A(γ) j, applied by its seven entries

@@ -1,5 +1,5 @@
 //! Active strain: F = F_e F_a, and Ŵ(F, γ) = det F_a · W(F_a⁻ᵀ C F_a⁻¹), for either active-strain
-//! map of [`ActiveStrainMap`]. Both are F_a = a M + b (I − M), so F_a⁻¹ = (1/a) M + (1/b)(I − M)
+//! map of [`ActivationMap`] (`Chapter`, `VolumePreserving`). Both are F_a = a M + b (I − M), so F_a⁻¹ = (1/a) M + (1/b)(I − M)
 //! and the invariants of C_e are linear in those of C:
 //!
 //! | invariant of C_e | in terms of C | chapter (a = c, b = 1) | volume-preserving (a = c, b = √s) |
@@ -26,88 +26,17 @@ pub fn check_activation(gamma: f64) -> Result<f64> {
     }
 }
 
-/// Which active-strain map F_a(γ) a muscle uses (in a scene: `[activation] map = "chapter" |
-/// "volume-preserving"`). Both are F_a = a M + b (I − M) with a = 1 − γ along the fibres.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ActiveStrainMap {
-    /// The chapter's F_a = I − γ M (b = 1): the fibres shorten, the cross-section does not
-    /// change, det F_a = 1 − γ (Giantesio & Musesti).
-    #[default]
-    Chapter,
-    /// F_a = (1 − γ) M + (1 − γ)^(−½) (I − M) (b = (1 − γ)^(−½)): the fibres shorten and the
-    /// cross-section widens so that det F_a = 1 (Weickenmeier et al. 2014; 4C's
-    /// MAT_Muscle_Giantesio and MAT_Muscle_Weickenmeier).
-    VolumePreserving,
-}
-
-impl ActiveStrainMap {
-    /// Name used in scenes, logs and output files: chapter, volume-preserving.
-    pub fn name(&self) -> &'static str {
-        match self {
-            ActiveStrainMap::Chapter => "chapter",
-            ActiveStrainMap::VolumePreserving => "volume-preserving",
-        }
-    }
-
-    /// Invariants of C_e from the invariants `j` = [tr C, C:M, tr C⁻¹, C⁻¹:M, det C] of C (the
-    /// table of the module docs).
-    pub fn elastic_invariants<T: Scalar>(&self, j: &[T; 5], gamma: T) -> [T; 5] {
-        ActivationMap::from(*self).elastic_invariants(j, gamma)
-    }
-
-    /// Ŵ(j, γ) = det F_a · W(C_e): the active-strain energy as a generic function of the
-    /// invariants of C and of γ (no range check: callers check γ once).
-    pub fn active_energy<E: StrainEnergy, T: Scalar>(&self, energy: &E, j: &[T; 5], gamma: T) -> T {
-        ActivationMap::from(*self).active_energy(energy, j, gamma)
-    }
-
-    /// Ŵ along the incompressible uniaxial path along the fibres, F = diag(λ, λ^-½, λ^-½),
-    /// m = e₁ (eq. D:Wattgamma for the chapter's map). Its λ-derivative is P_tot
-    /// (eq. D:Ptotcalcolato).
-    pub fn fibre_path_energy<E: StrainEnergy, T: Scalar>(
-        &self,
-        energy: &E,
-        lambda: T,
-        gamma: T,
-    ) -> T {
-        ActivationMap::from(*self).fibre_path_energy(energy, lambda, gamma)
-    }
-}
-
-impl From<ActiveStrainMap> for ActivationMap {
-    fn from(map: ActiveStrainMap) -> Self {
-        match map {
-            ActiveStrainMap::Chapter => ActivationMap::Chapter,
-            ActiveStrainMap::VolumePreserving => ActivationMap::VolumePreserving,
-        }
-    }
-}
-
-/// [`ActiveStrainMap::elastic_invariants`] of the chapter's map.
+/// [`ActivationMap::elastic_invariants`] of the chapter's map.
 pub fn elastic_invariants<T: Scalar>(j: &[T; 5], gamma: T) -> [T; 5] {
-    ActiveStrainMap::Chapter.elastic_invariants(j, gamma)
+    ActivationMap::Chapter.elastic_invariants(j, gamma)
 }
 
-/// [`ActiveStrainMap::active_energy`] of the chapter's map: Ŵ = (1 − γ) W(C_e).
+/// [`ActivationMap::active_energy`] of the chapter's map: Ŵ = (1 − γ) W(C_e).
 pub fn active_energy<E: StrainEnergy, T: Scalar>(energy: &E, j: &[T; 5], gamma: T) -> T {
-    ActiveStrainMap::Chapter.active_energy(energy, j, gamma)
+    ActivationMap::Chapter.active_energy(energy, j, gamma)
 }
 
-/// [`ActiveStrainMap::fibre_path_energy`] of the chapter's map (eq. D:Wattgamma).
+/// [`ActivationMap::fibre_path_energy`] of the chapter's map (eq. D:Wattgamma).
 pub fn fibre_path_energy<E: StrainEnergy, T: Scalar>(energy: &E, lambda: T, gamma: T) -> T {
-    ActiveStrainMap::Chapter.fibre_path_energy(energy, lambda, gamma)
-}
-
-/// The invariants j = [tr C, C:M, tr C⁻¹, C⁻¹:M, det C] = [λ² + 2/λ, λ², λ⁻² + 2λ, λ⁻², 1] of the
-/// incompressible uniaxial path along the fibres, F = diag(λ, λ^-½, λ^-½), m = e₁.
-pub fn fibre_path_invariants<T: Scalar>(lambda: T) -> [T; 5] {
-    let inv = lambda.recip();
-    [
-        lambda * lambda + inv * 2.0,
-        lambda * lambda,
-        inv * inv + lambda * 2.0,
-        inv * inv,
-        T::one(),
-    ]
+    ActivationMap::Chapter.fibre_path_energy(energy, lambda, gamma)
 }

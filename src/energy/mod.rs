@@ -132,13 +132,17 @@ pub trait Parametric: StrainEnergy + Sized {
 pub trait Shipped: StrainEnergy + Sized {
     /// Name in scene files and outputs (`giantesio-musesti`).
     const NAME: &'static str;
+    /// What it is, with its formula, for the report's table of models.
+    const FORMULA: &'static str;
+    /// Where the chapter has it (`eq. (1); parameters Table 1`), or `not in the chapter`.
+    const CHAPTER: &'static str;
     /// The parameters, in the order of [`values`](Self::values).
     const PARAMETERS: &'static [Parameter];
     /// The same energy in the formula language ([`formula`]), over the parameters' names, if
     /// it can be written there: what [`Energy::as_formula`] builds (the trade-off study's
     /// convenience-against-speed group times the two; a test checks that they agree to
     /// rounding).
-    const FORMULA: Option<&'static str> = None;
+    const W: Option<&'static str> = None;
     /// The parameter values.
     fn values(&self) -> Vec<f64>;
     /// The energy with these parameter values (in the order of [`PARAMETERS`](Self::PARAMETERS)),
@@ -168,10 +172,14 @@ impl<E: Shipped> Parametric for E {
 pub struct ShippedEnergy {
     /// Name in scene files (`energy = "..."`).
     pub name: &'static str,
+    /// What it is, with its formula ([`Shipped::FORMULA`]).
+    pub formula: &'static str,
+    /// Where the chapter has it ([`Shipped::CHAPTER`]).
+    pub chapter: &'static str,
     /// Its parameters.
     pub parameters: &'static [Parameter],
-    /// The energy in the formula language, if it has one ([`Shipped::FORMULA`]).
-    pub formula: Option<&'static str>,
+    /// The energy in the formula language, if it has one ([`Shipped::W`]).
+    pub w: Option<&'static str>,
     build: fn(&[f64]) -> Result<Energy>,
 }
 
@@ -270,19 +278,19 @@ macro_rules! shipped_energies {
         }
 
         impl Energy {
-            /// This energy written as a formula: a shipped energy's [`Shipped::FORMULA`] with
+            /// This energy written as a formula: a shipped energy's [`Shipped::W`] with
             /// its parameters at their values (named `<name> (formula)`); a formula energy is
             /// itself. An error for a shipped energy without a formula.
             pub fn as_formula(&self) -> std::result::Result<FormulaEnergy, FormulaError> {
                 let (text, parameters, name) = match self {
-                    $(Energy::$energy(_) => ($energy::FORMULA, $energy::PARAMETERS, $energy::NAME),)*
+                    $(Energy::$energy(_) => ($energy::W, $energy::PARAMETERS, $energy::NAME),)*
                     Energy::Formula(f) => return Ok(f.clone()),
                 };
                 let Some(text) = text else {
                     return Err(FormulaError {
                         key: "energy".into(),
                         value: name.into(),
-                        rule: "this energy is not written in the formula language (Shipped::FORMULA)".into(),
+                        rule: "this energy is not written in the formula language (Shipped::W)".into(),
                     });
                 };
                 let declared = parameters
@@ -301,8 +309,10 @@ macro_rules! shipped_energies {
         /// chapter's, the default of scene files).
         pub const SHIPPED: &[ShippedEnergy] = &[$(ShippedEnergy {
             name: $energy::NAME,
-            parameters: $energy::PARAMETERS,
             formula: $energy::FORMULA,
+            chapter: $energy::CHAPTER,
+            parameters: $energy::PARAMETERS,
+            w: $energy::W,
             build: |v| Ok(Energy::$energy($energy::from_values(v)?)),
         },)*];
     };

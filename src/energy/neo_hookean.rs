@@ -44,7 +44,9 @@ impl StrainEnergy for NeoHookean {
 
 impl Shipped for NeoHookean {
     const NAME: &'static str = "neo-hookean";
-    const FORMULA: Option<&'static str> = Some("mu/2*(I1 - 3)");
+    const W: Option<&'static str> = Some("mu/2*(I1 - 3)");
+    const FORMULA: &'static str = "neo-Hookean reference, W = μ/2 (tr C − 3)";
+    const CHAPTER: &'static str = "not in the chapter";
     /// μ has no chapter value: a scene must give it.
     const PARAMETERS: &'static [Parameter] = &[Parameter::positive("mu", "μ", "kPa", None)];
     fn values(&self) -> Vec<f64> {

@@ -12,7 +12,8 @@
 //! estimated; the others' statistics are those of the fit with it held); if not, the stalled
 //! search's error stands.
 
-use super::solver::{residuals_and_jacobian, search, Bounds, FitOptions, Residuals};
+use super::problem::{residuals_and_jacobian, Bounds, Residuals};
+use super::solver::{search, FitOptions};
 use super::{FitError, FitReport, NotConverged};
 use crate::Scalar;
 

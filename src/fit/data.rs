@@ -183,6 +183,7 @@ pub(crate) fn read_columns(
     let too_large = |what: String| FitError::DataTooLarge {
         source_name: source_name.to_string(),
         what,
+        limits: (MAX_DATA_BYTES, MAX_DATA_POINTS),
     };
     let mut bytes = Vec::new();
     reader

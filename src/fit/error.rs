@@ -156,14 +156,16 @@ pub enum FitError {
     /// A data file larger than a fit reads.
     #[error(
         "{source_name}: {what} (a fit reads at most {} bytes and {} points)",
-        super::MAX_DATA_BYTES,
-        super::MAX_DATA_POINTS
+        limits.0,
+        limits.1
     )]
     DataTooLarge {
         /// File name or `"<reader>"`.
         source_name: String,
         /// What exceeded the limit.
         what: String,
+        /// The limits: bytes and points a fit reads at most.
+        limits: (u64, usize),
     },
     /// Writing a plot failed.
     #[error("plot {path}: {message}")]

@@ -11,8 +11,8 @@
 //! fibres is evaluated with λ as a dual number nested over the (a, b) dual.
 
 use super::{Bounds, FitError, FitReport, FitSetup, Residuals, Selection};
+use crate::active::drive::check_damage;
 use crate::active::drive::Drive;
-use crate::active::law::check_damage;
 use crate::active::{fibre_path_energy, ActivationLaw, ActiveCurve, ExplicitLaw, ImplicitLaw};
 use crate::energy::{positive, GiantesioMusesti};
 use crate::material::Muscle;

@@ -21,7 +21,7 @@
 //! 2^{k(k+1)/2}: the last trials are steps ~10⁻⁶³ of a gradient step), and argmin's iteration cap.
 //! Every way of stopping is a [`Stop`].
 
-use super::solver::Bounds;
+use super::problem::{residuals_and_jacobian, Bounds, Residuals};
 use argmin::core::{
     CostFunction, Error as ArgminError, IterState, Jacobian, Operator, Problem, Solver, State,
     TerminationReason, KV,
@@ -75,7 +75,7 @@ impl<R> Clone for Scaled<'_, R> {
     }
 }
 
-impl<R: super::Residuals> Scaled<'_, R> {
+impl<R: Residuals> Scaled<'_, R> {
     /// r̃(θ), or `None` outside the bounds, where the model fails or a residual is not finite.
     pub fn residuals(&self, theta: &[f64]) -> Option<Vec<f64>> {
         if !theta.iter().zip(self.bounds).all(|(t, b)| b.contains(*t)) {
@@ -88,7 +88,7 @@ impl<R: super::Residuals> Scaled<'_, R> {
     }
 }
 
-impl<R: super::Residuals> Operator for Scaled<'_, R> {
+impl<R: Residuals> Operator for Scaled<'_, R> {
     type Param = Vec<f64>;
     type Output = Vec<f64>;
 
@@ -99,7 +99,7 @@ impl<R: super::Residuals> Operator for Scaled<'_, R> {
     }
 }
 
-impl<R: super::Residuals> CostFunction for Scaled<'_, R> {
+impl<R: Residuals> CostFunction for Scaled<'_, R> {
     type Param = Vec<f64>;
     type Output = f64;
 
@@ -109,7 +109,7 @@ impl<R: super::Residuals> CostFunction for Scaled<'_, R> {
     }
 }
 
-impl<R: super::Residuals> Jacobian for Scaled<'_, R> {
+impl<R: Residuals> Jacobian for Scaled<'_, R> {
     type Param = Vec<f64>;
     type Jacobian = DMatrix<f64>;
 
@@ -117,7 +117,7 @@ impl<R: super::Residuals> Jacobian for Scaled<'_, R> {
         let fail =
             |text: String| ArgminError::from(argmin::core::ArgminError::InvalidParameter { text });
         let (_, j) =
-            super::residuals_and_jacobian(self.problem, theta).map_err(|e| fail(e.to_string()))?;
+            residuals_and_jacobian(self.problem, theta).map_err(|e| fail(e.to_string()))?;
         match j.iter().find(|x| !x.is_finite()) {
             Some(x) => Err(fail(format!("an entry is {x}"))),
             None => Ok(j),

@@ -30,6 +30,7 @@ mod explicit;
 mod levenberg;
 mod parametric;
 mod passive;
+mod problem;
 pub mod solver;
 mod weights;
 
@@ -46,7 +47,8 @@ pub use parametric::{parameter_bounds, Parametric};
 pub use passive::{
     across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
 };
-pub use solver::{residuals_and_jacobian, Bounds, FitOptions, Method, Residuals};
+pub use problem::{residuals_and_jacobian, Bounds, Residuals};
+pub use solver::{FitOptions, Method};
 pub use weights::Weights;
 
 use crate::Scalar;

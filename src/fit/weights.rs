@@ -5,7 +5,7 @@
 //! noise proportional to the data, which an unweighted fit misreads (its standard errors assume
 //! the same noise at every point).
 
-use super::solver::Residuals;
+use super::problem::Residuals;
 use super::{FitError, FitReport};
 use crate::Scalar;
 

@@ -1,53 +1,8 @@
-//! The model choice of a study: an activation law, a coupling and a damage by name
+//! The model choice of a study: an activation approach, law, coupling and damage by name
 //! ([`ModelChoice`]), and their product over a study's lists.
 
+pub use crate::active::{Approach, CouplingKind, LawKind};
 use serde::{Deserialize, Serialize};
-
-/// An activation law by name (`law = "implicit"`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LawKind {
-    /// The chapter's exact fit, eq. (13) solved numerically ([`ImplicitLaw`]).
-    #[default]
-    Implicit,
-    /// The chapter's closed form, eq. (14) ([`ExplicitLaw`]).
-    Explicit,
-    /// The energy-consistent fit ([`EnergyLaw`]).
-    Energy,
-}
-
-impl LawKind {
-    /// Name in scene files and outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            LawKind::Implicit => "implicit",
-            LawKind::Explicit => "explicit",
-            LawKind::Energy => "energy",
-        }
-    }
-}
-
-/// A coupling by name (`coupling = "frozen"`); the frozen model's tangent is the scene's
-/// `frozen_tangent`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CouplingKind {
-    /// The chapter's model: γ held in the stress ([`Coupling::Frozen`]).
-    #[default]
-    Frozen,
-    /// Truly hyperelastic: Ψ(F) = Ŵ(F, g(λ_f(F))) ([`Coupling::Consistent`]).
-    Consistent,
-}
-
-impl CouplingKind {
-    /// Name in scene files and outputs.
-    pub fn name(self) -> &'static str {
-        match self {
-            CouplingKind::Frozen => "frozen",
-            CouplingKind::Consistent => "consistent",
-        }
-    }
-}
 
 /// How the laws that solve an equation for γ (implicit, energy) are evaluated
 /// (`representation = "tabulated"`).
@@ -62,28 +17,73 @@ pub enum RepresentationKind {
     Tabulated,
 }
 
-/// One activation model: law, coupling, damage.
+/// One activation model: approach, law, coupling, damage. An approach without a law (active
+/// stress) reads neither `law` nor `coupling` (they hold the defaults): tables and labels take
+/// them through [`ModelChoice::activation_law`], which says so.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ModelChoice {
-    /// Activation law.
+    /// Activation approach.
+    pub approach: Approach,
+    /// Activation law (of an approach that has one).
     pub law: LawKind,
-    /// Coupling.
+    /// Coupling (of an approach that has a law).
     pub coupling: CouplingKind,
     /// Damage d ∈ [0, 1].
     pub damage: f64,
 }
 
-/// Every law × coupling × damage, in that order of nesting.
-pub fn product(laws: &[LawKind], couplings: &[CouplingKind], damages: &[f64]) -> Vec<ModelChoice> {
-    let mut models = Vec::with_capacity(laws.len() * couplings.len() * damages.len());
-    for &law in laws {
-        for &coupling in couplings {
-            for &damage in damages {
-                models.push(ModelChoice {
-                    law,
-                    coupling,
-                    damage,
-                });
+impl ModelChoice {
+    /// The model of an approach without a law, at damage d: one per damage.
+    pub fn lawless(approach: Approach, damage: f64) -> Self {
+        Self {
+            approach,
+            law: LawKind::default(),
+            coupling: CouplingKind::default(),
+            damage,
+        }
+    }
+
+    /// Its law and coupling; `None` for an approach that has no law.
+    pub fn activation_law(&self) -> Option<(LawKind, CouplingKind)> {
+        (!self.approach.laws().is_empty()).then_some((self.law, self.coupling))
+    }
+
+    /// The law's name as a table writes it (`None`: the approach has no law).
+    pub fn law_name(&self) -> Option<&'static str> {
+        self.activation_law().map(|(l, _)| l.name())
+    }
+
+    /// The coupling's name as a table writes it (`None`: the approach has no law).
+    pub fn coupling_name(&self) -> Option<&'static str> {
+        self.activation_law().map(|(_, c)| c.name())
+    }
+}
+
+/// Every approach × law × coupling × damage, in that order of nesting; an approach without a
+/// law gives one model per damage. The laws and couplings are those of the approaches that have
+/// one (the studies refuse, at their keys, a law an approach does not list).
+pub fn product(
+    approaches: &[Approach],
+    laws: &[LawKind],
+    couplings: &[CouplingKind],
+    damages: &[f64],
+) -> Vec<ModelChoice> {
+    let mut models = Vec::new();
+    for &approach in approaches {
+        if approach.laws().is_empty() {
+            models.extend(damages.iter().map(|&d| ModelChoice::lawless(approach, d)));
+            continue;
+        }
+        for &law in laws {
+            for &coupling in couplings {
+                for &damage in damages {
+                    models.push(ModelChoice {
+                        approach,
+                        law,
+                        coupling,
+                        damage,
+                    });
+                }
             }
         }
     }

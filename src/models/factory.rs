@@ -1,10 +1,11 @@
 //! The model factory: the scene's material and activation ([`Models`]) build the activation
-//! law, the coupling and the muscle of a [`ModelChoice`] (law × coupling × damage).
+//! map, law, coupling and muscle of a [`ModelChoice`] (approach × law × coupling × damage), each
+//! approach as the registry [`crate::active::approach`] declares it.
 
-use super::choice::{product, CouplingKind, LawKind, ModelChoice};
+use super::choice::{CouplingKind, LawKind, ModelChoice};
 use crate::active::{
-    ActivationMap, ActiveCurve, ActiveStrainMap, Approach, BelowMinimum, ConstantLaw, Coupling,
-    EnergyLaw, ExplicitLaw, ForceVelocity, FrozenTangent, ImplicitLaw, Law, LawRepresentation,
+    ActivationMap, ActiveCurve, Approach, BelowMinimum, ConstantLaw, Coupling, EnergyLaw,
+    ExplicitLaw, ForceVelocity, FrozenTangent, ImplicitLaw, Law, LawRepresentation,
 };
 use crate::energy::{Energy, GiantesioMusesti};
 use crate::uniaxial::{Direction, UniaxialPoint};
@@ -30,10 +31,9 @@ pub struct Models {
     pub frozen_tangent: FrozenTangent,
     /// What the energy law does below λ_min.
     pub below_minimum: BelowMinimum,
-    /// The activation approach (active strain, active stress, structural).
-    pub approach: Approach,
-    /// The active-strain map F_a(γ) of the active-strain approach.
-    pub map: ActiveStrainMap,
+    /// The map `[activation] map` names, for the approaches that take one (active strain:
+    /// [`ActivationMap::Chapter`] or [`ActivationMap::VolumePreserving`]).
+    pub map: ActivationMap,
     /// The force–velocity factor of activation-in-time studies (`None`: f_v = 1; quasi-static
     /// studies have λ̇ = 0, so f_v = 1 there whatever this is).
     pub force_velocity: Option<ForceVelocity>,
@@ -55,81 +55,76 @@ impl Models {
             explicit: ExplicitLaw::paper().coefficients(),
             frozen_tangent: FrozenTangent::default(),
             below_minimum: BelowMinimum::default(),
-            approach: Approach::ActiveStrain,
-            map: ActiveStrainMap::Chapter,
+            map: ActivationMap::Chapter,
             force_velocity: None,
             representation: LawRepresentation::Exact,
             volumetric: None,
         }
     }
 
-    /// The activation map of the scene's approach: the active-strain map, or the structural map
-    /// of the energy (refused, in words, for an energy without a structural invariant I = C:L);
-    /// the chapter's for active stress, which has none (γ ≡ 0).
-    pub fn activation_map(&self) -> Result<ActivationMap, String> {
-        match self.approach {
-            Approach::ActiveStrain => Ok(self.map.into()),
-            Approach::ActiveStress => Ok(ActivationMap::Chapter),
-            Approach::Structural => ActivationMap::structural(&self.energy).ok_or_else(|| {
-                format!(
-                    "the structural approach activates the structural invariant I = C:(L + ωM) \
-                     of an energy that depends on C:M only through I = C:L (giantesio-musesti, \
-                     ehret-bol-itskov, 4c-passive); material.energy is {}",
-                    self.energy.name()
-                )
-            }),
-        }
+    /// The activation map of `approach` on this material ([`Approach::map`]), or why the
+    /// material cannot be activated that way (the structural approach needs an energy with a
+    /// structural invariant I = C:L).
+    pub fn activation_map(&self, approach: Approach) -> Result<ActivationMap, String> {
+        approach.map(&self.energy, self.map)
     }
 
-    /// The models of a study: every law × coupling × damage, in that order of nesting
-    /// ([`product`]); with active stress, which has neither law nor coupling, one per damage.
-    pub fn choices(
-        &self,
-        laws: &[LawKind],
-        couplings: &[CouplingKind],
-        damages: &[f64],
-    ) -> Vec<ModelChoice> {
-        if self.approach.has_law() {
-            product(laws, couplings, damages)
-        } else {
-            product(
-                &laws[..laws.len().min(1)],
-                &couplings[..couplings.len().min(1)],
-                damages,
-            )
+    /// Whether `law` can be built for `approach` on this material: the approach must list it
+    /// ([`Approach::laws`]), and the explicit law (eq. (14)) is a fit of the chapter's map, energy
+    /// and curve; the error is the rule, in words.
+    pub fn supports(&self, approach: Approach, law: LawKind) -> Result<(), String> {
+        self.activation_map(approach)?;
+        if !approach.laws().contains(&law) {
+            return Err(format!(
+                "the {} law does not apply to approach = \"{}\": {}",
+                law.name(),
+                approach.name(),
+                approach.no_law()
+            ));
         }
-    }
-
-    /// Whether `law` can be built on this material: the explicit law (eq. (14)) is derived
-    /// for the chapter's energy only; the error is the rule, in words.
-    pub fn supports(&self, law: LawKind) -> Result<(), String> {
-        self.activation_map()?;
         match law {
-            LawKind::Explicit if self.approach == Approach::Structural => Err(
-                "the explicit law (eq. (14)) is fitted for active strain; activation.approach is structural"
-                    .to_string(),
-            ),
-            _ if !self.approach.has_law() => Ok(()),
-            LawKind::Explicit if self.map != ActiveStrainMap::Chapter => Err(format!(
-                "the explicit law (eq. (14)) is fitted for the chapter's active-strain map; activation.map is {}",
-                self.map.name()
-            )),
-            LawKind::Explicit
-                if !matches!(self.curve, ActiveCurve::Chapter(_))
-                    && self.explicit == ExplicitLaw::paper().coefficients() =>
-            {
-                Err(format!(
-                    "the explicit law's a = {}, b = {} are the chapter's fit for its active curve \
-                     (eq. (8)); activation.curve is {}: fit them for this curve (a study with \
-                     fit = \"explicit-law\") and set activation.explicit = {{ a, b }}, or use the \
-                     implicit law",
-                    self.explicit.0,
-                    self.explicit.1,
-                    self.curve.name()
-                ))
-            }
-            LawKind::Explicit => self.explicit_formula_holds(),
+            LawKind::Explicit => self.explicit_applies(approach),
             LawKind::Implicit | LawKind::Energy => Ok(()),
+        }
+    }
+
+    /// Whether the explicit law with this scene's (a, b) holds for `approach` (which lists it):
+    /// on the chapter's active-strain map, with (a, b) fitted for the active curve, where its
+    /// formula holds ([`Self::explicit_formula_holds`]).
+    fn explicit_applies(&self, approach: Approach) -> Result<(), String> {
+        self.explicit_fit_for(approach)?;
+        if !matches!(self.curve, ActiveCurve::Chapter(_))
+            && self.explicit == ExplicitLaw::paper().coefficients()
+        {
+            return Err(format!(
+                "the explicit law's a = {}, b = {} are the chapter's fit for its active curve \
+                 (eq. (8)); activation.curve is {}: fit them for this curve (a study with \
+                 fit = \"explicit-law\") and set activation.explicit = {{ a, b }}, or use the \
+                 implicit law",
+                self.explicit.0,
+                self.explicit.1,
+                self.curve.name()
+            ));
+        }
+        self.explicit_formula_holds()
+    }
+
+    /// Whether an explicit-law fit (eq. (14)) applies to `approach`: the approach lists the
+    /// explicit law and its map is the chapter's (the fit is of the chapter's active-strain γ).
+    pub fn explicit_fit_for(&self, approach: Approach) -> Result<(), String> {
+        if !approach.laws().contains(&LawKind::Explicit) {
+            return Err(format!(
+                "the explicit law does not apply to approach = \"{}\": {}",
+                approach.name(),
+                approach.no_law()
+            ));
+        }
+        match self.activation_map(approach)? {
+            ActivationMap::Chapter => Ok(()),
+            map => Err(format!(
+                "the explicit law (eq. (14)) is fitted for the chapter's active-strain map; activation.map is {}",
+                map.name()
+            )),
         }
     }
 
@@ -153,7 +148,9 @@ impl Models {
     /// formula can leave its domain at ordinary stretches (μ = 0.5 kPa, α = 12: at λ = 0.63).
     fn explicit_law_holds(&self) -> Result<(), String> {
         use crate::active::ActivationLaw;
-        let law = self.law(LawKind::Explicit).map_err(|e| e.to_string())?;
+        let law = self
+            .law(LawKind::Explicit, ActivationMap::Chapter)
+            .map_err(|e| e.to_string())?;
         let (from, to, n) = EXPLICIT_PROBE;
         for k in 0..=n {
             let lambda = from + (to - from) * k as f64 / n as f64;
@@ -208,15 +205,15 @@ impl Models {
         }
     }
 
-    /// The activation map, or the error that refuses it as a model error.
-    fn map_or_error(&self) -> crate::Result<ActivationMap> {
-        self.activation_map()
+    /// The activation map of `approach`, or the error that refuses it as a model error.
+    fn map_or_error(&self, approach: Approach) -> crate::Result<ActivationMap> {
+        self.activation_map(approach)
             .map_err(|reason| crate::Error::Unsupported { reason })
     }
 
-    /// The activation law `kind` on this material and curve.
-    pub fn law(&self, kind: LawKind) -> crate::Result<Law<Energy>> {
-        let map = self.map_or_error()?;
+    /// The activation law `kind` on this material and curve, solved (implicit, energy) with the
+    /// activation map `map`.
+    pub fn law(&self, kind: LawKind, map: ActivationMap) -> crate::Result<Law<Energy>> {
         Ok(match kind {
             LawKind::Implicit => {
                 Law::Implicit(ImplicitLaw::new(self.energy.clone(), self.curve).with_map(map))
@@ -246,17 +243,7 @@ impl Models {
     /// The active muscle of `model`, its law in this material's [`Models::representation`] (a
     /// table is built for `model.damage`: 0.04–0.1 s for the chapter's laws).
     pub fn muscle(&self, model: ModelChoice) -> crate::Result<Muscle<Energy>> {
-        if !self.approach.has_law() {
-            return Muscle::active_stress(self.energy.clone(), self.curve, model.damage);
-        }
-        Muscle::new(
-            self.energy.clone(),
-            self.law(model.law)?
-                .represented(self.representation, &[model.damage])?,
-            model.damage,
-            self.coupling(model.coupling),
-        )?
-        .with_map(self.map_or_error()?)
+        self.built(model, model.damage, None)
     }
 
     /// The active muscle of `model` at activation level a = `activation` ≥ 0: its law sees
@@ -264,43 +251,51 @@ impl Models {
     /// law is tabulated at d_eff (not at d, whose table would leave every a < 1 to the exact
     /// law). a = 1 is [`Self::muscle`].
     pub fn muscle_at(&self, model: ModelChoice, activation: f64) -> crate::Result<Muscle<Energy>> {
-        if !self.approach.has_law() {
-            return self.muscle(model)?.with_activation(activation);
-        }
         let effective = crate::active::Drive::new(model.damage, activation)?.effective_damage();
-        if effective < 0.0 {
-            // a > 1: no table holds a negative damage; the exact law answers.
-            return Muscle::new(
-                self.energy.clone(),
-                self.law(model.law)?,
-                model.damage,
-                self.coupling(model.coupling),
-            )?
-            .with_activation(activation)?
-            .with_map(self.map_or_error()?);
-        }
-        Muscle::new(
-            self.energy.clone(),
-            self.law(model.law)?
-                .represented(self.representation, &[effective])?,
-            model.damage,
-            self.coupling(model.coupling),
-        )?
-        .with_activation(activation)?
-        .with_map(self.map_or_error()?)
+        self.built(model, effective, Some(activation))
     }
 
-    /// A muscle with constant activation γ (coupling irrelevant: g′ = 0).
-    pub fn constant(&self, gamma: f64) -> crate::Result<Muscle<Energy>> {
+    /// The muscle of `model` with its law tabulated at damage `table` (a negative one, of
+    /// a > 1: the exact law, no table holds it) and at activation level `activation`: the
+    /// approach's map, its law (none: γ ≡ 0) and the energy of the fibre stretch it adds.
+    fn built(
+        &self,
+        model: ModelChoice,
+        table: f64,
+        activation: Option<f64>,
+    ) -> crate::Result<Muscle<Energy>> {
+        let map = self.map_or_error(model.approach)?;
+        let (law, coupling) = match model.activation_law() {
+            None => (Law::Passive, Coupling::Consistent),
+            Some((law, coupling)) => {
+                let law = self.law(law, map)?;
+                let law = if table < 0.0 {
+                    law
+                } else {
+                    law.represented(self.representation, &[table])?
+                };
+                (law, self.coupling(coupling))
+            }
+        };
+        let muscle = Muscle::new(self.energy.clone(), law, model.damage, coupling)?
+            .with_fibre_energy(model.approach, self.curve);
+        let muscle = match activation {
+            Some(a) => muscle.with_activation(a)?,
+            None => muscle,
+        };
+        muscle.with_map(map)
+    }
+
+    /// A muscle of `approach` with constant activation γ (coupling irrelevant: g′ = 0).
+    pub fn constant(&self, approach: Approach, gamma: f64) -> crate::Result<Muscle<Energy>> {
         Muscle::new(
             self.energy.clone(),
             Law::Constant(ConstantLaw::new(gamma)?),
             0.0,
             Coupling::Consistent,
         )?
-        .with_map(self.map_or_error()?)
+        .with_map(self.map_or_error(approach)?)
     }
-
     /// The uniaxial test of `muscle` at stretch `lambda` in `direction`, exactly incompressible
     /// ([`Direction::point`]) or, with [`Self::volumetric`], nearly incompressible
     /// ([`crate::uniaxial::nearly_incompressible`]).
@@ -325,25 +320,22 @@ impl Models {
     }
 
     /// `giantesio-musesti, explicit law, frozen coupling, d = 0` (`implicit law (tabulated)` for a
-    /// tabulated law); an approach other than the chapter's is named (`structural, implicit law,
-    /// …`, `active stress, d = 0`), and so is the volume-preserving map.
+    /// tabulated law); an approach other than the chapter's active strain is named as the
+    /// registry words it ([`Approach::words`]: `structural, implicit law, …`,
+    /// `active stress, d = 0`, `volume-preserving active strain, …`).
     pub fn label(&self, m: &ModelChoice) -> String {
-        if !self.approach.has_law() {
-            return format!("{}, active stress, d = {}", self.energy.name(), m.damage);
-        }
-        let tabulated = matches!(self.representation, LawRepresentation::Tabulated(_))
-            && m.law != LawKind::Explicit;
-        let approach = match (self.approach, self.map) {
-            (Approach::Structural, _) => "structural, ",
-            (_, ActiveStrainMap::VolumePreserving) => "volume-preserving active strain, ",
-            _ => "",
+        let approach = m.approach.words(self.map);
+        let Some((law, coupling)) = m.activation_law() else {
+            return format!("{}, {approach}d = {}", self.energy.name(), m.damage);
         };
+        let tabulated =
+            matches!(self.representation, LawRepresentation::Tabulated(_)) && law.solves();
         format!(
             "{}, {approach}{} law{}, {} coupling, d = {}",
             self.energy.name(),
-            m.law.name(),
+            law.name(),
             if tabulated { " (tabulated)" } else { "" },
-            m.coupling.name(),
+            coupling.name(),
             m.damage
         )
     }

@@ -1,25 +1,25 @@
 //! Models from choices: the scene's material and activation ([`Models`]) build the activation
-//! law, the coupling and the muscle of a [`ModelChoice`] (law × coupling × damage); an
+//! map, law, coupling and muscle of a [`ModelChoice`] (approach × law × coupling × damage); an
 //! [`EnergySpec`] (a shipped energy by name, parameters by name) builds an [`Energy`] from the
 //! registry [`crate::energy::SHIPPED`]. The scene and every study build their models here.
 //!
 //! | module | what |
 //! |---|---|
-//! | [`choice`] | a law, a coupling and a damage by name |
-//! | [`factory`] | [`Models`]: laws, couplings and muscles from a material and an activation |
-//! | [`spec`] | the scene's `[material]`, `[activation]`, `[incompressibility]` tables as written |
+//! | [`choice`] | an approach, a law, a coupling and a damage by name |
+//! | [`factory`] | [`Models`]: maps, laws, couplings and muscles from a material and an activation |
+//! | [`activation`] | the scene's `[activation]` table, each key declared once |
+//! | [`spec`] | the scene's `[material]` and `[incompressibility]` tables, and [`Models::from_spec`] |
 //!
 //! [`Energy`]: crate::energy::Energy
 
+pub mod activation;
 pub mod choice;
 pub mod factory;
 pub mod formula;
 pub mod spec;
 
-pub use choice::{product, CouplingKind, LawKind, ModelChoice, RepresentationKind};
+pub use activation::{curve_parameter_names, ActivationSpec, ExplicitSpec, ModelDefaults};
+pub use choice::{product, Approach, CouplingKind, LawKind, ModelChoice, RepresentationKind};
 pub use factory::Models;
 pub use formula::{DeclaredSpec, FormulaSpec};
-pub use spec::{
-    curve_parameter_names, ActivationSpec, EnergySpec, ExplicitSpec, IncompressibilitySpec,
-    MaterialSpec,
-};
+pub use spec::{EnergySpec, IncompressibilityKind, IncompressibilitySpec, MaterialSpec};

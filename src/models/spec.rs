@@ -1,16 +1,14 @@
-//! The scene's `[material]`, `[activation]` and `[incompressibility]` tables as written
-//! ([`MaterialSpec`], [`ActivationSpec`], [`IncompressibilitySpec`]) and how they build the
-//! [`Models`]: an [`EnergySpec`] (a shipped energy by name, parameters by name, or a formula,
-//! [`super::formula`]) builds an [`Energy`] from the registry [`crate::energy::SHIPPED`].
+//! The scene's `[material]` and `[incompressibility]` tables as written ([`MaterialSpec`],
+//! [`IncompressibilitySpec`]) and how they build the [`Models`] with `[activation]`
+//! ([`ActivationSpec`]): an [`EnergySpec`] (a shipped energy by name, parameters by name, or a
+//! formula, [`super::formula`]) builds an [`Energy`] from the registry
+//! [`crate::energy::SHIPPED`].
 
-use super::choice::{CouplingKind, LawKind, RepresentationKind};
+use super::activation::ActivationSpec;
+use super::choice::RepresentationKind;
 use super::factory::Models;
 use super::formula::{read_parameters, FormulaSpec};
-use crate::active::ActiveStrainMap;
-use crate::active::{
-    ActiveCurve, Approach, BelowMinimum, CurveEntry, ExplicitLaw, ForceVelocity, FrozenTangent,
-    LawRepresentation, TableSpec, CURVES,
-};
+use crate::active::{ExplicitLaw, LawRepresentation};
 use crate::app_error::SpecError;
 use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, FORMULA, SHIPPED};
 use crate::text::shortest;
@@ -297,179 +295,32 @@ impl MaterialSpec {
     }
 }
 
-/// `[activation]`: the approach, the active curve with its parameters (flat beside `curve`), the
-/// explicit law's coefficients and the options every model shares ([`Models::from_spec`]), and
-/// the studies' default law, coupling and damage values. `None` is the default.
-///
-/// The curve's parameters are read by name from the table (the scene reader takes the
-/// parameters of every shipped curve out of it, see [`crate::scene`]); each must be one of the
-/// chosen curve's.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ActivationSpec {
-    /// `active-strain` (default) | `active-stress` | `structural`.
-    pub approach: Option<Approach>,
-    /// A shipped active curve by name (default `chapter`).
-    pub curve: Option<String>,
-    /// The curve's parameters as given, in the order written (`lambda_min = 0.7`).
-    #[serde(skip)]
-    pub curve_parameters: Vec<(String, f64)>,
-    /// Default law of the studies.
-    pub law: Option<LawKind>,
-    /// Default coupling of the studies.
-    pub coupling: Option<CouplingKind>,
-    /// Tangent of the frozen model.
-    pub frozen_tangent: Option<FrozenTangent>,
-    /// What the energy law does below λ_min.
-    pub below_minimum: Option<BelowMinimum>,
-    /// The active-strain map: "chapter" (default) | "volume-preserving".
-    pub map: Option<ActiveStrainMap>,
-    /// Default damage values d ∈ [0, 1].
-    pub damage: Option<Vec<f64>>,
-    /// Coefficients of the explicit law (eq. (14)).
-    pub explicit: Option<ExplicitSpec>,
-    /// How the implicit and energy laws are evaluated (default `exact`).
-    pub representation: Option<RepresentationKind>,
-    /// Stretch range `[λ_lo, λ_hi]` [-] of the tables (default `[0.5, 1.6]`; the exact solve
-    /// outside); only with `representation = "tabulated"`.
-    pub table_stretches: Option<[f64; 2]>,
-    /// The force–velocity factor of activation-in-time studies (default none: f_v = 1).
-    pub force_velocity: Option<ForceVelocity>,
+/// How incompressibility is imposed (`[incompressibility] kind = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum IncompressibilityKind {
+    /// J = 1 by a Lagrange multiplier (the chapter's).
+    #[default]
+    Exact,
+    /// U = (κ/2)(J − 1)², κ \[kPa\].
+    Quadratic,
+    /// U = (κ/4)(J² − 1 − 2 ln J), κ \[kPa\].
+    Logarithmic,
+    /// U = μ/(4κ) J^(−2κ) (4C's `MAT_Muscle_Giantesio`), κ [-], μ \[kPa\].
+    #[serde(rename = "4c-giantesio")]
+    Giantesio4C,
 }
 
-impl Serialize for ActivationSpec {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(None)?;
-        if let Some(v) = &self.approach {
-            map.serialize_entry("approach", v)?;
-        }
-        if let Some(v) = &self.curve {
-            map.serialize_entry("curve", v)?;
-        }
-        for (name, value) in &self.curve_parameters {
-            map.serialize_entry(name, value)?;
-        }
-        macro_rules! entries {
-            ($($key:ident),*) => {$(
-                if let Some(v) = &self.$key {
-                    map.serialize_entry(stringify!($key), v)?;
-                }
-            )*};
-        }
-        entries!(
-            law,
-            coupling,
-            frozen_tangent,
-            below_minimum,
-            map,
-            damage,
-            explicit,
-            representation,
-            table_stretches,
-            force_velocity
-        );
-        map.end()
-    }
-}
-
-/// The names of every shipped curve's parameters: the keys of `[activation]` that the scene
-/// reader hands to the curve.
-pub fn curve_parameter_names() -> Vec<&'static str> {
-    let mut names: Vec<&'static str> = Vec::new();
-    for c in CURVES {
-        for p in c.parameters {
-            if !names.contains(&p.name.as_ref()) {
-                names.push(p.name.as_ref());
-            }
+impl IncompressibilityKind {
+    /// Name in scene files: exact, quadratic, logarithmic, 4c-giantesio.
+    pub fn name(self) -> &'static str {
+        match self {
+            IncompressibilityKind::Exact => "exact",
+            IncompressibilityKind::Quadratic => "quadratic",
+            IncompressibilityKind::Logarithmic => "logarithmic",
+            IncompressibilityKind::Giantesio4C => "4c-giantesio",
         }
     }
-    names
-}
-
-impl ActivationSpec {
-    /// The active curve it describes, validated; errors name the key as a scene writes it
-    /// (`activation.curve`, `activation.k`).
-    pub fn build_curve(&self) -> Result<ActiveCurve, SpecError> {
-        let name = self.curve.as_deref().unwrap_or(CURVES[0].name);
-        let Some(entry) = CurveEntry::find(name) else {
-            let names: Vec<&str> = CURVES.iter().map(|c| c.name).collect();
-            return Err(SpecError::new(
-                "activation.curve",
-                format!("{name:?}"),
-                format!(
-                    "unknown active curve; the shipped ones are {}",
-                    names.join(", ")
-                ),
-            ));
-        };
-        let listed = || {
-            let v: Vec<String> = entry
-                .parameters
-                .iter()
-                .map(|p| format!("{} [{}]", p.name, p.unit))
-                .collect();
-            v.join(", ")
-        };
-        if let Some((key, value)) = self
-            .curve_parameters
-            .iter()
-            .find(|(n, _)| !entry.parameters.iter().any(|p| p.name == n.as_str()))
-        {
-            return Err(SpecError::new(
-                format!("activation.{key}"),
-                value,
-                format!(
-                    "the {} curve has no parameter {key}; its parameters are {}",
-                    entry.name,
-                    listed()
-                ),
-            ));
-        }
-        let mut values = Vec::with_capacity(entry.parameters.len());
-        for p in entry.parameters {
-            let given = self
-                .curve_parameters
-                .iter()
-                .find(|(n, _)| *n == p.name)
-                .map(|(_, v)| *v);
-            match given.or(p.default) {
-                Some(v) => values.push(v),
-                None => {
-                    return Err(SpecError::new(
-                        format!("activation.{}", p.name),
-                        "(missing)",
-                        format!("the {} curve needs {} [{}]", entry.name, p.name, p.unit),
-                    ))
-                }
-            }
-        }
-        entry
-            .build(&values)
-            .map_err(|e| SpecError::model("activation", e))
-    }
-
-    /// The curve as a scene writes it: its name and every parameter.
-    pub fn written_curve(curve: &ActiveCurve) -> (String, Vec<(String, f64)>) {
-        (
-            curve.name().to_string(),
-            curve
-                .parameters()
-                .iter()
-                .zip(curve.parameter_values())
-                .map(|(p, v)| (p.name.to_string(), v))
-                .collect(),
-        )
-    }
-}
-
-/// `explicit = { a = 1.0133, b = 0.2050 }`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ExplicitSpec {
-    /// a [-].
-    pub a: Option<f64>,
-    /// b [-].
-    pub b: Option<f64>,
 }
 
 /// How incompressibility is imposed (`[incompressibility]`): `kind = "exact"` (default, the
@@ -481,7 +332,7 @@ pub struct ExplicitSpec {
 #[serde(deny_unknown_fields)]
 pub struct IncompressibilitySpec {
     /// `exact`, `quadratic`, `logarithmic` or `4c-giantesio`.
-    pub kind: Option<String>,
+    pub kind: Option<IncompressibilityKind>,
     /// κ: bulk modulus \[kPa\] (quadratic, logarithmic) or exponent [-] (4c-giantesio).
     pub kappa: Option<f64>,
     /// μ \[kPa\] of the 4c-giantesio form.
@@ -493,55 +344,40 @@ impl IncompressibilitySpec {
     /// passive reference is stress free ([`crate::uniaxial::reference_stress`]); errors name the
     /// keys relative to `[incompressibility]`.
     pub fn build(&self, energy: &Energy) -> Result<Option<Volumetric>, SpecError> {
-        let kind = self.kind.as_deref().unwrap_or("exact");
+        let kind = self.kind.unwrap_or_default();
         let kappa = || {
             self.kappa.ok_or_else(|| {
                 SpecError::new(
                     "kappa",
                     "(missing)",
-                    format!("kind = \"{kind}\" needs kappa (finite, > 0)"),
+                    format!("kind = \"{}\" needs kappa (finite, > 0)", kind.name()),
                 )
             })
         };
-        let form =
-            match kind {
-                "exact" => {
-                    for (key, v) in [("kappa", self.kappa), ("mu", self.mu)] {
-                        if let Some(v) = v {
-                            return Err(SpecError::new(
-                                key,
-                                v,
-                                "kind = \"exact\" (J = 1) takes no volumetric parameter",
-                            ));
-                        }
+        let form = match kind {
+            IncompressibilityKind::Exact => {
+                for (key, v) in [("kappa", self.kappa), ("mu", self.mu)] {
+                    if let Some(v) = v {
+                        return Err(SpecError::new(
+                            key,
+                            v,
+                            "kind = \"exact\" (J = 1) takes no volumetric parameter",
+                        ));
                     }
-                    return Ok(None);
                 }
-                "quadratic" => VolumetricForm::Quadratic { kappa: kappa()? },
-                "logarithmic" => VolumetricForm::Logarithmic { kappa: kappa()? },
-                "4c-giantesio" => VolumetricForm::Giantesio4C {
-                    kappa: kappa()?,
-                    mu: match self.mu.or_else(|| EnergySpec::written(energy).get("mu")) {
-                        Some(mu) => mu,
-                        None => return Err(SpecError::new(
-                            "mu",
-                            "(missing)",
-                            "the energy has no parameter mu: give the 4c-giantesio form's mu [kPa]",
-                        )),
-                    },
-                },
-                other => {
-                    return Err(SpecError::new(
-                        "kind",
-                        format!("\"{other}\""),
-                        "expected \"exact\", \"quadratic\", \"logarithmic\" or \"4c-giantesio\"",
-                    ))
-                }
-            };
-        if self.mu.is_some() && !matches!(form, VolumetricForm::Giantesio4C { .. }) {
+                return Ok(None);
+            }
+            IncompressibilityKind::Quadratic => VolumetricForm::Quadratic { kappa: kappa()? },
+            IncompressibilityKind::Logarithmic => VolumetricForm::Logarithmic { kappa: kappa()? },
+            IncompressibilityKind::Giantesio4C => VolumetricForm::Giantesio4C {
+                kappa: kappa()?,
+                mu: self.mu_of(energy)?,
+            },
+        };
+        if let (Some(mu), false) = (self.mu, kind == IncompressibilityKind::Giantesio4C) {
             return Err(SpecError::new(
                 "mu",
-                self.mu.unwrap_or_default(),
+                mu,
                 "only the 4c-giantesio form takes mu",
             ));
         }
@@ -552,39 +388,53 @@ impl IncompressibilitySpec {
             .map_err(|e| SpecError::model("", e))
     }
 
+    /// μ of the 4c-giantesio form: as given, else the energy's.
+    fn mu_of(&self, energy: &Energy) -> Result<f64, SpecError> {
+        self.mu
+            .or_else(|| EnergySpec::written(energy).get("mu"))
+            .ok_or_else(|| {
+                SpecError::new(
+                    "mu",
+                    "(missing)",
+                    "the energy has no parameter mu: give the 4c-giantesio form's mu [kPa]",
+                )
+            })
+    }
+
     /// The spec as resolved: every value written out.
     pub fn written(volumetric: Option<&Volumetric>) -> Self {
-        match volumetric.map(Volumetric::form) {
-            None => Self {
-                kind: Some("exact".into()),
-                ..Self::default()
-            },
-            Some(form) => {
-                let (kappa, mu) = match form {
-                    VolumetricForm::Quadratic { kappa } | VolumetricForm::Logarithmic { kappa } => {
-                        (kappa, None)
-                    }
-                    VolumetricForm::Giantesio4C { kappa, mu } => (kappa, Some(mu)),
-                };
-                Self {
-                    kind: Some(form.name().into()),
-                    kappa: Some(kappa),
-                    mu,
-                }
+        let (kind, kappa, mu) = match volumetric.map(Volumetric::form) {
+            None => (IncompressibilityKind::Exact, None, None),
+            Some(VolumetricForm::Quadratic { kappa }) => {
+                (IncompressibilityKind::Quadratic, Some(kappa), None)
             }
+            Some(VolumetricForm::Logarithmic { kappa }) => {
+                (IncompressibilityKind::Logarithmic, Some(kappa), None)
+            }
+            Some(VolumetricForm::Giantesio4C { kappa, mu }) => {
+                (IncompressibilityKind::Giantesio4C, Some(kappa), Some(mu))
+            }
+        };
+        Self {
+            kind: Some(kind),
+            kappa,
+            mu,
         }
     }
 }
 
 impl Models {
-    /// The models of a `[material]` and an `[activation]` as written: every value left out is the
-    /// chapter's, every number is validated by the core constructor that owns it, and errors name
-    /// the key as a scene writes it (`material.mu`, `activation.explicit.a`). The activation's
-    /// law, coupling and damage values are the studies' defaults, not read here. The scene
-    /// resolves its tables here, and so does the Python package's `Material`.
+    /// The models of a `[material]`, an `[activation]` and an `[incompressibility]` (`None`:
+    /// exact) as written: every value left out is the chapter's, every number is validated by the
+    /// core constructor that owns it, and errors name the key as a scene writes it
+    /// (`material.mu`, `activation.explicit.a`, `incompressibility.kappa`). The activation's
+    /// approach, law, coupling and damage values are the studies' defaults
+    /// ([`ActivationSpec::defaults`]), not read here. The scene resolves its tables here, and so
+    /// does the Python package's `Material`.
     pub fn from_spec(
         material: &MaterialSpec,
         activation: &ActivationSpec,
+        incompressibility: Option<&IncompressibilitySpec>,
     ) -> Result<Self, SpecError> {
         let (energy, fibre) = material.build().map_err(|e| e.within("material"))?;
         let act = activation;
@@ -594,6 +444,12 @@ impl Models {
         let explicit = (ex.a.unwrap_or(a), ex.b.unwrap_or(b));
         ExplicitLaw::new(explicit.0, explicit.1, GiantesioMusesti::paper(), curve)
             .map_err(|e| SpecError::model("activation.explicit", e))?;
+        let volumetric = match incompressibility {
+            Some(inc) => inc
+                .build(&energy)
+                .map_err(|e| e.within("incompressibility"))?,
+            None => None,
+        };
         Ok(Self {
             energy,
             fibre,
@@ -601,7 +457,6 @@ impl Models {
             explicit,
             frozen_tangent: act.frozen_tangent.unwrap_or_default(),
             below_minimum: act.below_minimum.unwrap_or_default(),
-            approach: act.approach.unwrap_or_default(),
             map: act.map.unwrap_or_default(),
             force_velocity: match act.force_velocity {
                 Some(fv) => Some(
@@ -610,8 +465,8 @@ impl Models {
                 ),
                 None => None,
             },
-            representation: representation(act)?,
-            volumetric: None,
+            representation: act.representation()?,
+            volumetric,
         })
     }
 
@@ -623,35 +478,6 @@ impl Models {
                 RepresentationKind::Tabulated,
                 Some([t.lambda_lo, t.lambda_hi]),
             ),
-        }
-    }
-}
-
-/// The law representation of `[activation]`: tables on `table_stretches` (validated:
-/// 0 < λ_lo < λ_hi, finite) with the default tolerances of [`TableSpec`].
-fn representation(act: &ActivationSpec) -> Result<LawRepresentation, SpecError> {
-    let shown = |[lo, hi]: [f64; 2]| format!("[{lo}, {hi}]");
-    match (act.representation.unwrap_or_default(), act.table_stretches) {
-        (RepresentationKind::Exact, None) => Ok(LawRepresentation::Exact),
-        (RepresentationKind::Exact, Some(range)) => Err(SpecError::new(
-            "activation.table_stretches",
-            shown(range),
-            "applies only with activation.representation = \"tabulated\"",
-        )),
-        (RepresentationKind::Tabulated, range) => {
-            let mut spec = TableSpec::default();
-            if let Some([lo, hi]) = range {
-                spec.lambda_lo = lo;
-                spec.lambda_hi = hi;
-            }
-            spec.validate().map_err(|_| {
-                SpecError::new(
-                    "activation.table_stretches",
-                    shown([spec.lambda_lo, spec.lambda_hi]),
-                    "the table's stretch range needs finite 0 < λ_lo < λ_hi",
-                )
-            })?;
-            Ok(LawRepresentation::Tabulated(spec))
         }
     }
 }

@@ -49,67 +49,22 @@ pub struct Field {
     pub description: &'static str,
 }
 
-impl Field {
-    /// A column of words.
-    pub const fn text(name: &'static str, description: &'static str) -> Self {
-        Field {
-            name,
-            kind: FieldType::String,
-            unit: "",
-            description,
-        }
-    }
-
-    /// A column of numbers in `unit` (`-`: dimensionless).
-    pub const fn number(name: &'static str, unit: &'static str, description: &'static str) -> Self {
-        Field {
-            name,
-            kind: FieldType::Number,
-            unit,
-            description,
-        }
-    }
-
-    /// A column of counts.
-    pub const fn count(name: &'static str, description: &'static str) -> Self {
-        Field {
-            name,
-            kind: FieldType::Integer,
-            unit: "",
-            description,
-        }
-    }
-
-    /// A column of `true`/`false`.
-    pub const fn flag(name: &'static str, description: &'static str) -> Self {
-        Field {
-            name,
-            kind: FieldType::Boolean,
-            unit: "",
-            description,
-        }
-    }
-}
-
-/// The header names of `fields`, in order (a `const` header from a `const` schema).
-pub const fn names<const N: usize>(fields: &[Field; N]) -> [&'static str; N] {
-    let mut out = [""; N];
-    let mut i = 0;
-    while i < N {
-        out[i] = fields[i].name;
-        i += 1;
-    }
-    out
-}
-
-/// The fields of a kind's own table ([`Table`]): its columns' names, units and descriptions.
+/// The fields of a study kind's table ([`Table`]): its columns' names, types, units and
+/// descriptions.
 pub fn table_fields(table: &Table) -> Vec<Field> {
     table
         .columns
         .iter()
-        .map(|c| match c.values {
-            Values::Text(_) => Field::text(c.name, c.description),
-            Values::Number(_) => Field::number(c.name, c.unit, c.description),
+        .map(|c| Field {
+            name: c.name,
+            kind: match c.values {
+                Values::Text(_) => FieldType::String,
+                Values::Number(_) => FieldType::Number,
+                Values::Integer(_) => FieldType::Integer,
+                Values::Boolean(_) => FieldType::Boolean,
+            },
+            unit: c.unit,
+            description: c.description,
         })
         .collect()
 }

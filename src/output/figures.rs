@@ -44,12 +44,11 @@ pub fn context(scene: &Scene) -> Context {
 pub fn figures(scene: &Scene, results: &Results) -> Vec<Figure> {
     let mut out = StudyResult::figures(&results.studies, &context(scene));
     unique_stems(&mut out, results);
-    // The figures are written with the active-strain γ; the structural approach's variable is ω.
-    if let Ok(map) = scene.models.activation_map() {
-        if map.variable() != "γ" {
-            for f in &mut out {
-                f.rename_symbol("γ", map.variable());
-            }
+    // The figures are written with the active-strain γ; the scene's approach may name its
+    // variable otherwise (the structural ω).
+    if let Some(v) = scene.defaults.approach.variable().filter(|v| *v != "γ") {
+        for f in &mut out {
+            f.rename_symbol("γ", v);
         }
     }
     out

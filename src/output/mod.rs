@@ -1,6 +1,7 @@
-//! Outputs of a run, from its typed results: `curves.csv` (tidy), `fits.csv`, `stability.csv`,
-//! the figures (PNG + SVG), the trade-off files, `report.html` (self-contained) and the
-//! cylinder's VTK fields, all written atomically through [`atomic::Staging`].
+//! Outputs of a run, from its typed results: the CSV files of the study kinds' tables
+//! (`curves.csv`, `fits.csv`, …) with `datapackage.json`, the figures (PNG + SVG), the
+//! trade-off pages, `report.html` (self-contained) and the cylinder's VTK fields, all written
+//! atomically through [`atomic::Staging`]. Each driver here iterates over the kinds.
 
 pub mod atomic;
 pub mod base64;
@@ -30,23 +31,21 @@ pub struct RunMeta {
     pub rustc: Option<String>,
 }
 
-/// Writes every output of a run into `staging` (committed by the caller): `curves.csv`, the
-/// tables, `scene.toml` (the scene as given), the figures, the VTK files the solver wrote into
-/// `staging`'s `vtk/`, the trade-off files and, last, `report.html`. Returns the number of rows
-/// of `curves.csv`.
+/// Writes every output of a run into `staging` (committed by the caller): the CSV files of the
+/// studies' tables (`curves.csv` first), `scene.toml` (the scene as given), the figures, the VTK
+/// files the solver wrote into `staging`'s `vtk/`, the trade-off pages, `datapackage.json` and,
+/// last, `report.html`. Returns the number of rows of `curves.csv`.
 pub fn write_run(
     staging: &mut Staging,
     scene: &Scene,
     results: &Results,
     meta: &RunMeta,
 ) -> Result<usize, AppError> {
-    let rows = csv::rows(results);
+    let tables = csv::files(results);
     let mut files = Vec::new();
-    staging.write("curves.csv", &csv::to_csv(&rows)?)?;
-    files.push("curves.csv".to_string());
-    for (name, bytes) in csv::tables(results)? {
-        staging.write(&name, &bytes)?;
-        files.push(name);
+    for t in &tables {
+        staging.write(&t.file, &t.bytes()?)?;
+        files.push(t.file.clone());
     }
     staging.write("scene.toml", scene.source.as_bytes())?;
     files.push("scene.toml".to_string());
@@ -60,13 +59,16 @@ pub fn write_run(
         files.push(format!("{}.svg", f.stem));
         rendered.push((f, bytes));
     }
-    for v in results.vtk_files() {
+    for v in results.studies.iter().flat_map(|s| s.result.vtk_files()) {
         let rel = Path::new("vtk").join(v);
         staging.adopt(&rel)?;
         files.push(rel.display().to_string());
     }
-    if let Some(t) = results.tradeoff() {
-        let (staged, figures) = tradeoff::stage(
+    if let Some((_, t)) = results
+        .of::<crate::studies::tradeoff::TradeoffResults>()
+        .next()
+    {
+        let (staged, figures) = tradeoff::stage_pages(
             t,
             staging,
             &scene.title,
@@ -77,7 +79,8 @@ pub fn write_run(
         rendered.extend(figures);
     }
     // Every column's type and unit, for the CSV files written above.
-    let package = datapackage::descriptor(&scene.title, &csv::resources(results, &files))?;
+    let resources: Vec<datapackage::Resource> = tables.iter().map(csv::CsvFile::resource).collect();
+    let package = datapackage::descriptor(&scene.title, &resources)?;
     staging.write("datapackage.json", &package)?;
     files.push("datapackage.json".to_string());
     let info = RunInfo {
@@ -86,9 +89,9 @@ pub fn write_run(
         version: env!("CARGO_PKG_VERSION").to_string(),
         rustc: meta.rustc.clone(),
         files,
-        rows: rows.len(),
+        tables: tables.iter().map(report::DataFile::of).collect(),
     };
     let page = report::html(scene, results, &rendered, &info)?;
     staging.write("report.html", page.as_bytes())?;
-    Ok(rows.len())
+    Ok(tables[0].rows())
 }

@@ -2,13 +2,13 @@
 //! summary, the notes of studies that stopped, the figures, the scene and the versions.
 
 use super::base64;
-use super::csv::{COLUMNS, HISTORY_COLUMNS};
+use super::csv::CsvFile;
 use crate::app_error::AppError;
-use crate::energy::Parametric;
+use crate::energy::{Parametric, ShippedEnergy};
 use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::plot::Rendered;
 use crate::scene::{Results, Scene};
-use crate::studies::uniaxial::CurveModel;
+use crate::studies::outputs::Used;
 use crate::studies::StudyResult;
 use crate::text::escape_html as escape;
 use crate::StrainEnergy;
@@ -29,8 +29,33 @@ pub struct RunInfo {
     pub rustc: Option<String>,
     /// Other files written (relative names).
     pub files: Vec<String>,
-    /// Rows of `curves.csv`.
+    /// The CSV files written.
+    pub tables: Vec<DataFile>,
+}
+
+/// A CSV file of the run as the report lists it.
+#[derive(Debug, Clone, Default)]
+pub struct DataFile {
+    /// The file name.
+    pub file: String,
+    /// What one row is.
+    pub rows_are: String,
+    /// Number of rows.
     pub rows: usize,
+    /// The columns' names.
+    pub columns: Vec<String>,
+}
+
+impl DataFile {
+    /// What the report says of `f`.
+    pub fn of(f: &CsvFile) -> Self {
+        DataFile {
+            file: f.file.clone(),
+            rows_are: f.rows_are.to_string(),
+            rows: f.rows(),
+            columns: f.columns().iter().map(|c| c.to_string()).collect(),
+        }
+    }
 }
 
 /// The report page. `pngs` holds the PNG bytes of each figure, in the same order. A non-finite
@@ -126,69 +151,17 @@ fn failures(h: &mut String, results: &Results) {
     }
 }
 
-/// What the chapter calls the shipped energies: (name, what, where in the chapter).
-const ENERGIES: &[(&str, &str, &str)] = &[
-    (
-        "giantesio-musesti",
-        "the chapter's passive energy, W = μ/4 {[e^{α(I_p−1)} − 1]/α + K_p − 1}, I_p = (w0/3) tr C + (1−w0) C:M, K_p = (w0/3) tr C⁻¹ + (1−w0) C⁻¹:M",
-        "eq. (1); parameters Table 1",
-    ),
-    (
-        "ehret-bol-itskov",
-        "the Ehret–Böl–Itskov energy: the K_p − 1 term becomes [e^{β(K_p−1)} − 1]/β",
-        "eq. (4)",
-    ),
-    ("neo-hookean", "neo-Hookean reference, W = μ/2 (tr C − 3)", "not in the chapter"),
-];
-
-/// What a run used: the energies (the material's first), the active models, whether constant γ.
-struct Used {
-    energies: Vec<String>,
-    chosen: Vec<ModelChoice>,
-    constant: bool,
-}
-
-/// What `results` used (the scene gives the material).
+/// What a run used: the energies (the material's first), the (approach, model) pairs of every
+/// study, whether a constant activation ([`crate::studies::outputs::KindOutput::used`]).
 fn used(scene: &Scene, results: &Results) -> Used {
-    let m = &scene.models;
-    let mut energies = vec![m.energy.name().to_string()];
-    let mut chosen: Vec<ModelChoice> = Vec::new();
-    let mut constant = false;
-    for (_, u) in results.uniaxial() {
-        for c in &u.curves {
-            if !energies.contains(&c.energy) {
-                energies.push(c.energy.clone());
-            }
-            match c.model {
-                CurveModel::Active(x) => chosen.push(x),
-                CurveModel::Constant(_) => constant = true,
-                CurveModel::Passive => {}
-            }
-        }
-    }
-    for (_, c) in results.cylinders() {
-        chosen.extend(c.sweeps.iter().map(|s| s.model));
-    }
-    for (_, curves) in results.stability() {
-        chosen.extend(curves.iter().filter_map(|c| c.model));
-    }
-    for (_, r) in results.histories() {
-        chosen.extend(r.histories.iter().map(|h| h.model));
-    }
+    let mut used = Used {
+        energies: vec![scene.models.energy.name().to_string()],
+        ..Used::default()
+    };
     for s in &results.studies {
-        let models = s.result.approach_models();
-        chosen.extend(
-            models
-                .iter()
-                .filter(|a| a.approach.has_law())
-                .filter_map(|a| a.model),
-        );
+        used.merge(s.result.used());
     }
-    Used {
-        energies,
-        chosen,
-        constant,
-    }
+    used
 }
 
 /// The models the run used, in the words of the figures and `curves.csv`, with their equations
@@ -197,20 +170,6 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let used = used(scene, results);
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
-    // The approaches of shear and biaxial studies other than the scene's.
-    let mut approaches: Vec<crate::active::Approach> = vec![scene.models.approach];
-    for s in &results.studies {
-        let models = s.result.approach_models();
-        for m in models.iter().filter(|m| m.model.is_some()) {
-            if !approaches.contains(&m.approach) {
-                approaches.push(m.approach);
-                rows.push(approach_row(&crate::models::Models {
-                    approach: m.approach,
-                    ..scene.models.clone()
-                }));
-            }
-        }
-    }
     if let Some(v) = &scene.models.volumetric {
         let form = v.form().formula();
         rows.push((
@@ -248,11 +207,9 @@ fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
     let m = &scene.models;
     let mut rows = Vec::new();
     for name in energies {
-        let (what, chapter) = ENERGIES
-            .iter()
-            .find(|(n, _, _)| n == name)
-            .map_or(("a shipped energy", "not in the chapter"), |(_, w, c)| {
-                (*w, *c)
+        let (what, chapter) = ShippedEnergy::find(name)
+            .map_or(("a user-defined energy", "not in the chapter"), |e| {
+                (e.formula, e.chapter)
             });
         let mut what = what.to_string();
         if let (true, crate::energy::Energy::Formula(f)) = (*name == m.energy.name(), &m.energy) {
@@ -285,11 +242,22 @@ fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
 /// The rows of the activation, the active curve, damage, laws and couplings the run used.
 fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
     let m = &scene.models;
-    let (chosen, constant) = (&used.chosen, used.constant);
+    let constant = used.constant;
+    // Every activation model (of any approach; active stress has no law).
+    let chosen: Vec<ModelChoice> = used.models.iter().filter_map(|a| a.model).collect();
+    // The scene's approach first, then the others its studies used, each as the registry
+    // describes it.
+    let mut approaches = Vec::new();
+    if constant || !chosen.is_empty() {
+        approaches.push(scene.defaults.approach);
+    }
+    for a in chosen.iter().map(|c| c.approach) {
+        if !approaches.contains(&a) {
+            approaches.push(a);
+        }
+    }
     let mut rows: Vec<ModelRow> = Vec::new();
-    let active = !chosen.is_empty() || constant;
-    if active {
-        rows.push(approach_row(m));
+    if !approaches.is_empty() {
         rows.push((
             "λ_f, fibre stretch".into(),
             "λ_f = √(C:M), the argument of the activation laws and of the active curve".into(),
@@ -302,9 +270,27 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
         ));
     }
     if !chosen.is_empty() {
-        let c = &m.curve;
-        let chapter = matches!(c, crate::active::ActiveCurve::Chapter(_));
-        rows.push((
+        rows.extend(curve_rows(m));
+    }
+    rows.extend(law_rows(m, &chosen, constant));
+    // The rows are written with the active-strain γ; the scene's approach may name its
+    // variable otherwise (the structural ω).
+    if let Some(v) = scene.defaults.approach.variable().filter(|v| *v != "γ") {
+        for row in &mut rows {
+            row.1 = row.1.replace('γ', v);
+        }
+    }
+    let mut all: Vec<ModelRow> = approaches.iter().map(|a| approach_row(*a, m)).collect();
+    all.extend(rows);
+    all
+}
+
+/// The rows of the active curve, the damage and the force–velocity factor.
+fn curve_rows(m: &crate::models::Models) -> Vec<ModelRow> {
+    let c = &m.curve;
+    let chapter = matches!(c, crate::active::ActiveCurve::Chapter(_));
+    let mut rows = vec![
+        (
             format!("P_act, active curve ({})", c.name()),
             format!(
                 "P_act(λ) = {} for λ > λ_min, else 0 ({}); here {}",
@@ -317,24 +303,32 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             } else {
                 "not in the chapter".into()
             },
-        ));
-        rows.push((
+        ),
+        (
             "d, damage".into(),
             "loss of activation: the active stress becomes (1 − d) P_act".into(),
             "the chapter's loss of activation (Fig. 9)".into(),
+        ),
+    ];
+    if m.force_velocity.is_some() {
+        rows.push((
+            "f_v, force–velocity".into(),
+            "Böl & Reese (2008): the target becomes (1 − d)·a·f_v(λ̇)·P_act in activation-in-time studies, λ̇ by backward Euler over the time step (0 at the first step); quasi-static studies have λ̇ = 0, f_v = 1".into(),
+            "not in the chapter".into(),
         ));
-        if m.force_velocity.is_some() {
-            rows.push((
-                "f_v, force–velocity".into(),
-                "Böl & Reese (2008): the target becomes (1 − d)·a·f_v(λ̇)·P_act in activation-in-time studies, λ̇ by backward Euler over the time step (0 at the first step); quasi-static studies have λ̇ = 0, f_v = 1".into(),
-                "not in the chapter".into(),
-            ));
-        }
     }
-    if !m.approach.has_law() {
-        return rows;
-    }
-    let used = |law: LawKind| chosen.iter().any(|x| x.law == law);
+    rows
+}
+
+/// The rows of the constant γ, the laws and the couplings the `chosen` models (of approaches
+/// that have a law) used.
+fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -> Vec<ModelRow> {
+    let laws: Vec<(LawKind, CouplingKind)> = chosen
+        .iter()
+        .filter_map(ModelChoice::activation_law)
+        .collect();
+    let used = |law: LawKind| laws.iter().any(|x| x.0 == law);
+    let mut rows: Vec<ModelRow> = Vec::new();
     if constant {
         rows.push(("constant γ".into(), "γ held fixed".into(), "Fig. 5".into()));
     }
@@ -362,57 +356,27 @@ fn model_rows(scene: &Scene, used: &Used) -> Vec<ModelRow> {
             "not in the chapter (Giantesio & Musesti 2017, strain-dependent internal parameters)".into(),
         ));
     }
-    if chosen.iter().any(|x| x.coupling == CouplingKind::Frozen) {
+    if laws.iter().any(|x| x.1 == CouplingKind::Frozen) {
         rows.push((
             "frozen coupling".into(),
             "P = ∂Ŵ/∂F − p F⁻ᵀ at γ = g(λ_f) held: the chapter's model (not a gradient)".into(),
             "eq. (7)".into(),
         ));
     }
-    if chosen
-        .iter()
-        .any(|x| x.coupling == CouplingKind::Consistent)
-    {
+    if laws.iter().any(|x| x.1 == CouplingKind::Consistent) {
         rows.push((
             "consistent coupling".into(),
             "the hyperelastic Ψ(F) = Ŵ(F, g(λ_f(F))), differentiated through the law".into(),
             "not in the chapter".into(),
         ));
     }
-    // The rows are written with the active-strain γ; the structural approach's variable is ω.
-    if let Ok(map) = m.activation_map() {
-        for row in rows.iter_mut().skip(1) {
-            row.1 = row.1.replace('γ', map.variable());
-        }
-    }
     rows
 }
 
-/// The row of the scene's activation approach and map.
-fn approach_row(m: &crate::models::Models) -> ModelRow {
-    use crate::active::{ActiveStrainMap, Approach};
-    match (m.approach, m.map) {
-        (Approach::ActiveStress, _) => (
-            "active stress".into(),
-            "Ψ = W_pas(C) + (1 − d) ∫_{λ_min}^{λ_f} P_act, P = ∂W_pas/∂F + (1 − d) P_act(λ_f) F M/λ_f (FEBio, Blemker): no activation variable, no law; hyperelastic".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::Structural, _) => (
-            "ω, activation".into(),
-            "activation in the structural tensor (Ehret, Böl & Itskov 2011; 4C's MAT_Muscle_Weickenmeier): W with I = C:(L + ωM), L = (w0/3) I + (1 − w0) M, ω = g(λ_f)".into(),
-            "not in the chapter".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::VolumePreserving) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a with the volume-preserving F_a = (1 − γ) m⊗m + (1 − γ)^(−½)(I − m⊗m) (Weickenmeier et al. 2014; 4C's MAT_Muscle_Giantesio), Ŵ(F, γ) = W(C_e)".into(),
-            "eqs. (5)–(6) with another F_a".into(),
-        ),
-        (Approach::ActiveStrain, ActiveStrainMap::Chapter) => (
-            "γ, activation".into(),
-            "active strain F = F_e F_a, F_a = I − γ m⊗m, Ŵ(F, γ) = (1 − γ) W(C_e)".into(),
-            "eqs. (5)–(6)".into(),
-        ),
-    }
+/// The row of an activation approach, with the scene's map, as the registry describes it.
+fn approach_row(approach: crate::active::Approach, m: &crate::models::Models) -> ModelRow {
+    let [name, what, chapter] = approach.row(m.map);
+    (name.into(), what.into(), chapter.into())
 }
 
 /// The figures (embedded) and the list of data files.
@@ -432,25 +396,18 @@ fn figures_and_data(h: &mut String, figures: &[Rendered], info: &RunInfo) {
         );
     }
 
-    h.push_str("<h2>Data</h2>\n<p><code>curves.csv</code>: one row per point, columns ");
-    h.push_str(&code_list(COLUMNS));
-    let _ = writeln!(
-        h,
-        ". Stresses in kPa (nominal, along the stretch; <code>cauchy</code> the Cauchy stress); \
-         <code>P_act</code> is the active stress with its damage, (1 − d) P_act(λ); \
-         <code>gamma</code> is γ at the point for uniaxial rows and γ at the centre of the \
-         cylinder for cylinder rows; an empty cell does not apply. {}</p>",
-        if info.rows == 0 {
-            "No rows: this scene has no uniaxial or cylinder study.".to_string()
-        } else {
-            format!("{} rows.", info.rows)
-        }
-    );
-    if info.files.iter().any(|f| f == "history.csv") {
-        h.push_str("<p><code>history.csv</code>: one row per activation-in-time model and time step, columns ");
-        h.push_str(&code_list(HISTORY_COLUMNS));
-        h.push_str(". t in s; a_schedule (the schedule), a (the activation level used), λ, γ and the volume ratio J dimensionless; P (nominal), cauchy (σ₁₁ = P λ / J), P_pas and P_act (the target (1 − d) a P_act(λ)) in kPa.</p>\n");
+    h.push_str("<h2>Data</h2>\n<p>One CSV file per table; every column's type, unit and meaning in <code>datapackage.json</code>. An empty cell does not apply to its row.</p>\n<table><tr><th>file</th><th>rows</th><th>one row per</th><th>columns</th></tr>\n");
+    for t in &info.tables {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            e(&t.file),
+            t.rows,
+            e(t.rows_are.trim_start_matches("one row per ")),
+            code_list(t.columns.iter().map(String::as_str))
+        );
     }
+    h.push_str("</table>\n");
     h.push_str("<p>Other files: ");
     h.push_str(&code_list(info.files.iter().map(String::as_str)));
     h.push_str("</p>\n");

@@ -2,93 +2,22 @@
 //! (PNG + SVG, the Pareto front marked) and a self-contained `tradeoff.html`.
 
 use super::base64;
-use super::datapackage::{names, Field};
 use super::{Staging, Writer};
 use crate::app_error::AppError;
 use crate::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use crate::studies::slug;
-use crate::studies::tradeoff::measure::{cell, ratio};
 use crate::studies::tradeoff::{Measurement, TradeoffResults};
-use crate::text::escape_html as escape;
+use crate::text::{cell, escape_html as escape, ratio};
 use std::fmt::Write;
 use std::path::Path;
 
-/// The columns of `tradeoff.csv`: one row per measured variant.
-pub const FIELDS: [Field; 19] = [
-    Field::text("option", "the option traded (activation law, element, mesh, …)"),
-    Field::text("variant", "the option's variant"),
-    Field::flag("reference", "whether this variant is the option's reference"),
-    Field::text("quantity", "what is compared with the reference, with its unit"),
-    Field::number("time_s", "s", "median time of the runs"),
-    Field::number("time_low_s", "s", "10th percentile of the runs' times"),
-    Field::number("time_high_s", "s", "90th percentile of the runs' times"),
-    Field::count("runs", "timed runs"),
-    Field::flag("time_differs", "whether the time differs measurably from the reference's (spreads do not overlap)"),
-    Field::number("error_abs", "see quantity", "largest absolute difference from the reference, in the quantity's unit"),
-    Field::number("error_rel", "-", "largest relative difference from the reference"),
-    Field::number("gamma_error", "-", "largest |γ − γ_reference|"),
-    Field::number("speedup", "-", "reference time / time (medians)"),
-    Field::number("error_ratio", "-", "relative error / the option's smallest positive non-reference relative error"),
-    Field::flag("pareto", "whether on the option's Pareto front of (time, relative error)"),
-    Field::count("newton_iterations", "Newton iterations of the FE sweep"),
-    Field::number("time_per_iteration_s", "s", "time per Newton iteration"),
-    Field::count("dofs", "free degrees of freedom of the FE solve"),
-    Field::text("note", "what else the measurement says (where the error is largest, why a variant did not converge)"),
-];
-
-/// The header of `tradeoff.csv`.
-pub const COLUMNS: [&str; 19] = names(&FIELDS);
-
-/// A CSV cell: non-finite values (an error that does not exist because the variant failed, a
-/// ratio without a reference) are written as empty cells, never as NaN or inf.
-fn num(x: f64) -> String {
-    if x.is_finite() {
-        format!("{x:.6e}")
-    } else {
-        String::new()
-    }
-}
-
-/// The CSV text of the measured rows (one per variant; times in s: the median of the runs and
-/// their spread, 10th to 90th percentile; `time_differs`: measurably different from the
-/// reference's ([`crate::studies::tradeoff::Timing::speedup_over`]); errors in the quantity's unit and relative; speed-up = reference time / time, of
-/// the medians; error ratio = relative error / the option's smallest positive non-reference
-/// relative error).
+/// The CSV text of `tradeoff.csv`, the trade-off kind's table
+/// ([`crate::studies::tradeoff::output::table`]).
 pub fn to_csv(rows: &[Measurement]) -> Result<Vec<u8>, AppError> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let fail = |e: csv::Error| AppError::Output {
-        file: "tradeoff.csv".into(),
-        message: e.to_string(),
-    };
-    w.write_record(COLUMNS).map_err(fail)?;
-    for r in rows {
-        let record = [
-            r.option.clone(),
-            r.variant.clone(),
-            r.reference.to_string(),
-            r.quantity.clone(),
-            num(r.time.median),
-            num(r.time.low),
-            num(r.time.high),
-            r.time.runs.to_string(),
-            r.measurable.to_string(),
-            num(r.error.max_abs),
-            num(r.error.max_rel),
-            r.gamma_error.map(num).unwrap_or_default(),
-            num(r.speedup),
-            num(r.error_ratio),
-            r.pareto.to_string(),
-            r.iterations.map(|n| n.to_string()).unwrap_or_default(),
-            r.per_iteration_s.map(num).unwrap_or_default(),
-            r.dofs.map(|n| n.to_string()).unwrap_or_default(),
-            r.note.clone(),
-        ];
-        w.write_record(&record).map_err(fail)?;
-    }
-    w.into_inner().map_err(|e| AppError::Output {
-        file: "tradeoff.csv".into(),
-        message: e.error().to_string(),
-    })
+    super::csv::table_csv(
+        "tradeoff.csv",
+        &[&crate::studies::tradeoff::output::table(rows)],
+    )
 }
 
 /// Options in the order they were run.
@@ -348,8 +277,8 @@ pub fn html(
 }
 
 /// Stages `tradeoff.csv`, `tradeoff.md` (the table), one figure per option and `tradeoff.html`
-/// in `staging` (committed by the caller); returns the files staged (relative names) and the
-/// figures with their PNG bytes (for embedding in a report).
+/// in `staging` (committed by the caller), as the `tradeoff` command writes them; returns the
+/// files staged (relative names) and the figures with their PNG bytes.
 pub fn stage(
     results: &TradeoffResults,
     staging: &mut Staging,
@@ -357,9 +286,23 @@ pub fn stage(
     command: &str,
     wall_s: f64,
 ) -> Result<(Vec<String>, Vec<Rendered>), AppError> {
-    let mut files = Vec::new();
     staging.write("tradeoff.csv", &to_csv(&results.rows)?)?;
-    files.push("tradeoff.csv".to_string());
+    let (mut files, figures) = stage_pages(results, staging, title, command, wall_s)?;
+    files.insert(0, "tradeoff.csv".to_string());
+    Ok((files, figures))
+}
+
+/// Stages `tradeoff.md` (the table), one figure per option and `tradeoff.html` in `staging`
+/// (a run writes `tradeoff.csv` with its other tables); returns the files staged (relative
+/// names) and the figures with their PNG bytes (for embedding in a report).
+pub fn stage_pages(
+    results: &TradeoffResults,
+    staging: &mut Staging,
+    title: &str,
+    command: &str,
+    wall_s: f64,
+) -> Result<(Vec<String>, Vec<Rendered>), AppError> {
+    let mut files = Vec::new();
     staging.write("tradeoff.md", markdown(&results.rows).as_bytes())?;
     files.push("tradeoff.md".to_string());
     let mut figures = Vec::new();

@@ -1,8 +1,8 @@
 //! Scene files: what to compute, written in TOML.
 //!
 //! A scene names a material (`[material]`: a shipped energy and its parameters, the fibre
-//! direction), the activation (`[activation]`) and a list of studies (`[[study]]`, kind
-//! `uniaxial`, `cylinder`, `fit`, `stability` or `tradeoff`, see [`crate::studies`]). Every key
+//! direction), the activation (`[activation]`) and a list of studies (`[[study]]`, each of a
+//! kind of the registry [`crate::studies`]). Every key
 //! is optional unless a study cannot do without it; defaults are the chapter's values. Unknown
 //! keys, wrong types and values that break a rule are errors that name the file, the line, the
 //! key path, the value and the rule ([`SceneError`]). `scenes/paper.toml` is the chapter's study
@@ -23,8 +23,7 @@ pub use run::{Printing, Results, RunOptions, StudyProgress};
 
 use crate::app_error::AppError;
 pub use crate::models::{ActivationSpec, ExplicitSpec};
-use crate::models::{IncompressibilitySpec, MaterialSpec, Models};
-use crate::studies::tradeoff::{Fallback, TradeoffOptions};
+use crate::models::{IncompressibilitySpec, MaterialSpec, ModelDefaults, Models};
 use crate::studies::{Study, StudySpec};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -71,6 +70,8 @@ pub struct Scene {
     pub title: String,
     /// The material and activation every model shares.
     pub models: Models,
+    /// The studies' default approach, law, coupling and damage values (`[activation]`).
+    pub defaults: ModelDefaults,
     /// Studies in file order.
     pub studies: Vec<Study>,
     /// The resolved scene: every default written out (what `check` prints).
@@ -116,22 +117,6 @@ impl Scene {
         toml::to_string_pretty(&self.resolved).map_err(|e| AppError::Output {
             file: "resolved scene".into(),
             message: e.to_string(),
-        })
-    }
-
-    /// What a trade-off takes from this scene's other studies.
-    pub fn fallback(&self) -> Fallback {
-        Fallback {
-            damage: self.resolved.activation.damage.clone().unwrap_or_default(),
-            ..crate::studies::fallback(&self.studies)
-        }
-    }
-
-    /// The options of the scene's trade-off study, if it has one.
-    pub fn tradeoff_options(&self) -> Option<&TradeoffOptions> {
-        self.studies.iter().find_map(|s| match s {
-            Study::Tradeoff(t) => Some(&t.options),
-            _ => None,
         })
     }
 

@@ -3,12 +3,13 @@
 //! are mapped back to the key that produced them, and the key to its line).
 
 use super::keypath::line_of;
-use super::{ActivationSpec, ExplicitSpec, Scene, SceneSpec};
+use super::{ActivationSpec, Scene, SceneSpec};
 use crate::active::law::LawRepresentation;
+use crate::active::Approach;
 use crate::app_error::{SceneError, SpecError};
-use crate::models::{EnergySpec, IncompressibilitySpec, LawKind, MaterialSpec, Models};
+use crate::models::{EnergySpec, IncompressibilitySpec, MaterialSpec, ModelDefaults, Models};
 use crate::studies::spec::{damages, Defaults};
-use crate::studies::{slug, tradeoff, Study, StudyKind, StudySpec, MAX_SLUG_BYTES};
+use crate::studies::{slug, Study, StudyKind, StudySpec, MAX_SLUG_BYTES};
 use crate::text::shortest;
 use std::path::Path;
 
@@ -20,41 +21,26 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         value: e.value,
         rule: e.rule,
     };
-    let (models, damage) = models(&spec).map_err(error)?;
-    let act = &spec.activation;
+    let (models, choices) = models(&spec).map_err(error)?;
     let defaults = Defaults {
         models: &models,
-        law: act.law.unwrap_or_default(),
-        coupling: act.coupling.unwrap_or_default(),
-        damage: &damage,
+        approach: choices.approach,
+        law: choices.law,
+        coupling: choices.coupling,
+        damage: &choices.damage,
         base: Path::new(file).parent().unwrap_or(Path::new("")),
     };
     let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
     axial_fibres(models.fibre, &studies).map_err(error)?;
+    let approaches = approaches(choices.approach, &studies);
+    activation_applies(&spec.activation, &approaches, &studies).map_err(error)?;
     let resolved = SceneSpec {
         title: spec.title.clone(),
         material: MaterialSpec {
             energy: EnergySpec::written(&models.energy),
             fibre: Some(models.fibre),
         },
-        activation: ActivationSpec {
-            approach: Some(models.approach),
-            curve: Some(ActivationSpec::written_curve(&models.curve).0),
-            curve_parameters: ActivationSpec::written_curve(&models.curve).1,
-            law: Some(defaults.law),
-            coupling: Some(defaults.coupling),
-            frozen_tangent: Some(models.frozen_tangent),
-            below_minimum: Some(models.below_minimum),
-            map: Some(models.map),
-            damage: Some(damage.clone()),
-            explicit: Some(ExplicitSpec {
-                a: Some(models.explicit.0),
-                b: Some(models.explicit.1),
-            }),
-            representation: Some(models.representation_spec().0),
-            table_stretches: models.representation_spec().1,
-            force_velocity: models.force_velocity,
-        },
+        activation: ActivationSpec::written(&models, &choices, &approaches),
         // Written out even when left out (`kind = "exact"`): `check` shows every default.
         incompressibility: Some(IncompressibilitySpec::written(models.volumetric.as_ref())),
         studies: resolved,
@@ -64,38 +50,99 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         source: text.to_string(),
         title: spec.title.unwrap_or_else(|| "activemuscle scene".into()),
         models,
+        defaults: choices,
         studies,
         resolved,
     })
 }
 
-/// The material and activation of the scene, and its default damage values.
-fn models(spec: &SceneSpec) -> Result<(Models, Vec<f64>), SpecError> {
-    let mut models = Models::from_spec(&spec.material, &spec.activation)?;
-    if let Some(inc) = &spec.incompressibility {
-        models.volumetric = inc
-            .build(&models.energy)
-            .map_err(|e| e.within("incompressibility"))?;
+/// The material, activation and incompressibility of the scene, and its studies' defaults (the
+/// damage values validated, the approach possible on the material and calibrated to its curve).
+fn models(spec: &SceneSpec) -> Result<(Models, ModelDefaults), SpecError> {
+    let models = Models::from_spec(
+        &spec.material,
+        &spec.activation,
+        spec.incompressibility.as_ref(),
+    )?;
+    let mut choices = spec.activation.defaults();
+    choices.damage = damages("activation.damage", &choices.damage)?;
+    let approach = choices.approach;
+    let given = || format!("{:?}", approach.name());
+    models
+        .activation_map(approach)
+        .map_err(|rule| SpecError::new("activation.approach", given(), rule))?;
+    if let Some(curves) = approach
+        .curves()
+        .filter(|c| !c.contains(&models.curve.name()))
+    {
+        return Err(SpecError::new(
+            "activation.curve",
+            format!("{:?}", models.curve.name()),
+            format!(
+                "approach = {} is calibrated to the curves {}",
+                given(),
+                curves.join(", ")
+            ),
+        ));
     }
-    tables_build(&models)?;
-    let damage = spec.activation.damage.as_deref().unwrap_or(&[0.0]);
-    Ok((models, damages("activation.damage", damage)?))
+    tables_build(&models, approach)?;
+    Ok((models, choices))
 }
 
-/// A tabulated law's tables are built here, at d = 0, for the implicit and the energy law: a
-/// range the table cannot meet (the exact law fails inside it, e.g. exp overflows at λ ≈ 8.5
-/// for the chapter's energy) is refused at `activation.table_stretches` instead of failing
-/// every study that uses it. Costs 0.04–0.1 s per law.
-fn tables_build(models: &Models) -> Result<(), SpecError> {
+/// The approaches the scene's models use: its own and its studies' (each once, in order).
+fn approaches(scene: Approach, studies: &[Study]) -> Vec<Approach> {
+    let mut v = vec![scene];
+    for a in studies.iter().flat_map(Study::approaches) {
+        if !v.contains(&a) {
+            v.push(a);
+        }
+    }
+    v
+}
+
+/// Refuses an `[activation]` key that applies to none of the scene's `approaches`, and
+/// `force_velocity` without a study driven in time (quasi-static studies have λ̇ = 0, f_v = 1).
+fn activation_applies(
+    activation: &ActivationSpec,
+    approaches: &[Approach],
+    studies: &[Study],
+) -> Result<(), SpecError> {
+    activation.refuse_inapplicable(approaches)?;
+    if activation.force_velocity.is_some() && !studies.iter().any(Study::in_time) {
+        let in_time: Vec<&str> = StudyKind::ALL
+            .iter()
+            .filter(|k| k.in_time())
+            .map(|k| k.name())
+            .collect();
+        return Err(SpecError::new(
+            "activation.force_velocity",
+            "(given)",
+            format!(
+                "force–velocity scales the active stress by the stretch rate of a study driven in \
+                 time (kind = {}); this scene has none, and its quasi-static studies have \
+                 λ̇ = 0, f_v = 1",
+                in_time.join(" | ")
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A tabulated law's tables are built here, at d = 0, for the laws of `approach` that solve for
+/// its variable (implicit, energy): a range the table cannot meet (the exact law fails inside it,
+/// e.g. exp overflows at λ ≈ 8.5 for the chapter's energy) is refused at
+/// `activation.table_stretches` instead of failing every study that uses it. Costs 0.04–0.1 s per
+/// law.
+fn tables_build(models: &Models, approach: Approach) -> Result<(), SpecError> {
     let LawRepresentation::Tabulated(table) = models.representation else {
         return Ok(());
     };
-    if !models.approach.has_law() {
+    let Ok(map) = models.activation_map(approach) else {
         return Ok(());
-    }
-    for kind in [LawKind::Implicit, LawKind::Energy] {
+    };
+    for &kind in approach.laws().iter().filter(|l| l.solves()) {
         // A law this material cannot have is refused where the studies ask for it.
-        let Ok(law) = models.law(kind) else {
+        let Ok(law) = models.law(kind, map) else {
             continue;
         };
         if let Err(e) = law.represented(models.representation, &[0.0]) {
@@ -116,8 +163,8 @@ fn tables_build(models: &Models) -> Result<(), SpecError> {
     Ok(())
 }
 
-/// The studies, validated in file order, and their resolved specs; trade-off studies take what
-/// they leave out from the first cylinder study, wherever it is.
+/// The studies, validated in file order, and their resolved specs; then each completed from the
+/// others where its kind takes what it leaves out from them ([`StudySpec::completed`]).
 fn studies(
     specs: &[StudySpec],
     defaults: &Defaults,
@@ -135,34 +182,44 @@ fn studies(
     let mut studies: Vec<Study> = Vec::with_capacity(specs.len());
     let mut resolved: Vec<StudySpec> = Vec::with_capacity(specs.len());
     for (i, s) in specs.iter().enumerate() {
-        let key = format!("study[{i}]");
-        if s.kind() == StudyKind::Tradeoff {
-            if let Some(first) = studies.iter().position(|s| matches!(s, Study::Tradeoff(_))) {
-                return Err(SpecError::new(
-                    format!("{key}.kind"),
-                    "\"tradeoff\"",
-                    format!(
-                        "a scene holds at most one tradeoff study (study[{first}] is one): \
-                         its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures"
-                    ),
-                ));
-            }
-        }
-        let (study, r) = s.resolve(defaults).map_err(|e| e.within(&key))?;
-        unique_name(&study, &studies).map_err(|e| e.within(&key))?;
+        one_per_scene(s.kind(), &studies).map_err(|e| e.within(&format!("study[{i}]")))?;
+        let (study, r) = s
+            .resolve(defaults)
+            .map_err(|e| e.within(&format!("study[{i}]")))?;
+        unique_name(&study, &studies).map_err(|e| e.within(&format!("study[{i}]")))?;
         studies.push(study);
         resolved.push(r);
     }
-    let fallback = crate::studies::fallback(&studies);
-    for (i, ((study, given), r)) in studies.iter_mut().zip(specs).zip(&mut resolved).enumerate() {
-        if let (Study::Tradeoff(t), StudySpec::Tradeoff(given), StudySpec::Tradeoff(r)) =
-            (study, given, r)
+    // What a study takes from the others, once all are resolved.
+    for (i, s) in specs.iter().enumerate() {
+        if let Some((study, r)) = s
+            .completed(&resolved[i], i, &studies, defaults)
+            .map_err(|e| e.within(&format!("study[{i}]")))?
         {
-            tradeoff::complete(t, given, r, &fallback)
-                .map_err(|e| e.within(&format!("study[{i}]")))?;
+            studies[i] = study;
+            resolved[i] = r;
         }
     }
     Ok((studies, resolved))
+}
+
+/// Refuses a second study of a `kind` a scene holds at most one of, `before` holding the
+/// studies resolved so far.
+fn one_per_scene(kind: StudyKind, before: &[Study]) -> Result<(), SpecError> {
+    let (Some(why), Some(first)) = (
+        kind.one_per_scene(),
+        before.iter().position(|s| s.kind() == kind),
+    ) else {
+        return Ok(());
+    };
+    Err(SpecError::new(
+        "kind",
+        format!("{:?}", kind.name()),
+        format!(
+            "a scene holds at most one {} study (study[{first}] is one): {why}",
+            kind.name()
+        ),
+    ))
 }
 
 /// Output files and directories are named by [`slug`] of a study's name: it must have a letter
@@ -207,17 +264,15 @@ fn unique_name(study: &Study, before: &[Study]) -> Result<(), SpecError> {
     }
 }
 
-/// The axisymmetric FE cylinder (cylinder and trade-off studies) has its fibres along its axis,
-/// e₁ of the material frame: a unit fibre `f` with |f · e₁| < 1 − 1e-12 cannot be represented
-/// there and is refused, naming the first study that would have replaced it by the axis.
+/// The axisymmetric FE cylinder (the studies of a kind that solves it,
+/// [`StudyKind::axial_fibres`]) has its fibres along its axis, e₁ of the material frame: a unit
+/// fibre `f` with |f · e₁| < 1 − 1e-12 cannot be represented there and is refused, naming the
+/// first study that would have replaced it by the axis.
 fn axial_fibres(fibre: [f64; 3], studies: &[Study]) -> Result<(), SpecError> {
     if fibre[0].abs() >= 1.0 - 1e-12 {
         return Ok(());
     }
-    match studies
-        .iter()
-        .position(|s| matches!(s, Study::Cylinder(_) | Study::Tradeoff(_)))
-    {
+    match studies.iter().position(|s| s.kind().axial_fibres()) {
         None => Ok(()),
         Some(i) => {
             let shown: Vec<String> = fibre.iter().map(|x| format!("{x:.4}")).collect();

@@ -1,18 +1,14 @@
-//! Running a scene: the studies at the same time (a trade-off study alone), each building only
-//! the models it needs (homogeneous curves and FE sweeps in parallel too), progress reported through [`crate::studies::Progress`].
+//! Running a scene: the studies at the same time (a kind that measures run times alone, after),
+//! each building only the models it needs (homogeneous curves and FE sweeps in parallel too),
+//! progress reported through [`crate::studies::Progress`].
 
 use super::Scene;
-use crate::studies::cylinder::CylinderResult;
-use crate::studies::fit::FitOutcome;
-use crate::studies::history::HistoryResult;
-use crate::studies::stability::StabilityCurve;
-use crate::studies::tradeoff::TradeoffResults;
-use crate::studies::uniaxial::UniaxialResult;
-use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, Study, StudyResult};
+use crate::studies::outputs::OfResult;
+use crate::studies::{Failure, Outcome, Progress, RunContext, Silent, Stop, Study};
 use indicatif::{MultiProgress, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -43,11 +39,10 @@ impl Results {
         self.studies.iter().all(Outcome::complete)
     }
 
-    /// Whether several studies ran at the same time (a trade-off study runs alone, after), so
-    /// their wall times overlap.
+    /// Whether several studies ran at the same time (a study of a kind that runs alone runs
+    /// after them, [`crate::studies::StudyKind::runs_alone`]), so their wall times overlap.
     pub fn ran_together(&self) -> bool {
-        let alone = |s: &&Outcome| matches!(s.result, StudyResult::Tradeoff(_));
-        self.studies.iter().filter(|s| !alone(s)).count() > 1
+        self.studies.iter().filter(|s| !s.kind.runs_alone()).count() > 1
     }
 
     /// Every failure, with the name of its study.
@@ -57,69 +52,12 @@ impl Results {
             .flat_map(|s| s.failures.iter().map(move |f| (s.name.as_str(), f)))
     }
 
-    /// The uniaxial results, with their studies' names.
-    pub fn uniaxial(&self) -> impl Iterator<Item = (&str, &UniaxialResult)> {
-        self.studies.iter().filter_map(|s| match &s.result {
-            StudyResult::Uniaxial(r) => Some((s.name.as_str(), r)),
-            _ => None,
-        })
-    }
-
-    /// The cylinder results, with their studies' names.
-    pub fn cylinders(&self) -> impl Iterator<Item = (&str, &CylinderResult)> {
-        self.studies.iter().filter_map(|s| match &s.result {
-            StudyResult::Cylinder(r) => Some((s.name.as_str(), r)),
-            _ => None,
-        })
-    }
-
-    /// The fits, by study.
-    pub fn fits(&self) -> Vec<(&str, &[FitOutcome])> {
+    /// The results of kind `R` (a [`crate::studies::StudyResult`]'s payload, e.g.
+    /// `CylinderResult`), with their studies' names, in scene order.
+    pub fn of<'a, R: OfResult + 'a>(&'a self) -> impl Iterator<Item = (&'a str, &'a R)> + 'a {
         self.studies
             .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::Fit(f) => Some((s.name.as_str(), f.as_slice())),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The stability curves, by study.
-    pub fn stability(&self) -> Vec<(&str, &[StabilityCurve])> {
-        self.studies
-            .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::Stability(c) => Some((s.name.as_str(), c.as_slice())),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The activation-in-time histories, by study.
-    pub fn histories(&self) -> Vec<(&str, &HistoryResult)> {
-        self.studies
-            .iter()
-            .filter_map(|s| match &s.result {
-                StudyResult::ActivationInTime(h) => Some((s.name.as_str(), h)),
-                _ => None,
-            })
-            .collect()
-    }
-
-    /// The trade-off study's measurements (a scene holds at most one).
-    pub fn tradeoff(&self) -> Option<&TradeoffResults> {
-        self.studies.iter().find_map(|s| match &s.result {
-            StudyResult::Tradeoff(t) => Some(t),
-            _ => None,
-        })
-    }
-
-    /// The VTK files written, relative to the run's VTK directory.
-    pub fn vtk_files(&self) -> Vec<&Path> {
-        self.cylinders()
-            .flat_map(|(_, c)| c.sweeps.iter())
-            .flat_map(|s| s.vtk_files.iter().map(PathBuf::as_path))
-            .collect()
+            .filter_map(|s| R::of(&s.result).map(|r| (s.name.as_str(), r)))
     }
 }
 
@@ -228,14 +166,13 @@ impl Progress for StudyProgress<'_> {
 }
 
 /// Runs every study of `scene`. The studies run at the same time, sharing the cores (each
-/// one's own loops, over models or damages and over the FE cells, are parallel too), except a
-/// trade-off study, which measures run times and so runs alone, after the others. The results
-/// keep the scene's order. A study that stops with an error is recorded as its outcome's failure
+/// one's own loops, over models or damages and over the FE cells, are parallel too), except
+/// those of a kind that runs alone ([`crate::studies::StudyKind::runs_alone`]: it measures run
+/// times), after the others. The results keep the scene's order. A study that stops with an error is recorded as its outcome's failure
 /// ([`Outcome::nothing`]) and the others go on; once the run is stopped
 /// ([`RunOptions::stop`]) the studies not started are recorded as not run.
 pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
     let printing = Printing::new(options.verbose, options.progress);
-    let fallback = scene.fallback();
     let run_one = |study: &Study| -> Outcome {
         if let Some(reason) = options.stop.as_ref().and_then(Stop::reason) {
             return Outcome::nothing(study, format!("not run: {reason}"));
@@ -248,12 +185,10 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
             stop: options.stop.as_ref(),
         };
         let t0 = Instant::now();
-        let mut outcome = study
-            .run(&scene.models, &fallback, &ctx)
-            .unwrap_or_else(|e| {
-                progress.finish();
-                Outcome::nothing(study, e.to_string())
-            });
+        let mut outcome = study.run(&scene.models, &ctx).unwrap_or_else(|e| {
+            progress.finish();
+            Outcome::nothing(study, e.to_string())
+        });
         outcome.elapsed = t0.elapsed();
         progress.log(&format!(
             "{}: {} points in {:.2} s",
@@ -263,7 +198,7 @@ pub(super) fn run(scene: &Scene, options: &RunOptions) -> Results {
         ));
         outcome
     };
-    let alone = |s: &Study| matches!(s, Study::Tradeoff(_));
+    let alone = |s: &Study| s.kind().runs_alone();
     let mut outcomes: Vec<Option<Outcome>> = scene
         .studies
         .par_iter()

@@ -6,8 +6,8 @@
 
 mod output;
 
-use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
-use super::table::Table;
+use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
+use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -119,36 +119,12 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
             }
         }
     };
-    let approaches = spec
-        .approaches
-        .clone()
-        .unwrap_or_else(|| vec![d.models.approach]);
-    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
-    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
-    couplings_for(&laws, &couplings)?;
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let passive = spec.passive.unwrap_or(true);
-    let mut models = Vec::new();
-    if passive {
-        models.push(ApproachModel {
-            approach: d.models.approach,
-            model: None,
-        });
-    }
-    models.extend(approach_models(
-        d.models,
-        &approaches,
-        &laws,
-        &couplings,
-        &damage,
-    )?);
-    if models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a biaxial study needs passive = true or approaches",
-        ));
-    }
+    let keys = ModelKeys {
+        approaches: spec.approaches.as_deref(),
+        ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
+    };
+    let (models, set) = approach_models(keys, passive, d, &[d.approach], "biaxial")?;
     let name = spec.name.clone().unwrap_or_else(|| "planar biaxial".into());
     let resolved = BiaxialSpec {
         name: Some(name.clone()),
@@ -158,10 +134,10 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
             .then(|| spec.path.unwrap_or(BiaxialPath::Equibiaxial)),
         stretch: spec.stretch.clone(),
         pairs: spec.pairs.clone(),
-        approaches: Some(approaches),
-        laws: Some(laws),
-        couplings: Some(couplings),
-        damage: Some(damage),
+        approaches: Some(set.approaches),
+        laws: set.laws,
+        couplings: set.couplings,
+        damage: Some(set.damage),
         passive: Some(passive),
     };
     Ok((
@@ -263,15 +239,7 @@ impl BiaxialStudy {
         ctx: &RunContext,
     ) -> Result<(BiaxialCurve, Option<Failure>), AppError> {
         let label = m.label(models);
-        let muscle = match m.model {
-            None => models.passive(),
-            Some(c) => Models {
-                approach: m.approach,
-                ..models.clone()
-            }
-            .muscle(c)
-            .map_err(|e| AppError::from(e).within(format!("{}: {label}", self.name)))?,
-        };
+        let muscle = m.muscle(models, &self.name)?;
         let mut points = Vec::with_capacity(self.pairs.len());
         let mut first: Option<((f64, f64), String)> = None;
         let mut failed = 0usize;
@@ -318,81 +286,20 @@ impl BiaxialResult {
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
         let at = |f: fn(&BiaxialPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
         Table::default()
-            .text(
-                "study",
-                "the study's name",
-                rows.iter().map(|_| Some(study.to_string())),
-            )
-            .text(
-                "energy",
-                "the passive energy",
-                rows.iter().map(|_| Some(self.energy.clone())),
-            )
-            .text(
-                "path",
-                "equibiaxial, strip or pairs",
-                rows.iter().map(|_| Some(self.path.to_string())),
-            )
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("energy", "the passive energy", every_row(&self.energy, rows.len()))
+            .text("path", "equibiaxial, strip or pairs", every_row(self.path, rows.len()))
             .text("approach", "activation approach (empty: passive)", cell(0))
-            .text(
-                "law",
-                "activation law (passive for the passive material)",
-                cell(1),
-            )
-            .text("coupling", "coupling", cell(2))
-            .number(
-                "d",
-                "-",
-                "damage",
-                rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)),
-            )
-            .number(
-                "lambda_1",
-                "-",
-                "stretch along the fibres λ₁",
-                at(|p| p.stretches[0]),
-            )
-            .number(
-                "lambda_2",
-                "-",
-                "stretch across the fibres λ₂",
-                at(|p| p.stretches[1]),
-            )
-            .number(
-                "lambda_3",
-                "-",
-                "stretch normal to the plane λ₃",
-                at(|p| p.stretches[2]),
-            )
-            .number(
-                "gamma",
-                "-",
-                "activation γ (ω for the structural approach)",
-                at(|p| p.gamma),
-            )
-            .number(
-                "P_11",
-                "kPa",
-                "nominal stress along the fibres",
-                at(|p| p.nominal[0]),
-            )
-            .number(
-                "P_22",
-                "kPa",
-                "nominal stress across the fibres",
-                at(|p| p.nominal[1]),
-            )
-            .number(
-                "sigma_11",
-                "kPa",
-                "Cauchy stress along the fibres",
-                at(|p| p.cauchy[0]),
-            )
-            .number(
-                "sigma_22",
-                "kPa",
-                "Cauchy stress across the fibres",
-                at(|p| p.cauchy[1]),
-            )
+            .text("law", "activation law (passive for the passive material; empty: an approach without a law, active stress)", cell(1))
+            .text("coupling", "frozen or consistent (empty: passive, or an approach without a law)", cell(2))
+            .number("d", "-", "damage", rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)))
+            .number("lambda_1", "-", "stretch along the fibres λ₁", at(|p| p.stretches[0]))
+            .number("lambda_2", "-", "stretch across the fibres λ₂", at(|p| p.stretches[1]))
+            .number("lambda_3", "-", "stretch normal to the plane λ₃", at(|p| p.stretches[2]))
+            .number("gamma", "-", "activation γ (ω for the structural approach)", at(|p| p.gamma))
+            .number("P_11", "kPa", "nominal stress along the fibres", at(|p| p.nominal[0]))
+            .number("P_22", "kPa", "nominal stress across the fibres", at(|p| p.nominal[1]))
+            .number("sigma_11", "kPa", "Cauchy stress along the fibres", at(|p| p.cauchy[0]))
+            .number("sigma_22", "kPa", "Cauchy stress across the fibres", at(|p| p.cauchy[1]))
     }
 }

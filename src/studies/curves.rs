@@ -1,12 +1,20 @@
-//! `curves.csv`'s rows, the table the uniaxial and cylinder kinds share: one row per computed
-//! point of a uniaxial curve or an FE sweep, and the [`CurveId`] that tells one curve from the
-//! others (the CSV writer, the figures and Python read the same rows). The columns' units and
-//! descriptions are [`crate::output::csv::CURVE_FIELDS`].
+//! `curves.csv`, the table the uniaxial and cylinder kinds share: one row per computed point of
+//! a uniaxial curve or an FE sweep ([`Row`], the columns [`table`]), and the [`CurveId`] that
+//! tells one curve from the others (the CSV writer, the figures and Python read the same rows).
 
+use crate::active::Approach;
 use crate::plot::CurveId;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
-use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint};
+use crate::studies::outputs::{model_cells, OwnTable};
+use crate::studies::table::Table;
+use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint, UniaxialResult};
 use crate::uniaxial::Direction;
+
+/// The file.
+pub const FILE: &str = "curves.csv";
+
+/// What one row of `curves.csv` is.
+pub const ROWS_ARE: &str = "one row per computed point of a uniaxial curve or a cylinder sweep";
 
 /// One point of one curve as `curves.csv` writes it. `None` is an empty cell.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,10 +29,12 @@ pub struct Row<'a> {
     pub bases: Option<&'static str>,
     /// Energy name.
     pub energy: &'a str,
-    /// `passive` | `constant` | `implicit` | `explicit` | `energy`.
-    pub law: &'static str,
+    /// `active-strain` | `active-stress` | `structural` (activated rows).
+    pub approach: Option<String>,
+    /// `passive` | `constant` | `implicit` | `explicit` | `energy` (none: active stress).
+    pub law: Option<String>,
     /// `frozen` | `consistent` (active laws only).
-    pub coupling: Option<&'static str>,
+    pub coupling: Option<String>,
     /// Damage (active laws only).
     pub d: Option<f64>,
     /// Stretch λ.
@@ -64,39 +74,46 @@ impl Row<'_> {
                 self.direction.unwrap_or(""),
                 self.bases.unwrap_or(""),
                 self.energy,
-                self.law,
-                self.coupling.unwrap_or(""),
+                self.law.as_deref().unwrap_or(""),
+                self.coupling.as_deref().unwrap_or(""),
                 &number(self.d),
-                &number(self.gamma.filter(|_| self.law == "constant")),
+                &number(
+                    self.gamma
+                        .filter(|_| self.law.as_deref() == Some("constant")),
+                ),
             ]
             .join(" | "),
         )
     }
 }
 
-/// The (law, coupling, d) cells of a uniaxial curve.
-fn law_cells(model: CurveModel) -> (&'static str, Option<&'static str>, Option<f64>) {
+/// The (approach, law, coupling) cells and the damage of a uniaxial curve of `approach`.
+fn model_of(approach: Approach, model: CurveModel) -> ([Option<String>; 3], Option<f64>) {
     match model {
-        CurveModel::Passive => ("passive", None, None),
-        CurveModel::Constant(_) => ("constant", None, None),
-        CurveModel::Active(m) => (m.law.name(), Some(m.coupling.name()), Some(m.damage)),
+        CurveModel::Passive => (model_cells(approach, None), None),
+        CurveModel::Constant(_) => (
+            [Some(approach.name().into()), Some("constant".into()), None],
+            None,
+        ),
+        CurveModel::Active(m) => (model_cells(approach, Some(m)), Some(m.damage)),
     }
 }
 
-/// The row of point `p` of curve `c` of uniaxial study `study`.
+/// The row of point `p` of curve `c` of uniaxial study `study` (in `direction`, of `approach`).
 pub fn uniaxial_row<'a>(
     study: &'a str,
-    direction: Direction,
+    (direction, approach): (Direction, Approach),
     c: &'a Curve,
     p: &CurvePoint,
 ) -> Row<'a> {
-    let (law, coupling, d) = law_cells(c.model);
+    let ([approach, law, coupling], d) = model_of(approach, c.model);
     Row {
         study,
         model: "uniaxial",
         direction: Some(direction.name()),
         bases: None,
         energy: &c.energy,
+        approach,
         law,
         coupling,
         d,
@@ -123,14 +140,16 @@ pub fn sweep_row<'a>(
     p: &SweepPoint,
 ) -> Row<'a> {
     let m = sweep.model;
+    let [approach, law, coupling] = model_cells(c.approach, Some(m));
     Row {
         study,
         model: "cylinder",
         direction: None,
         bases: Some(bases_name(c.bases)),
         energy: &c.energy,
-        law: m.law.name(),
-        coupling: Some(m.coupling.name()),
+        approach,
+        law,
+        coupling,
         d: Some(m.damage),
         lambda: p.lambda,
         gamma: Some(p.gamma_centre),
@@ -148,7 +167,7 @@ pub fn sweep_row<'a>(
 }
 
 /// The curve of `curves.csv` that uniaxial curve `c` of study `study` writes.
-pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
+pub fn uniaxial_curve(study: &str, of: (Direction, Approach), c: &Curve) -> CurveId {
     let p = c.points.first().copied().unwrap_or(CurvePoint {
         lambda: 1.0,
         gamma: match c.model {
@@ -161,7 +180,7 @@ pub fn uniaxial_curve(study: &str, direction: Direction, c: &Curve) -> CurveId {
         active_target: None,
         volume: None,
     });
-    uniaxial_row(study, direction, c, &p).curve()
+    uniaxial_row(study, of, c, &p).curve()
 }
 
 /// The curve of `curves.csv` that FE sweep `sweep` of cylinder study `study` writes.
@@ -177,4 +196,88 @@ pub fn sweep_curve(study: &str, c: &CylinderResult, sweep: &Sweep) -> CurveId {
         active_0d: 0.0,
     });
     sweep_row(study, c, sweep, &p).curve()
+}
+
+/// The rows of uniaxial study `study`, curve by curve.
+pub fn uniaxial_rows<'a>(study: &'a str, u: &'a UniaxialResult) -> Vec<Row<'a>> {
+    u.curves
+        .iter()
+        .flat_map(|c| {
+            c.points
+                .iter()
+                .map(move |p| uniaxial_row(study, (u.direction, u.approach), c, p))
+        })
+        .collect()
+}
+
+/// The rows of cylinder study `study`, sweep by sweep.
+pub fn cylinder_rows<'a>(study: &'a str, c: &'a CylinderResult) -> Vec<Row<'a>> {
+    c.sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(move |p| sweep_row(study, c, s, p)))
+        .collect()
+}
+
+/// `rows` as the study's table of `curves.csv`.
+pub fn own_table(rows: &[Row]) -> OwnTable {
+    OwnTable::rows(FILE, ROWS_ARE, table(rows))
+}
+
+/// The columns of `curves.csv` over `rows` (none: the header alone). The approach is the last
+/// column, so that readers of the columns before it by position keep working.
+pub fn table(rows: &[Row]) -> Table {
+    let text = |f: for<'r> fn(&'r Row<'r>) -> Option<&'r str>| {
+        rows.iter().map(move |r| f(r).map(String::from))
+    };
+    let number = |f: fn(&Row) -> Option<f64>| rows.iter().map(f);
+    Table::default()
+        .text("study", "the study's name", text(|r| Some(r.study)))
+        .text(
+            "model",
+            "uniaxial (homogeneous 0D tension) or cylinder (axisymmetric FE)",
+            text(|r| Some(r.model)),
+        )
+        .text("direction", "along or across the fibres (uniaxial rows)", text(|r| r.direction))
+        .text("bases", "sliding or clamped (cylinder rows)", text(|r| r.bases))
+        .text("energy", "the strain energy's name", text(|r| Some(r.energy)))
+        .text(
+            "law",
+            "passive, constant, implicit, explicit or energy (empty: an approach without a law, active stress)",
+            text(|r| r.law.as_deref()),
+        )
+        .text(
+            "coupling",
+            "frozen or consistent (rows of an activation law; empty: passive, constant γ, or an approach without a law)",
+            text(|r| r.coupling.as_deref()),
+        )
+        .number("d", "-", "damage d (active rows); in a cylinder with regions, the body's outside its regions (see regions)", number(|r| r.d))
+        .number("lambda", "-", "stretch λ along the loading (cylinder: the imposed L/L₀)", number(|r| Some(r.lambda)))
+        .number("gamma", "-", "γ at the point (uniaxial), at the quadrature point nearest the centre (cylinder); ω for the structural approach, 0 for active stress", number(|r| r.gamma))
+        .number("P", "kPa", "nominal (first Piola–Kirchhoff) stress along the stretch; cylinder: axial reaction / πR²", number(|r| Some(r.p)))
+        .number("P_pas", "kPa", "passive stress of the material at λ (active uniaxial rows along the fibres)", number(|r| r.p_pas))
+        .number("P_act", "kPa", "target active stress (1 − d) P_act(λ) (same rows)", number(|r| r.p_act))
+        .integer(
+            "newton_iterations",
+            "Newton iterations from the previous stretch to this one (cylinder rows)",
+            rows.iter().map(|r| r.newton_iterations.map(|n| n as i64)),
+        )
+        .number("cauchy", "kPa", "Cauchy stress along the stretch, σ = J⁻¹ P Fᵀ (uniaxial rows)", number(|r| r.cauchy))
+        .number("J", "-", "volume ratio (uniaxial rows of a nearly incompressible scene; empty: J = 1)", number(|r| r.volume))
+        .number("P_0d", "kPa", "homogeneous uniaxial (0D) stress of the same model at λ (cylinder rows; with regions, the uniform model's at d)", number(|r| r.p_0d))
+        .integer(
+            "dofs",
+            "free degrees of freedom of the FE solve (cylinder rows)",
+            rows.iter().map(|r| r.dofs.map(|n| n as i64)),
+        )
+        .text("element", "finite element, Q2/Q1 or Q1/P0 (cylinder rows)", text(|r| r.element))
+        .text(
+            "regions",
+            "the cylinder's regions with their own damage or activation, '; '-separated (empty: a uniform body)",
+            text(|r| r.regions.as_deref()),
+        )
+        .text(
+            "approach",
+            "activation approach, active-strain, active-stress or structural (empty: a passive curve)",
+            text(|r| r.approach.as_deref()),
+        )
 }

@@ -5,7 +5,7 @@
 mod output;
 
 use super::spec::StretchSpec;
-use super::spec::{cell_count, damages, grading, positive, required_stretches, Defaults};
+use super::spec::{cell_count, grading, positive, required_stretches, Defaults, ModelKeys};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
 use crate::app_error::{AppError, SpecError};
@@ -330,12 +330,11 @@ pub struct CylinderStudy {
     pub element: Element,
     /// Target stretches, ascending.
     pub stretches: Vec<f64>,
-    /// Activation law.
-    pub law: LawKind,
-    /// Coupling.
-    pub coupling: CouplingKind,
-    /// Damage values, one FE sweep each.
-    pub damages: Vec<f64>,
+    /// The scene's approach.
+    pub approach: crate::active::Approach,
+    /// The models, one per damage value (the scene's approach, the study's law and coupling):
+    /// one FE sweep each.
+    pub models: Vec<ModelChoice>,
     /// Stretches with VTK output.
     pub vtk: Vec<f64>,
     /// Newton tolerance.
@@ -361,13 +360,72 @@ pub fn resolve(
     d: &Defaults,
 ) -> Result<(CylinderStudy, CylinderSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
     let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
     let length = positive("length", spec.length.unwrap_or(4.0))?;
     let nr = cell_count("nr", spec.nr.unwrap_or(6))?;
     let nz = cell_count("nz", spec.nz.unwrap_or(24))?;
     let grading = grading("grading", spec.grading.unwrap_or(1.0))?;
-    let tolerance = positive("tolerance", spec.tolerance.unwrap_or(1e-10))?;
+    let tolerance = tolerance(spec.tolerance.unwrap_or(1e-10))?;
+    let law = set.laws.as_ref().and_then(|l| l.first().copied());
+    let coupling = set.couplings.as_ref().and_then(|c| c.first().copied());
+    let vtk = vtk_stretches(spec.vtk.as_deref().unwrap_or_default(), &stretches)?;
+    let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
+    let name = spec.name.clone().unwrap_or_else(|| {
+        let model = match (law, coupling) {
+            (Some(law), Some(coupling)) => format!("{} {}", law.name(), coupling.name()),
+            _ => d.approach.name().to_string(),
+        };
+        format!("cylinder {} {model}", bases_name(spec.bases))
+    });
+    let resolved = CylinderSpec {
+        name: Some(name.clone()),
+        stretch: spec.stretch.clone(),
+        damage: Some(set.damage.clone()),
+        radius: Some(radius),
+        length: Some(length),
+        nr: Some(nr as i64),
+        nz: Some(nz as i64),
+        grading: Some(grading),
+        bases: spec.bases,
+        element: spec.element,
+        law,
+        coupling,
+        vtk: Some(vtk.clone()),
+        tolerance: Some(tolerance),
+        points: spec.points.clone(),
+        regions: spec.regions.as_ref().map(|_| written_regions(&regions)),
+    };
+    let points = mesh_checks(spec, (radius, length, grading), (nr, nz), &regions)?;
+    Ok((
+        CylinderStudy {
+            name,
+            radius,
+            length,
+            nr,
+            nz,
+            grading,
+            bases: spec.bases,
+            element: spec.element,
+            stretches,
+            approach: d.approach,
+            models: set.choices,
+            vtk,
+            tolerance,
+            points,
+            regions,
+        },
+        resolved,
+    ))
+}
+
+/// The Newton tolerance: finite, > 0 and at least 4 ε.
+fn tolerance(tolerance: f64) -> Result<f64, SpecError> {
+    let tolerance = positive("tolerance", tolerance)?;
     if tolerance < MIN_TOLERANCE {
         return Err(SpecError::new(
             "tolerance",
@@ -377,12 +435,11 @@ pub fn resolve(
             ),
         ));
     }
-    let law = spec.law.unwrap_or(d.law);
-    d.models
-        .supports(law)
-        .map_err(|rule| SpecError::new("law", "\"explicit\"", rule))?;
-    let coupling = spec.coupling.unwrap_or(d.coupling);
-    let vtk = spec.vtk.clone().unwrap_or_default();
+    Ok(tolerance)
+}
+
+/// The stretches with VTK output, each one of the computed `stretches`.
+fn vtk_stretches(vtk: &[f64], stretches: &[f64]) -> Result<Vec<f64>, SpecError> {
     for (j, v) in vtk.iter().enumerate() {
         if !stretches.iter().any(|l| (l - v).abs() < 1e-12) {
             return Err(SpecError::new(
@@ -392,44 +449,31 @@ pub fn resolve(
             ));
         }
     }
-    let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
-    let name = spec.name.clone().unwrap_or_else(|| {
-        format!(
-            "cylinder {} {} {}",
-            bases_name(spec.bases),
-            law.name(),
-            coupling.name()
-        )
-    });
-    let resolved = CylinderSpec {
-        name: Some(name.clone()),
-        stretch: spec.stretch.clone(),
-        damage: Some(damage.clone()),
-        radius: Some(radius),
-        length: Some(length),
-        nr: Some(nr as i64),
-        nz: Some(nz as i64),
-        grading: Some(grading),
-        bases: spec.bases,
-        element: spec.element,
-        law: Some(law),
-        coupling: Some(coupling),
-        vtk: Some(vtk.clone()),
-        tolerance: Some(tolerance),
-        points: spec.points.clone(),
-        regions: spec.regions.as_ref().map(|_| {
-            regions
-                .iter()
-                .map(|g| RegionSpec {
-                    r: Some(g.r),
-                    z: Some(g.z),
-                    damage: g.damage,
-                    activation: Some(g.activation),
-                })
-                .collect()
-        }),
-    };
-    // The solve's memory, from the counts, before anything runs (`check` says it too).
+    Ok(vtk.to_vec())
+}
+
+/// The regions as the resolved scene writes them.
+fn written_regions(regions: &[StudyRegion]) -> Vec<RegionSpec> {
+    regions
+        .iter()
+        .map(|g| RegionSpec {
+            r: Some(g.r),
+            z: Some(g.z),
+            damage: g.damage,
+            activation: Some(g.activation),
+        })
+        .collect()
+}
+
+/// What the mesh must allow, checked before anything runs (`check` says it too): the solve's
+/// memory from the counts; where named points or regions need the mesh, that the regions take
+/// effect on it; the named points, located on it.
+fn mesh_checks(
+    spec: &CylinderSpec,
+    (radius, length, grading): (f64, f64, f64),
+    (nr, nz): (usize, usize),
+    regions: &[StudyRegion],
+) -> Result<Vec<NamedPoint>, SpecError> {
     crate::fem::MemoryEstimate::structured(
         nr,
         nz,
@@ -448,33 +492,12 @@ pub fn resolve(
         .transpose()?;
     let mesh_name = format!("{nr} × {nz} {}", spec.element);
     if let Some(mesh) = &mesh {
-        regions_take_effect(&regions, mesh, &mesh_name)?;
+        regions_take_effect(regions, mesh, &mesh_name)?;
     }
-    let points = match (&spec.points, &mesh) {
+    Ok(match (&spec.points, &mesh) {
         (Some(p), Some(mesh)) if !p.is_empty() => named_points(p, mesh, &mesh_name)?,
         _ => Vec::new(),
-    };
-    Ok((
-        CylinderStudy {
-            name,
-            radius,
-            length,
-            nr,
-            nz,
-            grading,
-            bases: spec.bases,
-            element: spec.element,
-            stretches,
-            law,
-            coupling,
-            damages: damage,
-            vtk,
-            tolerance,
-            points,
-            regions,
-        },
-        resolved,
-    ))
+    })
 }
 
 /// One converged stretch of a sweep.
@@ -536,6 +559,8 @@ impl Sweep {
 pub struct CylinderResult {
     /// The energy's name.
     pub energy: String,
+    /// The activation approach of every sweep.
+    pub approach: crate::active::Approach,
     /// Base conditions.
     pub bases: Bases,
     /// Finite element.
@@ -604,7 +629,7 @@ impl CylinderStudy {
             self.nr,
             self.nz,
             self.stretches.len(),
-            self.damages.len()
+            self.models.len()
         )
     }
 
@@ -613,16 +638,8 @@ impl CylinderStudy {
     /// mesh that cannot be built is an error.
     pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         let bases = bases_name(self.bases);
-        let choices: Vec<ModelChoice> = self
-            .damages
-            .iter()
-            .map(|&d| ModelChoice {
-                law: self.law,
-                coupling: self.coupling,
-                damage: d,
-            })
-            .collect();
-        for m in &choices {
+        let choices = &self.models;
+        for m in choices {
             ctx.progress.log(&format!(
                 "{}: {} bases, {}, R = {}, L = {}, {} × {} {} cells (grading {})",
                 self.name,
@@ -645,6 +662,7 @@ impl CylinderStudy {
         ctx.progress.finish();
         let mut result = CylinderResult {
             energy: crate::StrainEnergy::name(&models.energy).to_string(),
+            approach: self.approach,
             bases: self.bases,
             element: self.element,
             sweeps: Vec::with_capacity(sweeps.len()),
@@ -652,26 +670,8 @@ impl CylinderStudy {
             regions: self.regions.clone(),
         };
         let mut failures = Vec::new();
-        let mut details = vec![format!(
-            "R = {}, L = {}, {} × {} {} cells (grading {}), {bases} bases, {} stretches",
-            self.radius,
-            self.length,
-            self.nr,
-            self.nz,
-            self.element,
-            self.grading,
-            self.stretches.len()
-        )];
-        if !self.regions.is_empty() {
-            details.push(format!(
-                "{} region(s) with their own damage/activation (a later one wins where they overlap): P_0D is the uniform model's, for reference only",
-                self.regions.len()
-            ));
-            for (i, g) in self.regions.iter().enumerate() {
-                details.push(format!("region {}: {}", i + 1, g.describe()));
-            }
-        }
-        for (s, m) in sweeps.into_iter().zip(&choices) {
+        let mut details = self.geometry_details();
+        for (s, m) in sweeps.into_iter().zip(choices) {
             // A sweep that cannot start (model, mesh, memory) costs only its own model.
             let (sweep, stops) = match s {
                 Ok(s) => s,
@@ -715,6 +715,31 @@ impl CylinderStudy {
             failures,
             result: StudyResult::Cylinder(result),
         })
+    }
+
+    /// The study's facts before its sweeps': geometry, mesh, bases, stretches, regions.
+    fn geometry_details(&self) -> Vec<String> {
+        let mut details = vec![format!(
+            "R = {}, L = {}, {} × {} {} cells (grading {}), {} bases, {} stretches",
+            self.radius,
+            self.length,
+            self.nr,
+            self.nz,
+            self.element,
+            self.grading,
+            bases_name(self.bases),
+            self.stretches.len()
+        )];
+        if !self.regions.is_empty() {
+            details.push(format!(
+                "{} region(s) with their own damage/activation (a later one wins where they overlap): P_0D is the uniform model's, for reference only",
+                self.regions.len()
+            ));
+            for (i, g) in self.regions.iter().enumerate() {
+                details.push(format!("region {}: {}", i + 1, g.describe()));
+            }
+        }
+        details
     }
 
     /// The material of model `m` varying by [`Self::regions`] (`None` without regions): in each

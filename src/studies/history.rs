@@ -16,7 +16,7 @@
 
 mod output;
 
-use super::spec::{damages, Defaults, StretchSpec};
+use super::spec::{Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
 use crate::active::StretchRate;
@@ -178,12 +178,11 @@ pub struct HistoryStudy {
     pub activation: ActivationInTime,
     /// The loading.
     pub loading: Loading,
-    /// Activation law.
-    pub law: LawKind,
-    /// Coupling.
-    pub coupling: CouplingKind,
-    /// Damage values, one history each.
-    pub damages: Vec<f64>,
+    /// The scene's approach.
+    pub approach: crate::active::Approach,
+    /// The models, one per damage value (the scene's approach, the study's law and coupling):
+    /// one history each.
+    pub models: Vec<ModelChoice>,
 }
 
 /// Twitch terms one run may sum at most (steps × stimuli): ≈ 1 s of arithmetic.
@@ -213,32 +212,74 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         "schedule[0]",
         "[0, 0] for a muscle at rest",
     )?;
-    let motor_units = match &spec.motor_units {
-        None => None,
-        Some(units) => {
-            let mut built = Vec::with_capacity(units.len());
-            for (j, u) in units.iter().enumerate() {
-                built.push(
-                    MotorUnit::new(
-                        u.fraction,
-                        u.twitch_force,
-                        u.contraction_time,
-                        u.interstimulus,
-                    )
-                    .map_err(|e| SpecError::model(&format!("motor_units[{j}]"), e))?,
-                );
-            }
-            Some(MotorUnits::new(built).map_err(|e| match e {
-                crate::Error::InvalidParameter { value, rule, .. } => SpecError::new(
-                    "motor_units",
-                    value,
-                    format!("{rule} (fractions sum to {value})"),
-                ),
-                other => SpecError::model("motor_units", other),
-            })?)
-        }
+    let activation = ActivationInTime::new(schedule, motor_units(spec.motor_units.as_deref())?);
+    bounded_activation(&activation, &times)?;
+    let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
+    let loading = loading(&loading_spec, &times)?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| "activation in time".into());
+    let resolved = HistorySpec {
+        name: Some(name.clone()),
+        time: Some(time.clone()),
+        schedule: Some(written),
+        interpolation: Some(interpolation),
+        motor_units: spec.motor_units.clone(),
+        stretch: Some(loading_spec),
+        law: set.laws.as_ref().and_then(|l| l.first().copied()),
+        coupling: set.couplings.as_ref().and_then(|c| c.first().copied()),
+        damage: Some(set.damage.clone()),
     };
-    let activation = ActivationInTime::new(schedule, motor_units);
+    Ok((
+        HistoryStudy {
+            name,
+            times,
+            activation,
+            loading,
+            approach: d.approach,
+            models: set.choices,
+        },
+        resolved,
+    ))
+}
+
+/// The motor units of `motor_units = [...]` (`None`: none), validated; errors name
+/// `motor_units[j]`.
+fn motor_units(units: Option<&[MotorUnitSpec]>) -> Result<Option<MotorUnits>, SpecError> {
+    let Some(units) = units else {
+        return Ok(None);
+    };
+    let mut built = Vec::with_capacity(units.len());
+    for (j, u) in units.iter().enumerate() {
+        built.push(
+            MotorUnit::new(
+                u.fraction,
+                u.twitch_force,
+                u.contraction_time,
+                u.interstimulus,
+            )
+            .map_err(|e| SpecError::model(&format!("motor_units[{j}]"), e))?,
+        );
+    }
+    MotorUnits::new(built).map(Some).map_err(|e| match e {
+        crate::Error::InvalidParameter { value, rule, .. } => SpecError::new(
+            "motor_units",
+            value,
+            format!("{rule} (fractions sum to {value})"),
+        ),
+        other => SpecError::model("motor_units", other),
+    })
+}
+
+/// Refuses an activation whose twitch sum over `times` would exceed [`MAX_TWITCH_TERMS`], or
+/// whose level is not finite and ≥ 0 at one of them.
+fn bounded_activation(activation: &ActivationInTime, times: &[f64]) -> Result<(), SpecError> {
     let last = times.last().copied().unwrap_or(0.0);
     let terms = activation.stimuli_before(last) * times.len() as f64;
     if terms > MAX_TWITCH_TERMS {
@@ -248,7 +289,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             format!("the twitch sum over all time steps would take more than {MAX_TWITCH_TERMS:e} terms (steps × stimuli): use fewer time steps or longer interstimulus intervals"),
         ));
     }
-    for &t in &times {
+    for &t in times {
         let a = activation.level(t);
         if !(a.is_finite() && a >= 0.0) {
             let key = if activation.motor_units().is_some() {
@@ -263,8 +304,12 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             ));
         }
     }
-    let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
-    let loading = match &loading_spec {
+    Ok(())
+}
+
+/// The loading of `stretch` over `times`: free, a constant stretch or a stretch schedule.
+fn loading(spec: &LoadingSpec, times: &[f64]) -> Result<Loading, SpecError> {
+    Ok(match spec {
         LoadingSpec::Free(_) => Loading::Free,
         LoadingSpec::Constant(l) => {
             Loading::Prescribed(stretch_schedule(vec![(0.0, *l)], "stretch")?)
@@ -273,46 +318,13 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
             let schedule = stretch_schedule(points(p), "stretch")?;
             starts_in_time(
                 &schedule,
-                &times,
+                times,
                 "stretch[0]",
                 "[0, 1] for the resting length",
             )?;
             Loading::Prescribed(schedule)
         }
-    };
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
-    let law = spec.law.unwrap_or(d.law);
-    d.models
-        .supports(law)
-        .map_err(|rule| SpecError::new("law", "\"explicit\"", rule))?;
-    let coupling = spec.coupling.unwrap_or(d.coupling);
-    let name = spec
-        .name
-        .clone()
-        .unwrap_or_else(|| "activation in time".into());
-    let resolved = HistorySpec {
-        name: Some(name.clone()),
-        time: Some(time.clone()),
-        schedule: Some(written),
-        interpolation: Some(interpolation),
-        motor_units: spec.motor_units.clone(),
-        stretch: Some(loading_spec),
-        law: Some(law),
-        coupling: Some(coupling),
-        damage: Some(damage.clone()),
-    };
-    Ok((
-        HistoryStudy {
-            name,
-            times,
-            activation,
-            loading,
-            law,
-            coupling,
-            damages: damage,
-        },
-        resolved,
-    ))
+    })
 }
 
 /// Refuses a schedule whose first point comes after the study's first time `times[0]`: before
@@ -401,6 +413,8 @@ pub struct HistoryResult {
     pub loading: &'static str,
     /// The energy's name.
     pub energy: String,
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
     pub volumetric: Option<VolumetricForm>,
     /// One history per damage value.
@@ -438,8 +452,8 @@ impl HistoryStudy {
             } else {
                 "schedule"
             },
-            self.damages.len(),
-            if self.damages.len() == 1 {
+            self.models.len(),
+            if self.models.len() == 1 {
                 "history"
             } else {
                 "histories"
@@ -451,15 +465,7 @@ impl HistoryStudy {
     /// history with a failure; a stop request ends every history at the step it reaches.
     pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         ctx.progress.log(&self.describe());
-        let choices: Vec<ModelChoice> = self
-            .damages
-            .iter()
-            .map(|&damage| ModelChoice {
-                law: self.law,
-                coupling: self.coupling,
-                damage,
-            })
-            .collect();
+        let choices = &self.models;
         ctx.progress
             .start(&self.name, choices.len() * self.times.len());
         let computed: Vec<Result<(History, Option<Failure>), AppError>> = choices
@@ -487,6 +493,7 @@ impl HistoryStudy {
             result: StudyResult::ActivationInTime(HistoryResult {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
+                approach: self.approach,
                 volumetric: models.volumetric.as_ref().map(Volumetric::form),
                 histories,
             }),

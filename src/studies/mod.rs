@@ -15,8 +15,18 @@
 //! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
 //!
 //! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
-//! and `impl KindStudy` for the study, and one line in `study_kinds!` below, which generates
-//! [`StudyKind`], [`StudySpec`], [`Study`], [`StudyResult`] and their dispatch.
+//! and `impl KindStudy` for the study, `impl outputs::KindOutput` for the result (in the
+//! module's `output.rs`: its tables, figures and report section), and one line in
+//! `study_kinds!` below, which generates [`StudyKind`], [`StudySpec`], [`Study`],
+//! [`StudyResult`] and their dispatch.
+//!
+//! A kind's tables: [`outputs::KindOutput::tables`] returns, per study, a
+//! [`table::Table`] built with its column builders (`text`, `number` with its unit, `integer`,
+//! `boolean`; each with its description) and the CSV file it goes to. From that one declaration
+//! the run writes the file (the tables of every study of the file appended), describes every
+//! column in `datapackage.json`, and Python returns the same columns as numpy arrays
+//! (`Study.table`); nothing else names the columns. `src/studies/shear.rs` (`ShearResult::table`)
+//! with `src/studies/shear/output.rs` is the model to follow.
 
 pub mod biaxial;
 pub mod curves;
@@ -31,10 +41,10 @@ pub mod table;
 pub mod tradeoff;
 pub mod uniaxial;
 
+use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
 use crate::fem::Cancel;
 use crate::models::Models;
-use crate::uniaxial::Direction;
 use serde::{Deserialize, Deserializer, Serialize};
 use spec::Defaults;
 use std::path::Path;
@@ -48,21 +58,40 @@ pub trait KindSpec: Sized {
     type Study;
     /// Keys in errors are relative to the study.
     fn resolve(&self, defaults: &Defaults) -> Result<(Self::Study, Self), SpecError>;
+    /// Once every study of the scene is resolved (`studies`, among them this one, `study`): the
+    /// study and its resolved spec completed from the others, where it takes what it leaves out
+    /// from them (`None`: nothing to complete, the default).
+    fn completed(
+        &self,
+        _study: &Self::Study,
+        _resolved: &Self,
+        _studies: &[Study],
+        _defaults: &Defaults,
+    ) -> Result<Option<(Self::Study, Self)>, SpecError> {
+        Ok(None)
+    }
 }
 
 /// A validated study of some kind.
 pub trait KindStudy {
+    /// Whether it runs alone, after the others (it measures run times).
+    const ALONE: bool = false;
+    /// Whether it is driven in time: the stretch rate, hence force–velocity, applies.
+    const IN_TIME: bool = false;
+    /// Why a scene holds at most one study of its kind, if it does (`None`: any number).
+    const ONE_PER_SCENE: Option<&'static str> = None;
+    /// Whether it solves the axisymmetric FE cylinder, whose fibres run along its axis.
+    const AXIAL_FIBRES: bool = false;
     /// Its label.
     fn name(&self) -> &str;
     /// What it will compute, in one line.
     fn describe(&self) -> String;
-    /// Runs it on `models`; `fallback` completes a trade-off study.
-    fn run(
-        &self,
-        models: &Models,
-        fallback: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError>;
+    /// The activation approaches it uses besides the scene's (empty: the scene's only).
+    fn approaches(&self) -> Vec<Approach> {
+        Vec::new()
+    }
+    /// Runs it on `models`.
+    fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError>;
 }
 
 /// The study kinds: `study_kinds! { Variant("name", module::Spec, module::Study, Result, "doc"), ... }`
@@ -84,6 +113,36 @@ macro_rules! study_kinds {
             pub fn name(self) -> &'static str {
                 match self {
                     $(StudyKind::$variant => $name,)*
+                }
+            }
+
+            /// Whether its studies are driven in time ([`KindStudy::IN_TIME`]).
+            pub fn in_time(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::IN_TIME,)*
+                }
+            }
+
+            /// Why a scene holds at most one study of this kind, if it does
+            /// ([`KindStudy::ONE_PER_SCENE`]).
+            pub fn one_per_scene(self) -> Option<&'static str> {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::ONE_PER_SCENE,)*
+                }
+            }
+
+            /// Whether its studies solve the axisymmetric FE cylinder, whose fibres run along
+            /// its axis ([`KindStudy::AXIAL_FIBRES`]).
+            pub fn axial_fibres(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::AXIAL_FIBRES,)*
+                }
+            }
+
+            /// Whether its studies run alone, after the others ([`KindStudy::ALONE`]).
+            pub fn runs_alone(self) -> bool {
+                match self {
+                    $(StudyKind::$variant => <$study as KindStudy>::ALONE,)*
                 }
             }
 
@@ -142,6 +201,24 @@ macro_rules! study_kinds {
                     })*
                 })
             }
+
+            /// The study at `own` of the resolved `studies` and its `resolved` spec, completed
+            /// from the others ([`KindSpec::completed`]; `None`: nothing to complete).
+            pub fn completed(
+                &self,
+                resolved: &StudySpec,
+                own: usize,
+                studies: &[Study],
+                defaults: &Defaults,
+            ) -> Result<Option<(Study, StudySpec)>, SpecError> {
+                Ok(match (self, &studies[own], resolved) {
+                    $((StudySpec::$variant(s), Study::$variant(study), StudySpec::$variant(r)) => {
+                        KindSpec::completed(s, study, r, studies, defaults)?
+                            .map(|(a, b)| (Study::$variant(a), StudySpec::$variant(b)))
+                    })*
+                    _ => None,
+                })
+            }
         }
 
         /// A validated study, ready to run.
@@ -172,15 +249,22 @@ macro_rules! study_kinds {
                 }
             }
 
-            /// Runs the study on `models`; `fallback` completes a trade-off study.
-            pub fn run(
-                &self,
-                models: &Models,
-                fallback: &tradeoff::Fallback,
-                ctx: &RunContext,
-            ) -> Result<Outcome, AppError> {
+            /// Whether it is driven in time ([`KindStudy::IN_TIME`]).
+            pub fn in_time(&self) -> bool {
+                self.kind().in_time()
+            }
+
+            /// The approaches it uses besides the scene's ([`KindStudy::approaches`]).
+            pub fn approaches(&self) -> Vec<Approach> {
                 match self {
-                    $(Study::$variant(s) => KindStudy::run(s, models, fallback, ctx),)*
+                    $(Study::$variant(s) => KindStudy::approaches(s),)*
+                }
+            }
+
+            /// Runs the study on `models`.
+            pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+                match self {
+                    $(Study::$variant(s) => KindStudy::run(s, models, ctx),)*
                 }
             }
         }
@@ -221,18 +305,43 @@ macro_rules! study_kinds {
                 Ok(())
             }
 
-            /// The study's own table ([`outputs::KindOutput::own_table`]), if its kind has one.
-            pub fn own_table(&self, study: &str) -> Option<outputs::OwnTable> {
+            /// The study's tables ([`outputs::KindOutput::tables`]), none if it computed
+            /// nothing.
+            pub fn tables(&self, study: &str) -> Vec<outputs::OwnTable> {
                 match self {
-                    $(StudyResult::$variant(r) => outputs::KindOutput::own_table(r, study),)*
-                    StudyResult::Nothing => None,
+                    $(StudyResult::$variant(r) => outputs::KindOutput::tables(r, study),)*
+                    StudyResult::Nothing => Vec::new(),
                 }
             }
 
-            /// The (approach, model) pairs it computed ([`outputs::KindOutput::approach_models`]).
-            pub fn approach_models(&self) -> Vec<&spec::ApproachModel> {
+            /// What it computed with ([`outputs::KindOutput::used`]).
+            pub fn used(&self) -> outputs::Used {
                 match self {
-                    $(StudyResult::$variant(r) => outputs::KindOutput::approach_models(r),)*
+                    $(StudyResult::$variant(r) => outputs::KindOutput::used(r),)*
+                    StudyResult::Nothing => outputs::Used::default(),
+                }
+            }
+
+            /// The VTK files it wrote ([`outputs::KindOutput::vtk_files`]).
+            pub fn vtk_files(&self) -> Vec<&Path> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::vtk_files(r),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
+            /// Its lines for the command line ([`outputs::KindOutput::console`]).
+            pub fn console(&self, study: &str) -> Vec<String> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::console(r, study),)*
+                    StudyResult::Nothing => Vec::new(),
+                }
+            }
+
+            /// What it found ([`outputs::KindOutput::findings`]).
+            pub fn findings(&self) -> Vec<String> {
+                match self {
+                    $(StudyResult::$variant(r) => outputs::KindOutput::findings(r),)*
                     StudyResult::Nothing => Vec::new(),
                 }
             }
@@ -262,9 +371,10 @@ study_kinds! {
 }
 
 /// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
-/// whose study has `name`, `describe()` and `run(models, ctx)`.
+/// whose study has `name`, `describe()` and `run(models, ctx)`; a block after them holds the
+/// study's other `KindStudy` items (`IN_TIME`, `approaches`).
 macro_rules! plain_kind {
-    ($spec:ty, $study:ty, $resolve:path) => {
+    ($spec:ty, $study:ty, $resolve:path $(, { $($items:tt)* })?) => {
         impl KindSpec for $spec {
             type Study = $study;
             fn resolve(&self, d: &Defaults) -> Result<($study, Self), SpecError> {
@@ -272,18 +382,14 @@ macro_rules! plain_kind {
             }
         }
         impl KindStudy for $study {
+            $($($items)*)?
             fn name(&self) -> &str {
                 &self.name
             }
             fn describe(&self) -> String {
                 <$study>::describe(self)
             }
-            fn run(
-                &self,
-                models: &Models,
-                _: &tradeoff::Fallback,
-                ctx: &RunContext,
-            ) -> Result<Outcome, AppError> {
+            fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
                 <$study>::run(self, models, ctx)
             }
         }
@@ -298,7 +404,10 @@ plain_kind!(
 plain_kind!(
     cylinder::CylinderSpec,
     cylinder::CylinderStudy,
-    cylinder::resolve
+    cylinder::resolve,
+    {
+        const AXIAL_FIBRES: bool = true;
+    }
 );
 plain_kind!(
     stability::StabilitySpec,
@@ -308,13 +417,25 @@ plain_kind!(
 plain_kind!(
     history::HistorySpec,
     history::HistoryStudy,
-    history::resolve
+    history::resolve,
+    {
+        const IN_TIME: bool = true;
+    }
 );
-plain_kind!(shear::ShearSpec, shear::ShearStudy, shear::resolve);
+plain_kind!(shear::ShearSpec, shear::ShearStudy, shear::resolve, {
+    fn approaches(&self) -> Vec<Approach> {
+        spec::ApproachModel::approaches(&self.models)
+    }
+});
 plain_kind!(
     biaxial::BiaxialSpec,
     biaxial::BiaxialStudy,
-    biaxial::resolve
+    biaxial::resolve,
+    {
+        fn approaches(&self) -> Vec<Approach> {
+            spec::ApproachModel::approaches(&self.models)
+        }
+    }
 );
 
 impl KindSpec for fit::FitSpec {
@@ -331,65 +452,9 @@ impl KindStudy for fit::FitStudy {
     fn describe(&self) -> String {
         fit::FitStudy::describe(self)
     }
-    fn run(
-        &self,
-        _: &Models,
-        _: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError> {
+    fn run(&self, _: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         fit::FitStudy::run(self, ctx)
     }
-}
-
-impl KindSpec for tradeoff::TradeoffSpec {
-    type Study = tradeoff::TradeoffStudy;
-    fn resolve(&self, _: &Defaults) -> Result<(tradeoff::TradeoffStudy, Self), SpecError> {
-        tradeoff::resolve(self)
-    }
-}
-
-impl KindStudy for tradeoff::TradeoffStudy {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn describe(&self) -> String {
-        tradeoff::TradeoffStudy::describe(self)
-    }
-    fn run(
-        &self,
-        models: &Models,
-        fallback: &tradeoff::Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError> {
-        tradeoff::TradeoffStudy::run(self, models, fallback, ctx)
-    }
-}
-
-/// A trade-off study's page and figures are its own (`output/tradeoff.rs`).
-impl outputs::KindOutput for tradeoff::TradeoffResults {}
-
-/// What a trade-off study takes from the other studies: the first cylinder study's cylinder and
-/// mesh, the first uniaxial study along the fibres' stretches (or the defaults).
-pub fn fallback(studies: &[Study]) -> tradeoff::Fallback {
-    let mut f = tradeoff::Fallback::default();
-    if let Some(c) = studies.iter().find_map(|s| match s {
-        Study::Cylinder(c) => Some(c),
-        _ => None,
-    }) {
-        f.geometry = tradeoff::Geometry {
-            radius: c.radius,
-            length: c.length,
-            grading: c.grading,
-        };
-        f.cells = (c.nr, c.nz);
-    }
-    if let Some(u) = studies.iter().find_map(|s| match s {
-        Study::Uniaxial(u) if u.direction == Direction::Along => Some(u),
-        _ => None,
-    }) {
-        f.curve_stretches = u.stretches.clone();
-    }
-    f
 }
 
 /// Where a run reports its progress: log lines and one progress count per study. Every method

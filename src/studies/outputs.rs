@@ -6,13 +6,14 @@
 //! helpers below are the vocabulary the kinds' figures share (axis labels, the chapter's figure
 //! numbers, colours per law and strokes per coupling).
 
-use crate::active::ActiveCurve;
+use crate::active::{ActiveCurve, Approach};
 use crate::app_error::AppError;
-use crate::models::{CouplingKind, LawKind};
+use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::spec::ApproachModel;
 use crate::studies::table::Table;
 use crate::studies::{slug, Outcome, StudyResult};
+use std::path::Path;
 
 /// One study of a kind, as the outputs see it.
 #[derive(Debug, Clone, Copy)]
@@ -50,17 +51,72 @@ pub trait KindOutput: Sized {
         Ok(())
     }
 
-    /// The table of one study of the kind, if the kind owns one: written to its own CSV file
-    /// (the tables of the kind's studies appended), described in `datapackage.json`, and
-    /// returned by Python, all from the same columns.
-    fn own_table(&self, _study: &str) -> Option<OwnTable> {
-        None
+    /// The tables of one study of the kind ([`OwnTable`]): each written to its CSV file (the
+    /// tables of every study that writes to one file appended, their columns the same),
+    /// described in `datapackage.json`, and returned by Python, all from the same columns. A
+    /// new kind declares its columns here, with [`Table`]'s builders.
+    fn tables(&self, _study: &str) -> Vec<OwnTable> {
+        Vec::new()
     }
 
-    /// The (approach, model) pairs the result computed, whose approaches and laws the report's
-    /// table of models lists (kinds that compare approaches).
-    fn approach_models(&self) -> Vec<&ApproachModel> {
+    /// The energies, approaches and models the result computed, whose equations the report's
+    /// table of models lists.
+    fn used(&self) -> Used {
+        Used::default()
+    }
+
+    /// The VTK files the study wrote, relative to the run's VTK directory.
+    fn vtk_files(&self) -> Vec<&Path> {
         Vec::new()
+    }
+
+    /// Lines the command line prints after the table of studies (a verification, the fitted
+    /// values), each a fact about the study `study`.
+    fn console(&self, _study: &str) -> Vec<String> {
+        Vec::new()
+    }
+
+    /// What the study found, in sentences (Python's `findings`).
+    fn findings(&self) -> Vec<String> {
+        Vec::new()
+    }
+}
+
+/// What a study computed with, for the report's table of models.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Used {
+    /// Passive energies other than the material's (compared curves), by name.
+    pub energies: Vec<String>,
+    /// The (approach, model) pairs; `model: None` is the passive material.
+    pub models: Vec<ApproachModel>,
+    /// Whether a curve has a constant activation.
+    pub constant: bool,
+}
+
+impl Used {
+    /// `self` with `other`'s energies (each once), models and constant activation added.
+    pub fn merge(&mut self, other: Used) {
+        for e in other.energies {
+            if !self.energies.contains(&e) {
+                self.energies.push(e);
+            }
+        }
+        self.models.extend(other.models);
+        self.constant |= other.constant;
+    }
+
+    /// The active models of `approach` computed with `models` (law × coupling × damage each).
+    pub fn active(approach: Approach, models: impl IntoIterator<Item = ModelChoice>) -> Self {
+        Used {
+            models: models
+                .into_iter()
+                .map(|m| ApproachModel {
+                    approach,
+                    model: Some(m),
+                })
+                .collect(),
+            ..Used::default()
+        }
     }
 }
 
@@ -117,15 +173,38 @@ pub fn each_study<R>(
         .collect()
 }
 
-/// A kind's own table of one study.
+/// A table of one study: its columns, the CSV file it is written to and its key in Python.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OwnTable {
-    /// The CSV file (`shear.csv`).
-    pub file: &'static str,
+    /// The table's key in Python's study (`table`: the study's rows; `named_points`: a
+    /// cylinder's named points).
+    pub key: &'static str,
+    /// The CSV file (`curves.csv`, `points_<study>.csv`); the tables of several studies (of
+    /// one kind or more) may share one.
+    pub file: String,
     /// What one row is, for `datapackage.json`.
     pub rows_are: &'static str,
     /// The columns.
     pub table: Table,
+}
+
+impl OwnTable {
+    /// The study's own rows (Python's `table`), written to `file`.
+    pub fn rows(file: &str, rows_are: &'static str, table: Table) -> Self {
+        OwnTable {
+            key: "table",
+            file: file.to_string(),
+            rows_are,
+            table,
+        }
+    }
+}
+
+/// The (approach, law, coupling) cells of a row: the approach of an activation model, its law
+/// and coupling where the approach has them ([`ApproachModel::cells`]: active stress has
+/// neither); `passive` as the law of the passive material, without approach.
+pub fn model_cells(approach: Approach, model: Option<ModelChoice>) -> [Option<String>; 3] {
+    ApproachModel { approach, model }.cells()
 }
 
 /// x label of a curve over the stretch.
@@ -167,6 +246,12 @@ pub fn chapter(n: u32, energy: &str, chapter_material: bool) -> String {
 /// `implicit law, frozen coupling`.
 pub fn words(law: LawKind, coupling: CouplingKind) -> String {
     format!("{} law, {} coupling", law.name(), coupling.name())
+}
+
+/// The law and coupling of `m` in [`words`], or its approach if it has no law (`active-stress`).
+pub fn model_words(m: &ModelChoice) -> String {
+    m.activation_law()
+        .map_or_else(|| m.approach.name().to_string(), |(l, c)| words(l, c))
 }
 
 /// A series that draws no curve of `curves.csv` (a derived quantity); `None` without points.

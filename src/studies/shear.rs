@@ -9,8 +9,8 @@
 
 mod output;
 
-use super::spec::{approach_models, couplings_for, damages, ApproachModel, Defaults, StretchSpec};
-use super::table::Table;
+use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
+use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -104,45 +104,22 @@ pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec)
             "simple shear is computed exactly incompressible (σ₃₃ = 0 by the pressure); the scene's [incompressibility] is nearly incompressible",
         ));
     }
-    let approaches = spec
-        .approaches
-        .clone()
-        .unwrap_or_else(|| vec![Approach::ActiveStrain, Approach::ActiveStress]);
-    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
-    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
-    couplings_for(&laws, &couplings)?;
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let passive = spec.passive.unwrap_or(true);
-    let mut models = Vec::new();
-    if passive {
-        models.push(ApproachModel {
-            approach: d.models.approach,
-            model: None,
-        });
-    }
-    models.extend(approach_models(
-        d.models,
-        &approaches,
-        &laws,
-        &couplings,
-        &damage,
-    )?);
-    if models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a shear study needs passive = true or approaches",
-        ));
-    }
+    let keys = ModelKeys {
+        approaches: spec.approaches.as_deref(),
+        ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
+    };
+    let defaults = [Approach::ActiveStrain, Approach::ActiveStress];
+    let (models, set) = approach_models(keys, passive, d, &defaults, "shear")?;
     let name = spec.name.clone().unwrap_or_else(|| "simple shear".into());
     let resolved = ShearSpec {
         name: Some(name.clone()),
         shear: spec.shear.clone(),
         fibre_angles: Some(angles.clone()),
-        approaches: Some(approaches),
-        laws: Some(laws),
-        couplings: Some(couplings),
-        damage: Some(damage),
+        approaches: Some(set.approaches),
+        laws: set.laws,
+        couplings: set.couplings,
+        damage: Some(set.damage),
         passive: Some(passive),
     };
     Ok((
@@ -250,15 +227,7 @@ impl ShearStudy {
         ctx: &RunContext,
     ) -> Result<(ShearCurve, Option<Failure>), AppError> {
         let label = m.label(models);
-        let muscle = match m.model {
-            None => models.passive(),
-            Some(c) => Models {
-                approach: m.approach,
-                ..models.clone()
-            }
-            .muscle(c)
-            .map_err(|e| AppError::from(e).within(format!("{}: {label}", self.name)))?,
-        };
+        let muscle = m.muscle(models, &self.name)?;
         let mut points = Vec::with_capacity(self.shear.len());
         let mut first: Option<(f64, String)> = None;
         let mut failed = 0usize;
@@ -310,15 +279,11 @@ impl ShearResult {
             .collect();
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
         Table::default()
-            .text(
-                "study",
-                "the study's name",
-                rows.iter().map(|_| Some(study.to_string())),
-            )
+            .text("study", "the study's name", every_row(study, rows.len()))
             .text(
                 "energy",
                 "the passive energy",
-                rows.iter().map(|_| Some(self.energy.clone())),
+                every_row(&self.energy, rows.len()),
             )
             .text("approach", "activation approach (empty: passive)", cell(0))
             .text(

@@ -2,8 +2,9 @@
 //! cell counts), and the scene-level defaults a study resolves against. Keys in errors are
 //! relative to the study (`stretch.step`, `damage[1]`).
 
+use crate::active::Approach;
 use crate::app_error::SpecError;
-use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
+use crate::models::{product, CouplingKind, LawKind, ModelChoice, Models};
 use serde::de::{self, MapAccess, SeqAccess, Visitor};
 use serde::{Deserialize, Deserializer, Serialize};
 use std::fmt;
@@ -14,6 +15,8 @@ use std::path::Path;
 pub struct Defaults<'a> {
     /// The material and activation.
     pub models: &'a Models,
+    /// `activation.approach`.
+    pub approach: Approach,
     /// `activation.law`.
     pub law: LawKind,
     /// `activation.coupling`.
@@ -297,14 +300,217 @@ pub fn grading(key: &str, v: f64) -> Result<f64, SpecError> {
     }
 }
 
-/// Laws that must all be buildable on the material (`laws[j]` in errors).
-pub fn supported_laws(key: &str, laws: &[LawKind], models: &Models) -> Result<(), SpecError> {
-    for (j, l) in laws.iter().enumerate() {
-        models
-            .supports(*l)
-            .map_err(|rule| SpecError::new(format!("{key}[{j}]"), "\"explicit\"", rule))?;
+/// The model keys of a study as written: its approaches, laws, couplings and damages (each
+/// `None` if left out), and how it names them: `laws`, `couplings` (lists) or `law`, `coupling`
+/// (one each: `single`).
+#[derive(Debug, Clone, Copy)]
+pub struct ModelKeys<'a> {
+    /// `approaches` (`None`: the scene's approach).
+    pub approaches: Option<&'a [Approach]>,
+    /// `laws` (or `law`).
+    pub laws: Option<&'a [LawKind]>,
+    /// `couplings` (or `coupling`).
+    pub couplings: Option<&'a [CouplingKind]>,
+    /// `damage`.
+    pub damage: Option<&'a [f64]>,
+    /// The study takes one law and one coupling (`law`, `coupling`), not lists.
+    pub single: bool,
+}
+
+/// A study's models, resolved: approach × law × coupling × damage ([`product`]), and the keys
+/// as the resolved scene writes them (laws and couplings only where an approach has a law).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSet {
+    /// The approaches.
+    pub approaches: Vec<Approach>,
+    /// The laws (`None`: no approach of the study has one).
+    pub laws: Option<Vec<LawKind>>,
+    /// The couplings (`None`: no approach of the study has a law).
+    pub couplings: Option<Vec<CouplingKind>>,
+    /// The damages.
+    pub damage: Vec<f64>,
+    /// Every model, in the order of [`product`].
+    pub choices: Vec<ModelChoice>,
+}
+
+impl<'a> ModelKeys<'a> {
+    /// A study's `laws`, `couplings` and `damage` lists, of the scene's approach.
+    pub fn lists(
+        laws: &'a Option<Vec<LawKind>>,
+        couplings: &'a Option<Vec<CouplingKind>>,
+        damage: &'a Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            approaches: None,
+            laws: laws.as_deref(),
+            couplings: couplings.as_deref(),
+            damage: damage.as_deref(),
+            single: false,
+        }
     }
-    Ok(())
+
+    /// A study's one `law`, one `coupling` and `damage` list, of the scene's approach.
+    pub fn one(
+        law: &'a Option<LawKind>,
+        coupling: &'a Option<CouplingKind>,
+        damage: &'a Option<Vec<f64>>,
+    ) -> Self {
+        Self {
+            approaches: None,
+            laws: law.as_ref().map(std::slice::from_ref),
+            couplings: coupling.as_ref().map(std::slice::from_ref),
+            damage: damage.as_deref(),
+            single: true,
+        }
+    }
+
+    /// The key of a law (`laws[j]`, or `law`).
+    fn key(&self, list: &str, one: &str, j: usize) -> String {
+        if self.single {
+            one.to_string()
+        } else {
+            format!("{list}[{j}]")
+        }
+    }
+
+    /// The study's models against the scene's `defaults`: every approach must be possible on
+    /// the material (`approaches[j]`), every law must apply to every approach that has a law
+    /// (`laws[j]`, with the approach's reason), and laws or couplings given to a study none of
+    /// whose approaches has a law are refused (`laws`), never cut. Left out, the laws are
+    /// `default_laws`, the couplings `default_couplings`, the damages `activation.damage`.
+    pub fn resolve(
+        &self,
+        d: &Defaults,
+        default_laws: &[LawKind],
+        default_couplings: &[CouplingKind],
+    ) -> Result<ModelSet, SpecError> {
+        let approaches = self
+            .approaches
+            .map_or_else(|| vec![d.approach], <[_]>::to_vec);
+        for (j, &a) in approaches.iter().enumerate() {
+            d.models.activation_map(a).map_err(|rule| {
+                SpecError::new(
+                    self.key("approaches", "approach", j),
+                    format!("{:?}", a.name()),
+                    rule,
+                )
+            })?;
+        }
+        let lawful: Vec<Approach> = approaches
+            .iter()
+            .copied()
+            .filter(|a| !a.laws().is_empty())
+            .collect();
+        let damage = damages("damage", self.damage.unwrap_or(d.damage))?;
+        if lawful.is_empty() {
+            self.refuse_lawless(&approaches)?;
+            let choices = product(&approaches, &[], &[], &damage);
+            return Ok(ModelSet {
+                approaches,
+                laws: None,
+                couplings: None,
+                damage,
+                choices,
+            });
+        }
+        let laws = self
+            .laws
+            .map_or_else(|| default_laws.to_vec(), <[_]>::to_vec);
+        for (j, &law) in laws.iter().enumerate() {
+            for &a in &lawful {
+                d.models.supports(a, law).map_err(|rule| match self.laws {
+                    Some(_) => SpecError::new(
+                        self.key("laws", "law", j),
+                        format!("{:?}", law.name()),
+                        rule,
+                    ),
+                    None => SpecError::new(
+                        if self.single { "law" } else { "laws" },
+                        format!("{:?} (left out: activation.law)", law.name()),
+                        rule,
+                    ),
+                })?;
+            }
+        }
+        let couplings = self
+            .couplings
+            .map_or_else(|| default_couplings.to_vec(), <[_]>::to_vec);
+        couplings_for(&laws, &couplings)?;
+        let choices = product(&approaches, &laws, &couplings, &damage);
+        Ok(ModelSet {
+            approaches,
+            laws: Some(laws),
+            couplings: Some(couplings),
+            damage,
+            choices,
+        })
+    }
+
+    /// Refuses `laws` and `couplings` given to a study none of whose `approaches` has a law.
+    fn refuse_lawless(&self, approaches: &[Approach]) -> Result<(), SpecError> {
+        let names: Vec<String> = approaches
+            .iter()
+            .map(|a| format!("{:?}", a.name()))
+            .collect();
+        let why: Vec<&str> = approaches.iter().map(|a| a.no_law()).collect();
+        let given = [
+            (
+                self.key("laws", "law", 0),
+                self.laws
+                    .map(|l| l.iter().map(|x| x.name()).collect::<Vec<_>>()),
+            ),
+            (
+                self.key("couplings", "coupling", 0),
+                self.couplings.map(|c| c.iter().map(|x| x.name()).collect()),
+            ),
+        ];
+        for (key, value) in given {
+            if let Some(v) = value {
+                let key = key.trim_end_matches("[0]").to_string();
+                return Err(SpecError::new(
+                    key.clone(),
+                    format!("{v:?}"),
+                    format!(
+                        "{key} does not apply to approach = {}: {}",
+                        names.join(", "),
+                        why.join("; ")
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The models of a study that compares approaches (shear, biaxial): the passive material first
+/// if `passive`, then every approach × law × coupling × damage of `keys` (approaches left out:
+/// `default_approaches`; laws and couplings: the scene's). `kind` names the study when it asks
+/// for nothing.
+pub fn approach_models(
+    keys: ModelKeys,
+    passive: bool,
+    d: &Defaults,
+    default_approaches: &[Approach],
+    kind: &str,
+) -> Result<(Vec<ApproachModel>, ModelSet), SpecError> {
+    let keys = ModelKeys {
+        approaches: Some(keys.approaches.unwrap_or(default_approaches)),
+        ..keys
+    };
+    let set = keys.resolve(d, &[d.law], &[d.coupling])?;
+    let mut models = Vec::with_capacity(set.choices.len() + 1);
+    if passive {
+        models.push(ApproachModel::passive(d));
+    }
+    models.extend(set.choices.iter().copied().map(ApproachModel::of));
+    if models.is_empty() {
+        return Err(SpecError::new(
+            "",
+            "(nothing to compute)",
+            format!("a {kind} study needs passive = true or approaches"),
+        ));
+    }
+    Ok((models, set))
 }
 
 /// Active laws need at least one coupling.
@@ -320,28 +526,52 @@ pub fn couplings_for(laws: &[LawKind], couplings: &[CouplingKind]) -> Result<(),
     }
 }
 
-/// One model of a study that compares activation approaches: the scene's models with the
-/// approach set, and the model choice (law × coupling × damage; for active stress the law and
-/// coupling are unused). `None`: the passive material.
+/// One model of a study that compares activation approaches (`None`: the passive material).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ApproachModel {
-    /// The approach.
-    pub approach: crate::active::Approach,
+    /// The approach (of the model; the scene's for the passive material, which has none).
+    pub approach: Approach,
     /// The model (`None`: passive).
     pub model: Option<ModelChoice>,
 }
 
 impl ApproachModel {
+    /// The passive material.
+    pub fn passive(d: &Defaults) -> Self {
+        Self {
+            approach: d.approach,
+            model: None,
+        }
+    }
+
+    /// The approaches of `models`' active models, each once, in order.
+    pub fn approaches(models: &[ApproachModel]) -> Vec<Approach> {
+        let mut v: Vec<Approach> = Vec::new();
+        for a in models.iter().filter_map(|m| m.model).map(|m| m.approach) {
+            if !v.contains(&a) {
+                v.push(a);
+            }
+        }
+        v
+    }
+
+    /// A model of `choice`.
+    pub fn of(choice: ModelChoice) -> Self {
+        Self {
+            approach: choice.approach,
+            model: Some(choice),
+        }
+    }
+
     /// Its (approach, law, coupling) table cells: the passive material has law `passive` and
-    /// no approach; active stress has no law or coupling.
+    /// no approach; an approach without a law has no law or coupling.
     pub fn cells(&self) -> [Option<String>; 3] {
-        match (self.model, self.approach.has_law()) {
-            (None, _) => [None, Some("passive".into()), None],
-            (Some(_), false) => [Some(self.approach.name().into()), None, None],
-            (Some(c), true) => [
-                Some(self.approach.name().into()),
-                Some(c.law.name().into()),
-                Some(c.coupling.name().into()),
+        match self.model {
+            None => [None, Some("passive".into()), None],
+            Some(c) => [
+                Some(c.approach.name().into()),
+                c.law_name().map(String::from),
+                c.coupling_name().map(String::from),
             ],
         }
     }
@@ -349,62 +579,41 @@ impl ApproachModel {
     /// The model in words without the energy, for legends and tables: `passive`,
     /// `active-stress, d = 0`, `active-strain, implicit law, frozen coupling, d = 0`.
     pub fn words(&self) -> String {
-        match (self.cells(), self.model) {
-            ([None, ..], _) | (_, None) => "passive".into(),
-            ([Some(a), Some(l), Some(k)], Some(m)) => {
-                format!("{a}, {l} law, {k} coupling, d = {}", m.damage)
-            }
-            ([Some(a), ..], Some(m)) => format!("{a}, d = {}", m.damage),
+        let Some(m) = self.model else {
+            return "passive".into();
+        };
+        match m.activation_law() {
+            Some((l, k)) => format!(
+                "{}, {} law, {} coupling, d = {}",
+                m.approach.name(),
+                l.name(),
+                k.name(),
+                m.damage
+            ),
+            None => format!("{}, d = {}", m.approach.name(), m.damage),
+        }
+    }
+
+    /// Its muscle: the passive material's, or the model's; an error names `study` and the model.
+    pub fn muscle(
+        &self,
+        models: &Models,
+        study: &str,
+    ) -> Result<crate::Muscle<crate::energy::Energy>, crate::app_error::AppError> {
+        match self.model {
+            None => Ok(models.passive()),
+            Some(c) => models.muscle(c).map_err(|e| {
+                crate::app_error::AppError::from(e).within(format!("{study}: {}", models.label(&c)))
+            }),
         }
     }
 
     /// The model in words: `…, passive`, `…, active stress, d = 0`, `…, implicit law, frozen
-    /// coupling, d = 0`.
+    /// coupling, d = 0` ([`Models::label`]).
     pub fn label(&self, models: &Models) -> String {
         match self.model {
             None => format!("{}, passive", crate::StrainEnergy::name(&models.energy)),
-            Some(c) => Models {
-                approach: self.approach,
-                ..models.clone()
-            }
-            .label(&c),
+            Some(c) => models.label(&c),
         }
     }
-}
-
-/// Every approach × law × coupling × damage a study asks for, each approach checked against
-/// the material (`approaches[j]`, `laws[j]` name the offending entry).
-pub fn approach_models(
-    models: &Models,
-    approaches: &[crate::active::Approach],
-    laws: &[LawKind],
-    couplings: &[CouplingKind],
-    damages: &[f64],
-) -> Result<Vec<ApproachModel>, SpecError> {
-    let mut out = Vec::new();
-    for (j, &approach) in approaches.iter().enumerate() {
-        let m = Models {
-            approach,
-            ..models.clone()
-        };
-        m.activation_map().map_err(|rule| {
-            SpecError::new(
-                format!("approaches[{j}]"),
-                format!("{:?}", approach.name()),
-                rule,
-            )
-        })?;
-        if approach.has_law() {
-            supported_laws("laws", laws, &m)?;
-        }
-        out.extend(
-            m.choices(laws, couplings, damages)
-                .into_iter()
-                .map(|c| ApproachModel {
-                    approach,
-                    model: Some(c),
-                }),
-        );
-    }
-    Ok(out)
 }

@@ -5,7 +5,7 @@
 mod output;
 
 use super::spec::StretchSpec;
-use super::spec::{couplings_for, damages, optional_stretches, supported_laws, Defaults};
+use super::spec::{optional_stretches, Defaults, ModelKeys};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
@@ -70,20 +70,19 @@ pub fn resolve(
         Some(l) => l,
         None => stretch.resolve("stretch")?,
     };
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
-    let laws = match &spec.laws {
-        Some(l) => l.clone(),
-        None => [LawKind::Implicit, LawKind::Explicit, LawKind::Energy]
-            .into_iter()
-            .filter(|l| d.models.supports(*l).is_ok())
-            .collect(),
-    };
-    supported_laws("laws", &laws, d.models)?;
-    let couplings = spec
-        .couplings
-        .clone()
-        .unwrap_or_else(|| vec![CouplingKind::Frozen, CouplingKind::Consistent]);
-    couplings_for(&laws, &couplings)?;
+    // Left out: every law the scene's approach can have on this material.
+    let every: Vec<LawKind> = d
+        .approach
+        .laws()
+        .iter()
+        .copied()
+        .filter(|l| d.models.supports(d.approach, *l).is_ok())
+        .collect();
+    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
+        d,
+        &every,
+        &CouplingKind::ALL,
+    )?;
     let normals = spec.normals.unwrap_or(300);
     if !(1..=100_000).contains(&normals) {
         return Err(SpecError::new(
@@ -93,7 +92,7 @@ pub fn resolve(
         ));
     }
     let passive = spec.passive.unwrap_or(true);
-    let models = d.models.choices(&laws, &couplings, &damage);
+    let models = set.choices;
     if !passive && models.is_empty() {
         return Err(SpecError::new(
             "",
@@ -108,10 +107,10 @@ pub fn resolve(
     let resolved = StabilitySpec {
         name: Some(name.clone()),
         stretch: Some(stretch),
-        damage: Some(damage),
+        damage: Some(set.damage),
         passive: Some(passive),
-        laws: Some(laws),
-        couplings: Some(couplings),
+        laws: set.laws,
+        couplings: set.couplings,
         normals: Some(normals),
     };
     Ok((
@@ -148,6 +147,8 @@ pub struct StabilityPoint {
 /// The stability of one model along the fibres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StabilityCurve {
+    /// The activation approach.
+    pub approach: crate::active::Approach,
     /// The activation model; `None`: the passive material.
     pub model: Option<ModelChoice>,
     /// Points that could be computed.
@@ -155,10 +156,11 @@ pub struct StabilityCurve {
 }
 
 impl StabilityCurve {
-    /// `implicit, frozen` or `passive`.
+    /// `implicit, frozen`, `active-stress` (an approach without a law) or `passive`.
     pub fn label(&self) -> String {
-        match self.model {
-            Some(m) => format!("{}, {}", m.law.name(), m.coupling.name()),
+        match self.model.map(|m| (m, m.activation_law())) {
+            Some((_, Some((law, coupling)))) => format!("{}, {}", law.name(), coupling.name()),
+            Some((m, None)) => m.approach.name().to_string(),
             None => "passive".to_string(),
         }
     }
@@ -255,6 +257,8 @@ impl StabilityStudy {
         model: Option<ModelChoice>,
     ) -> (StabilityCurve, Option<Failure>) {
         let mut curve = StabilityCurve {
+            // The passive material has none: its cells name no approach.
+            approach: model.map(|m| m.approach).unwrap_or_default(),
             model,
             points: Vec::with_capacity(self.stretches.len()),
         };

@@ -4,11 +4,10 @@
 
 mod figures;
 
-use super::spec::{
-    couplings_for, damages, required_stretches, supported_laws, Defaults, StretchSpec,
-};
+use super::spec::{required_stretches, Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
+use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
@@ -61,10 +60,12 @@ pub struct UniaxialStudy {
     pub passive: bool,
     /// Extra passive energies.
     pub compare: Vec<Energy>,
-    /// Active models: laws × couplings × damages.
+    /// Active models: laws × couplings × damages of the scene's approach.
     pub models: Vec<ModelChoice>,
     /// Constant activations.
     pub constant_gamma: Vec<f64>,
+    /// The approach of the constant activations (the scene's).
+    pub approach: Approach,
 }
 
 /// Validates `spec` against the scene's defaults; returns the study and the spec with every
@@ -74,17 +75,28 @@ pub fn resolve(
     d: &Defaults,
 ) -> Result<(UniaxialStudy, UniaxialSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
-    let damage = damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?;
     let direction = spec.direction.unwrap_or_default();
-    let laws = spec.laws.clone().unwrap_or_else(|| vec![d.law]);
-    supported_laws("laws", &laws, d.models)?;
-    let couplings = spec.couplings.clone().unwrap_or_else(|| vec![d.coupling]);
-    couplings_for(&laws, &couplings)?;
+    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
+        d,
+        &[d.law],
+        &[d.coupling],
+    )?;
     let mut compare = Vec::new();
     for (j, c) in spec.compare.iter().flatten().enumerate() {
         compare.push(c.build().map_err(|e| e.within(&format!("compare[{j}]")))?);
     }
     let constant_gamma = spec.constant_gamma.clone().unwrap_or_default();
+    if let (false, None) = (constant_gamma.is_empty(), d.approach.variable()) {
+        return Err(SpecError::new(
+            "constant_gamma",
+            crate::studies::spec::fmt_list(&constant_gamma),
+            format!(
+                "a constant activation holds the approach's activation variable; approach = {:?} has none: {}",
+                d.approach.name(),
+                d.approach.no_law()
+            ),
+        ));
+    }
     for (j, g) in constant_gamma.iter().enumerate() {
         if crate::active::ConstantLaw::new(*g).is_err() {
             return Err(SpecError::new(
@@ -94,7 +106,7 @@ pub fn resolve(
             ));
         }
     }
-    let models = d.models.choices(&laws, &couplings, &damage);
+    let models = set.choices;
     let passive = spec.passive.unwrap_or(true);
     if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty() {
         return Err(SpecError::new(
@@ -110,12 +122,12 @@ pub fn resolve(
     let resolved = UniaxialSpec {
         name: Some(name.clone()),
         stretch: spec.stretch.clone(),
-        damage: Some(damage),
+        damage: Some(set.damage),
         direction: Some(direction),
         passive: Some(passive),
         compare: Some(compare.iter().map(EnergySpec::written).collect()),
-        laws: Some(laws),
-        couplings: Some(couplings),
+        laws: set.laws,
+        couplings: set.couplings,
         constant_gamma: Some(constant_gamma.clone()),
     };
     Ok((
@@ -127,6 +139,7 @@ pub fn resolve(
             compare,
             models,
             constant_gamma,
+            approach: d.approach,
         },
         resolved,
     ))
@@ -179,6 +192,8 @@ pub struct Curve {
 pub struct UniaxialResult {
     /// Loading direction relative to the fibres.
     pub direction: Direction,
+    /// The activation approach of the active and constant-activation curves.
+    pub approach: crate::active::Approach,
     /// Curves: passive material, compared energies, constant γ, active models, in that order.
     pub curves: Vec<Curve>,
 }
@@ -271,6 +286,7 @@ impl UniaxialStudy {
         ctx.progress.finish();
         let mut result = UniaxialResult {
             direction: self.direction,
+            approach: self.approach,
             curves: Vec::with_capacity(computed.len()),
         };
         let mut failures = Vec::new();
@@ -313,7 +329,7 @@ impl UniaxialStudy {
         let muscle = match model {
             CurveModel::Passive => Muscle::passive(energy.clone()),
             CurveModel::Constant(g) => models
-                .constant(g)
+                .constant(self.approach, g)
                 .map_err(|e| AppError::from(e).within(&self.name))?,
             CurveModel::Active(m) => models.muscle(m).map_err(|e| {
                 AppError::from(e).within(format!("{}: {}", self.name, models.label(&m)))

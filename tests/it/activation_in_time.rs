@@ -8,7 +8,7 @@ use activemuscle::active::time::{
     ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule,
 };
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, Coupling, Drive, FrozenTangent, ImplicitLaw, Law,
+    ActivationLaw, ActivationMap, ActiveCurve, Coupling, Drive, FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{Kinematics, FULL};
@@ -199,7 +199,7 @@ fn a_muscle_answers_at_its_current_activation_level_however_it_was_set() {
     let muscle = muscle
         .with_activation(0.25)
         .unwrap()
-        .with_map(ActiveStrainMap::Chapter)
+        .with_map(ActivationMap::Chapter)
         .unwrap();
     check(&muscle, d, 0.25);
     check(&muscle.clone(), d, 0.25);
@@ -216,6 +216,7 @@ fn models() -> Models {
 
 fn choice(damage: f64) -> ModelChoice {
     ModelChoice {
+        approach: activemuscle::active::Approach::ActiveStrain,
         law: LawKind::Implicit,
         coupling: CouplingKind::Frozen,
         damage,
@@ -258,8 +259,7 @@ fn run(text: &str) -> (Scene, activemuscle::scene::Results) {
 
 fn history(results: &activemuscle::scene::Results, name: &str) -> HistoryResult {
     results
-        .histories()
-        .into_iter()
+        .of::<HistoryResult>()
         .find(|(n, _)| *n == name)
         .map(|(_, h)| h.clone())
         .unwrap_or_else(|| panic!("no history {name}"))
@@ -291,7 +291,12 @@ coupling = "frozen"
         "{:?}",
         results.failures().collect::<Vec<_>>()
     );
-    let uni = results.uniaxial().next().unwrap().1.clone();
+    let uni = results
+        .of::<activemuscle::studies::uniaxial::UniaxialResult>()
+        .next()
+        .unwrap()
+        .1
+        .clone();
     let h = history(&results, "on-off");
     let m = models();
     let passive = m.passive();
@@ -371,9 +376,7 @@ fn a_stop_request_ends_the_history_with_what_was_solved() {
         stop: Some(&stop),
     };
     let study = &scene.studies[0];
-    let outcome = study
-        .run(&scene.models, &scene.fallback(), &ctx)
-        .expect("runs");
+    let outcome = study.run(&scene.models, &ctx).expect("runs");
     assert_eq!(outcome.points, 0);
     assert!(outcome.failures[0].message.contains("time limit"));
     assert!(matches!(outcome.result, StudyResult::ActivationInTime(_)));

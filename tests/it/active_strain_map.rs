@@ -4,7 +4,7 @@
 //! and couplings along the fibres against their targets, and closed forms derived by hand.
 
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, FrozenTangent,
+    ActivationLaw, ActivationMap, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, FrozenTangent,
     ImplicitLaw, Law, SolvedLaw, TableSpec, TabulatedLaw,
 };
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, NeoHookean, StrainEnergy};
@@ -17,7 +17,7 @@ use activemuscle::{Error, Muscle};
 use nalgebra::{SMatrix, SVector};
 use num_dual::{hessian, Dual2SVec64, HyperDual64};
 
-const MAPS: [ActiveStrainMap; 2] = [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving];
+const MAPS: [ActivationMap; 2] = [ActivationMap::Chapter, ActivationMap::VolumePreserving];
 const GAMMAS: [f64; 4] = [0.0, 0.1, 0.3, 0.5];
 const TOL: f64 = 1e-12;
 
@@ -26,7 +26,7 @@ fn rel<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>, b: &SMatrix<f64, 
 }
 
 /// A muscle at constant γ with the map: its stress, tangent and dP/dγ are those of Ŵ at γ held.
-fn held<E: StrainEnergy>(energy: E, map: ActiveStrainMap, gamma: f64) -> Muscle<E> {
+fn held<E: StrainEnergy>(energy: E, map: ActivationMap, gamma: f64) -> Muscle<E> {
     Muscle::new(
         energy,
         Law::Constant(ConstantLaw::new(gamma).unwrap()),
@@ -174,7 +174,7 @@ fn gamma_derivatives_of_the_map_match_dual_numbers() {
 fn volume_preserving_map_along_the_fibres_matches_the_hand_written_neo_hookean_energy() {
     let mu = 2.0;
     let nh = NeoHookean::new(mu).unwrap();
-    let map = ActiveStrainMap::VolumePreserving;
+    let map = ActivationMap::VolumePreserving;
     for gamma in [0.0, 0.15, 0.4] {
         let c = 1.0 - gamma;
         let muscle = held(nh, map, gamma);
@@ -200,12 +200,11 @@ fn volume_preserving_map_along_the_fibres_matches_the_hand_written_neo_hookean_e
 #[test]
 fn volume_preserving_fibre_path_is_the_passive_path_at_the_elastic_stretch() {
     let gm = GiantesioMusesti::paper();
-    let map = ActiveStrainMap::VolumePreserving;
+    let map = ActivationMap::VolumePreserving;
     for gamma in [0.1, 0.3] {
         for lambda in [0.8, 1.0, 1.3] {
             let a: f64 = map.fibre_path_energy(&gm, lambda, gamma);
-            let b: f64 =
-                ActiveStrainMap::Chapter.fibre_path_energy(&gm, lambda / (1.0 - gamma), 0.0);
+            let b: f64 = ActivationMap::Chapter.fibre_path_energy(&gm, lambda / (1.0 - gamma), 0.0);
             assert!((a - b).abs() <= 1e-14 * b.abs().max(1e-3), "{a} vs {b}");
         }
     }
@@ -233,8 +232,8 @@ fn worst_gap(muscle: &Muscle<GiantesioMusesti>, d: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn volume_preserving() -> ActiveStrainMap {
-    ActiveStrainMap::VolumePreserving
+fn volume_preserving() -> ActivationMap {
+    ActivationMap::VolumePreserving
 }
 
 #[test]
@@ -248,7 +247,7 @@ fn implicit_law_with_the_volume_preserving_map_reproduces_the_target_curve() {
             Coupling::Frozen(FrozenTangent::Exact),
         )
         .unwrap();
-        assert_eq!(muscle.map(), volume_preserving().into());
+        assert_eq!(muscle.map(), volume_preserving());
         let gap = worst_gap(&muscle, d);
         assert!(gap < 1e-10, "d = {d}: {gap:e}");
     }
@@ -294,7 +293,7 @@ fn tabulated_implicit_law_follows_the_volume_preserving_map() {
     };
     let table = TabulatedLaw::new(SolvedLaw::Implicit(exact.clone()), &[0.0], spec).unwrap();
     let law = Law::Tabulated(table);
-    assert_eq!(law.map(), Some(volume_preserving().into()));
+    assert_eq!(law.map(), Some(volume_preserving()));
     let muscle = Muscle::new(
         gm(),
         law.clone(),
@@ -302,7 +301,7 @@ fn tabulated_implicit_law_follows_the_volume_preserving_map() {
         Coupling::Frozen(FrozenTangent::Exact),
     )
     .unwrap();
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     for i in 0..50 {
         let l = 0.7137 + 0.6731 * i as f64 / 50.0;
         let (t, e) = (
@@ -342,6 +341,7 @@ const FILE: &str = "map_scene.toml";
 fn implicit_frozen(scene: &activemuscle::scene::Scene) -> Muscle<activemuscle::Energy> {
     use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
     let choice = ModelChoice {
+        approach: activemuscle::active::Approach::ActiveStrain,
         law: LawKind::Implicit,
         coupling: CouplingKind::Frozen,
         damage: 0.0,
@@ -364,7 +364,7 @@ fn scenes_choose_the_active_strain_map() {
     let scene = Scene::parse(&text, FILE).unwrap();
     assert_eq!(scene.models.map, volume_preserving());
     let muscle = implicit_frozen(&scene);
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     assert_eq!(
         muscle.activation(1.0).unwrap().gamma,
         ImplicitLaw::new(gm(), ActiveCurve::paper())
@@ -374,12 +374,16 @@ fn scenes_choose_the_active_strain_map() {
     );
     // A constant activation follows the scene's map too.
     assert_eq!(
-        scene.models.constant(0.2).unwrap().map(),
-        volume_preserving().into()
+        scene
+            .models
+            .constant(scene.defaults.approach, 0.2)
+            .unwrap()
+            .map(),
+        volume_preserving()
     );
     // The default is the chapter's, and the printed scene says which map runs.
     let default = Scene::parse(study, FILE).unwrap();
-    assert_eq!(default.models.map, ActiveStrainMap::Chapter);
+    assert_eq!(default.models.map, ActivationMap::Chapter);
     let printed = toml::to_string_pretty(&default.resolved).unwrap();
     assert!(printed.contains("map = \"chapter\""), "{printed}");
 
@@ -409,7 +413,7 @@ fn a_scene_tabulates_the_law_of_its_map() {
     let scene = Scene::parse(text, FILE).unwrap();
     let muscle = implicit_frozen(&scene);
     assert_eq!(muscle.law().name(), "implicit-tabulated");
-    assert_eq!(muscle.map(), volume_preserving().into());
+    assert_eq!(muscle.map(), volume_preserving());
     let exact = ImplicitLaw::new(gm(), ActiveCurve::paper()).with_map(volume_preserving());
     for l in [0.85, 1.0, 1.21] {
         let (t, e) = (

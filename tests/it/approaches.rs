@@ -307,29 +307,33 @@ fn sliding_matches_0d(muscle: &Muscle<Energy>, what: &str) {
 fn sliding_cylinder_reproduces_the_0d_curve_for_every_approach() {
     let mut models = Models::paper();
     models.fibre = [0.0, 0.0, 1.0];
-    let choice = |law, coupling| activemuscle::models::ModelChoice {
+    use activemuscle::active::{ActivationMap, Approach};
+    use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
+    let choice = |approach, law, coupling| ModelChoice {
+        approach,
         law,
         coupling,
         damage: 0.2,
     };
-    use activemuscle::active::{ActiveStrainMap, Approach};
-    use activemuscle::models::{CouplingKind, LawKind};
-    models.approach = Approach::ActiveStress;
     sliding_matches_0d(
         &models
-            .muscle(choice(LawKind::Implicit, CouplingKind::Frozen))
+            .muscle(ModelChoice::lawless(Approach::ActiveStress, 0.2))
             .unwrap(),
         "active stress",
     );
-    models.approach = Approach::Structural;
     for coupling in [CouplingKind::Frozen, CouplingKind::Consistent] {
-        let m = models.muscle(choice(LawKind::Implicit, coupling)).unwrap();
+        let m = models
+            .muscle(choice(Approach::Structural, LawKind::Implicit, coupling))
+            .unwrap();
         sliding_matches_0d(&m, "structural");
     }
-    models.approach = Approach::ActiveStrain;
-    models.map = ActiveStrainMap::VolumePreserving;
+    models.map = ActivationMap::VolumePreserving;
     let m = models
-        .muscle(choice(LawKind::Energy, CouplingKind::Consistent))
+        .muscle(choice(
+            Approach::ActiveStrain,
+            LawKind::Energy,
+            CouplingKind::Consistent,
+        ))
         .unwrap();
     sliding_matches_0d(&m, "volume-preserving");
 }
@@ -338,17 +342,18 @@ fn sliding_cylinder_reproduces_the_0d_curve_for_every_approach() {
 fn the_structural_approach_is_refused_for_an_energy_without_a_structural_invariant() {
     let mut models = Models::paper();
     models.energy = Energy::NeoHookean(NeoHookean::new(1.0).unwrap());
-    models.approach = activemuscle::active::Approach::Structural;
-    let rule = models.activation_map().unwrap_err();
+    let structural = activemuscle::active::Approach::Structural;
+    let rule = models.activation_map(structural).unwrap_err();
     assert!(
         rule.contains("C:(L + ωM)") && rule.contains("neo-hookean"),
         "{rule}"
     );
     assert!(models
-        .supports(activemuscle::models::LawKind::Implicit)
+        .supports(structural, activemuscle::models::LawKind::Implicit)
         .is_err());
     let error = models
         .muscle(activemuscle::models::ModelChoice {
+            approach: structural,
             law: activemuscle::models::LawKind::Implicit,
             coupling: activemuscle::models::CouplingKind::Frozen,
             damage: 0.0,

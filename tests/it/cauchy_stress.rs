@@ -6,7 +6,7 @@
 use activemuscle::active::{ActiveCurve, Coupling, EnergyLaw, FrozenTangent, ImplicitLaw, Law};
 use activemuscle::energy::GiantesioMusesti;
 use activemuscle::invariants::{Kinematics, FULL};
-use activemuscle::output::csv::{rows, to_csv};
+use activemuscle::output::csv::files;
 use activemuscle::response::Order;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::uniaxial::{across_fibres, along_fibres};
@@ -96,7 +96,7 @@ fn curves_csv_has_a_cauchy_column() {
                 \n[[study]]\nkind = \"uniaxial\"\ndirection = \"across\"\nstretch = [1.1]\nlaws = []\n";
     let scene = Scene::parse(text, "c.toml").unwrap();
     let results = scene.run(&RunOptions::default());
-    let csv = String::from_utf8(to_csv(&rows(&results)).unwrap()).unwrap();
+    let csv = String::from_utf8(files(&results)[0].bytes().unwrap()).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let (l, p, s) = ["lambda", "P", "cauchy"]

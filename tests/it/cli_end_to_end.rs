@@ -47,7 +47,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations,cauchy,J,P_0d,dofs,element,regions")
+        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations,cauchy,J,P_0d,dofs,element,regions,approach")
     );
     let gm = GiantesioMusesti::paper();
     let energy = Energy::GiantesioMusesti(gm);
@@ -59,7 +59,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
         // The study's name first (the scene's defaults); the other columns as they were.
         let study = line.split(',').next().unwrap_or_default();
         let c: Vec<&str> = line.split(',').skip(1).collect();
-        assert_eq!(c.len(), 19, "{line}");
+        assert_eq!(c.len(), 20, "{line}");
         let expected_study = match c[0] {
             "uniaxial" => "uniaxial along fibres",
             _ => "cylinder sliding explicit frozen",
@@ -68,6 +68,13 @@ fn small_scene_matches_the_library_and_writes_every_output() {
         let lambda: f64 = c[7].parse().expect("lambda");
         let p: f64 = c[9].parse().expect("P");
         let (law, d) = (c[4].to_string(), c[6].to_string());
+        // The scene's default approach names every active row, none of the passive ones.
+        let approach = if law == "passive" {
+            ""
+        } else {
+            "active-strain"
+        };
+        assert_eq!(c[19], approach, "{line}");
         let muscle = muscles.entry((law.clone(), d.clone())).or_insert_with(|| {
             let d: f64 = if d.is_empty() {
                 0.0

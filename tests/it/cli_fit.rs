@@ -2,9 +2,11 @@
 //! their line, a fit that does not converge is reported as such and the run goes on, and the
 //! writers refuse non-finite numbers.
 
+use activemuscle::active::Approach;
 use activemuscle::models::{CouplingKind, LawKind, ModelChoice};
-use activemuscle::output::csv::{fits_csv, stability_csv};
+use activemuscle::output::csv::table_csv;
 use activemuscle::studies::fit::{FitKind, FitOutcome};
+use activemuscle::studies::outputs::KindOutput;
 use activemuscle::studies::stability::{StabilityCurve, StabilityPoint};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -223,15 +225,24 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
         sigma: None,
         residuals: vec![],
     };
-    let e = fits_csv(&[("my fit", &[fit])])
+    let written = |tables: Vec<activemuscle::studies::outputs::OwnTable>| {
+        let t = &tables[0];
+        table_csv(&t.file, &[&t.table])
+    };
+    let e = written(vec![fit].tables("my fit"))
         .expect_err("NaN written")
         .to_string();
     assert!(
-        e.contains("fitted value") && e.contains("my fit") && e.contains("parameter d"),
+        e.contains("value = NaN")
+            && e.contains("fits.csv, row 1")
+            && e.contains("study = my fit")
+            && e.contains("parameter = d"),
         "{e}"
     );
     let curve = StabilityCurve {
+        approach: Approach::ActiveStrain,
         model: Some(ModelChoice {
+            approach: activemuscle::active::Approach::ActiveStrain,
             law: LawKind::Implicit,
             coupling: CouplingKind::Frozen,
             damage: 0.5,
@@ -246,11 +257,13 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
             elliptic: true,
         }],
     };
-    let e = stability_csv(&[("map", &[curve])])
+    let e = written(vec![curve].tables("map"))
         .expect_err("inf written")
         .to_string();
     assert!(
-        e.contains("dP/dlambda") && e.contains("implicit, frozen") && e.contains("lambda = 1.2"),
+        e.contains("dP_dlambda = inf")
+            && e.contains("law = implicit, coupling = frozen")
+            && e.contains("lambda = 1.2"),
         "{e}"
     );
 }

@@ -3,7 +3,7 @@
 //! on the sliding cylinder equal to the homogeneous displacement u_z = (λ − 1) z,
 //! u_r = (λ^(−1/2) − 1) r.
 
-use activemuscle::output::csv::tables;
+use activemuscle::output::csv::files;
 use activemuscle::output::report::{html, RunInfo};
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::StudyResult;
@@ -62,15 +62,18 @@ fn sliding_cylinder_end_nodes_move_as_the_homogeneous_state() {
                 }
             }
         }
-        let files = tables(&results).unwrap();
-        let (name, bytes) = files
+        let files = files(&results);
+        let points = files
             .iter()
-            .find(|(n, _)| n.starts_with("points_"))
+            .find(|f| f.file.starts_with("points_"))
             .expect("a points CSV");
-        assert_eq!(name, "points_sliding_tip.csv");
-        let csv = String::from_utf8(bytes.clone()).unwrap();
+        assert_eq!(points.file, "points_sliding_tip.csv");
+        let csv = String::from_utf8(points.bytes().unwrap()).unwrap();
         let lines: Vec<&str> = csv.lines().collect();
-        assert_eq!(lines[0], "study,point,r,z,law,coupling,d,lambda,u_r,u_z");
+        assert_eq!(
+            lines[0],
+            "study,point,r,z,law,coupling,d,lambda,u_r,u_z,approach"
+        );
         assert_eq!(lines.len(), 1 + 2 * 3 * 4, "per model, stretch and point");
         assert!(lines[1].starts_with("sliding tip,base_rim,1,0,explicit,frozen,0,0.8,"));
         let info = RunInfo::default();

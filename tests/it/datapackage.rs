@@ -53,6 +53,22 @@ pub fn the_data_obey_their_package(out: &Path) -> Vec<String> {
     paths
 }
 
+/// The rows of a CSV file as maps from column name to cell.
+pub fn rows_by_name(path: &Path) -> Vec<HashMap<String, String>> {
+    let mut reader = csv::Reader::from_path(path).expect("the file");
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    reader
+        .records()
+        .map(|r| {
+            header
+                .iter()
+                .cloned()
+                .zip(r.unwrap().iter().map(String::from))
+                .collect()
+        })
+        .collect()
+}
+
 #[test]
 fn cylinder_rows_carry_their_0d_stress_dofs_element_and_regions() {
     let dir = scratch("datapackage");
@@ -68,18 +84,7 @@ fn cylinder_rows_carry_their_0d_stress_dofs_element_and_regions() {
     binary::run_quiet(Some(&scene), &out);
     let paths = the_data_obey_their_package(&out);
     assert!(paths.contains(&"curves.csv".to_string()), "{paths:?}");
-    let mut reader = csv::Reader::from_path(out.join("curves.csv")).unwrap();
-    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
-    let rows: Vec<HashMap<String, String>> = reader
-        .records()
-        .map(|r| {
-            header
-                .iter()
-                .cloned()
-                .zip(r.unwrap().iter().map(String::from))
-                .collect()
-        })
-        .collect();
+    let rows = rows_by_name(&out.join("curves.csv"));
     let active_uniaxial = |lambda: &str| {
         rows.iter()
             .find(|r| r["study"] == "tension" && r["law"] == "implicit" && r["lambda"] == lambda)

@@ -140,6 +140,7 @@ fn newton_converges_quadratically_with_the_penalty() {
 fn chapter_muscle() -> activemuscle::Muscle<activemuscle::Energy> {
     Models::paper()
         .muscle(ModelChoice {
+            approach: activemuscle::active::Approach::ActiveStrain,
             law: LawKind::Explicit,
             coupling: CouplingKind::Frozen,
             damage: 0.0,

@@ -5,7 +5,7 @@
 //! linear term, a stress along the fibres at F = I is refused; and the scene's refusals, each at
 //! its key and line.
 
-use activemuscle::active::{ActiveStrainMap, Approach};
+use activemuscle::active::{ActivationMap, Approach};
 use activemuscle::energy::{FormulaEnergy, NeoHookean, Parameter, Parametric, SHIPPED};
 use activemuscle::fem::{AxisymmetricSolver, Bases, Mesh, SolverOptions};
 use activemuscle::homogeneous::simple_shear;
@@ -42,7 +42,7 @@ fn twins() -> Vec<(Energy, Energy)> {
     };
     let twins: Vec<(Energy, Energy)> = SHIPPED
         .iter()
-        .filter(|e| e.formula.is_some())
+        .filter(|e| e.w.is_some())
         .map(|e| {
             let v: Vec<f64> = e.parameters.iter().map(|p| values(&p.name)).collect();
             let shipped = e.build(&v).unwrap();
@@ -99,11 +99,10 @@ fn a_formula_identical_to_each_shipped_energy_gives_the_same_derivatives_to_1e_1
     }
 }
 
-/// The models of the scene's other choices with `energy`.
-fn models(energy: &Energy, approach: Approach, map: ActiveStrainMap) -> Models {
+/// The models of the scene's other choices with `energy` and the active-strain `map`.
+fn models(energy: &Energy, map: ActivationMap) -> Models {
     Models {
         energy: energy.clone(),
-        approach,
         map,
         ..Models::paper()
     }
@@ -126,22 +125,23 @@ fn every_approach_law_and_coupling_follows_the_formula_as_the_compiled_energy() 
             assert!((a - b).abs() < 1e-14, "{}: f {a} vs {b}", shipped.name());
         }
         let mut approaches = vec![
-            (Approach::ActiveStrain, ActiveStrainMap::Chapter),
-            (Approach::ActiveStrain, ActiveStrainMap::VolumePreserving),
-            (Approach::ActiveStress, ActiveStrainMap::Chapter),
+            (Approach::ActiveStrain, ActivationMap::Chapter),
+            (Approach::ActiveStrain, ActivationMap::VolumePreserving),
+            (Approach::ActiveStress, ActivationMap::Chapter),
         ];
         if structural.is_some() {
-            approaches.push((Approach::Structural, ActiveStrainMap::Chapter));
+            approaches.push((Approach::Structural, ActivationMap::Chapter));
         }
         for (approach, map) in approaches {
             for law in [LawKind::Implicit, LawKind::Energy] {
                 for coupling in [CouplingKind::Frozen, CouplingKind::Consistent] {
                     let choice = ModelChoice {
+                        approach,
                         law,
                         coupling,
                         damage: 0.2,
                     };
-                    let muscle = |e: &Energy| models(e, approach, map).muscle(choice).unwrap();
+                    let muscle = |e: &Energy| models(e, map).muscle(choice).unwrap();
                     let (a, b) = (muscle(&written), muscle(&shipped));
                     for (f, m) in &states {
                         let kin = Kinematics::new(f, m).unwrap();
@@ -181,8 +181,9 @@ fn every_approach_law_and_coupling_follows_the_formula_as_the_compiled_energy() 
 fn the_fe_cylinder_of_the_chapters_formula_is_the_chapters() {
     let (shipped, written) = twins().swap_remove(0);
     let sweep = |e: &Energy| {
-        let m = models(e, Approach::ActiveStrain, ActiveStrainMap::Chapter)
+        let m = models(e, ActivationMap::Chapter)
             .muscle(ModelChoice {
+                approach: Approach::ActiveStrain,
                 law: LawKind::Implicit,
                 coupling: CouplingKind::Frozen,
                 damage: 0.0,

@@ -362,7 +362,9 @@ stretch = [0.9, 1.1, 1.25]
     let results = scene.run(&RunOptions::default());
     let failures: Vec<_> = results.failures().collect();
     assert!(failures.is_empty(), "{failures:?}");
-    let cylinders: Vec<_> = results.cylinders().collect();
+    let cylinders: Vec<_> = results
+        .of::<activemuscle::studies::cylinder::CylinderResult>()
+        .collect();
     assert_eq!(cylinders.len(), 2);
     for (name, c) in cylinders {
         for s in &c.sweeps {

@@ -57,15 +57,21 @@ use scratch::scratch;
 
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
-/// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 44 the fits' `at_bound` and
-/// `weights`).
+/// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 42 the activation `approach` of
+/// every row that names a law, issue 43 the fit's `termination`, which Python's table had;
+/// issue 44 the fits' `at_bound` and `weights`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
     (
         "curves.csv",
-        &["study", "cauchy", "J", "P_0d", "dofs", "element", "regions"],
+        &[
+            "study", "cauchy", "J", "P_0d", "dofs", "element", "regions", "approach",
+        ],
     ),
-    ("stability.csv", &["cauchy"]),
-    ("fits.csv", &["at_bound", "weights"]),
+    ("stability.csv", &["cauchy", "approach"]),
+    (
+        "fits.csv",
+        &["termination", "approach", "at_bound", "weights"],
+    ),
 ];
 
 /// A CSV file as its header and rows of text cells.

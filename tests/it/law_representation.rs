@@ -7,7 +7,7 @@
 use activemuscle::active::{Coupling, FrozenTangent, LawRepresentation, TableSpec};
 use activemuscle::models::{LawKind, Models};
 use activemuscle::scene::{RunOptions, Scene};
-use activemuscle::studies::tradeoff::{run, Fallback, Geometry, OptionGroup, TradeoffOptions};
+use activemuscle::studies::tradeoff::{run, Geometry, OptionGroup, TradeoffOptions};
 use activemuscle::studies::uniaxial::CurveModel;
 use activemuscle::studies::{Silent, StudyResult};
 use activemuscle::uniaxial::along_fibres;
@@ -162,7 +162,7 @@ fn the_tradeoff_group_reports_the_errors_the_tabulated_laws_have() {
         ..TradeoffOptions::default()
     };
     let models = Models::paper();
-    let results = run(&models, &options, &Fallback::default(), &Silent).expect("runs");
+    let results = run(&models, &options, &Silent).expect("runs");
     let shown: Vec<(&str, &str)> = results
         .rows
         .iter()
@@ -187,13 +187,13 @@ fn the_tradeoff_group_reports_the_errors_the_tabulated_laws_have() {
     ] {
         let exact = Muscle::new(
             models.energy.clone(),
-            models.law(law).unwrap(),
+            models.law(law, models.map).unwrap(),
             0.0,
             coupling,
         )
         .unwrap();
         let table = models
-            .law(law)
+            .law(law, models.map)
             .unwrap()
             .represented(LawRepresentation::Tabulated(TableSpec::default()), &[0.0])
             .unwrap();
@@ -228,16 +228,16 @@ fn the_tradeoff_group_reports_the_errors_the_tabulated_laws_have() {
 
 #[test]
 fn the_tradeoff_measures_the_explicit_law_on_the_scene_s_active_strain_map() {
-    use activemuscle::active::ActiveStrainMap;
+    use activemuscle::active::ActivationMap;
     let mut models = Models::paper();
-    models.map = ActiveStrainMap::VolumePreserving;
+    models.map = ActivationMap::VolumePreserving;
     let stretches = vec![0.8, 1.0, 1.2, 1.4];
     let options = TradeoffOptions {
         groups: vec![OptionGroup::ActivationLaw],
         curve_stretches: Some(stretches.clone()),
         ..TradeoffOptions::default()
     };
-    let results = run(&models, &options, &Fallback::default(), &Silent).expect("runs");
+    let results = run(&models, &options, &Silent).expect("runs");
     let explicit_row = results
         .rows
         .iter()
@@ -245,10 +245,15 @@ fn the_tradeoff_measures_the_explicit_law_on_the_scene_s_active_strain_map() {
         .expect("an explicit row");
     // Built here: both laws on the volume-preserving map, the explicit one by `with_map`.
     let on_map = |law: LawKind| {
-        Muscle::new(models.energy.clone(), models.law(law).unwrap(), 0.0, EXACT)
-            .unwrap()
-            .with_map(ActiveStrainMap::VolumePreserving)
-            .unwrap()
+        Muscle::new(
+            models.energy.clone(),
+            models.law(law, models.map).unwrap(),
+            0.0,
+            EXACT,
+        )
+        .unwrap()
+        .with_map(ActivationMap::VolumePreserving)
+        .unwrap()
     };
     let curve = |m: &Muscle<_>| -> Vec<f64> {
         stretches
@@ -264,7 +269,7 @@ fn the_tradeoff_measures_the_explicit_law_on_the_scene_s_active_strain_map() {
     // On the chapter's map the explicit law would be another model: its error would differ.
     let chapter = Muscle::new(
         models.energy.clone(),
-        models.law(LawKind::Explicit).unwrap(),
+        models.law(LawKind::Explicit, models.map).unwrap(),
         0.0,
         EXACT,
     )

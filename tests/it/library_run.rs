@@ -4,7 +4,7 @@
 //! their projection.
 
 use activemuscle::models::{CouplingKind, LawKind};
-use activemuscle::output::csv::{rows, to_csv};
+use activemuscle::output::csv::files;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::studies::uniaxial::CurveModel;
 use activemuscle::studies::{StudyKind, StudyResult};
@@ -84,7 +84,7 @@ fn a_scene_from_a_string_runs_without_a_terminal_into_typed_results() {
         }
     }
     // The fit recovers the damage of exact synthetic data.
-    let fits = results.fits();
+    let fits: Vec<(&str, &Vec<activemuscle::studies::fit::FitOutcome>)> = results.of().collect();
     let (name, fit) = fits[0];
     assert_eq!(name, "damage");
     assert!(
@@ -93,7 +93,8 @@ fn a_scene_from_a_string_runs_without_a_terminal_into_typed_results() {
         fit[0]
     );
     // The stability study computed the passive curve only.
-    let stability = results.stability();
+    let stability: Vec<(&str, &Vec<activemuscle::studies::stability::StabilityCurve>)> =
+        results.of().collect();
     assert_eq!(stability[0].1.len(), 1);
     assert_eq!(stability[0].1[0].model, None);
 }
@@ -104,8 +105,16 @@ fn the_csv_the_binary_writes_is_the_projection_of_the_typed_results() {
     let path = dir.join("library.toml");
     std::fs::write(&path, SCENE).expect("scene");
     binary::run_quiet(Some(&path), &dir.join("out"));
-    let written = std::fs::read(dir.join("out/curves.csv")).expect("curves.csv");
     let scene = Scene::load(&path).expect("valid scene");
     let results = scene.run(&RunOptions::default());
-    assert_eq!(to_csv(&rows(&results)).expect("csv"), written);
+    let tables = files(&results);
+    assert!(
+        tables.len() >= 3,
+        "{:?}",
+        tables.iter().map(|t| &t.file).collect::<Vec<_>>()
+    );
+    for t in tables {
+        let written = std::fs::read(dir.join("out").join(&t.file)).expect("the file");
+        assert_eq!(t.bytes().expect("csv"), written, "{}", t.file);
+    }
 }

@@ -14,6 +14,7 @@ use nalgebra::{Matrix3, Vector3};
 fn active(law: LawKind, coupling: CouplingKind) -> Muscle<activemuscle::Energy> {
     Models::paper()
         .muscle(ModelChoice {
+            approach: activemuscle::active::Approach::ActiveStrain,
             law,
             coupling,
             damage: 0.0,

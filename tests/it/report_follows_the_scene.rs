@@ -6,13 +6,15 @@
 //! `scenes/examples/*.toml` and a small chapter-like scene.
 
 use activemuscle::active::{ActiveCurve, ExplicitLaw};
-use activemuscle::output::csv::rows;
 use activemuscle::output::figures::figures;
 use activemuscle::output::report::{html, RunInfo};
 use activemuscle::plot::CurveId;
 use activemuscle::plot::{Figure, Panel, Series, Stroke};
 use activemuscle::scene::{Results, RunOptions, Scene};
+use activemuscle::studies::curves::{cylinder_rows, uniaxial_rows};
+use activemuscle::studies::cylinder::CylinderResult;
 use activemuscle::studies::fit::correlations;
+use activemuscle::studies::uniaxial::UniaxialResult;
 use activemuscle::uniaxial::along_fibres;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -57,7 +59,14 @@ fn run(scene: &Scene) -> Results {
 
 /// The curves a run writes to curves.csv.
 fn written(results: &Results) -> BTreeSet<CurveId> {
-    rows(results).iter().map(|r| r.curve()).collect()
+    let mut rows = Vec::new();
+    for (study, u) in results.of::<UniaxialResult>() {
+        rows.extend(uniaxial_rows(study, u));
+    }
+    for (study, c) in results.of::<CylinderResult>() {
+        rows.extend(cylinder_rows(study, c));
+    }
+    rows.iter().map(|r| r.curve()).collect()
 }
 
 /// The curves drawn with a legend entry and at least one point inside their panel's frame.
@@ -162,7 +171,7 @@ fn every_curve_of_an_across_and_clamped_scene_is_drawn() {
     // the largest |P_FE − P_0D| over the stretches where (1 − d) P_act > max(P_pas, 0),
     // recomputed here from the curve and the passive material.
     let page = report(&scene, &results);
-    let (_, cylinder) = results.cylinders().next().expect("a cylinder");
+    let (_, cylinder) = results.of::<CylinderResult>().next().expect("a cylinder");
     let passive = scene.models.passive();
     let curve = ActiveCurve::paper();
     let at_zero = &cylinder.sweeps[0];
@@ -240,7 +249,7 @@ stretch = [0.7, 1.0]
     let results = run(&scene);
     let lmin = ActiveCurve::paper().lambda_min();
     let law = ExplicitLaw::paper();
-    let mut cylinders = results.cylinders();
+    let mut cylinders = results.of::<CylinderResult>();
     let (_, clamped) = cylinders.next().expect("clamped");
     for s in &clamped.sweeps {
         let p = &s.points[0];
@@ -447,6 +456,42 @@ fn a_scene_with_other_parameters_does_not_claim_the_chapter_s_figures() {
                 "as the chapter's Fig. {fig}, with this scene's parameters"
             )),
             "Fig. {fig}:\n{words}"
+        );
+    }
+}
+
+/// Every shipped energy's row in the report's table of models says what it is, with its formula,
+/// as the energy registry declares it (4c-passive was "a shipped energy" when the report kept its
+/// own list).
+#[test]
+fn every_shipped_energy_has_its_formula_in_the_table_of_models() {
+    for energy in activemuscle::energy::SHIPPED {
+        // Parameters without a chapter value must be given.
+        let given: String = energy
+            .parameters
+            .iter()
+            .filter(|p| p.default.is_none())
+            .map(|p| format!("{} = 1.0\n", p.name))
+            .collect();
+        let text = format!(
+            "[material]\nenergy = \"{}\"\n{given}[[study]]\nkind = \"uniaxial\"\nstretch = [1.1]\nlaws = []\n",
+            energy.name
+        );
+        let scene = Scene::parse(&text, "energy.toml").expect("valid scene");
+        let page = report(&scene, &scene.run(&RunOptions::default()));
+        let row = format!(
+            "<td>{} (energy)</td><td>{}; the material, with ",
+            energy.name,
+            activemuscle::text::escape_html(energy.formula)
+        );
+        assert!(page.contains(&row), "{}: no row {row}", energy.name);
+        assert!(
+            page.contains(&format!(
+                "</td><td>{}</td></tr>",
+                activemuscle::text::escape_html(energy.chapter)
+            )),
+            "{}",
+            energy.name
         );
     }
 }

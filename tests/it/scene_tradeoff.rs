@@ -58,7 +58,15 @@ fn a_bare_tradeoff_study_runs_every_option_on_the_first_cylinder_of_the_scene() 
     assert_eq!(o.meshes, defaults.meshes);
     assert_eq!(o.tolerances, defaults.tolerances);
     assert_eq!(o.fe_stretches, defaults.fe_stretches);
-    assert_eq!(o.curve_stretches, None);
+    // No uniaxial study along the fibres: the 0D curves run on 0.65, 0.66, …, 1.60.
+    let curve = o
+        .curve_stretches
+        .as_ref()
+        .expect("resolved when the scene is read");
+    assert_eq!(curve.len(), 96);
+    for (i, l) in curve.iter().enumerate() {
+        assert!((l - (0.65 + 0.01 * i as f64)).abs() < 1e-12, "{i}: {l}");
+    }
     assert_eq!(o.fe_mesh, Some((3, 12)));
     assert_eq!(
         o.geometry,
@@ -168,7 +176,10 @@ fn scene_gamma(text: &str, lambda: f64) -> f64 {
     let scene = Scene::parse(text, FILE).unwrap();
     scene
         .models
-        .law(LawKind::Energy)
+        .law(
+            LawKind::Energy,
+            activemuscle::active::ActivationMap::Chapter,
+        )
         .unwrap()
         .evaluate(lambda, 0.0)
         .unwrap()

@@ -7,7 +7,7 @@ use activemuscle::active::{ActiveCurve, Coupling, FrozenTangent, ImplicitLaw, La
 use activemuscle::energy::{GiantesioMusesti, NeoHookean};
 use activemuscle::homogeneous::{in_plane_fibre, planar_biaxial, simple_shear};
 use activemuscle::invariants::{Kinematics, FULL};
-use activemuscle::output::csv::tables;
+use activemuscle::output::csv::files;
 use activemuscle::response::Order;
 use activemuscle::scene::{RunOptions, Scene};
 use activemuscle::uniaxial::along_fibres;
@@ -223,12 +223,12 @@ approaches = ["active-strain", "active-stress"]
     let results = scene.run(&RunOptions::default());
     let failures: Vec<_> = results.failures().collect();
     assert!(failures.is_empty(), "{failures:?}");
-    let files = tables(&results).unwrap();
+    let files = files(&results);
     let shear = files
         .iter()
-        .find(|(n, _)| n == "shear.csv")
+        .find(|f| f.file == "shear.csv")
         .expect("shear.csv");
-    let text = String::from_utf8(shear.1.clone()).unwrap();
+    let text = String::from_utf8(shear.bytes().unwrap()).unwrap();
     let header = text.lines().next().unwrap();
     for column in [
         "approach",
@@ -245,10 +245,10 @@ approaches = ["active-strain", "active-stress"]
     assert_eq!(text.lines().count(), 1 + 3 * 2 * 5);
     let biaxial = files
         .iter()
-        .find(|(n, _)| n == "biaxial.csv")
+        .find(|f| f.file == "biaxial.csv")
         .expect("biaxial.csv");
     assert_eq!(
-        String::from_utf8(biaxial.1.clone())
+        String::from_utf8(biaxial.bytes().unwrap())
             .unwrap()
             .lines()
             .count(),

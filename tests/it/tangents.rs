@@ -3,7 +3,7 @@
 //! Taylor test and the full-AD consistent tangent for both active-strain maps.
 
 use activemuscle::active::{
-    ActivationLaw, ActiveCurve, ActiveStrainMap, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
+    ActivationLaw, ActivationMap, ActiveCurve, ConstantLaw, Coupling, EnergyLaw, ExplicitLaw,
     FrozenTangent, ImplicitLaw, Law,
 };
 use activemuscle::energy::{EhretBolItskov, GiantesioMusesti, StrainEnergy};
@@ -18,11 +18,11 @@ use num_dual::DualNum;
 use num_dual::{hessian, Dual2SVec64};
 
 fn laws() -> Vec<(&'static str, Law<GiantesioMusesti>)> {
-    laws_with(ActiveStrainMap::Chapter)
+    laws_with(ActivationMap::Chapter)
 }
 
 /// The laws solved with `map` (the explicit law only with the chapter's map, which it is fitted for).
-fn laws_with(map: ActiveStrainMap) -> Vec<(&'static str, Law<GiantesioMusesti>)> {
+fn laws_with(map: ActivationMap) -> Vec<(&'static str, Law<GiantesioMusesti>)> {
     let (gm, curve) = (GiantesioMusesti::paper(), ActiveCurve::paper());
     let mut laws = vec![
         ("constant", Law::Constant(ConstantLaw::new(0.2).unwrap())),
@@ -35,13 +35,13 @@ fn laws_with(map: ActiveStrainMap) -> Vec<(&'static str, Law<GiantesioMusesti>)>
             Law::Energy(EnergyLaw::new(gm, curve).with_map(map)),
         ),
     ];
-    if map == ActiveStrainMap::Chapter {
+    if map == ActivationMap::Chapter {
         laws.insert(2, ("explicit", Law::Explicit(ExplicitLaw::paper())));
     }
     laws
 }
 
-const MAPS: [ActiveStrainMap; 2] = [ActiveStrainMap::Chapter, ActiveStrainMap::VolumePreserving];
+const MAPS: [ActivationMap; 2] = [ActivationMap::Chapter, ActivationMap::VolumePreserving];
 
 const COUPLINGS: [Coupling; 3] = [
     Coupling::Frozen(FrozenTangent::Exact),
@@ -208,7 +208,7 @@ fn consistent_tangent_is_symmetric_and_frozen_exact_tangent_is_not() {
 /// the coupling's chain rule.
 fn consistent_by_full_ad<E: StrainEnergy>(
     energy: &E,
-    map: ActiveStrainMap,
+    map: ActivationMap,
     law: &Law<E>,
     f: &Matrix3<f64>,
     m: &Vector3<f64>,

@@ -11,8 +11,8 @@ use activemuscle::models::{LawKind, Models};
 use activemuscle::studies::tradeoff::measure::finalise;
 use activemuscle::studies::tradeoff::{
     activation_law_fe_rows, curve_error, fe_row, fe_run, pareto_front, run, time_median, time_runs,
-    CurveError, Fallback, FeRun, FiniteDifferenceTangent, Geometry, Measurement, OptionGroup,
-    OracleRoute, Timing, TradeoffOptions,
+    CurveError, FeRun, FiniteDifferenceTangent, Geometry, Measurement, OptionGroup, OracleRoute,
+    Timing, TradeoffOptions,
 };
 use activemuscle::studies::Silent;
 use activemuscle::Muscle;
@@ -359,6 +359,7 @@ fn fe_activation_law_error_on_sliding_bases_is_the_0d_law_error() {
     // law against the implicit law in the FE is the 0D error between the two laws.
     let rows = activation_law_fe_rows(
         &Models::paper(),
+        activemuscle::active::Approach::ActiveStrain,
         "activation law (FE, sliding)",
         geometry(),
         (2, 8),
@@ -420,7 +421,7 @@ fn the_study_runs_only_the_option_groups_asked_for() {
         fe_stretches: vec![1.1, 1.17],
         ..TradeoffOptions::default()
     };
-    let results = run(&Models::paper(), &options, &Fallback::default(), &Silent).unwrap();
+    let results = run(&Models::paper(), &options, &Silent).unwrap();
     let variants: Vec<&str> = results.rows.iter().map(|r| r.variant.as_str()).collect();
     assert_eq!(
         variants,
@@ -547,7 +548,7 @@ fn on_another_energy_the_explicit_law_is_not_measured_nor_used_by_the_other_grou
     let mut models = Models::paper();
     models.energy = Energy::NeoHookean(NeoHookeanEnergy::new(5.0).unwrap());
     let options = law_and_mesh();
-    let results = run(&models, &options, &Fallback::default(), &Silent).unwrap();
+    let results = run(&models, &options, &Silent).unwrap();
     println!("{:#?}", results.findings);
     assert!(results
         .rows
@@ -560,7 +561,7 @@ fn on_another_energy_the_explicit_law_is_not_measured_nor_used_by_the_other_grou
     // muscle (with the explicit law the group's stresses would differ by ≈ 100 %).
     let implicit = Muscle::new(
         models.energy.clone(),
-        models.law(LawKind::Implicit).unwrap(),
+        models.law(LawKind::Implicit, models.map).unwrap(),
         0.0,
         activemuscle::active::Coupling::Frozen(activemuscle::active::FrozenTangent::Exact),
     )
@@ -635,13 +636,11 @@ fn a_scene_with_damage_is_told_that_the_tradeoff_runs_at_d_0() {
         ..TradeoffOptions::default()
     };
     let findings = |damage: Vec<f64>| {
-        let fallback = Fallback {
+        let options = TradeoffOptions {
             damage,
-            ..Fallback::default()
+            ..options.clone()
         };
-        run(&Models::paper(), &options, &fallback, &Silent)
-            .unwrap()
-            .findings
+        run(&Models::paper(), &options, &Silent).unwrap().findings
     };
     let told = |f: &[String]| f.iter().any(|f| f.contains("runs at d = 0"));
     let damaged = findings(vec![0.0, 0.2]);
@@ -669,7 +668,7 @@ fn the_chapter_s_explicit_fit_serves_the_other_groups_only_on_the_chapter_s_mate
     };
     let options = law_and_mesh();
     let implicit_said = |models: &Models| {
-        let r = run(models, &options, &Fallback::default(), &Silent).unwrap();
+        let r = run(models, &options, &Silent).unwrap();
         assert!(r.rows.iter().any(|r| r.variant == "explicit (frozen)"));
         r.findings
             .iter()
@@ -724,7 +723,7 @@ fn the_frozen_tangent_group_has_no_failure_when_only_its_symmetric_variants_fail
         fe_stretches: vec![0.8, 1.0, 1.17, 1.3],
         ..TradeoffOptions::default()
     };
-    let results = run(&Models::paper(), &options, &Fallback::default(), &Silent).unwrap();
+    let results = run(&Models::paper(), &options, &Silent).unwrap();
     assert_eq!(results.rows.len(), 3);
     assert!(results.rows[0].reference && results.rows[0].measured());
     for r in &results.rows[1..] {

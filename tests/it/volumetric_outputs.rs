@@ -3,7 +3,7 @@
 //! captions that say a law reproduces its target say by how much it misses it here, measured
 //! from the curves themselves.
 
-use activemuscle::output::csv::{rows, to_csv};
+use activemuscle::output::csv::files;
 use activemuscle::output::figures::figures;
 use activemuscle::scene::{RunOptions, Scene};
 
@@ -18,7 +18,7 @@ fn curves(
     let results = scene.run(&RunOptions::default());
     let failures: Vec<_> = results.failures().collect();
     assert!(failures.is_empty(), "{failures:?}");
-    let csv = to_csv(&rows(&results)).unwrap();
+    let csv = files(&results)[0].bytes().unwrap();
     let mut r = csv::Reader::from_reader(csv.as_slice());
     let header = r.headers().unwrap().iter().map(String::from).collect();
     let cells = r

@@ -83,6 +83,39 @@ impl LawValue {
     }
 }
 
+/// An activation law by name (`law = "implicit"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawKind {
+    /// The chapter's exact fit, eq. (13) solved numerically ([`ImplicitLaw`]).
+    #[default]
+    Implicit,
+    /// The chapter's closed form, eq. (14) ([`ExplicitLaw`]).
+    Explicit,
+    /// The energy-consistent fit ([`EnergyLaw`]).
+    Energy,
+}
+
+impl LawKind {
+    /// Every law, in the order of the enum.
+    pub const ALL: [LawKind; 3] = [LawKind::Implicit, LawKind::Explicit, LawKind::Energy];
+
+    /// Whether the law solves an equation of Ŵ for γ (implicit, energy): those a table can
+    /// represent ([`TabulatedLaw`]).
+    pub fn solves(self) -> bool {
+        matches!(self, LawKind::Implicit | LawKind::Energy)
+    }
+
+    /// Name in scene files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawKind::Implicit => "implicit",
+            LawKind::Explicit => "explicit",
+            LawKind::Energy => "energy",
+        }
+    }
+}
+
 /// Any of the shipped laws, chosen at run time.
 #[derive(Debug, Clone)]
 pub enum Law<E> {
@@ -212,19 +245,6 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
             Law::Explicit(l) => l.gamma(lambda, drive),
             _ => Ok(self.evaluate(lambda.re(), drive)?.lift(lambda)),
         }
-    }
-}
-
-/// Rejects d ∉ [0, 1].
-pub fn check_damage(damage: f64) -> Result<f64> {
-    if (0.0..=1.0).contains(&damage) {
-        Ok(damage)
-    } else {
-        Err(Error::InvalidParameter {
-            name: "damage",
-            value: damage,
-            rule: "must lie in [0, 1]",
-        })
     }
 }
 

@@ -422,7 +422,7 @@ impl<E: StrainEnergy> TabulatedLaw<E> {
         spec.validate()?;
         let mut tables: Vec<Table> = Vec::with_capacity(damages.len());
         for &d in damages {
-            super::check_damage(d)?;
+            crate::active::drive::check_damage(d)?;
             if !tables.iter().any(|t| t.damage == d) {
                 tables.push(build(&exact, d, &spec)?);
             }

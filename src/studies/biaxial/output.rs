@@ -4,22 +4,26 @@
 use super::BiaxialResult;
 use crate::app_error::AppError;
 use crate::plot::{Figure, Panel, Series, Stroke};
-use crate::studies::outputs::{each_study, panel_of, prefixed, Context, KindOutput, Of, OwnTable};
-use crate::studies::spec::ApproachModel;
+use crate::studies::outputs::{
+    each_study, panel_of, prefixed, Context, KindOutput, Of, OwnTable, Used,
+};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for BiaxialResult {
-    fn own_table(&self, study: &str) -> Option<OwnTable> {
-        Some(OwnTable {
-            file: "biaxial.csv",
-            rows_are: "one row per biaxial study, model and stretch pair",
-            table: self.table(study),
-        })
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "biaxial.csv",
+            "one row per biaxial study, model and stretch pair",
+            self.table(study),
+        )]
     }
 
-    fn approach_models(&self) -> Vec<&ApproachModel> {
-        self.curves.iter().map(|c| &c.model).collect()
+    fn used(&self) -> Used {
+        Used {
+            models: self.curves.iter().map(|c| c.model.clone()).collect(),
+            ..Used::default()
+        }
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {

@@ -7,14 +7,132 @@ use crate::app_error::AppError;
 use crate::fem::Bases;
 use crate::models::{CouplingKind, LawKind};
 use crate::plot::{short, Figure, Series, Stroke, GREY};
-use crate::studies::curves::sweep_curve;
+use crate::studies::curves::{self, sweep_curve};
 use crate::studies::outputs::{
-    chapter, derived, figure, key, list, panel, words, Context, KindOutput, Of, GAMMA, STRESS,
+    chapter, derived, figure, key, list, model_cells, model_words, panel, Context, KindOutput, Of,
+    OwnTable, Used, GAMMA, STRESS,
 };
+use crate::studies::slug;
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+impl CylinderResult {
+    /// The table of `points_<study>.csv`: the displacement (u_r, u_z) of each named point
+    /// (reference r, z; the mesh's length unit) per sweep and stretch.
+    pub fn points_table(&self, study: &str) -> Table {
+        let mut rows = Vec::new();
+        for sweep in &self.sweeps {
+            for (p, u) in sweep.points.iter().zip(&sweep.displacements) {
+                for ((name, at), u) in self.points.iter().zip(u) {
+                    rows.push((sweep.model, name, *at, p.lambda, *u));
+                }
+            }
+        }
+        let cells = |m| model_cells(self.approach, Some(m));
+        let cell = |i: usize| rows.iter().map(move |r| cells(r.0)[i].clone());
+        let length = "the mesh's length unit";
+        Table::default()
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text(
+                "point",
+                "the point's name ([study.points])",
+                rows.iter().map(|r| Some(r.1.clone())),
+            )
+            .number(
+                "r",
+                length,
+                "reference radial position",
+                rows.iter().map(|r| Some(r.2[0])),
+            )
+            .number(
+                "z",
+                length,
+                "reference axial position",
+                rows.iter().map(|r| Some(r.2[1])),
+            )
+            .text(
+                "law",
+                "implicit, explicit or energy (empty: an approach without a law, active stress)",
+                cell(1),
+            )
+            .text(
+                "coupling",
+                "frozen or consistent (empty: an approach without a law)",
+                cell(2),
+            )
+            .number("d", "-", "damage d", rows.iter().map(|r| Some(r.0.damage)))
+            .number(
+                "lambda",
+                "-",
+                "imposed stretch L/L₀",
+                rows.iter().map(|r| Some(r.3)),
+            )
+            .number(
+                "u_r",
+                length,
+                "radial displacement",
+                rows.iter().map(|r| Some(r.4[0])),
+            )
+            .number(
+                "u_z",
+                length,
+                "axial displacement",
+                rows.iter().map(|r| Some(r.4[1])),
+            )
+            .text(
+                "approach",
+                "activation approach, active-strain, active-stress or structural",
+                cell(0),
+            )
+    }
+}
 
 impl KindOutput for CylinderResult {
+    /// Its rows of `curves.csv` and, if it names points, `points_<study>.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        let mut tables = vec![curves::own_table(&curves::cylinder_rows(study, self))];
+        if !self.points.is_empty() {
+            tables.push(OwnTable {
+                key: "named_points",
+                file: format!("points_{}.csv", slug(study)),
+                rows_are: "one row per named point, model and stretch: its displacement",
+                table: self.points_table(study),
+            });
+        }
+        tables
+    }
+
+    fn used(&self) -> Used {
+        Used::active(self.approach, self.sweeps.iter().map(|s| s.model))
+    }
+
+    fn vtk_files(&self) -> Vec<&Path> {
+        self.sweeps
+            .iter()
+            .flat_map(|s| s.vtk_files.iter().map(PathBuf::as_path))
+            .collect()
+    }
+
+    /// The verification of sliding bases: the largest |P_FE − P_0D| per sweep.
+    fn console(&self, _study: &str) -> Vec<String> {
+        if self.bases != Bases::Sliding {
+            return Vec::new();
+        }
+        self.sweeps
+            .iter()
+            .filter_map(|s| {
+                s.worst_against_0d().map(|(worst, _, _)| {
+                    format!(
+                        "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
+                        s.label
+                    )
+                })
+            })
+            .collect()
+    }
+
     fn figures(studies: &[Of<Self>], cx: &Context) -> Vec<Figure> {
         let mut out: Vec<Figure> = studies.iter().filter_map(|s| cylinder(cx, s)).collect();
         out.extend(fe_vs_0d(studies));
@@ -52,23 +170,7 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
             .collect()
     };
     let mut fibre = by_damage(|p| p.fibre_stretch_centre);
-    let lambdas: Vec<f64> = c
-        .sweeps
-        .iter()
-        .flat_map(|s| s.points.iter().map(|p| p.lambda))
-        .collect();
-    let (lo, hi) = lambdas
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &l| {
-            (a.0.min(l), a.1.max(l))
-        });
-    let lmin = cx.curve.lambda_min();
-    fibre.push(derived(
-        format!("λ_min = {lmin}"),
-        vec![(lo, lmin), (hi, lmin)],
-        Stroke::Dashed,
-        GREY,
-    ));
+    fibre.push(lambda_min_line(c, cx.curve.lambda_min()));
     let mut p = by_damage(|p| p.stress);
     for (i, s) in c.sweeps.iter().enumerate() {
         p.push(derived(
@@ -84,35 +186,78 @@ fn cylinder(cx: &Context, study: &Of<CylinderResult>) -> Option<Figure> {
     p.push(key("dashed: homogeneous (0D)", Stroke::Dashed));
     let m = c.sweeps.first()?.model;
     let ds: Vec<f64> = c.sweeps.iter().map(|s| s.model.damage).collect();
+    let lawful = m.activation_law().is_some();
     let like_fig_12 = c.bases == Bases::Clamped
-        && m.law == LawKind::Explicit
-        && m.coupling == CouplingKind::Frozen;
+        && m.activation_law() == Some((LawKind::Explicit, CouplingKind::Frozen));
     let geometry = details.first().map_or(String::new(), |d| format!(" ({d})"));
     figure(
         "fig_cylinder",
         format!(
             "The cylinder \"{study}\": {} bases, {}, d = {}{}",
             bases_name(c.bases),
-            words(m.law, m.coupling),
+            model_words(&m),
             list(&ds),
-            if like_fig_12 { chapter(12, &c.energy, cx.chapter_material) } else { String::new() }
-        ),
-        format!(
-            "Axisymmetric FE cylinder{geometry}, energy {}. Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min); bottom: nominal axial stress (axial reaction / πR²), dashed: {}.",
-            c.energy,
-            match c.regions_in_words() {
-                None => "the homogeneous uniaxial (0D) curve of the same model".to_string(),
-                Some(regions) => format!(
-                    "the homogeneous uniaxial (0D) curve of the uniform model at the sweep's d, \
-                     without the regions ({regions}): a reference, not the same body"
-                ),
+            if like_fig_12 {
+                chapter(12, &c.energy, cx.chapter_material)
+            } else {
+                String::new()
             }
         ),
+        caption(c, &geometry, lawful),
         vec![
-            panel("γ at the centre of the cylinder", GAMMA, by_damage(|p| p.gamma_centre)),
-            panel("Fibre stretch λ_f at the centre", "fibre stretch λ_f [-]", fibre),
+            lawful
+                .then(|| {
+                    panel(
+                        "γ at the centre of the cylinder",
+                        GAMMA,
+                        by_damage(|p| p.gamma_centre),
+                    )
+                })
+                .flatten(),
+            panel(
+                "Fibre stretch λ_f at the centre",
+                "fibre stretch λ_f [-]",
+                fibre,
+            ),
             panel("Nominal axial stress", STRESS, p),
         ],
+    )
+}
+
+/// The dashed line at λ_f = `lmin` across the stretches of `c`.
+fn lambda_min_line(c: &CylinderResult, lmin: f64) -> Option<Series> {
+    let (lo, hi) = c
+        .sweeps
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.lambda))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, l| {
+            (a.0.min(l), a.1.max(l))
+        });
+    derived(
+        format!("λ_min = {lmin}"),
+        vec![(lo, lmin), (hi, lmin)],
+        Stroke::Dashed,
+        GREY,
+    )
+}
+
+/// The caption of [`cylinder`]: what its panels show (no γ panel for a model without a law).
+fn caption(c: &CylinderResult, geometry: &str, lawful: bool) -> String {
+    format!(
+        "Axisymmetric FE cylinder{geometry}, energy {}. {}; bottom: nominal axial stress (axial reaction / πR²), dashed: {}.",
+        c.energy,
+        if lawful {
+            "Top: γ at the quadrature point nearest the centre of the cylinder; middle: the fibre stretch λ_f there, the argument of the law (the implicit and explicit laws give γ = 0 where λ_f ≤ λ_min)"
+        } else {
+            "Top: the fibre stretch λ_f at the quadrature point nearest the centre of the cylinder, the argument of the active stress (0 where λ_f ≤ λ_min): the approach has no activation variable"
+        },
+        match c.regions_in_words() {
+            None => "the homogeneous uniaxial (0D) curve of the same model".to_string(),
+            Some(regions) => format!(
+                "the homogeneous uniaxial (0D) curve of the uniform model at the sweep's d, \
+                 without the regions ({regions}): a reference, not the same body"
+            ),
+        }
     )
 }
 

@@ -415,6 +415,12 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
 /// The problem of a fit of `kind` on the scene's material and curve.
 fn problem(spec: &FitSpec, kind: FitKind, d: &Defaults) -> Result<Arc<dyn Problem>, SpecError> {
     let (energy, curve) = (d.models.energy.clone(), d.models.curve);
+    if kind == FitKind::ExplicitLaw {
+        // The fit is of the chapter's active-strain γ: the scene's approach must take it.
+        d.models
+            .explicit_fit_for(d.approach)
+            .map_err(|rule| SpecError::new("fit", "\"explicit-law\"", rule))?;
+    }
     Ok(match kind {
         FitKind::Passive => Arc::new(Passive {
             energy,

@@ -8,16 +8,34 @@ use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::outputs::{
     derived, each_study, figure, panel_over, prefixed, Context, KindOutput, Of, OwnTable,
 };
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<FitOutcome> {
-    fn own_table(&self, study: &str) -> Option<OwnTable> {
-        Some(OwnTable {
-            file: "fit_points.csv",
-            rows_are: "one row per datum of a fit (with the fitted model there and the residual) and per point of its fitted curve",
-            table: super::points::points_table(study, self),
-        })
+    /// Its rows of `fits.csv`, and of `fit_points.csv` (each datum with the fitted model and
+    /// the residual, then the fitted curve).
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![
+            OwnTable::rows(
+                "fits.csv",
+                "one row per fitted parameter",
+                fits_table_of(study, self),
+            ),
+            OwnTable {
+                key: "fit_points",
+                file: "fit_points.csv".into(),
+                rows_are: "one row per datum of a fit (with the fitted model there and the residual) and per point of its fitted curve",
+                table: super::points::points_table(study, self),
+            },
+        ]
+    }
+
+    /// Each fitted value with its standard error (or its bound).
+    fn console(&self, study: &str) -> Vec<String> {
+        self.iter()
+            .map(|f| format!("{study} — {}", f.summary()))
+            .collect()
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
@@ -27,6 +45,63 @@ impl KindOutput for Vec<FitOutcome> {
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
         fits_table(h, studies)
     }
+}
+
+/// The approach whose model a fit of `kind` fits: the explicit law (eq. (14)) is active strain's;
+/// the other fits are to the uniaxial target, which every approach reproduces.
+fn approach(kind: FitKind) -> Option<String> {
+    (kind == FitKind::ExplicitLaw).then(|| crate::active::Approach::ActiveStrain.name().into())
+}
+
+/// The table of `fits.csv` for the fits of `study`: one row per fitted parameter, its
+/// correlations with the others in one readable cell (`w0: 0.99988`).
+pub fn fits_table_of(study: &str, fits: &[FitOutcome]) -> Table {
+    let rows: Vec<(&FitOutcome, usize)> = fits
+        .iter()
+        .flat_map(|f| (0..f.names.len()).map(move |j| (f, j)))
+        .collect();
+    let of = |f: fn(&FitOutcome, usize) -> Option<f64>| rows.iter().map(move |&(r, j)| f(r, j));
+    let words = |f: fn(&FitOutcome, usize) -> String| rows.iter().map(move |&(r, j)| Some(f(r, j)));
+    let unit = "the parameter's unit";
+    Table::default()
+        .text("study", "the study's name", every_row(study, rows.len()))
+        .text("fit", "what was fitted (the fit kind)", words(|f, _| f.kind.name().into()))
+        .text("case", "the data set or case fitted", words(|f, _| f.case.clone()))
+        .text("parameter", "the fitted parameter's name", words(|f, j| f.names[j].clone()))
+        .number("value", unit, "fitted value, in the parameter's own unit (kPa for moduli and stresses, - for exponents and fractions)", of(|f, j| Some(f.values[j])))
+        .number("standard_error", unit, "standard error of the value from the Jacobian at the optimum (empty: not estimable)", of(|f, j| f.standard_errors.get(j).copied().flatten()))
+        .number("reference", unit, "the chapter's (or the scene's) value for comparison (empty: none)", of(|f, j| f.reference.get(j).copied().flatten()))
+        .text("correlation", "correlations with the other parameters, 'name: value; …' (n/a: not estimable)", words(correlation_cell))
+        .boolean("converged", "whether the least-squares solver met its tolerance", rows.iter().map(|(f, _)| Some(f.converged)))
+        .number("rms", "see rms_unit", "root-mean-square residual of the fit", of(|f, _| Some(f.rms)))
+        .text("rms_unit", "the unit of rms (kPa for stresses)", words(|f, _| f.unit.into()))
+        .number("residual_norm", "see rms_unit", "Euclidean norm of the residual vector", of(|f, _| Some(f.residual_norm)))
+        .integer("iterations", "iterations of the least-squares solver", rows.iter().map(|(f, _)| Some(f.iterations as i64)))
+        .integer("points", "data points fitted", rows.iter().map(|(f, _)| Some(f.points as i64)))
+        .text("termination", "why the least-squares solver stopped", words(|f, _| f.termination.clone()))
+        .text(
+            "approach",
+            "the activation approach whose law is fitted: active-strain for the explicit law (eq. (14)); empty: the fit does not depend on the approach (passive parameters, the active curve and the damage are fitted to the uniaxial target P_pas + (1 − d) P_act along the fibres, which every approach reproduces)",
+            rows.iter().map(|(f, _)| approach(f.kind)),
+        )
+        .number("at_bound", unit, "the bound the parameter is held at, the least-squares minimum lying beyond it (empty: estimated inside its bounds)", of(|f, j| f.at_bound.get(j).copied().flatten().map(|b| b.bound)))
+        .text("weights", "how the residuals were weighted: equal, relative (to the datum) or sigma (each datum's standard deviation)", words(|f, _| f.weights.name().into()))
+}
+
+/// The correlations of parameter `j` of `f` with the others, five decimals (`n/a` where not
+/// estimable or not finite).
+fn correlation_cell(f: &FitOutcome, j: usize) -> String {
+    let number = |c: f64| {
+        Ok(if c.is_finite() {
+            format!("{c:.5}")
+        } else {
+            "n/a".into()
+        })
+    };
+    f.correlation
+        .get(j)
+        .map(|row| correlations(row, &f.names, j, number).unwrap_or_default())
+        .unwrap_or_default()
 }
 
 /// `Fit: chapter's energy …` for a study called `fit: chapter's energy …` or `chapter's energy …`.

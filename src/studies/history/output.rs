@@ -2,15 +2,104 @@
 //! and γ(t) per damage (and J(t) for a nearly incompressible block).
 
 use super::{HistoryPoint, HistoryResult};
+use crate::models::ModelChoice;
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::outputs::{
-    derived, each_study, figure, prefixed, Context, KindOutput, Of, GAMMA, LAMBDA, STRESS,
+    derived, each_study, figure, model_cells, model_words, prefixed, Context, KindOutput, Of,
+    OwnTable, Used, GAMMA, LAMBDA, STRESS,
 };
+use crate::studies::table::{every_row, Table};
 
 impl KindOutput for HistoryResult {
+    /// Its rows of `history.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "history.csv",
+            "one row per activation-in-time model and time step",
+            self.table(study),
+        )]
+    }
+
+    fn used(&self) -> Used {
+        Used::active(self.approach, self.histories.iter().map(|h| h.model))
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         each_study(studies, history_figure)
     }
+}
+
+impl HistoryResult {
+    /// The table of `history.csv` for study `study`: t [s], the schedule a_s and the activation
+    /// level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-], P_pas and the
+    /// target (1 − d)·a·P_act(λ) \[kPa\], per model and time step.
+    pub fn table(&self, study: &str) -> Table {
+        let rows: Vec<(&super::History, &HistoryPoint)> = self
+            .histories
+            .iter()
+            .flat_map(|h| h.points.iter().map(move |p| (h, p)))
+            .collect();
+        let cell = |i: usize| {
+            rows.iter()
+                .map(move |(h, _)| model_cells(self.approach, Some(h.model))[i].clone())
+        };
+        let at = |f: fn(&HistoryPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
+        Table::default()
+            .text("study", "the study's name", every_row(study, rows.len()))
+            .text("loading", "prescribed (the stretch as scheduled) or free (no load)", every_row(self.loading, rows.len()))
+            .text("energy", "the strain energy's name", every_row(&self.energy, rows.len()))
+            .text("law", "implicit, explicit or energy (empty: an approach without a law, active stress)", cell(1))
+            .text("coupling", "frozen or consistent (empty: an approach without a law)", cell(2))
+            .number("d", "-", "damage d", rows.iter().map(|(h, _)| Some(h.model.damage)))
+            .number("t", "s", "time", at(|p| p.t))
+            .number("a_schedule", "-", "the activation schedule at t", at(|p| p.schedule))
+            .number("a", "-", "the activation level used at t", at(|p| p.level))
+            .number("lambda", "-", "stretch λ", at(|p| p.lambda))
+            .number("gamma", "-", "γ (ω for the structural approach, 0 for active stress)", at(|p| p.gamma))
+            .number("P", "kPa", "nominal stress along the stretch", at(|p| p.stress))
+            .number("cauchy", "kPa", "Cauchy stress σ₁₁ = P λ / J", at(|p| p.cauchy))
+            .number("J", "-", "volume ratio", at(|p| p.volume))
+            .number("P_pas", "kPa", "passive stress at λ", at(|p| p.passive))
+            .number("P_act", "kPa", "target active stress (1 − d)·a·f_v·P_act(λ), f_v the force–velocity factor at the step's stretch rate (1 without [activation.force_velocity])", at(|p| p.active_target))
+            .text("approach", "activation approach, active-strain, active-stress or structural", cell(0))
+    }
+}
+
+/// The stretch axis of a free contraction from its deepest shortening up to rest (λ = 1
+/// wherever a = 0).
+fn down_to_rest(p: &mut Panel) {
+    let low = p
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|q| q.1))
+        .fold(1.0, f64::min);
+    let pad = 0.05 * (1.0 - low).max(1e-3);
+    p.y_range = Some((low - pad, 1.0 + pad));
+}
+
+/// The caption of [`history_figure`]: the block, its model, its loading.
+fn caption(r: &HistoryResult, m: &ModelChoice, free: bool) -> String {
+    let block = match &r.volumetric {
+        None => "A homogeneous incompressible block".to_string(),
+        Some(v) => format!(
+            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
+            v.formula()
+        ),
+    };
+    format!(
+        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+        model_words(m),
+        if m.activation_law().is_some() {
+            "the laws evaluated at each step with"
+        } else {
+            "no law:"
+        },
+        if free {
+            "Zero axial load: the stretch solves P(λ) = 0 at each step."
+        } else {
+            "Prescribed stretch λ(t): the stress history."
+        }
+    )
 }
 
 /// The figure of an activation-in-time study: a(t) with its schedule, then per damage value the
@@ -69,27 +158,15 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
     };
     let mut response = over(title.into(), y_label, response);
     if let (true, Some(p)) = (free, response.as_mut()) {
-        // λ = 1 wherever a = 0: the whole range, from the deepest shortening to rest.
-        let low = p
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|q| q.1))
-            .fold(1.0, f64::min);
-        let pad = 0.05 * (1.0 - low).max(1e-3);
-        p.y_range = Some((low - pad, 1.0 + pad));
+        down_to_rest(p);
     }
     let m = first.model;
-    let block = match &r.volumetric {
-        None => "A homogeneous incompressible block".to_string(),
-        Some(v) => format!(
-            "A homogeneous nearly incompressible block (Ŵ + U(J), U = {}; lateral stretches from zero lateral traction at each step)",
-            v.formula()
-        ),
-    };
     let mut panels = vec![
         over("Activation level".into(), "activation level a [-]", level),
         response,
-        over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma)),
+        // An approach without a law has no γ (≡ 0) to draw.
+        m.activation_law()
+            .and_then(|_| over("Activation γ".into(), GAMMA, per_damage(|p| p.gamma))),
     ];
     if r.volumetric.is_some() {
         panels.push(over(
@@ -101,16 +178,7 @@ fn history_figure(study: &str, r: &HistoryResult) -> Option<Figure> {
     figure(
         &prefixed("history", study),
         format!("Activation in time (study \"{study}\")"),
-        format!(
-            "{block} along the fibres, quasi-static in time: {} law, {} coupling, the laws evaluated at each step with the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
-            m.law.name(),
-            m.coupling.name(),
-            if free {
-                "Zero axial load: the stretch solves P(λ) = 0 at each step."
-            } else {
-                "Prescribed stretch λ(t): the stress history."
-            }
-        ),
+        caption(r, &m, free),
         panels,
     )
 }

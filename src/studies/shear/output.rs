@@ -2,12 +2,12 @@
 //! active stress, the normal stresses) and its report section (what differs and why).
 
 use super::{ShearCurve, ShearResult};
+use crate::active::Approach;
 use crate::app_error::AppError;
-use crate::plot::{Figure, Panel, Series};
+use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::outputs::{
-    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable,
+    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
 };
-use crate::studies::spec::ApproachModel;
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
@@ -15,16 +15,19 @@ const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
 impl KindOutput for ShearResult {
-    fn own_table(&self, study: &str) -> Option<OwnTable> {
-        Some(OwnTable {
-            file: "shear.csv",
-            rows_are: "one row per shear study, approach and amount of shear",
-            table: self.table(study),
-        })
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "shear.csv",
+            "one row per shear study, approach and amount of shear",
+            self.table(study),
+        )]
     }
 
-    fn approach_models(&self) -> Vec<&ApproachModel> {
-        self.curves.iter().map(|c| &c.model).collect()
+    fn used(&self) -> Used {
+        Used {
+            models: self.curves.iter().map(|c| c.model.clone()).collect(),
+            ..Used::default()
+        }
     }
 
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
@@ -75,39 +78,7 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             })
             .collect()
     };
-    // Active strain (and structural) minus active stress, at the same damage and angle.
-    let mut difference = Vec::new();
-    for c in r
-        .curves
-        .iter()
-        .filter(|c| c.model.approach.has_law() && c.model.model.is_some())
-    {
-        let d = c.model.model.map(|m| m.damage);
-        let Some(s) = r.curves.iter().find(|s| {
-            !s.model.approach.has_law()
-                && s.model.model.map(|m| m.damage) == d
-                && s.angle == c.angle
-        }) else {
-            continue;
-        };
-        let points: Vec<(f64, f64)> = c
-            .points
-            .iter()
-            .filter_map(|p| {
-                s.points
-                    .iter()
-                    .find(|q| q.k == p.k)
-                    .map(|q| (p.k, p.sigma[0] - q.sigma[0]))
-            })
-            .collect();
-        let (stroke, colour) = style(c);
-        difference.push(Series::new(
-            format!("{} − active stress, θ = {}°", c.model.words(), c.angle),
-            points,
-            stroke,
-            colour,
-        ));
-    }
+    let difference = differences(r, &style);
     let hidden = coinciding(r);
     let panels: Vec<Panel> = [
         panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
@@ -145,6 +116,49 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             panels,
         )
     })
+}
+
+/// σ₁₂ of every activated model but active stress minus that of active stress at the same
+/// damage and angle, each in the model's `style`.
+fn differences(r: &ShearResult, style: &dyn Fn(&ShearCurve) -> (Stroke, usize)) -> Vec<Series> {
+    let stress = |c: &ShearCurve| {
+        c.model
+            .model
+            .is_some_and(|m| m.approach == Approach::ActiveStress)
+    };
+    let mut difference = Vec::new();
+    for c in r
+        .curves
+        .iter()
+        .filter(|c| c.model.model.is_some() && !stress(c))
+    {
+        let d = c.model.model.map(|m| m.damage);
+        let Some(s) = r
+            .curves
+            .iter()
+            .find(|s| stress(s) && s.model.model.map(|m| m.damage) == d && s.angle == c.angle)
+        else {
+            continue;
+        };
+        let points: Vec<(f64, f64)> = c
+            .points
+            .iter()
+            .filter_map(|p| {
+                s.points
+                    .iter()
+                    .find(|q| q.k == p.k)
+                    .map(|q| (p.k, p.sigma[0] - q.sigma[0]))
+            })
+            .collect();
+        let (stroke, colour) = style(c);
+        difference.push(Series::new(
+            format!("{} − active stress, θ = {}°", c.model.words(), c.angle),
+            points,
+            stroke,
+            colour,
+        ));
+    }
+    difference
 }
 
 /// A caption sentence for the activated curves that σ₁₂ cannot tell apart at the figure's scale

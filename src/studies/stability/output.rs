@@ -5,13 +5,31 @@ use super::StabilityCurve;
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Stroke};
 use crate::studies::outputs::{
-    coupling_stroke, derived, each_study, figure, law_colour, panel, prefixed, sorted_unique,
-    Context, KindOutput, Of, STRESS,
+    coupling_stroke, derived, each_study, figure, law_colour, model_cells, panel, prefixed,
+    sorted_unique, Context, KindOutput, Of, OwnTable, Used, STRESS,
 };
+use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<StabilityCurve> {
+    /// Its rows of `stability.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![OwnTable::rows(
+            "stability.csv",
+            "one row per model and stretch",
+            stability_table_of(study, self),
+        )]
+    }
+
+    fn used(&self) -> Used {
+        let mut used = Used::default();
+        for c in self.iter().filter(|c| c.model.is_some()) {
+            used.merge(Used::active(c.approach, c.model));
+        }
+        used
+    }
+
     fn figures(studies: &[Of<Self>], _: &Context) -> Vec<Figure> {
         each_study(studies, |name, curves| stability_figure(name, curves))
     }
@@ -19,6 +37,33 @@ impl KindOutput for Vec<StabilityCurve> {
     fn report(studies: &[Of<Self>], _: &Context, h: &mut String) -> Result<(), AppError> {
         stability_table(h, studies)
     }
+}
+
+/// The table of `stability.csv` for the curves of `study`: one row per model and stretch.
+pub fn stability_table_of(study: &str, curves: &[StabilityCurve]) -> Table {
+    let rows: Vec<(&StabilityCurve, &super::StabilityPoint)> = curves
+        .iter()
+        .flat_map(|c| c.points.iter().map(move |p| (c, p)))
+        .collect();
+    let cell = |i: usize| {
+        rows.iter()
+            .map(move |(c, _)| model_cells(c.approach, c.model)[i].clone())
+    };
+    let at = |f: fn(&super::StabilityPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
+    Table::default()
+        .text("study", "the study's name", every_row(study, rows.len()))
+        .text("law", "passive, implicit, explicit or energy (empty: an approach without a law, active stress)", cell(1))
+        .text("coupling", "frozen or consistent (active rows; empty: passive, or an approach without a law)", cell(2))
+        .number("d", "-", "damage d (active rows)", rows.iter().map(|(c, _)| c.damage()))
+        .number("lambda", "-", "stretch λ of homogeneous uniaxial tension along the fibres", at(|p| p.lambda))
+        .number("P", "kPa", "nominal stress", at(|p| p.stress))
+        .number("dP_dlambda", "kPa", "slope of the nominal stress, dP/dλ", at(|p| p.slope))
+        .number("ellipticity_min", "kPa", "min a·Q(N)a of the acoustic tensor over the sampled normals (strong ellipticity: > 0)", at(|p| p.least))
+        .number("ellipticity_relative", "-", "ellipticity_min relative to the tangent's norm", at(|p| p.relative))
+        .boolean("strongly_elliptic", "whether ellipticity_relative > −1e-12", rows.iter().map(|(_, p)| Some(p.elliptic)))
+        .boolean("softening", "whether dP/dλ < 0", rows.iter().map(|(_, p)| Some(p.slope < 0.0)))
+        .number("cauchy", "kPa", "Cauchy stress along the stretch", at(|p| p.cauchy))
+        .text("approach", "activation approach, active-strain, active-stress or structural (empty: the passive material)", cell(0))
 }
 
 /// The figure of a stability study, a panel per damage value: the stress along the fibres of

@@ -20,7 +20,7 @@
 use super::measure::{curve_error, time_median, time_runs, CurveError, Measurement, Timing};
 use super::routes::{FiniteDifferenceTangent, OracleRoute};
 use super::Geometry;
-use crate::active::{Coupling, FrozenTangent, Law, LawRepresentation, TableSpec};
+use crate::active::{Approach, Coupling, FrozenTangent, Law, LawRepresentation, TableSpec};
 use crate::app_error::AppError;
 use crate::energy::Energy;
 use crate::fem::{
@@ -36,6 +36,8 @@ use std::time::Instant;
 
 /// Options with the geometry, FE mesh and stretches resolved.
 pub(super) struct Resolved {
+    /// The approach whose laws and muscles are measured.
+    pub approach: Approach,
     pub geom: Geometry,
     pub meshes: Vec<(usize, usize)>,
     pub fe_mesh: (usize, usize),
@@ -187,15 +189,20 @@ impl Runner<'_> {
     }
 }
 
-/// The muscle of `law` with `coupling` at d = 0, on the scene's active-strain map: the explicit
-/// law (the cheap model most groups measure with) has no map of its own and would otherwise run
-/// on the chapter's; with another map its γ(λ) is no longer the fit of eq. (14), which the
-/// activation-law groups then measure as part of its error.
-fn muscle(models: &Models, law: LawKind, coupling: Coupling) -> Result<Muscle<Energy>, AppError> {
-    Ok(
-        Muscle::new(models.energy.clone(), models.law(law)?, 0.0, coupling)?
-            .with_map(models.map)?,
-    )
+/// The muscle of `law` with `coupling` at d = 0, on the map of `approach` (the scene's): the
+/// explicit law (the cheap model most groups measure with) has no map of its own and would
+/// otherwise run on the chapter's; with another active-strain map its γ(λ) is no longer the fit
+/// of eq. (14), which the activation-law groups then measure as part of its error.
+fn muscle(
+    models: &Models,
+    approach: Approach,
+    law: LawKind,
+    coupling: Coupling,
+) -> Result<Muscle<Energy>, AppError> {
+    let map = models
+        .activation_map(approach)
+        .map_err(|reason| crate::Error::Unsupported { reason })?;
+    Ok(Muscle::new(models.energy.clone(), models.law(law, map)?, 0.0, coupling)?.with_map(map)?)
 }
 
 /// The solver's defaults (tolerance 1e-10, 25 Newton iterations per step).
@@ -218,6 +225,20 @@ fn with_stepping(stepping: Stepping) -> SolverOptions {
 }
 
 const EXACT: Coupling = Coupling::Frozen(FrozenTangent::Exact);
+
+/// Whether the law groups measure the explicit law for `approach` on this material: the
+/// approach lists it, and its formula holds ([`Models::explicit_formula_holds`]; on another
+/// active-strain map than the chapter's its error then includes the map's); why not otherwise.
+pub(super) fn explicit_measured(models: &Models, approach: Approach) -> Result<(), String> {
+    if !approach.laws().contains(&LawKind::Explicit) {
+        return Err(format!(
+            "the explicit law does not apply to approach = \"{}\": {}",
+            approach.name(),
+            approach.no_law()
+        ));
+    }
+    models.explicit_formula_holds()
+}
 
 impl Resolved {
     /// The law the groups that trade something else (derivative route, tangent, mesh, element,
@@ -298,7 +319,7 @@ pub(super) fn activation_law(
     const OPTION: &str = "activation law (0D)";
     let stretches = &o.curve_stretches;
     let curve = |m: &Muscle<Energy>| fibre_curve(m, stretches);
-    let implicit = muscle(models, LawKind::Implicit, EXACT)?;
+    let implicit = muscle(models, o.approach, LawKind::Implicit, EXACT)?;
     let (t_ref, (p_ref, g_ref)) = curve(&implicit)?;
     // The reference reproduces the target P_pas + P_act.
     let passive = Muscle::passive(models.energy.clone());
@@ -332,7 +353,7 @@ pub(super) fn activation_law(
             findings.push(format!("explicit law (0D) not measured: {why}."));
             continue;
         }
-        let (t, (p, g)) = match muscle(models, law, coupling).and_then(|m| curve(&m)) {
+        let (t, (p, g)) = match muscle(models, o.approach, law, coupling).and_then(|m| curve(&m)) {
             Ok(c) => c,
             Err(e) => {
                 findings.push(format!("{} law (0D): failed: {e}.", law.name()));
@@ -365,6 +386,7 @@ pub(super) fn activation_law(
 /// (frozen) and the energy law (consistent), each timed. Rows in that order, named `option`.
 pub fn activation_law_fe_rows(
     models: &Models,
+    approach: Approach,
     option: &str,
     geom: Geometry,
     cells: (usize, usize),
@@ -373,7 +395,7 @@ pub fn activation_law_fe_rows(
 ) -> Result<Vec<Measurement>, AppError> {
     let sweep = |law: LawKind, coupling: Coupling| -> Result<FeRun, AppError> {
         fe_run(
-            &muscle(models, law, coupling)?,
+            &muscle(models, approach, law, coupling)?,
             geom,
             cells,
             bases,
@@ -393,7 +415,7 @@ pub fn activation_law_fe_rows(
         ("explicit (frozen)", LawKind::Explicit, EXACT),
         ("energy (consistent)", LawKind::Energy, Coupling::Consistent),
     ] {
-        if law == LawKind::Explicit && models.explicit_formula_holds().is_err() {
+        if law == LawKind::Explicit && explicit_measured(models, approach).is_err() {
             continue;
         }
         let r = match sweep(law, coupling) {
@@ -440,6 +462,7 @@ pub(super) fn activation_law_fe(
 ) -> Result<(), AppError> {
     let rows = activation_law_fe_rows(
         models,
+        o.approach,
         "activation law (FE)",
         o.geom,
         o.fe_mesh,
@@ -476,16 +499,20 @@ pub(super) fn activation_law_fe(
 /// the scene's laws are exact; with the table's build time \[s\] and a description of it.
 fn tabulated_muscle(
     models: &Models,
+    approach: Approach,
     law: LawKind,
     coupling: Coupling,
 ) -> Result<(Muscle<Energy>, f64, String), AppError> {
+    let map = models
+        .activation_map(approach)
+        .map_err(|reason| crate::Error::Unsupported { reason })?;
     let spec = match models.representation {
         LawRepresentation::Tabulated(spec) => spec,
         LawRepresentation::Exact => TableSpec::default(),
     };
     let started = Instant::now();
     let table = models
-        .law(law)?
+        .law(law, map)?
         .represented(LawRepresentation::Tabulated(spec), &[0.0])?;
     let build = started.elapsed().as_secs_f64();
     let described = match &table {
@@ -516,7 +543,7 @@ fn tabulated_muscle(
             .join("; "),
         _ => String::new(),
     };
-    let muscle = Muscle::new(models.energy.clone(), table, 0.0, coupling)?;
+    let muscle = Muscle::new(models.energy.clone(), table, 0.0, coupling)?.with_map(map)?;
     Ok((muscle, build, described))
 }
 
@@ -537,11 +564,12 @@ pub(super) fn law_representation(
         (LawKind::Energy, Coupling::Consistent),
     ] {
         let option = format!("{} law representation (0D)", law.name());
-        let (t_ref, (p_ref, g_ref)) = fibre_curve(&muscle(models, law, coupling)?, stretches)?;
+        let (t_ref, (p_ref, g_ref)) =
+            fibre_curve(&muscle(models, o.approach, law, coupling)?, stretches)?;
         let mut r = Measurement::new(&option, "exact", true, t_ref, quantity, CurveError::ZERO);
         r.gamma_error = Some(0.0);
         run.push(r);
-        let (tabulated, build, described) = tabulated_muscle(models, law, coupling)?;
+        let (tabulated, build, described) = tabulated_muscle(models, o.approach, law, coupling)?;
         let (t, (p, g)) = fibre_curve(&tabulated, stretches)?;
         let e = curve_error(&p_ref, &p);
         let ge = curve_error(&g_ref, &g).max_abs;
@@ -561,9 +589,13 @@ pub(super) fn law_representation(
         ));
     }
     const OPTION: &str = "implicit law representation (FE)";
-    let exact = o.clamped(&muscle(models, LawKind::Implicit, EXACT)?, &tight())?;
+    let exact = o.clamped(
+        &muscle(models, o.approach, LawKind::Implicit, EXACT)?,
+        &tight(),
+    )?;
     run.push(fe_row(OPTION, "exact", true, &exact, &exact));
-    let (tabulated, build, described) = tabulated_muscle(models, LawKind::Implicit, EXACT)?;
+    let (tabulated, build, described) =
+        tabulated_muscle(models, o.approach, LawKind::Implicit, EXACT)?;
     let table = o.clamped(&tabulated, &tight())?;
     let mut row = fe_row(OPTION, "tabulated", false, &table, &exact);
     row.note = if row.note.is_empty() {
@@ -620,7 +652,7 @@ pub(super) fn derivative_route(
     o: &Resolved,
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
-    let fast = muscle(models, o.working_law(), EXACT)?;
+    let fast = muscle(models, o.approach, o.working_law(), EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
     const POINT: &str = "derivative route (point)";
@@ -672,9 +704,10 @@ pub(super) fn frozen_tangent(
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "frozen tangent (FE)";
-    let exact = muscle(models, o.working_law(), EXACT)?;
+    let exact = muscle(models, o.approach, o.working_law(), EXACT)?;
     let symmetric = muscle(
         models,
+        o.approach,
         o.working_law(),
         Coupling::Frozen(FrozenTangent::Symmetric),
     )?;
@@ -727,7 +760,7 @@ pub(super) fn mesh(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "mesh (clamped)";
-    let m = muscle(models, o.working_law(), EXACT)?;
+    let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let mut runs = Vec::new();
     for &cells in &o.meshes {
         runs.push((
@@ -793,7 +826,7 @@ pub(super) fn element(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "element (clamped)";
-    let m = muscle(models, o.working_law(), EXACT)?;
+    let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let (nr, nz) = o.fe_mesh;
     let with = |element| SolverOptions { element, ..tight() };
     let reference = fe_run(
@@ -861,7 +894,7 @@ pub(super) fn tolerance(
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "Newton tolerance (FE)";
-    let m = muscle(models, o.working_law(), EXACT)?;
+    let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let mut runs = Vec::new();
     for &tol in &o.tolerances {
         runs.push((tol, o.clamped(&m, &with_tolerance(tol))?));
@@ -907,7 +940,7 @@ pub(super) fn zero_d_vs_fe(
     run: &mut Runner<'_>,
 ) -> Result<(), AppError> {
     const OPTION: &str = "0D vs FE (sliding)";
-    let m = muscle(models, o.working_law(), EXACT)?;
+    let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let (t0, (p0, g0)) = time_median(|| -> Result<(Vec<f64>, Vec<f64>), AppError> {
         let mut p = Vec::new();
         let mut g = Vec::new();
@@ -961,18 +994,65 @@ pub(super) fn incompressibility(
     run: &mut Runner<'_>,
     findings: &mut Vec<String>,
 ) -> Result<(), AppError> {
-    const OPTION_0D: &str = "incompressibility (0D)";
-    const OPTION_FE: &str = "incompressibility (clamped)";
-    let m = muscle(models, o.working_law(), EXACT)?;
+    let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let s0 = crate::uniaxial::reference_stress(&models.energy)?;
     let quadratic = |kappa: f64| Volumetric::new(VolumetricForm::Quadratic { kappa }, s0);
+    incompressibility_0d(&m, &quadratic, o, run, findings)?;
+    const OPTION_FE: &str = "incompressibility (clamped)";
+    let reference = o.clamped(&m, &tight())?;
+    run.push(fe_row(
+        OPTION_FE,
+        "exact (J = 1)",
+        true,
+        &reference,
+        &reference,
+    ));
+    let mut words = Vec::new();
+    for kappa in [1e3, 1e5, 1e7] {
+        let options = SolverOptions {
+            volumetric: Some(quadratic(kappa)?),
+            ..tight()
+        };
+        let r = o.clamped(&m, &options)?;
+        let row = fe_row(
+            OPTION_FE,
+            &format!("quadratic κ = {kappa:.0e} kPa"),
+            false,
+            &r,
+            &reference,
+        );
+        words.push(format!(
+            "κ = {kappa:.0e} kPa: {:.2e} kPa, {} Newton its (exact {})",
+            row.error.max_abs, r.iterations, reference.iterations
+        ));
+        run.push(row);
+    }
+    findings.push(format!(
+        "Incompressibility (clamped cylinder, {} × {} cells): {}.",
+        o.fe_mesh.0,
+        o.fe_mesh.1,
+        words.join("; ")
+    ));
+    Ok(())
+}
+
+/// The 0D part of [`incompressibility`]: muscle `m` along the fibres, exact against the
+/// `quadratic` volumetric energy of growing κ.
+fn incompressibility_0d(
+    m: &Muscle<Energy>,
+    quadratic: &dyn Fn(f64) -> crate::Result<Volumetric>,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
+) -> Result<(), AppError> {
+    const OPTION_0D: &str = "incompressibility (0D)";
     let stretches = &o.curve_stretches;
     let curve = |v: Option<&Volumetric>| -> Result<(Timing, Curves), AppError> {
         time_median(|| -> Result<Curves, AppError> {
             let mut p = Vec::with_capacity(stretches.len());
             let mut g = Vec::with_capacity(stretches.len());
             for &l in stretches {
-                let pt = crate::uniaxial::point(&m, v, Direction::Along, l)?;
+                let pt = crate::uniaxial::point(m, v, Direction::Along, l)?;
                 p.push(pt.stress);
                 g.push(pt.gamma);
             }
@@ -1017,40 +1097,6 @@ pub(super) fn incompressibility(
         stretches.len(),
         words.join("; ")
     ));
-    let reference = o.clamped(&m, &tight())?;
-    run.push(fe_row(
-        OPTION_FE,
-        "exact (J = 1)",
-        true,
-        &reference,
-        &reference,
-    ));
-    let mut words = Vec::new();
-    for kappa in [1e3, 1e5, 1e7] {
-        let options = SolverOptions {
-            volumetric: Some(quadratic(kappa)?),
-            ..tight()
-        };
-        let r = o.clamped(&m, &options)?;
-        let row = fe_row(
-            OPTION_FE,
-            &format!("quadratic κ = {kappa:.0e} kPa"),
-            false,
-            &r,
-            &reference,
-        );
-        words.push(format!(
-            "κ = {kappa:.0e} kPa: {:.2e} kPa, {} Newton its (exact {})",
-            row.error.max_abs, r.iterations, reference.iterations
-        ));
-        run.push(row);
-    }
-    findings.push(format!(
-        "Incompressibility (clamped cylinder, {} × {} cells): {}.",
-        o.fe_mesh.0,
-        o.fe_mesh.1,
-        words.join("; ")
-    ));
     Ok(())
 }
 
@@ -1078,7 +1124,10 @@ pub(super) fn formula_energy(
         ..models.clone()
     };
     let law = o.working_law();
-    let (compiled, interpreted) = (muscle(models, law, EXACT)?, muscle(&written, law, EXACT)?);
+    let (compiled, interpreted) = (
+        muscle(models, o.approach, law, EXACT)?,
+        muscle(&written, o.approach, law, EXACT)?,
+    );
     const POINT: &str = "formula energy (point)";
     let quantity = format!(
         "∂P/∂F at one point [kPa] ({} law, frozen exact)",

@@ -2,6 +2,7 @@
 //!
 //! Nothing here knows what is being measured; [`super::groups`] feeds it.
 
+use crate::text::{cell, ratio};
 use std::time::Instant;
 
 /// Every variant runs at least this many times.
@@ -343,25 +344,6 @@ pub fn finalise(rows: &mut [Measurement]) {
             };
             r.pareto = front[k];
         }
-    }
-}
-
-/// A ratio: fixed-point in [0.1, 1000), scientific outside.
-pub fn ratio(x: f64) -> String {
-    if (0.1..1000.0).contains(&x.abs()) {
-        format!("{x:.2}")
-    } else {
-        cell(Some(x), 1)
-    }
-}
-
-/// A number in scientific notation with `digits` digits; `failed` for an infinite error, `–`
-/// for none.
-pub fn cell(x: Option<f64>, digits: usize) -> String {
-    match x {
-        Some(v) if v.is_finite() => format!("{v:.digits$e}"),
-        Some(v) if v.is_infinite() => "failed".into(),
-        _ => "–".into(),
     }
 }
 

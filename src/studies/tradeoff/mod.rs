@@ -28,6 +28,7 @@
 
 pub mod groups;
 pub mod measure;
+pub mod output;
 pub mod routes;
 
 pub use groups::{activation_law_fe_rows, fe_row, fe_run, FeRun};
@@ -36,12 +37,16 @@ pub use measure::{
 };
 pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
-use super::spec::{cell_count, grading, non_empty, optional_stretches, positive, StretchSpec};
-use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use super::spec::{
+    cell_count, grading, non_empty, optional_stretches, positive, Defaults, StretchSpec,
+};
+use super::{Failure, KindSpec, KindStudy, Outcome, RunContext, Study, StudyKind, StudyResult};
+use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
 use crate::fem::solver::MIN_TOLERANCE;
-use crate::models::Models;
+use crate::models::{ModelDefaults, Models};
 use crate::text::shortest;
+use crate::uniaxial::Direction;
 use groups::{Resolved, Runner};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -133,6 +138,12 @@ pub struct Geometry {
 pub struct TradeoffOptions {
     /// The option groups to measure (run in the order of [`OptionGroup::ALL`]).
     pub groups: Vec<OptionGroup>,
+    /// The approach whose laws, couplings and muscles are measured (the scene's; one with a
+    /// law, [`refuse_lawless`]).
+    pub approach: Approach,
+    /// The scene's damage values (`activation.damage`): not traded, every variant runs at
+    /// d = 0, and a finding says so when one of them is not 0.
+    pub damage: Vec<f64>,
     /// The cylinder of every FE variant; `None`: the [`Fallback`]'s.
     pub geometry: Option<Geometry>,
     /// Meshes (cells in r, cells in z) of the mesh option, coarse to fine; the last is the reference.
@@ -154,6 +165,8 @@ impl Default for TradeoffOptions {
     fn default() -> Self {
         Self {
             groups: OptionGroup::ALL.to_vec(),
+            approach: Approach::default(),
+            damage: vec![0.0],
             geometry: None,
             meshes: vec![(2, 8), (4, 16), (8, 32), (16, 64)],
             fe_mesh: None,
@@ -166,7 +179,7 @@ impl Default for TradeoffOptions {
 }
 
 /// What the options leave out, taken from the scene: the first cylinder study's cylinder and mesh
-/// and the first uniaxial study along the fibres' stretches.
+/// and the first uniaxial study along the fibres' stretches (or, without them, the defaults).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Fallback {
     /// The cylinder.
@@ -175,9 +188,6 @@ pub struct Fallback {
     pub cells: (usize, usize),
     /// Stretches of the 0D curves.
     pub curve_stretches: Vec<f64>,
-    /// The scene's default damage values (`activation.damage`): not traded, every variant
-    /// runs at d = 0, and a finding says so when one of them is not 0.
-    pub damage: Vec<f64>,
 }
 
 impl Default for Fallback {
@@ -191,8 +201,68 @@ impl Default for Fallback {
             },
             cells: (4, 16),
             curve_stretches: (0..=95).map(|i| 0.65 + 0.01 * i as f64).collect(),
-            damage: vec![0.0],
         }
+    }
+}
+
+impl Fallback {
+    /// What a trade-off takes from the scene's `studies`: the first cylinder study's cylinder
+    /// and mesh, the first uniaxial study along the fibres' stretches (or the defaults).
+    pub fn of(studies: &[Study]) -> Self {
+        let mut f = Self::default();
+        if let Some(c) = studies.iter().find_map(|s| match s {
+            Study::Cylinder(c) => Some(c),
+            _ => None,
+        }) {
+            f.geometry = Geometry {
+                radius: c.radius,
+                length: c.length,
+                grading: c.grading,
+            };
+            f.cells = (c.nr, c.nz);
+        }
+        if let Some(u) = studies.iter().find_map(|s| match s {
+            Study::Uniaxial(u) if u.direction == Direction::Along => Some(u),
+            _ => None,
+        }) {
+            f.curve_stretches = u.stretches.clone();
+        }
+        f
+    }
+}
+
+/// The options a `tradeoff` command measures on a scene: those of its trade-off study if it has
+/// one, else every option group with what the scene's `studies` give ([`Fallback::of`]) and its
+/// approach and damage values.
+pub fn scene_options(studies: &[Study], defaults: &ModelDefaults) -> TradeoffOptions {
+    if let Some(t) = studies.iter().find_map(|s| match s {
+        Study::Tradeoff(t) => Some(t),
+        _ => None,
+    }) {
+        return t.options.clone();
+    }
+    let f = Fallback::of(studies);
+    TradeoffOptions {
+        approach: defaults.approach,
+        damage: defaults.damage.clone(),
+        geometry: Some(f.geometry),
+        fe_mesh: Some(f.cells),
+        curve_stretches: Some(f.curve_stretches),
+        ..TradeoffOptions::default()
+    }
+}
+
+/// Refuses a trade-off of an approach without a law: the trade-off measures the choices of an
+/// activation law (the law, its table, the frozen tangent) and runs every other option with one.
+pub fn refuse_lawless(approach: Approach) -> Result<(), String> {
+    if approach.laws().is_empty() {
+        Err(format!(
+            "a trade-off measures the choices of an activation law (the law, its table, the frozen tangent) and runs its other options with one; approach = {:?} has none: {}",
+            approach.name(),
+            approach.no_law()
+        ))
+    } else {
+        Ok(())
     }
 }
 
@@ -230,15 +300,15 @@ impl TradeoffResults {
     }
 }
 
-/// Runs the chosen option groups on `models`, with the geometry and stretches of `o`, or of
-/// `fallback` where `o` leaves them out; one line per measured variant goes to `progress`.
+/// Runs the chosen option groups on `models`, with the geometry and stretches of `o`, or the
+/// defaults ([`Fallback::default`]) where `o` leaves them out; one line per measured variant
+/// goes to `progress`.
 pub fn run(
     models: &Models,
     o: &TradeoffOptions,
-    fallback: &Fallback,
     progress: &dyn super::Progress,
 ) -> Result<TradeoffResults, AppError> {
-    run_until(models, o, fallback, progress, None)
+    run_until(models, o, progress, None)
 }
 
 /// [`run`], until `stop` is requested: the group running then is finished, the groups after it
@@ -246,34 +316,10 @@ pub fn run(
 pub fn run_until(
     models: &Models,
     o: &TradeoffOptions,
-    fallback: &Fallback,
     progress: &dyn super::Progress,
     stop: Option<&super::Stop>,
 ) -> Result<TradeoffResults, AppError> {
-    if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
-        return Err(AppError::Invalid(
-            "need at least one mesh, tolerance and FE stretch".into(),
-        ));
-    }
-    let explicit = models.explicit_formula_holds();
-    let plan = &Resolved {
-        geom: o.geometry.unwrap_or(fallback.geometry),
-        fe_mesh: o.fe_mesh.unwrap_or(fallback.cells),
-        meshes: o.meshes.clone(),
-        fe_stretches: o.fe_stretches.clone(),
-        curve_stretches: o
-            .curve_stretches
-            .clone()
-            .unwrap_or_else(|| fallback.curve_stretches.clone()),
-        tolerances: o.tolerances.clone(),
-        fd_step: o.fd_step,
-        explicit_working: explicit
-            .clone()
-            .and_then(|()| models.explicit_fit_applies()),
-        explicit,
-    };
-    check_memory(plan.fe_mesh, &plan.meshes, &o.groups)
-        .map_err(|e| AppError::from(e).within("before computing"))?;
+    let plan = &plan(models, o)?;
     let mut runner = Runner {
         progress,
         rows: Vec::new(),
@@ -289,26 +335,8 @@ pub fn run_until(
             failures.push((group.key().to_string(), format!("not run: {reason}")));
             continue;
         }
-        let (run, findings) = (&mut runner, &mut findings);
-        let measured = match group {
-            OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings),
-            OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings),
-            OptionGroup::LawRepresentation => {
-                groups::law_representation(models, plan, run, findings)
-            }
-            OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run),
-            OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run),
-            OptionGroup::Mesh => groups::mesh(models, plan, run, findings),
-            OptionGroup::Element => groups::element(models, plan, run, findings),
-            OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings),
-            OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run),
-            OptionGroup::Incompressibility => {
-                groups::incompressibility(models, plan, run, findings)
-            }
-            OptionGroup::FormulaEnergy => groups::formula_energy(models, plan, run, findings),
-        };
         // One group's failure does not cost the others.
-        if let Err(e) = measured {
+        if let Err(e) = measure_group(group, models, plan, &mut runner, &mut findings) {
             runner
                 .progress
                 .log(&format!("{}: FAILED: {e}", group.key()));
@@ -324,7 +352,7 @@ pub fn run_until(
             ));
         }
     }
-    let damaged: Vec<String> = fallback
+    let damaged: Vec<String> = o
         .damage
         .iter()
         .filter(|&&d| d != 0.0)
@@ -343,6 +371,67 @@ pub fn run_until(
         findings,
         failures,
     })
+}
+
+/// The options `o` resolved for `models`: the defaults ([`Fallback::default`]) where `o` leaves
+/// the cylinder, mesh or 0D stretches out, whether the explicit law is measured and works for
+/// the other groups; refuses an approach without a law ([`refuse_lawless`]) or not possible on
+/// the material, and meshes beyond the memory limit, before anything is computed.
+fn plan(models: &Models, o: &TradeoffOptions) -> Result<Resolved, AppError> {
+    if o.meshes.is_empty() || o.tolerances.is_empty() || o.fe_stretches.is_empty() {
+        return Err(AppError::Invalid(
+            "need at least one mesh, tolerance and FE stretch".into(),
+        ));
+    }
+    refuse_lawless(o.approach).map_err(AppError::Invalid)?;
+    models
+        .activation_map(o.approach)
+        .map_err(AppError::Invalid)?;
+    let fallback = Fallback::default();
+    let explicit = groups::explicit_measured(models, o.approach);
+    let plan = Resolved {
+        approach: o.approach,
+        geom: o.geometry.unwrap_or(fallback.geometry),
+        fe_mesh: o.fe_mesh.unwrap_or(fallback.cells),
+        meshes: o.meshes.clone(),
+        fe_stretches: o.fe_stretches.clone(),
+        curve_stretches: o
+            .curve_stretches
+            .clone()
+            .unwrap_or_else(|| fallback.curve_stretches.clone()),
+        tolerances: o.tolerances.clone(),
+        fd_step: o.fd_step,
+        explicit_working: explicit
+            .clone()
+            .and_then(|()| models.explicit_fit_applies()),
+        explicit,
+    };
+    check_memory(plan.fe_mesh, &plan.meshes, &o.groups)
+        .map_err(|e| AppError::from(e).within("before computing"))?;
+    Ok(plan)
+}
+
+/// Measures one option group, its rows to `run` and its conclusions to `findings`.
+fn measure_group(
+    group: OptionGroup,
+    models: &Models,
+    plan: &Resolved,
+    run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
+) -> Result<(), AppError> {
+    match group {
+        OptionGroup::ActivationLaw => groups::activation_law(models, plan, run, findings),
+        OptionGroup::ActivationLawFe => groups::activation_law_fe(models, plan, run, findings),
+        OptionGroup::LawRepresentation => groups::law_representation(models, plan, run, findings),
+        OptionGroup::DerivativeRoute => groups::derivative_route(models, plan, run),
+        OptionGroup::FrozenTangent => groups::frozen_tangent(models, plan, run),
+        OptionGroup::Mesh => groups::mesh(models, plan, run, findings),
+        OptionGroup::Element => groups::element(models, plan, run, findings),
+        OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings),
+        OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run),
+        OptionGroup::Incompressibility => groups::incompressibility(models, plan, run, findings),
+        OptionGroup::FormulaEnergy => groups::formula_energy(models, plan, run, findings),
+    }
 }
 
 /// Checks every mesh the chosen groups solve against the memory limit
@@ -410,9 +499,14 @@ pub struct TradeoffStudy {
     pub options: TradeoffOptions,
 }
 
-/// Validates `spec`; returns the study and the spec with every default written out, except the
-/// cylinder and mesh, which [`complete`] fills from the scene's first cylinder study.
-pub fn resolve(spec: &TradeoffSpec) -> Result<(TradeoffStudy, TradeoffSpec), SpecError> {
+/// Validates `spec` against the scene's defaults (a trade-off of an approach without a law is
+/// refused, [`refuse_lawless`]); returns the study and the spec with every default written out,
+/// except the cylinder and mesh, which [`complete`] fills from the scene's first cylinder study.
+pub fn resolve(
+    spec: &TradeoffSpec,
+    d: &Defaults,
+) -> Result<(TradeoffStudy, TradeoffSpec), SpecError> {
+    refuse_lawless(d.approach).map_err(|rule| SpecError::new("kind", "\"tradeoff\"", rule))?;
     let stretches = optional_stretches(&spec.stretch)?;
     let defaults = TradeoffOptions::default();
     let groups = spec
@@ -457,6 +551,8 @@ pub fn resolve(spec: &TradeoffSpec) -> Result<(TradeoffStudy, TradeoffSpec), Spe
         .unwrap_or_else(|| "speed versus accuracy".into());
     let options = TradeoffOptions {
         groups: groups.clone(),
+        approach: d.approach,
+        damage: d.damage.to_vec(),
         meshes: meshes.clone(),
         fe_stretches: stretches.clone().unwrap_or(defaults.fe_stretches.clone()),
         curve_stretches: stretches,
@@ -535,9 +631,11 @@ fn tolerances(v: &[f64]) -> Result<Vec<f64>, SpecError> {
     Ok(v.to_vec())
 }
 
-/// Fills what `spec` left out from the scene's first cylinder study (`fallback`), in the study
-/// and in its resolved spec, and refuses meshes that would exceed the memory limit (so `check`
-/// refuses what `run` could not solve).
+/// Fills what `spec` left out from the scene's other studies (`fallback`): in the study, the
+/// cylinder, the mesh and the 0D stretches; in its resolved spec, the cylinder and mesh (without
+/// `stretch` the FE and 0D sweeps take different defaults, so the printed scene leaves it out to
+/// run as this one does); refuses meshes that would exceed the memory limit (so `check` refuses
+/// what `run` could not solve).
 pub fn complete(
     study: &mut TradeoffStudy,
     spec: &TradeoffSpec,
@@ -557,6 +655,10 @@ pub fn complete(
     );
     study.options.geometry = Some(g);
     study.options.fe_mesh = Some(fe_mesh);
+    study
+        .options
+        .curve_stretches
+        .get_or_insert_with(|| fallback.curve_stretches.clone());
     resolved.radius = Some(g.radius);
     resolved.length = Some(g.length);
     resolved.grading = Some(g.grading);
@@ -570,6 +672,48 @@ pub fn complete(
         };
         SpecError::new(key, format!("{:?}", study.options.meshes), e.to_string())
     })
+}
+
+impl KindSpec for TradeoffSpec {
+    type Study = TradeoffStudy;
+
+    fn resolve(&self, d: &Defaults) -> Result<(TradeoffStudy, Self), SpecError> {
+        resolve(self, d)
+    }
+
+    /// Completed from the scene's other studies ([`complete`]).
+    fn completed(
+        &self,
+        study: &TradeoffStudy,
+        resolved: &Self,
+        studies: &[Study],
+        _: &Defaults,
+    ) -> Result<Option<(TradeoffStudy, Self)>, SpecError> {
+        let (mut study, mut resolved) = (study.clone(), resolved.clone());
+        complete(&mut study, self, &mut resolved, &Fallback::of(studies))?;
+        Ok(Some((study, resolved)))
+    }
+}
+
+impl KindStudy for TradeoffStudy {
+    /// It measures run times: alone, after the scene's other studies.
+    const ALONE: bool = true;
+    const ONE_PER_SCENE: Option<&'static str> =
+        Some("its outputs are tradeoff.csv, tradeoff.md and the tradeoff figures");
+    /// Its FE options solve the axisymmetric cylinder.
+    const AXIAL_FIBRES: bool = true;
+
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn describe(&self) -> String {
+        TradeoffStudy::describe(self)
+    }
+
+    fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
+        TradeoffStudy::run(self, models, ctx)
+    }
 }
 
 impl TradeoffStudy {
@@ -588,18 +732,13 @@ impl TradeoffStudy {
     }
 
     /// Measures the study's option groups on `models`.
-    pub fn run(
-        &self,
-        models: &Models,
-        fallback: &Fallback,
-        ctx: &RunContext,
-    ) -> Result<Outcome, AppError> {
+    pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         ctx.progress.log(&format!(
             "{}: {} option group(s)",
             self.name,
             self.options.groups.len()
         ));
-        let results = run_until(models, &self.options, fallback, ctx.progress, ctx.stop)
+        let results = run_until(models, &self.options, ctx.progress, ctx.stop)
             .map_err(|e| e.within(&self.name))?;
         let measured = results.rows.iter().filter(|r| r.measured()).count();
         let mut details = results.findings.clone();

@@ -5,13 +5,13 @@
 
 use super::{Curve, CurveModel, CurvePoint, UniaxialResult};
 use crate::active::drive::Drive;
-use crate::active::ActiveCurve;
+use crate::active::{ActiveCurve, Approach};
 use crate::models::{CouplingKind, LawKind, ModelChoice};
 use crate::plot::{Figure, Panel, Scale, Series, Stroke};
-use crate::studies::curves::uniaxial_curve;
+use crate::studies::curves::{self, uniaxial_curve};
 use crate::studies::outputs::{
     chapter, coupling_stroke, curve_parameters_text, derived, figure, key, law_colour, list, panel,
-    sorted_unique, words, Context, KindOutput, Of, GAMMA, STRESS,
+    sorted_unique, words, Context, KindOutput, Of, OwnTable, Used, GAMMA, STRESS,
 };
 use crate::uniaxial::Direction;
 
@@ -26,6 +26,31 @@ struct Run<'a> {
 }
 
 impl KindOutput for UniaxialResult {
+    /// Its rows of `curves.csv`.
+    fn tables(&self, study: &str) -> Vec<OwnTable> {
+        vec![curves::own_table(&curves::uniaxial_rows(study, self))]
+    }
+
+    fn used(&self) -> Used {
+        let mut used = Used::active(
+            self.approach,
+            self.curves.iter().filter_map(|c| match c.model {
+                CurveModel::Active(m) => Some(m),
+                _ => None,
+            }),
+        );
+        for c in &self.curves {
+            if !used.energies.contains(&c.energy) {
+                used.energies.push(c.energy.clone());
+            }
+        }
+        used.constant = self
+            .curves
+            .iter()
+            .any(|c| matches!(c.model, CurveModel::Constant(_)));
+        used
+    }
+
     /// Per study in order: its passive curves, constant γ, the active curve (once), the laws'
     /// figures and the loss of activation; then the transverse isotropy over all of them.
     fn figures(studies: &[Of<Self>], cx: &Context) -> Vec<Figure> {
@@ -38,6 +63,7 @@ impl KindOutput for UniaxialResult {
                 .map(|s| Uniaxial {
                     study: s.name,
                     direction: s.result.direction,
+                    approach: s.result.approach,
                     curves: &s.result.curves,
                     chapter_material: cx.chapter_material,
                 })
@@ -58,6 +84,7 @@ impl KindOutput for UniaxialResult {
             out.extend(explicit_vs_implicit_gamma(u));
             out.extend(explicit_ptot(u));
             out.extend(laws(&run, u));
+            out.extend(without_a_law(&run, u));
             out.extend(loss_of_activation(u));
         }
         out.extend(isotropy);
@@ -65,11 +92,15 @@ impl KindOutput for UniaxialResult {
     }
 }
 
+/// A model's law and coupling (`None`: an approach without a law, active stress).
+type Form = Option<(LawKind, CouplingKind)>;
+
 /// The uniaxial curves of one study.
 #[derive(Clone, Copy)]
 struct Uniaxial<'a> {
     study: &'a str,
     direction: Direction,
+    approach: Approach,
     curves: &'a [Curve],
     /// The scene's energy and active curve are the chapter's (see [`chapter`]).
     chapter_material: bool,
@@ -100,10 +131,16 @@ impl<'a> Uniaxial<'a> {
         })
     }
 
-    /// The curve of `law`, `coupling` at damage `d`.
+    /// The curve of `law`, `coupling` at damage `d` (of an approach that has a law).
     fn model(&self, law: LawKind, coupling: CouplingKind, d: f64) -> Option<&'a Curve> {
+        self.of_form(Some((law, coupling)), d)
+    }
+
+    /// The curve of the model of law and coupling `form` (`None`: of an approach without a law)
+    /// at damage `d`.
+    fn of_form(&self, form: Form, d: f64) -> Option<&'a Curve> {
         self.active()
-            .find(|(m, _)| m.law == law && m.coupling == coupling && m.damage == d)
+            .find(|(m, _)| m.activation_law() == form && m.damage == d)
             .map(|(_, c)| c)
     }
 
@@ -111,15 +148,32 @@ impl<'a> Uniaxial<'a> {
         sorted_unique(self.active().map(|(m, _)| m.damage).collect())
     }
 
-    /// (law, coupling) pairs in run order.
-    fn pairs(&self) -> Vec<(LawKind, CouplingKind)> {
+    /// The models' laws and couplings in run order (`None`: an approach without a law).
+    fn forms(&self) -> Vec<Form> {
         let mut v = Vec::new();
         for (m, _) in self.active() {
-            if !v.contains(&(m.law, m.coupling)) {
-                v.push((m.law, m.coupling));
+            if !v.contains(&m.activation_law()) {
+                v.push(m.activation_law());
             }
         }
         v
+    }
+
+    /// (law, coupling) pairs in run order.
+    fn pairs(&self) -> Vec<(LawKind, CouplingKind)> {
+        self.forms().into_iter().flatten().collect()
+    }
+
+    /// `implicit law, frozen coupling`, or the approach of a model without a law
+    /// (`active-stress`).
+    fn form_words(&self, form: Form) -> String {
+        match form {
+            Some((l, c)) => words(l, c),
+            None => self
+                .active()
+                .find(|(m, _)| m.activation_law().is_none())
+                .map_or_else(String::new, |(m, _)| m.approach.name().to_string()),
+        }
     }
 
     /// A series of `y` along curve `c`, marked as drawing it; `None` without points.
@@ -139,7 +193,7 @@ impl<'a> Uniaxial<'a> {
         (!points.is_empty()).then(|| {
             Series::new(label, points, stroke, colour).drawing(uniaxial_curve(
                 self.study,
-                self.direction,
+                (self.direction, self.approach),
                 c,
             ))
         })
@@ -511,6 +565,9 @@ fn explicit_ptot(u: &Uniaxial) -> Option<Figure> {
 fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
     let d = *u.damages().first()?;
     let pairs = u.pairs();
+    if pairs.is_empty() {
+        return None;
+    }
     let of = |y: fn(&CurvePoint) -> Option<f64>| -> Vec<Option<Series>> {
         pairs
             .iter()
@@ -523,13 +580,17 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
     laws.dedup();
     let gammas = laws
         .iter()
-        .filter_map(|&l| u.active().find(|(m, _)| m.law == l && m.damage == d))
-        .map(|(m, c)| {
+        .filter_map(|&l| {
+            u.active()
+                .find(|(m, _)| m.activation_law().map(|x| x.0) == Some(l) && m.damage == d)
+                .map(|(_, c)| (l, c))
+        })
+        .map(|(l, c)| {
             derived(
-                format!("{} law", m.law.name()),
+                format!("{} law", l.name()),
                 xy(c, gamma),
                 Stroke::Solid,
-                law_colour(m.law),
+                law_colour(l),
             )
         })
         .collect();
@@ -566,6 +627,40 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
             ),
             panel(format!("Nominal stress, d = {d}"), STRESS, p),
         ],
+    )
+}
+
+/// The models of study `u` whose approach has no law (active stress) at its smallest damage:
+/// P, with the target along the fibres, which they meet by construction.
+fn without_a_law(run: &Run, u: &Uniaxial) -> Option<Figure> {
+    let d = *u.damages().first()?;
+    let (m, c) = u
+        .active()
+        .find(|(m, _)| m.activation_law().is_none() && m.damage == d)?;
+    let name = m.approach.name();
+    let mut p = vec![u.series(c, name, stress, Stroke::Solid, 0)];
+    if u.along() {
+        p.push(derived(
+            "P_pas + (1 − d) P_act (target)",
+            xy(c, target),
+            Stroke::Dotted,
+            3,
+        ));
+    }
+    figure(
+        &format!("fig_{}", crate::studies::slug(name)),
+        format!(
+            "The {name} approach {} the fibres at d = {d} (study \"{}\")",
+            u.dir(),
+            u.study
+        ),
+        format!(
+            "Uniaxial tension {} the fibres, energy {}, d = {d}, approach {name}: {}.",
+            u.dir(),
+            run.material,
+            m.approach.no_law()
+        ),
+        vec![panel(format!("Nominal stress, d = {d}"), STRESS, p)],
     )
 }
 
@@ -643,12 +738,12 @@ fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
         return None;
     }
     let panels = u
-        .pairs()
+        .forms()
         .into_iter()
-        .map(|(l, c)| {
+        .map(|form| {
             let mut s = Vec::new();
             for (i, &d) in ds.iter().enumerate() {
-                if let Some(curve) = u.model(l, c, d) {
+                if let Some(curve) = u.of_form(form, d) {
                     s.push(u.series(curve, format!("d = {d}"), stress, Stroke::Solid, i));
                     s.push(derived("", xy(curve, target), Stroke::Dotted, i));
                 }
@@ -656,7 +751,7 @@ fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
             if u.along() {
                 s.push(key("dotted: P_pas + (1 − d) P_act", Stroke::Dotted));
             }
-            panel(words(l, c), STRESS, s)
+            panel(u.form_words(form), STRESS, s)
         })
         .collect();
     figure(
@@ -668,8 +763,13 @@ fn loss_of_activation(u: &Uniaxial) -> Option<Figure> {
             u.study
         ),
         format!(
-            "Nominal stress in uniaxial tension {} the fibres for each damage d, a panel per law and coupling{}.",
+            "Nominal stress in uniaxial tension {} the fibres for each damage d, a panel per {}{}.",
             u.dir(),
+            if u.forms().contains(&None) {
+                "approach without a law"
+            } else {
+                "law and coupling"
+            },
             if u.along() {
                 let worst = u
                     .active()
