@@ -73,11 +73,18 @@ def test_a_scene_dict_fits_a_formula_energy_to_its_own_curve():
             }
         ],
     }
-    table = am.run_scene(scene)["own curve"].table
+    study = am.run_scene(scene)["own curve"]
+    table = study.table
     for name, value in truth.items():
         row = list(table["parameter"]).index(name)
         assert table["converged"][row]
         assert abs(table["value"][row] - value) < 1e-7 * value
+    # fit_points.csv's rows: the 25 data with their residuals (the model reproduces its own
+    # curve), then the fitted curve.
+    points = study.fit_points
+    data = np.asarray(points["row"]) == "data"
+    assert data.sum() == 25
+    assert np.max(np.abs(np.asarray(points["residual"])[data])) < 1e-6
 
 
 def test_a_bad_formula_is_refused_with_the_key_and_a_suggestion():
