@@ -42,6 +42,20 @@ pub enum AppError {
         /// The operating system's reason.
         source: std::io::Error,
     },
+    /// The disk filled up (or a quota, or the largest file size, was reached) while writing an
+    /// output file. A run keeps what it wrote before (the data first: the CSV tables and
+    /// datapackage.json, then the figures, the report last).
+    #[error("no space left on the disk mounted at {disk}: writing {file}{} failed with {} free", .size.map_or(String::new(), |n| format!(" ({})", crate::text::bytes(n))), .free.map_or("an unknown amount".to_string(), crate::text::bytes))]
+    DiskFull {
+        /// The file that could not be written (relative to the output directory).
+        file: String,
+        /// Its size \[bytes\], when known.
+        size: Option<u64>,
+        /// The disk: its mount point, file system and device.
+        disk: String,
+        /// Bytes left for an unprivileged writer, when known.
+        free: Option<u64>,
+    },
     /// A number that would be written is NaN or infinite.
     #[error("refusing to write non-finite {quantity} = {value} ({origin})")]
     NonFinite {
@@ -68,6 +82,21 @@ impl AppError {
         AppError::Context {
             context: context.into(),
             source: Box::new(self),
+        }
+    }
+
+    /// A [`AppError::DiskFull`] for a file of `bytes`; any other error as it is.
+    pub fn of_size(self, bytes: u64) -> Self {
+        match self {
+            AppError::DiskFull {
+                file, disk, free, ..
+            } => AppError::DiskFull {
+                file,
+                size: Some(bytes),
+                disk,
+                free,
+            },
+            other => other,
         }
     }
 

@@ -28,6 +28,7 @@ pub mod energy;
 pub mod error;
 pub mod fem;
 pub mod fit;
+pub mod fixed_length;
 pub mod homogeneous;
 pub mod invariants;
 pub mod material;

@@ -50,7 +50,9 @@ enum Command {
     ///
     /// Writes into DIR: curves.csv (one row per point), fig_*.png and fig_*.svg, report.html
     /// (self-contained), scene.toml (the scene that ran) and vtk/ (cylinder fields). Files are
-    /// committed all or nothing: a run that fails leaves the previous outputs as they were. DIR
+    /// committed all or nothing: a run that fails leaves the previous outputs as they were,
+    /// except on a full disk, where the data written first (the CSV tables, datapackage.json)
+    /// is kept (exit 4). DIR
     /// belongs to one run at a time (.activemuscle.lock); a re-run replaces its own files and
     /// removes those it no longer writes (.activemuscle-manifest), never the files `tradeoff`
     /// wrote into DIR; a non-empty directory that no run wrote is refused without --force; /, your home, . and its ancestors always.
@@ -133,10 +135,56 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
-/// Prints the table of studies, every failure and where the outputs are; says whether the run
-/// is complete.
-fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
+/// Prints the table of studies, every failure and where the outputs are (`written`: all of
+/// them; else the run stopped writing, said after); says whether the run is complete.
+fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool) {
     say!();
+    study_table(results);
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
+        }
+    }
+    for (study, f) in results.failures() {
+        say!("FAILED: {study} — {}: {}", f.model, f.message);
+    }
+    for s in &results.studies {
+        if s.failures.is_empty() && s.points < s.requested {
+            say!(
+                "FAILED: {} — {} of {} requested points computed",
+                s.name,
+                s.points,
+                s.requested
+            );
+        }
+    }
+    // A scene without a curve study (stability or trade-off only) writes a header-only
+    // curves.csv: not worth a line.
+    let curves = match rows {
+        0 => String::new(),
+        n => format!("{n} rows in curves.csv; "),
+    };
+    let outputs = if written {
+        "report.html, the CSV tables, figures"
+    } else {
+        "not all written: see DISK FULL below"
+    };
+    say!(
+        "{curves}outputs in {} ({outputs}); wall time {wall:.1} s",
+        out.display()
+    );
+    if !results.complete() {
+        let failed = results.studies.iter().filter(|s| !s.complete()).count();
+        say!(
+            "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
+             everything computed was written",
+            results.studies.len()
+        );
+    }
+}
+
+/// The table of studies: name, kind, models, points computed of those requested, wall time.
+fn study_table(results: &Results) {
     // Columns as wide as their longest entry (study names and kinds such as
     // activation-in-time are the scene's).
     let name_w = results
@@ -175,46 +223,15 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64) {
     if results.ran_together() {
         say!("(the studies ran at the same time, sharing the cores: their wall times overlap)");
     }
-    for s in &results.studies {
-        for line in s.result.console(&s.name) {
-            say!("{line}");
-        }
-    }
-    for (study, f) in results.failures() {
-        say!("FAILED: {study} — {}: {}", f.model, f.message);
-    }
-    for s in &results.studies {
-        if s.failures.is_empty() && s.points < s.requested {
-            say!(
-                "FAILED: {} — {} of {} requested points computed",
-                s.name,
-                s.points,
-                s.requested
-            );
-        }
-    }
-    // A scene without a curve study (stability or trade-off only) writes a header-only
-    // curves.csv: not worth a line.
-    let curves = match rows {
-        0 => String::new(),
-        n => format!("{n} rows in curves.csv; "),
-    };
-    say!(
-        "{curves}outputs in {} (report.html, the CSV tables, figures); wall time {wall:.1} s",
-        out.display()
-    );
-    if !results.complete() {
-        let failed = results.studies.iter().filter(|s| !s.complete()).count();
-        say!(
-            "INCOMPLETE: {failed} of {} studies did not compute everything requested (FAILED lines above); \
-             everything computed was written",
-            results.studies.len()
-        );
-    }
 }
 
+/// The command line as the report shows it; an argument that is not UTF-8 (a path with byte
+/// 0xFF) is shown with U+FFFD in its place (the file itself is opened by its bytes).
 fn command_line() -> String {
-    std::env::args().collect::<Vec<_>>().join(" ")
+    std::env::args_os()
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// The exit statuses, for `--help`.
@@ -223,6 +240,9 @@ const EXIT_STATUS: &str = "Exit status:
   1    invalid input or usage (nothing computed), or the outputs could not be written
   3    something requested failed or the time limit (--max-seconds) was reached (named on
        the FAILED lines of the summary and in report.html); everything computed was written
+  4    the disk filled up while writing the outputs: the files written before (the data
+       first: the CSV tables and datapackage.json) are kept, the line DISK FULL names the
+       disk, the file and the space left
   130  interrupted (Ctrl-C, SIGINT; 143 for SIGTERM, 129 for SIGHUP): the stretches solved
        so far were written; a second signal aborts at once and writes nothing
 
@@ -230,6 +250,9 @@ Progress: a bar per study on a terminal, else one line per solved stretch; --qui
 
 /// Exit status of a run that wrote everything it computed but not everything requested.
 const EXIT_INCOMPLETE: u8 = 3;
+
+/// Exit status of a run whose disk filled up while it wrote: what was written before is kept.
+const EXIT_DISK_FULL: u8 = 4;
 
 /// How a command ended, when it did not end in an error (exit status 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -240,6 +263,8 @@ enum Ended {
     Incomplete,
     /// Interrupted by this signal; everything computed was written (exit status 128 + signal).
     Interrupted(i32),
+    /// The disk filled up while writing; the files written before are kept (exit status 4).
+    DiskFull,
 }
 
 /// The signal that stopped the run (0: none). Its exit status is 128 + the signal, the shell's
@@ -284,6 +309,65 @@ fn on_interrupt(stop: &Stop) {
     });
 }
 
+/// Prints the one line of a run whose disk filled up: which disk, which file, the space left,
+/// and what of the run is kept in `out` (`kept`: the files committed).
+fn disk_full(error: &AppError, out: &Path, kept: &[PathBuf]) {
+    let names: Vec<String> = kept
+        .iter()
+        .filter_map(|p| p.strip_prefix(out).ok())
+        .filter(|p| p.parent().is_none_or(|d| d.as_os_str().is_empty()))
+        .map(|p| p.display().to_string())
+        .collect();
+    let shown = match names.len() {
+        0 => "nothing".to_string(),
+        n if n > 8 => format!("{}, … ({} files)", names[..8].join(", "), kept.len()),
+        _ => format!("{} ({} files)", names.join(", "), kept.len()),
+    };
+    say!(
+        "DISK FULL: {error}; kept in {}: {shown}; free space and run again",
+        out.display()
+    );
+}
+
+/// The free space of a simulated disk for the outputs, from `ACTIVEMUSCLE_TEST_DISK_SPACE`
+/// (bytes), in a build with debug assertions only (the tests' build): how the tests fill a disk
+/// without one. A release build always writes to the real disk.
+fn simulated_disk() -> Option<u64> {
+    if !cfg!(debug_assertions) {
+        return None;
+    }
+    std::env::var("ACTIVEMUSCLE_TEST_DISK_SPACE")
+        .ok()?
+        .parse()
+        .ok()
+}
+
+/// The most threads the pool may have per available core.
+const THREADS_PER_CORE: usize = 4;
+
+/// Bounds the thread pool: `RAYON_NUM_THREADS` above [`THREADS_PER_CORE`] × the available
+/// cores is replaced by that (with a notice on standard error). Spawning a hundred thousand
+/// threads takes minutes, during which the run does nothing else and a SIGTERM waits.
+fn limit_threads() {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let most = THREADS_PER_CORE * cores;
+    let asked = std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok());
+    if let Some(asked) = asked.filter(|&n| n > most) {
+        say_err!(
+            "notice: RAYON_NUM_THREADS={asked} is more than {THREADS_PER_CORE} threads per available \
+             core ({cores} cores): using {most} threads"
+        );
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(most)
+            .build_global()
+        {
+            say_err!("warning: the thread pool could not be bounded: {e}");
+        }
+    }
+}
+
 /// Stops `stop` once `seconds` of wall time have passed (a detached timer thread). `seconds`
 /// must be finite and > 0; a limit beyond what a [`Duration`] holds (about 5.8e11 years) is no
 /// limit.
@@ -316,19 +400,23 @@ fn run_command(
     max_seconds: Option<f64>,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
-    let scene = load(scene)?;
+    // Signals first: a SIGTERM while the scene is read or the threads start stops the run.
     let stop = Stop::new();
+    on_interrupt(&stop);
+    let scene = load(scene)?;
     if let Some(seconds) = max_seconds {
         time_limit(&stop, seconds)?;
     }
     let mut staging = Staging::open(out, Writer::Run, force)?;
+    if let Some(space) = simulated_disk() {
+        staging = staging.with_space(space);
+    }
     let options = RunOptions {
         verbose: !quiet,
         progress: std::io::stdout().is_terminal(),
         vtk_dir: Some(staging.dir().join("vtk")),
         stop: Some(stop.clone()),
     };
-    on_interrupt(&stop);
     if !quiet {
         say!(
             "activemuscle {}: {} ({})",
@@ -346,11 +434,25 @@ fn run_command(
         started,
         rustc: rustc_version(),
     };
-    let rows = write_run(&mut staging, &scene, &results, &meta)?;
-    staging.commit()?;
-    summary(&results, rows, out, started.elapsed().as_secs_f64());
+    let (rows, full) = match write_run(&mut staging, &scene, &results, &meta) {
+        Ok(rows) => (rows, None),
+        Err(e @ AppError::DiskFull { .. }) => (0, Some(e)),
+        Err(e) => return Err(e),
+    };
+    let kept = staging.commit()?;
+    summary(
+        &results,
+        rows,
+        out,
+        started.elapsed().as_secs_f64(),
+        full.is_none(),
+    );
     if let Some(reason) = &reason {
         say!("STOPPED: {reason}; what was solved before is written");
+    }
+    if let Some(full) = full {
+        disk_full(&full, out, &kept);
+        return Ok(Ended::DiskFull);
     }
     Ok(if signal != 0 {
         Ended::Interrupted(signal)
@@ -368,20 +470,31 @@ fn tradeoff_command(
     force: bool,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
+    let stop = Stop::new();
+    on_interrupt(&stop);
     let scene = load(scene)?;
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
+    if let Some(space) = simulated_disk() {
+        staging = staging.with_space(space);
+    }
     // The scene's tradeoff study if it has one, else every option on the scene's cylinder.
     let options = scene_options(&scene.studies, &scene.defaults);
     let printing = Printing::new(true, false);
     let bar = printing.study();
     let progress: &dyn activemuscle::studies::Progress = if quiet { &Silent } else { &bar };
-    let stop = Stop::new();
-    on_interrupt(&stop);
     let results = run_tradeoff(&scene.models, &options, progress, Some(&stop))?;
     let wall = started.elapsed().as_secs_f64();
-    let (files, _) = tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall)?;
-    staging.commit()?;
+    let full = match tradeoff::stage(&results, &mut staging, &scene.title, &command_line(), wall) {
+        Ok(_) => None,
+        Err(e @ AppError::DiskFull { .. }) => Some(e),
+        Err(e) => return Err(e),
+    };
+    let files = staging.commit()?;
+    if let Some(full) = full {
+        disk_full(&full, out, &files);
+        return Ok(Ended::DiskFull);
+    }
     if !quiet {
         say!("\n{}", tradeoff::markdown(&results.rows));
     }
@@ -417,6 +530,7 @@ fn tradeoff_command(
 }
 
 fn main() -> ExitCode {
+    limit_threads();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // --help and --version print and succeed; a usage error is an invalid input (1).
@@ -449,7 +563,12 @@ fn main() -> ExitCode {
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,
         Ok(Ended::Incomplete) => ExitCode::from(EXIT_INCOMPLETE),
+        Ok(Ended::DiskFull) => ExitCode::from(EXIT_DISK_FULL),
         Ok(Ended::Interrupted(signal)) => ExitCode::from(u8::try_from(128 + signal).unwrap_or(1)),
+        Err(e @ AppError::DiskFull { .. }) => {
+            say_err!("error: {e}");
+            ExitCode::from(EXIT_DISK_FULL)
+        }
         Err(e) => {
             say_err!("error: {e}");
             ExitCode::FAILURE

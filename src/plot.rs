@@ -570,6 +570,14 @@ fn legend_width(panel: &Panel, h: u32) -> u32 {
 /// Writes `figure` as the PNG `png` and the SVG `svg`: the panels stacked, each with its legend
 /// to the right of its plot area, outside the data.
 pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), AppError> {
+    let (png_bytes, svg_text) = render_bytes(figure)?;
+    std::fs::write(png, png_bytes).map_err(|e| AppError::io("write", png, e))?;
+    std::fs::write(svg, svg_text).map_err(|e| AppError::io("write", svg, e))
+}
+
+/// `figure` drawn as [`render`] draws it, as the bytes of its PNG and the text of its SVG (for
+/// a writer that reports its own I/O errors, e.g. a full disk).
+pub fn render_bytes(figure: &Figure) -> Result<(Vec<u8>, String), AppError> {
     register_font();
     let h = if figure.panels.len() > 2 {
         PANEL_SIZE.1 * 4 / 5
@@ -587,12 +595,22 @@ pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), AppError> {
         file: figure.stem.clone(),
         message: format!("{what}: {e}"),
     };
+    let mut rgb = vec![0u8; 3 * size.0 as usize * size.1 as usize];
     {
-        let root = BitMapBackend::new(png, size).into_drawing_area();
+        let root = BitMapBackend::with_buffer(&mut rgb, size).into_drawing_area();
         draw(&root, figure).map_err(|e| err("drawing PNG", e))?;
         root.present()
-            .map_err(|e| err("writing PNG", e.to_string()))?;
+            .map_err(|e| err("drawing PNG", e.to_string()))?;
     }
+    let mut png = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut png),
+        &rgb,
+        size.0,
+        size.1,
+        image::ColorType::Rgb8,
+    )
+    .map_err(|e| err("encoding PNG", e.to_string()))?;
     let mut text = String::new();
     {
         let root = SVGBackend::with_string(&mut text, size).into_drawing_area();
@@ -600,7 +618,7 @@ pub fn render(figure: &Figure, png: &Path, svg: &Path) -> Result<(), AppError> {
         root.present()
             .map_err(|e| err("writing SVG", e.to_string()))?;
     }
-    std::fs::write(svg, text).map_err(|e| AppError::io("write", svg, e))
+    Ok((png, text))
 }
 
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, figure: &Figure) -> Result<(), String> {

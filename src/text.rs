@@ -48,6 +48,34 @@ pub fn trim_zeros(s: &str) -> String {
     }
 }
 
+/// `1.5 MiB`, `200 KiB`, `12 bytes`: a size for people, three significant digits.
+pub fn bytes(n: u64) -> String {
+    const UNITS: [&str; 5] = ["KiB", "MiB", "GiB", "TiB", "PiB"];
+    if n < 1024 {
+        return format!("{n} bytes");
+    }
+    let mut x = n as f64 / 1024.0;
+    let mut unit = 0;
+    while x >= 1024.0 && unit + 1 < UNITS.len() {
+        x /= 1024.0;
+        unit += 1;
+    }
+    format!("{} {}", significant(x, 3), UNITS[unit])
+}
+
+/// `n` with its digits grouped by three, a space between groups: `918 102`.
+pub fn grouped(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::with_capacity(digits.len() + digits.len() / 3);
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(' ');
+        }
+        out.push(c);
+    }
+    out
+}
+
 /// A table cell of a measured number: scientific notation with `digits` digits; `failed` for an
 /// infinite one (a measurement that failed), `–` for none.
 pub fn cell(x: Option<f64>, digits: usize) -> String {
@@ -105,6 +133,23 @@ pub fn closest<'a>(key: &str, candidates: &[&'a str]) -> Option<&'a str> {
 #[cfg(test)]
 mod tests {
     use super::significant;
+
+    #[test]
+    fn large_counts_are_grouped_by_three_digits() {
+        assert_eq!(super::grouped(0), "0");
+        assert_eq!(super::grouped(999), "999");
+        assert_eq!(super::grouped(1000), "1 000");
+        assert_eq!(super::grouped(918_102), "918 102");
+        assert_eq!(super::grouped(18_362_040), "18 362 040");
+    }
+
+    #[test]
+    fn sizes_are_written_for_people() {
+        assert_eq!(super::bytes(12), "12 bytes");
+        assert_eq!(super::bytes(200 * 1024), "200 KiB");
+        assert_eq!(super::bytes(3 * 1024 * 1024 / 2), "1.5 MiB");
+        assert_eq!(super::bytes(918_102 * 161), "141 MiB");
+    }
 
     #[test]
     fn significant_digits_without_the_binary_noise_or_trailing_zeros() {

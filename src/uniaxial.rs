@@ -16,6 +16,7 @@ use crate::invariants::{Kinematics, FULL};
 use crate::material::Muscle;
 use crate::response::Order;
 use crate::roots::newton_bisection;
+use crate::text::shortest;
 use crate::volumetric::Volumetric;
 use crate::{Error, Result};
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
@@ -238,8 +239,9 @@ fn zero_load(
         return Err(Error::NoSolution {
             equation: equation.to_string(),
             reason: format!(
-                "P changes sign at lambda = {lambda} without vanishing (P = {} kPa there): the activation law jumps",
-                state.stress
+                "P changes sign at lambda = {} without vanishing (P = {} kPa there): the activation law jumps",
+                shortest(lambda),
+                shortest(state.stress)
             ),
         });
     }
@@ -332,16 +334,24 @@ pub fn across_fibres<E: StrainEnergy>(muscle: &Muscle<E>, lambda: f64) -> Result
         expanded += 1;
         if expanded > 60 {
             return Err(Error::NoSolution {
-                equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
+                equation: format!(
+                    "lateral equilibrium across the fibres at lambda = {}",
+                    shortest(lambda)
+                ),
                 reason: format!(
-                    "no sign change of a P11 - F33 P33 for fibre stretch in [{lo}, {hi}]"
+                    "no sign change of a P11 - F33 P33 for fibre stretch in [{}, {}]",
+                    shortest(lo),
+                    shortest(hi)
                 ),
             });
         }
     }
     let a =
         newton_bisection(residual, lo, hi, 1e-15 * guess).map_err(|reason| Error::NoSolution {
-            equation: format!("lateral equilibrium across the fibres at lambda = {lambda}"),
+            equation: format!(
+                "lateral equilibrium across the fibres at lambda = {}",
+                shortest(lambda)
+            ),
             reason,
         })?;
     let (kin, f33) = state(a)?;
@@ -389,6 +399,16 @@ pub fn reference_stress<E: StrainEnergy + Clone>(energy: &E) -> Result<f64> {
         });
     }
     Ok(s0)
+}
+
+/// The initial modulus of the passive `energy` along the fibres, E₀ = dP/dλ at λ = 1 \[kPa\] of
+/// exactly incompressible uniaxial tension (a central difference of step 1e-4: the stiffness a
+/// volumetric energy is compared with, not a result).
+pub fn initial_modulus<E: StrainEnergy + Clone>(energy: &E) -> Result<f64> {
+    let muscle = Muscle::passive(energy.clone());
+    let h = 1e-4;
+    let p = |lambda: f64| along_fibres(&muscle, lambda).map(|q| q.stress);
+    Ok((p(1.0 + h)? - p(1.0 - h)?) / (2.0 * h))
 }
 
 /// Uniaxial tension of the nearly incompressible muscle, energy Ŵ(F, γ) + U(J), in `direction`
@@ -467,14 +487,13 @@ pub fn nearly_incompressible_with_slope<E: StrainEnergy>(
         let nominal = p[4 * axis] + du * cof(axis);
         Ok((res, hessian, nominal, r.gamma, r.fibre_stretch))
     };
-    let failure = |reason: String| {
-        Error::NoSolution {
+    let failure = |reason: String| Error::NoSolution {
         equation: format!(
-            "lateral equilibrium of the nearly incompressible test {} the fibres at lambda = {lambda}",
-            direction.name()
+            "lateral equilibrium of the nearly incompressible test {} the fibres at lambda = {}",
+            direction.name(),
+            shortest(lambda)
         ),
         reason,
-    }
     };
     let norm = |r: [f64; 2]| r[0].abs().max(r[1].abs());
     let mut x = start.lateral;

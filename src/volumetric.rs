@@ -95,6 +95,14 @@ impl VolumetricForm {
     }
 }
 
+/// The largest ratio of the bulk modulus U″(1) to the passive energy's initial modulus E₀ along
+/// the fibres, checked when a scene is read. J − 1 ≈ σ/U″(1): at 1e10, J − 1 ≈ 1e-10 of the
+/// strains and f64 still resolves it with six digits; from ≈ 2e16 (κ = 1e16 kPa for the chapter's
+/// energy, whose E₀ = 0.42 kPa: measured) the lateral equilibrium of the homogeneous tests is
+/// singular in f64.
+/// No solid is stiffer than diamond (K ≈ 4.4e8 kPa), so a real study stays far below.
+pub const MAX_STIFFNESS_RATIO: f64 = 1e10;
+
 /// A volumetric energy U(J) = U_form(J) + c (J − 1), c chosen so that the reference is stress
 /// free with the passive energy it is paired with (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

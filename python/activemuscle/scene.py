@@ -39,7 +39,7 @@ class Study:
     (fit studies): the rows of ``fit_points.csv`` (each datum with the fitted model and the
     residual, then the fitted curve).
     ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
-    ``out``; none without it). ``findings``: what a trade-off study found."""
+    ``out``; none without it): a ``.vtu`` per stretch asked for and a ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
 
     name: str
     kind: str

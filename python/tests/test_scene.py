@@ -175,7 +175,9 @@ def test_out_writes_the_command_lines_files(tmp_path):
     assert len(rows) == sum(s.points for s in r)
     assert (out / "report.html").is_file() and (out / "scene.toml").read_text() == TEXT
     vtk = r["sliding cylinder"].vtk
-    assert len(vtk) == 1 and vtk[0].parent.parent == out / "vtk" and vtk[0].is_file()
+    # The field at the one stretch asked for, and the sweep's series (.pvd) that lists it.
+    assert sorted(p.suffix for p in vtk) == [".pvd", ".vtu"]
+    assert all(p.parent.parent == out / "vtk" and p.is_file() for p in vtk)
     # Without out, no VTK file is named (none is written).
     assert am.run_scene(TEXT)["sliding cylinder"].vtk == []
 

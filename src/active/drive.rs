@@ -18,29 +18,47 @@ use crate::{Error, Result, Scalar};
 /// \[1/s\] with r = λ̇/λ̇_min (λ̇_min < 0, the fastest shortening):
 ///
 /// - lengthening, λ̇ > 0: f_v = (1 + d_e) − d_e (1 + r)/(1 − k_e k_c r);
-/// - shortening or at rest, λ̇ ≤ 0: f_v = (1 − d_c) + d_c (1 − r)/(1 + k_c r).
+/// - shortening or at rest, λ̇ ≤ 0: f_v = max(0, (1 − d_c) + d_c (1 − r)/(1 + k_c r)).
 ///
-/// f_v(0) = 1 on both branches; their slopes at 0 are −d_e (1 + k_e k_c)/λ̇_min and
+/// The parameters and their ranges (checked when a scene is read, [`Self::validated`]):
+///
+/// - λ̇_min (`min_rate`) < 0 \[1/s\]: the fastest shortening the curve describes, where the
+///   fibre's force has fallen to f_v = 1 − d_c (Hill's maximal shortening velocity);
+/// - d_c (`dc`) ∈ [0, 1]: how far the force falls from rest to λ̇_min (d_c = 1: to nothing);
+///   1 − d_c is a fraction of the isometric force, so d_c > 1 would make it push;
+/// - k_c (`kc`) ≥ 0: the curvature of the shortening branch (Hill's hyperbola; 0: a straight
+///   line);
+/// - d_e (`de`) ≥ 0: the force gained in lengthening: f_v rises from 1 towards
+///   1 + d_e (1 + 1/(k_e k_c)) for fast lengthening (without bound when k_e k_c = 0);
+/// - k_e (`ke`) ≥ 0: the curvature of the lengthening branch, with k_c.
+///
+/// With these ranges f_v(0) = 1 on both branches, f_v ≥ 1 when lengthening (the denominator
+/// 1 − k_e k_c r ≥ 1), and f_v falls monotonically from 1 at rest to 1 − d_c ≥ 0 at λ̇_min.
+/// Beyond the curve's range, shortening faster than |λ̇_min|, the formula goes on falling
+/// towards 1 − d_c − d_c/k_c and turns negative (with d_c = 1, at once): there f_v is clamped at
+/// 0 (a fibre shortening faster than it can contract carries no active force; the active
+/// stress never pushes), and such a step is flagged by the study that computes it
+/// ([`Self::within_range`]). The slopes at 0 are −d_e (1 + k_e k_c)/λ̇_min and
 /// −d_c (1 + k_c)/λ̇_min, so the slope jumps at λ̇ = 0 unless they agree (as in 4C). d_e = d_c = 0
 /// switches the dependence off. In a scene:
 /// `force_velocity = { min_rate = -17.0, ke = 5.0, kc = 5.0, de = 0.5, dc = 1.0 }`.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ForceVelocity {
-    /// λ̇_min \[1/s\] < 0: the fastest shortening rate (f_v = 1 − d_c + d_c·0 = 1 − d_c there).
+    /// λ̇_min \[1/s\] < 0: the fastest shortening rate (f_v = 1 − d_c there).
     pub min_rate: f64,
     /// k_e [-] ≥ 0: curvature of the lengthening branch.
     pub ke: f64,
     /// k_c [-] ≥ 0: curvature of the shortening branch.
     pub kc: f64,
-    /// d_e [-] ≥ 0: amplitude of the lengthening branch (f_v → 1 + d_e for fast lengthening).
+    /// d_e [-] ≥ 0: amplitude of the lengthening branch.
     pub de: f64,
-    /// d_c [-] ≥ 0: amplitude of the shortening branch.
+    /// d_c [-] ∈ [0, 1]: amplitude of the shortening branch (f_v = 1 − d_c at λ̇_min).
     pub dc: f64,
 }
 
 impl ForceVelocity {
-    /// Validates λ̇_min < 0 (finite) and k_e, k_c, d_e, d_c ≥ 0 (finite).
+    /// Validates λ̇_min < 0, k_e, k_c, d_e ≥ 0 and d_c ∈ [0, 1], all finite.
     pub fn new(min_rate: f64, ke: f64, kc: f64, de: f64, dc: f64) -> Result<Self> {
         let fv = Self {
             min_rate,
@@ -54,40 +72,54 @@ impl ForceVelocity {
 
     /// This factor, checked as [`new`](Self::new) checks it.
     pub fn validated(self) -> Result<Self> {
+        let bad = |name, value, rule| Err(Error::InvalidParameter { name, value, rule });
         if !(self.min_rate.is_finite() && self.min_rate < 0.0) {
-            return Err(Error::InvalidParameter {
-                name: "force_velocity.min_rate",
-                value: self.min_rate,
-                rule: "must be finite and < 0 (the fastest shortening rate, 1/s)",
-            });
+            return bad(
+                "force_velocity.min_rate",
+                self.min_rate,
+                "must be finite and < 0 (the fastest shortening rate, 1/s)",
+            );
         }
         for (name, v) in [
             ("force_velocity.ke", self.ke),
             ("force_velocity.kc", self.kc),
             ("force_velocity.de", self.de),
-            ("force_velocity.dc", self.dc),
         ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::InvalidParameter {
-                    name,
-                    value: v,
-                    rule: "must be finite and >= 0",
-                });
+                return bad(name, v, "must be finite and >= 0");
             }
+        }
+        if !(0.0..=1.0).contains(&self.dc) {
+            return bad(
+                "force_velocity.dc",
+                self.dc,
+                "must lie in [0, 1]: f_v = 1 - dc at the fastest shortening (min_rate) is a \
+                 fraction of the isometric force, and dc > 1 would make the active stress push",
+            );
         }
         Ok(self)
     }
 
-    /// f_v(λ̇) [-] for any scalar (the branch is chosen on the real part). Errors where the
-    /// lengthening branch's denominator 1 − k_e k_c r reaches 0 (or f_v would be negative) is
-    /// left to the caller's non-finite checks: the formula is 4C's, unguarded.
+    /// f_v(λ̇) [-] for any scalar (the branch, and the clamp at 0, chosen on the real part; a
+    /// clamped factor is 0 with zero derivatives).
     pub fn factor<T: Scalar>(&self, rate: T) -> T {
         let r = rate / self.min_rate;
         if rate.re() > 0.0 {
             -(r + 1.0) * self.de / (-r * (self.ke * self.kc) + 1.0) + (1.0 + self.de)
         } else {
-            (-r + 1.0) * self.dc / (r * self.kc + 1.0) + (1.0 - self.dc)
+            let f = (-r + 1.0) * self.dc / (r * self.kc + 1.0) + (1.0 - self.dc);
+            if f.re() < 0.0 {
+                T::zero()
+            } else {
+                f
+            }
         }
+    }
+
+    /// Whether the curve describes the rate `rate` \[1/s\]: no faster shortening than
+    /// |λ̇_min|. Beyond it f_v is extrapolated (and clamped at 0 where it turns negative).
+    pub fn within_range(&self, rate: f64) -> bool {
+        rate >= self.min_rate
     }
 }
 

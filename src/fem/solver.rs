@@ -135,6 +135,11 @@ pub struct StretchResult {
     pub fibre_stretch_centre: f64,
     /// max |J − 1| over all quadrature points.
     pub max_volume_error: f64,
+    /// Where: the reference (r, z) of that quadrature point.
+    pub max_volume_error_at: [f64; 2],
+    /// max |J̄ − 1| over the cells, J̄ the volume-weighted mean of J over a cell (what the VTK
+    /// files show), and the reference (r, z) of that cell's centroid.
+    pub max_cell_volume_error: (f64, [f64; 2]),
     /// Load steps (accepted and rejected) taken since the previous target.
     pub steps: Vec<StepRecord>,
     /// The solution.
@@ -404,6 +409,24 @@ fn nearest_to_centre(qps: &[QuadraturePoint], mesh: &Mesh) -> usize {
     centre
 }
 
+/// The largest |J̄ − 1| over the cells, J̄ the volume-weighted mean of J over a cell's
+/// quadrature points, and the reference (r, z) of that cell's centroid.
+fn cell_volume_error(qps: &[QuadraturePoint], n_cells: usize) -> (f64, [f64; 2]) {
+    // Per cell: ∫ J, ∫ r, ∫ z, ∫ dV.
+    let mut sums = vec![[0.0f64; 4]; n_cells];
+    for q in qps {
+        let c = &mut sums[q.element];
+        c[0] += jacobian(&q.f) * q.dv;
+        c[1] += q.r * q.dv;
+        c[2] += q.z * q.dv;
+        c[3] += q.dv;
+    }
+    sums.iter()
+        .filter(|c| c[3] > 0.0)
+        .map(|c| ((c[0] / c[3] - 1.0).abs(), [c[1] / c[3], c[2] / c[3]]))
+        .fold((0.0, [0.0; 2]), |m, e| if e.0 > m.0 { e } else { m })
+}
+
 /// Turns the driver's reached targets into results, writes the requested VTK files and passes
 /// the progress on.
 struct Reporter<'a, 'o> {
@@ -423,9 +446,11 @@ impl<M: AxisymmetricMaterial + ?Sized> Observer<MixedProblem<'_, M>> for Reporte
     ) -> FemResult<()> {
         let reaction = problem.reaction();
         let qps = problem.asm.quadrature_points(x);
-        let max_volume_error = qps
+        let (max_volume_error, max_volume_error_at) = qps
             .iter()
-            .fold(0.0f64, |m, q| m.max((jacobian(&q.f) - 1.0).abs()));
+            .map(|q| ((jacobian(&q.f) - 1.0).abs(), [q.r, q.z]))
+            .fold((0.0f64, [0.0; 2]), |m, e| if e.0 > m.0 { e } else { m });
+        let max_cell_volume_error = cell_volume_error(qps.as_slice(), problem.mesh.n_elements());
         let centre = qps.get(self.centre).ok_or(FemError::InvalidInput {
             name: "mesh",
             value: format!("{} quadrature points", qps.len()),
@@ -452,6 +477,8 @@ impl<M: AxisymmetricMaterial + ?Sized> Observer<MixedProblem<'_, M>> for Reporte
             gamma_centre,
             fibre_stretch_centre,
             max_volume_error,
+            max_volume_error_at,
+            max_cell_volume_error,
             steps,
             state: State {
                 stretch,

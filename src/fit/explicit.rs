@@ -107,6 +107,9 @@ pub fn explicit_law_errors(
     Ok((dg, dp))
 }
 
+/// The default bounds of each coefficient a, b of a fit.
+pub const COEFFICIENT_BOUNDS: Bounds = Bounds::new(0.0, 10.0);
+
 /// Fits (a, b) (names `a`, `b`; starts: the chapter's 1.0133, 0.2050; bounds a ∈ (0, 10],
 /// b ∈ (0, 10]) of the explicit law built on `energy` and `curve`, against the implicit law on
 /// the stretches `lambda` (increasing, > λ_min) at damage `damage`.
@@ -123,7 +126,7 @@ pub fn fit_explicit_law(
     let selection = setup.resolve(
         &["a", "b"],
         &[paper.0, paper.1],
-        &[Bounds::new(0.0, 10.0), Bounds::new(0.0, 10.0)],
+        &[COEFFICIENT_BOUNDS, COEFFICIENT_BOUNDS],
         &["a", "b"],
     )?;
     // Validates the stretches (positive, increasing, no duplicates).

@@ -41,7 +41,9 @@ pub use bounded::{least_squares, AtBound};
 pub use damage::{fit_damage, DamageFit};
 pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
 pub use error::{FitError, NotConverged};
-pub use explicit::{explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget};
+pub use explicit::{
+    explicit_law_errors, fit_explicit_law, ExplicitFit, ExplicitTarget, COEFFICIENT_BOUNDS,
+};
 pub use levenberg::MAX_TRIES;
 pub use parametric::{parameter_bounds, Parametric};
 pub use passive::{

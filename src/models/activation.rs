@@ -197,6 +197,7 @@ activation_keys! {
         written |m, _d| Some(m.representation_spec().0);
     /// Stretch range `[λ_lo, λ_hi]` [-] of the tables (default `[0.5, 1.6]`; the exact solve
     /// outside); only with `representation = "tabulated"`.
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     table_stretches: [f64; 2],
         applies |a| applies_if(a.laws().iter().any(|l| l.solves()), || a.no_law().to_string()),
         written |m, _d| m.representation_spec().1;

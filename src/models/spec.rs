@@ -193,7 +193,9 @@ fn visit_energy<'de, A: MapAccess<'de>>(
             ("W", _) => spec.formula.formula = Some(map.next_value()?),
             ("name", _) => spec.formula.name = Some(map.next_value()?),
             ("parameters", _) => spec.formula.parameters = read_parameters(&mut map)?,
-            ("fibre", Some(slot)) => *slot = Some(map.next_value()?),
+            ("fibre", Some(slot)) => {
+                *slot = Some(map.next_value::<crate::fixed_length::Exactly<f64, 3>>()?.0)
+            }
             _ => {
                 /// A parameter's value: a number, or anything else (a misspelt key).
                 #[derive(Deserialize)]
@@ -339,6 +341,33 @@ pub struct IncompressibilitySpec {
     pub mu: Option<f64>,
 }
 
+/// Refuses a volumetric energy whose bulk modulus K = U″(1) exceeds
+/// [`crate::volumetric::MAX_STIFFNESS_RATIO`] times the passive energy's initial modulus E₀
+/// along the fibres ([`crate::uniaxial::initial_modulus`]), at `kappa` (given as `kappa`).
+fn stiff_enough(volumetric: &Volumetric, energy: &Energy, kappa: f64) -> Result<(), SpecError> {
+    use crate::volumetric::MAX_STIFFNESS_RATIO;
+    let e0 = crate::uniaxial::initial_modulus(energy).map_err(|e| SpecError::model("kind", e))?;
+    let k = volumetric.bulk_modulus();
+    if k.is_finite() && k <= MAX_STIFFNESS_RATIO * e0.abs() {
+        return Ok(());
+    }
+    Err(SpecError::new(
+        "kappa",
+        kappa,
+        format!(
+            "the bulk modulus U''(1) = {} kPa is more than {} times the passive energy's initial \
+             modulus along the fibres (E₀ = {} kPa): it may be at most {} kPa. Stiffer, J − 1 ≈ \
+             σ/U''(1) drops below what f64 resolves and the solves fail (the homogeneous tests' \
+             lateral equilibrium from about 1e16 E₀); no solid is stiffer than diamond (4.4e8 \
+             kPa); for an incompressible body use kind = \"exact\"",
+            shortest(k),
+            format_args!("{MAX_STIFFNESS_RATIO:e}"),
+            crate::text::significant(e0, 4),
+            format_args!("{:.2e}", MAX_STIFFNESS_RATIO * e0.abs())
+        ),
+    ))
+}
+
 impl IncompressibilitySpec {
     /// The volumetric energy (`None`: exact) for `energy`, its linear term chosen so that the
     /// passive reference is stress free ([`crate::uniaxial::reference_stress`]); errors name the
@@ -383,9 +412,9 @@ impl IncompressibilitySpec {
         }
         let s0 =
             crate::uniaxial::reference_stress(energy).map_err(|e| SpecError::model("kind", e))?;
-        Volumetric::new(form, s0)
-            .map(Some)
-            .map_err(|e| SpecError::model("", e))
+        let volumetric = Volumetric::new(form, s0).map_err(|e| SpecError::model("", e))?;
+        stiff_enough(&volumetric, energy, self.kappa.unwrap_or_default())?;
+        Ok(Some(volumetric))
     }
 
     /// μ of the 4c-giantesio form: as given, else the energy's.

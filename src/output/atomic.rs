@@ -17,6 +17,12 @@
 //!   re-run.
 //! - **Cleaning**: staging directories of dead runs are removed when a run opens the directory;
 //!   a run that fails before its commit removes its own.
+//! - **A full disk**: a write that runs out of space (or quota) is [`AppError::DiskFull`],
+//!   naming the file, the disk and its free space; the partly written file is removed from the
+//!   staging area, so that a commit after it keeps exactly the files written whole before
+//!   (the run writes its data first: [`super::write_run`]). The commit itself needs a little
+//!   space for the manifests: [`RESERVE`] bytes are taken when the directory is opened (a disk
+//!   without them is refused before anything is computed) and given back to write them.
 
 use crate::app_error::AppError;
 use std::path::{Path, PathBuf};
@@ -30,6 +36,11 @@ pub const MANIFEST: &str = ".activemuscle-manifest";
 pub const PARTIAL: &str = ".activemuscle-partial-";
 /// Prefix of the directory a commit moves the previous run's files to.
 const OLD: &str = ".activemuscle-old-";
+/// Space \[bytes\] held in the staging directory from [`Staging::open`] to the commit, which
+/// frees it to write the manifests (one line per file: 64 KiB lists about a thousand files).
+pub const RESERVE: u64 = 64 * 1024;
+/// The file holding [`RESERVE`] inside the staging directory.
+const RESERVE_FILE: &str = ".activemuscle-reserve";
 
 /// The command that writes into an output directory. Each owns the files in its own manifest and
 /// removes no other.
@@ -66,6 +77,10 @@ pub struct Staging {
     /// Whether this run created the output directory (removed again, if still empty, when the
     /// run ends without a commit).
     created: bool,
+    /// Bytes the staged files hold ([`Self::with_space`]).
+    used: u64,
+    /// The space of a simulated disk ([`Self::with_space`]); `None`: the real one.
+    space: Option<u64>,
 }
 
 fn refuse(root: &Path, message: impl Into<String>) -> AppError {
@@ -222,6 +237,8 @@ impl Staging {
             lock: Some(lock),
             committed: false,
             created,
+            used: 0,
+            space: None,
         };
         let entries: Vec<String> = std::fs::read_dir(root)
             .map_err(|e| AppError::io("list", root, e))?
@@ -253,7 +270,12 @@ impl Staging {
                 .map_err(|e| AppError::io("remove the dead run's", &p, e))?;
         }
         std::fs::create_dir_all(&staging.dir)
-            .map_err(|e| AppError::io("create", &staging.dir, e))?;
+            .map_err(|e| staging.failed("create", &staging.dir, Path::new(PARTIAL), e))?;
+        let reserve = staging.dir.join(RESERVE_FILE);
+        std::fs::write(&reserve, vec![0u8; RESERVE as usize]).map_err(|e| {
+            let what = Path::new("the space a run holds to write its manifests");
+            staging.failed("write", &reserve, what, e).of_size(RESERVE)
+        })?;
         Ok(staging)
     }
 
@@ -262,11 +284,20 @@ impl Staging {
         &self.dir
     }
 
+    /// The same staging area on a simulated disk of `bytes` free: a write that would take the
+    /// staged files past it writes what fits and fails as a full disk does (ENOSPC). The way a
+    /// test fills a disk without one.
+    pub fn with_space(mut self, bytes: u64) -> Self {
+        self.space = Some(bytes);
+        self
+    }
+
     /// The staged path of `relative`, registered for the commit (parent directories created).
     pub fn path(&mut self, relative: &Path) -> Result<PathBuf, AppError> {
         let p = self.dir.join(relative);
         if let Some(parent) = p.parent() {
-            std::fs::create_dir_all(parent).map_err(|e| AppError::io("create", parent, e))?;
+            std::fs::create_dir_all(parent)
+                .map_err(|e| self.failed("create", parent, relative, e))?;
         }
         if !self.files.iter().any(|f| f == relative) {
             self.files.push(relative.to_path_buf());
@@ -277,11 +308,16 @@ impl Staging {
     /// Registers a file some other writer has already put into the staging directory.
     pub fn adopt(&mut self, relative: &Path) -> Result<(), AppError> {
         let p = self.dir.join(relative);
-        if !p.is_file() {
+        let Ok(size) = std::fs::metadata(&p).map(|m| m.len()) else {
             return Err(AppError::Output {
                 file: p.display().to_string(),
                 message: "expected staged file is missing".into(),
             });
+        };
+        if let Err(e) = self.take_space(size) {
+            let error = self.failed("write", &p, relative, e).of_size(size);
+            let _ = std::fs::remove_file(&p);
+            return Err(error);
         }
         if !self.files.iter().any(|f| f == relative) {
             self.files.push(relative.to_path_buf());
@@ -289,11 +325,70 @@ impl Staging {
         Ok(())
     }
 
-    /// Writes `bytes` to the staged `relative`.
+    /// Writes `bytes` to the staged `relative`. On a failure nothing of it stays staged; a full
+    /// disk is [`AppError::DiskFull`].
     pub fn write(&mut self, relative: &str, bytes: &[u8]) -> Result<PathBuf, AppError> {
-        let p = self.path(Path::new(relative))?;
-        std::fs::write(&p, bytes).map_err(|e| AppError::io("write", &p, e))?;
+        let rel = Path::new(relative);
+        let p = self.path(rel)?;
+        let written = match self.take_space(bytes.len() as u64) {
+            Ok(()) => std::fs::write(&p, bytes),
+            Err(full) => {
+                // What fits of the file is written, as on a real disk.
+                let room = self.space.unwrap_or(0).saturating_sub(self.used) as usize;
+                std::fs::write(&p, &bytes[..room.min(bytes.len())]).and(Err(full))
+            }
+        };
+        if let Err(e) = written {
+            // The free space is read before the partial file gives its blocks back.
+            let error = self.failed("write", &p, rel, e);
+            let _ = std::fs::remove_file(&p);
+            self.files.retain(|f| f != rel);
+            return Err(error.of_size(bytes.len() as u64));
+        }
         Ok(p)
+    }
+
+    /// Counts `bytes` more against a simulated disk ([`Self::with_space`]), or the error a full
+    /// one gives.
+    fn take_space(&mut self, bytes: u64) -> std::io::Result<()> {
+        match self.space {
+            Some(space) if self.used + bytes > space => {
+                Err(std::io::Error::from(std::io::ErrorKind::StorageFull))
+            }
+            _ => {
+                self.used += bytes;
+                Ok(())
+            }
+        }
+    }
+
+    /// The error of `action` on `path` (the staged `relative`): [`AppError::DiskFull`] when
+    /// the disk is full, naming its mount point and free space.
+    fn failed(
+        &self,
+        action: &'static str,
+        path: &Path,
+        relative: &Path,
+        e: std::io::Error,
+    ) -> AppError {
+        if !super::disk::is_full(&e) {
+            return AppError::io(action, path, e);
+        }
+        let disk = super::disk::Disk::of(&self.root);
+        AppError::DiskFull {
+            file: relative.display().to_string(),
+            size: None,
+            disk: disk.describe(),
+            free: match self.space {
+                Some(space) => Some(space.saturating_sub(self.used)),
+                None => disk.free,
+            },
+        }
+    }
+
+    /// The files staged so far, relative to the output directory, in the order registered.
+    pub fn staged(&self) -> &[PathBuf] {
+        &self.files
     }
 
     /// Replaces the previous run's files by the staged ones, all or nothing: the previous files
@@ -304,6 +399,8 @@ impl Staging {
     /// the staging directory removed, and the lock released. Files in another command's
     /// manifest that this run does not write are not touched.
     pub fn commit(mut self) -> Result<Vec<PathBuf>, AppError> {
+        // The space held for the manifests.
+        let _ = std::fs::remove_file(self.dir.join(RESERVE_FILE));
         let old_dir = self.root.join(format!("{OLD}{}", std::process::id()));
         let others: Vec<(Writer, Vec<PathBuf>)> = Writer::ALL
             .into_iter()

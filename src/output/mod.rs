@@ -7,6 +7,7 @@ pub mod atomic;
 pub mod base64;
 pub mod csv;
 pub mod datapackage;
+pub mod disk;
 pub mod figures;
 
 pub mod report;
@@ -31,10 +32,12 @@ pub struct RunMeta {
     pub rustc: Option<String>,
 }
 
-/// Writes every output of a run into `staging` (committed by the caller): the CSV files of the
-/// studies' tables (`curves.csv` first), `scene.toml` (the scene as given), the figures, the VTK
-/// files the solver wrote into `staging`'s `vtk/`, the trade-off pages, `datapackage.json` and,
-/// last, `report.html`. Returns the number of rows of `curves.csv`.
+/// Writes every output of a run into `staging` (committed by the caller), the data first so that
+/// a disk that fills up keeps it: the CSV files of the studies' tables (`curves.csv` first),
+/// `scene.toml` (the scene as given) and `datapackage.json`; then the VTK files the solver wrote
+/// into `staging`'s `vtk/`, the figures, the trade-off pages and, last, `report.html`. Returns
+/// the number of rows of `curves.csv`. A full disk stops it with [`AppError::DiskFull`]; every
+/// file staged before is whole, and the caller may commit them ([`Staging::staged`]).
 pub fn write_run(
     staging: &mut Staging,
     scene: &Scene,
@@ -49,20 +52,24 @@ pub fn write_run(
     }
     staging.write("scene.toml", scene.source.as_bytes())?;
     files.push("scene.toml".to_string());
-    let mut rendered = Vec::new();
-    for f in figures::figures(scene, results) {
-        let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
-        let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
-        crate::plot::render(&f, &png, &svg)?;
-        let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
-        files.push(format!("{}.png", f.stem));
-        files.push(format!("{}.svg", f.stem));
-        rendered.push((f, bytes));
-    }
+    // Every column's type and unit, for the CSV files written above.
+    let resources: Vec<datapackage::Resource> = tables.iter().map(csv::CsvFile::resource).collect();
+    let package = datapackage::descriptor(&scene.title, &resources)?;
+    staging.write("datapackage.json", &package)?;
+    files.push("datapackage.json".to_string());
     for v in results.studies.iter().flat_map(|s| s.result.vtk_files()) {
         let rel = Path::new("vtk").join(v);
         staging.adopt(&rel)?;
         files.push(rel.display().to_string());
+    }
+    let mut rendered = Vec::new();
+    for f in figures::figures(scene, results) {
+        let (png, svg) = crate::plot::render_bytes(&f)?;
+        staging.write(&format!("{}.png", f.stem), &png)?;
+        staging.write(&format!("{}.svg", f.stem), svg.as_bytes())?;
+        files.push(format!("{}.png", f.stem));
+        files.push(format!("{}.svg", f.stem));
+        rendered.push((f, png));
     }
     if let Some((_, t)) = results
         .of::<crate::studies::tradeoff::TradeoffResults>()
@@ -78,11 +85,6 @@ pub fn write_run(
         files.extend(staged);
         rendered.extend(figures);
     }
-    // Every column's type and unit, for the CSV files written above.
-    let resources: Vec<datapackage::Resource> = tables.iter().map(csv::CsvFile::resource).collect();
-    let package = datapackage::descriptor(&scene.title, &resources)?;
-    staging.write("datapackage.json", &package)?;
-    files.push("datapackage.json".to_string());
     let info = RunInfo {
         command: meta.command.clone(),
         wall: meta.started.elapsed(),

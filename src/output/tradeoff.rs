@@ -4,7 +4,7 @@
 use super::base64;
 use super::{Staging, Writer};
 use crate::app_error::AppError;
-use crate::plot::{render, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
+use crate::plot::{render_bytes, Figure, Panel, Rendered, Scale, Series, Stroke, GREY};
 use crate::studies::slug;
 use crate::studies::tradeoff::{Measurement, TradeoffResults};
 use crate::text::{cell, escape_html as escape, ratio};
@@ -316,13 +316,12 @@ pub fn stage_pages(
             continue;
         }
         let f = figure(&option, &results.rows);
-        let png = staging.path(Path::new(&format!("{}.png", f.stem)))?;
-        let svg = staging.path(Path::new(&format!("{}.svg", f.stem)))?;
-        render(&f, &png, &svg)?;
-        let bytes = std::fs::read(&png).map_err(|e| AppError::io("read back", &png, e))?;
+        let (png, svg) = render_bytes(&f)?;
+        staging.write(&format!("{}.png", f.stem), &png)?;
+        staging.write(&format!("{}.svg", f.stem), svg.as_bytes())?;
         files.push(format!("{}.png", f.stem));
         files.push(format!("{}.svg", f.stem));
-        figures.push((f, bytes));
+        figures.push((f, png));
     }
     let pngs: Vec<(String, Vec<u8>)> = figures
         .iter()

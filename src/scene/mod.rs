@@ -97,7 +97,10 @@ impl Scene {
                 e.utf8_error().valid_up_to()
             ))
         })?;
-        Self::parse(&text, &file)
+        // Data files are read relative to the scene's directory as the system names it (a
+        // path that is not UTF-8 is not the `file` shown in messages).
+        let base = path.parent().unwrap_or(Path::new(""));
+        Self::parse_in(&text, &file, base)
     }
 
     /// The embedded paper study.
@@ -108,8 +111,17 @@ impl Scene {
     /// Validates and resolves scene `text`; `file` names it in error messages, and data files
     /// are read relative to its directory.
     pub fn parse(text: &str, file: &str) -> Result<Self, SceneError> {
+        Self::parse_in(
+            text,
+            file,
+            Path::new(file).parent().unwrap_or(Path::new("")),
+        )
+    }
+
+    /// [`Self::parse`], data files read relative to the directory `base`.
+    fn parse_in(text: &str, file: &str, base: &Path) -> Result<Self, SceneError> {
         let spec = parse::parse(text, file)?;
-        resolve::resolve(spec, text, file)
+        resolve::resolve(spec, text, file, base)
     }
 
     /// The resolved scene as TOML, every default written out.

@@ -13,7 +13,12 @@ use crate::studies::{slug, Study, StudyKind, StudySpec, MAX_SLUG_BYTES};
 use crate::text::shortest;
 use std::path::Path;
 
-pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, SceneError> {
+pub(super) fn resolve(
+    spec: SceneSpec,
+    text: &str,
+    file: &str,
+    base: &Path,
+) -> Result<Scene, SceneError> {
     let error = |e: SpecError| SceneError {
         file: file.to_string(),
         line: line_of(text, &e.key),
@@ -28,9 +33,10 @@ pub(super) fn resolve(spec: SceneSpec, text: &str, file: &str) -> Result<Scene, 
         law: choices.law,
         coupling: choices.coupling,
         damage: &choices.damage,
-        base: Path::new(file).parent().unwrap_or(Path::new("")),
+        base,
     };
     let (studies, resolved) = studies(&spec.studies, &defaults).map_err(error)?;
+    crate::studies::size::check(&studies).map_err(error)?;
     axial_fibres(models.fibre, &studies).map_err(error)?;
     let approaches = approaches(choices.approach, &studies);
     activation_applies(&spec.activation, &approaches, &studies).map_err(error)?;

@@ -39,6 +39,7 @@ pub struct BiaxialSpec {
     /// Stretches λ₁ along the fibres of the path.
     pub stretch: Option<StretchSpec>,
     /// (λ₁, λ₂) pairs, instead of `path` and `stretch`.
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub pairs: Option<Vec<[f64; 2]>>,
     /// Approaches (default `[activation.approach]`).
     pub approaches: Option<Vec<Approach>>,
@@ -261,8 +262,10 @@ impl BiaxialStudy {
         let failure = first.map(|((l1, l2), why)| Failure {
             model: label,
             message: format!(
-                "{failed} of {} states failed; first at (λ₁, λ₂) = ({l1}, {l2}): {why}",
-                self.pairs.len()
+                "{failed} of {} states failed; first at (λ₁, λ₂) = ({}, {}): {why}",
+                self.pairs.len(),
+                crate::text::shortest(l1),
+                crate::text::shortest(l2)
             ),
         });
         Ok((

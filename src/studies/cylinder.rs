@@ -3,6 +3,7 @@
 //! next to the homogeneous (0D) curve of the same model.
 
 mod output;
+mod volume;
 
 use super::spec::StretchSpec;
 use super::spec::{cell_count, grading, positive, required_stretches, Defaults, ModelKeys};
@@ -23,7 +24,7 @@ use crate::Muscle;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Scene names of [`Bases`] (serde's remote definition: the FE solver's own type).
 #[derive(Serialize, Deserialize)]
@@ -89,7 +90,11 @@ pub struct CylinderSpec {
     /// e.g. mm) whose nodal displacements are reported (`[study.points]`; default none). Each
     /// must be a node of the mesh on the boundary of the meridian section (axis, lateral
     /// surface or a base).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::fixed_length::exact"
+    )]
     pub points: Option<BTreeMap<String, [f64; 2]>>,
     /// Regions of the meridian section with their own damage and/or activation level
     /// (`[[study.regions]]`; default none: the model's damage and a = 1 everywhere). A later
@@ -106,8 +111,10 @@ pub struct CylinderSpec {
 #[serde(deny_unknown_fields)]
 pub struct RegionSpec {
     /// [r0, r1] in units of R (default [0, 1]).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub r: Option<[f64; 2]>,
     /// [z0, z1] in units of L (default [0, 1]).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub z: Option<[f64; 2]>,
     /// Damage d inside [-] (default: the sweep's damage).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -538,6 +545,19 @@ pub struct Sweep {
     /// Per converged stretch (aligned with `points`), the displacement (u_r, u_z) of each named
     /// point of the study ([`CylinderResult::points`]), in the mesh's length unit.
     pub displacements: Vec<Vec<[f64; 2]>>,
+    /// Per converged stretch (aligned with `points`), how far J is from 1.
+    pub volume: Vec<VolumeError>,
+}
+
+/// How far J = det F is from 1 in a solved state (Taylor–Hood enforces J = 1 weakly: J − 1 is
+/// orthogonal to the pressure's bilinear functions on each cell, not 0 at every point).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VolumeError {
+    /// max |J − 1| over the quadrature points, and the reference (r, z) of that point.
+    pub at_points: (f64, [f64; 2]),
+    /// max |J̄ − 1| over the cells (J̄ a cell's volume-weighted mean of J, as the VTK files show
+    /// it), and the reference (r, z) of that cell's centroid.
+    pub of_cells: (f64, [f64; 2]),
 }
 
 impl Sweep {
@@ -572,6 +592,11 @@ pub struct CylinderResult {
     /// The regions with their own damage or activation (empty: a uniform body). With regions
     /// the 0D curve of a sweep is the uniform model's at the sweep's d, a reference only.
     pub regions: Vec<StudyRegion>,
+    /// Radius R and length L of the cylinder (the mesh's length unit).
+    pub dimensions: [f64; 2],
+    /// Whether the material is nearly incompressible (a volumetric energy): then J − 1 is its
+    /// own volume change too.
+    pub nearly_incompressible: bool,
 }
 
 impl CylinderResult {
@@ -599,6 +624,28 @@ fn against_0d(sweep: &Sweep) -> String {
             crate::text::significant(100.0 * difference / zero.abs().max(1e-300), 4)
         ),
     }
+}
+
+/// The VTK files a sweep wrote, relative to `vtk_dir`, and its `.pvd` series (time = λ),
+/// written beside them into `vtk_dir/sub` when there are any.
+fn vtk_files(
+    results: &[crate::fem::StretchResult],
+    vtk_dir: Option<&Path>,
+    sub: &Path,
+) -> Result<Vec<PathBuf>, AppError> {
+    let written: Vec<(f64, String)> = results
+        .iter()
+        .filter_map(|r| {
+            let name = r.vtk_file.as_ref()?.file_name()?;
+            Some((r.stretch, name.to_string_lossy().into_owned()))
+        })
+        .collect();
+    let mut files: Vec<PathBuf> = written.iter().map(|(_, f)| sub.join(f)).collect();
+    if let (Some(dir), false) = (vtk_dir, written.is_empty()) {
+        crate::fem::vtk::write_series(&dir.join(sub), &written)?;
+        files.push(sub.join(crate::fem::vtk::SERIES));
+    }
+    Ok(files)
 }
 
 /// A sweep that stopped, in words: how far it got and why.
@@ -668,6 +715,8 @@ impl CylinderStudy {
             sweeps: Vec::with_capacity(sweeps.len()),
             points: self.points.iter().map(|p| (p.name.clone(), p.at)).collect(),
             regions: self.regions.clone(),
+            dimensions: [self.radius, self.length],
+            nearly_incompressible: models.volumetric.is_some(),
         };
         let mut failures = Vec::new();
         let mut details = self.geometry_details();
@@ -687,19 +736,7 @@ impl CylinderStudy {
                     continue;
                 }
             };
-            details.push(format!(
-                "d = {}: {}/{} stretches, {} dofs, {}{}",
-                sweep.model.damage,
-                sweep.points.len(),
-                self.stretches.len(),
-                sweep.dofs,
-                against_0d(&sweep),
-                if stops.is_empty() {
-                    ""
-                } else {
-                    " (stopped: see \"Where a model stopped\")"
-                }
-            ));
+            details.push(self.sweep_detail(&sweep, !stops.is_empty()));
             failures.extend(stops);
             result.sweeps.push(sweep);
         }
@@ -715,6 +752,24 @@ impl CylinderStudy {
             failures,
             result: StudyResult::Cylinder(result),
         })
+    }
+
+    /// A sweep's line of the study's details: its stretches, unknowns and the distance from the
+    /// 0D curve; whether it `stopped` early.
+    fn sweep_detail(&self, sweep: &Sweep, stopped: bool) -> String {
+        format!(
+            "d = {}: {}/{} stretches, {} dofs, {}{}",
+            sweep.model.damage,
+            sweep.points.len(),
+            self.stretches.len(),
+            sweep.dofs,
+            against_0d(sweep),
+            if stopped {
+                " (stopped: see \"Where a model stopped\")"
+            } else {
+                ""
+            }
+        )
     }
 
     /// The study's facts before its sweeps': geometry, mesh, bases, stretches, regions.
@@ -783,30 +838,13 @@ impl CylinderStudy {
             slug(&self.name),
             crate::text::shortest(m.damage)
         ));
-        let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
-            (Some(dir), false) => Some(VtkOutput {
-                directory: dir.join(&sub),
-                stretches: self.vtk.clone(),
-            }),
-            _ => None,
-        };
-        let options = SolverOptions {
-            stepping: Stepping {
-                tolerance: self.tolerance,
-                ..Stepping::default()
-            },
-            element: self.element,
-            vtk,
-            cancel: ctx.stop.map(|s| s.flag().clone()),
-            volumetric: models.volumetric,
-            ..SolverOptions::default()
-        };
         // The uniform cylinder solves the muscle itself; regions wrap one muscle per region.
         let regional = self.regional(models, m)?;
         let material: &dyn AxisymmetricMaterial = match &regional {
             Some(r) => r,
             None => &muscle,
         };
+        let options = self.solver_options(models, ctx, &sub);
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, material, options)?;
         let dofs = solver.n_free_dofs();
         let label = models.label(m);
@@ -819,8 +857,6 @@ impl CylinderStudy {
             }
         })?;
         let passive = models.passive();
-        let mut points = Vec::with_capacity(sweep.results.len());
-        let mut vtk_files = Vec::new();
         let node_u = &solver.dofs().node_u;
         let displacements: Vec<Vec<[f64; 2]>> = sweep
             .results
@@ -832,59 +868,111 @@ impl CylinderStudy {
                     .collect()
             })
             .collect();
-        for r in &sweep.results {
-            points.push(SweepPoint {
-                lambda: r.stretch,
-                gamma_centre: r.gamma_centre,
-                fibre_stretch_centre: r.fibre_stretch_centre,
-                stress: r.nominal_stress,
-                newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
-                stress_0d: models
-                    .uniaxial(&muscle, Direction::Along, r.stretch)
-                    .ok()
-                    .map(|p| p.stress),
-                passive_0d: models
-                    .uniaxial(&passive, Direction::Along, r.stretch)
-                    .ok()
-                    .map(|p| p.stress),
-                active_0d: Drive::from(m.damage).target(&models.curve, r.stretch),
-            });
-            if let Some(file) = r.vtk_file.as_ref().and_then(|f| f.file_name()) {
-                vtk_files.push(sub.join(file));
-            }
-        }
-        let failures = sweep
-            .failures
+        let points = sweep
+            .results
             .iter()
-            .zip(&sweep.failed_trials)
-            .map(|(f, trial)| {
-                let mut message = describe_failure(f);
-                if let (FemError::Cancelled { .. }, Some(reason)) =
-                    (f, ctx.stop.and_then(|s| s.reason()))
-                {
-                    message = format!("{reason}: {message}; the stretches solved before are kept");
-                }
-                if let Some(points) = trial {
-                    let f: Vec<_> = points.iter().map(|q| q.f).collect();
-                    let diagnosis = diagnose_axisymmetric(&muscle, &f, 100);
-                    message.push_str(&format!("; material diagnosis: {diagnosis}"));
-                }
-                Failure {
-                    model: label.clone(),
-                    message,
-                }
-            })
+            .map(|r| sweep_point(models, m, (&muscle, &passive), r))
             .collect();
+        let failures = sweep_failures(&sweep, ctx, &muscle, &label);
         Ok((
             Sweep {
                 model: *m,
                 label,
                 dofs,
                 points,
-                vtk_files,
+                vtk_files: vtk_files(&sweep.results, ctx.vtk_dir, &sub)?,
                 displacements,
+                volume: sweep
+                    .results
+                    .iter()
+                    .map(|r| VolumeError {
+                        at_points: (r.max_volume_error, r.max_volume_error_at),
+                        of_cells: r.max_cell_volume_error,
+                    })
+                    .collect(),
             },
             failures,
         ))
     }
+
+    /// The solver's options: the study's tolerance and element, the scene's volumetric energy,
+    /// the VTK files at the study's `vtk` stretches into `vtk_dir/sub`, the run's stop.
+    fn solver_options(&self, models: &Models, ctx: &RunContext, sub: &Path) -> SolverOptions {
+        let vtk = match (ctx.vtk_dir, self.vtk.is_empty()) {
+            (Some(dir), false) => Some(VtkOutput {
+                directory: dir.join(sub),
+                stretches: self.vtk.clone(),
+            }),
+            _ => None,
+        };
+        SolverOptions {
+            stepping: Stepping {
+                tolerance: self.tolerance,
+                ..Stepping::default()
+            },
+            element: self.element,
+            vtk,
+            cancel: ctx.stop.map(|s| s.flag().clone()),
+            volumetric: models.volumetric,
+            ..SolverOptions::default()
+        }
+    }
+}
+
+/// The point of a sweep at the solved stretch `r` of model `m`, with the homogeneous (0D)
+/// stresses of its muscle and passive counterpart there.
+fn sweep_point(
+    models: &Models,
+    m: &ModelChoice,
+    (muscle, passive): (&Muscle<Energy>, &Muscle<Energy>),
+    r: &crate::fem::StretchResult,
+) -> SweepPoint {
+    let stress = |muscle| {
+        models
+            .uniaxial(muscle, Direction::Along, r.stretch)
+            .ok()
+            .map(|p| p.stress)
+    };
+    SweepPoint {
+        lambda: r.stretch,
+        gamma_centre: r.gamma_centre,
+        fibre_stretch_centre: r.fibre_stretch_centre,
+        stress: r.nominal_stress,
+        newton_iterations: r.steps.iter().map(|st| st.iterations.len()).sum(),
+        stress_0d: stress(muscle),
+        passive_0d: stress(passive),
+        active_0d: Drive::from(m.damage).target(&models.curve, r.stretch),
+    }
+}
+
+/// The failures of the directions of `sweep` that stopped, each with a material diagnosis of
+/// its last rejected trial, or the run's stop reason.
+fn sweep_failures(
+    sweep: &crate::fem::Sweep,
+    ctx: &RunContext,
+    muscle: &Muscle<Energy>,
+    label: &str,
+) -> Vec<Failure> {
+    sweep
+        .failures
+        .iter()
+        .zip(&sweep.failed_trials)
+        .map(|(f, trial)| {
+            let mut message = describe_failure(f);
+            if let (FemError::Cancelled { .. }, Some(reason)) =
+                (f, ctx.stop.and_then(|s| s.reason()))
+            {
+                message = format!("{reason}: {message}; the stretches solved before are kept");
+            }
+            if let Some(points) = trial {
+                let f: Vec<_> = points.iter().map(|q| q.f).collect();
+                let diagnosis = diagnose_axisymmetric(muscle, &f, 100);
+                message.push_str(&format!("; material diagnosis: {diagnosis}"));
+            }
+            Failure {
+                model: label.to_string(),
+                message,
+            }
+        })
+        .collect()
 }

@@ -22,6 +22,7 @@ use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits
 use crate::active::StretchRate;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
+use crate::fixed_length::Exactly;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
@@ -97,8 +98,8 @@ impl<'de> Deserialize<'de> for LoadingSpec {
             }
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<LoadingSpec, A::Error> {
                 let mut v = Vec::new();
-                while let Some(p) = seq.next_element::<[f64; 2]>()? {
-                    v.push(p);
+                while let Some(p) = seq.next_element::<Exactly<f64, 2>>()? {
+                    v.push(p.0);
                 }
                 Ok(LoadingSpec::Schedule(v))
             }
@@ -116,6 +117,7 @@ pub struct HistorySpec {
     /// Time steps t \[s\] (required): `[0, 0.1, 0.2]` or `{ from, to, step }`.
     pub time: Option<StretchSpec>,
     /// The activation schedule a_s: [t \[s\], value ∈ [0, 1]] points (default `[[0, 1]]`).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub schedule: Option<Vec<[f64; 2]>>,
     /// `constant` (default) or `linear` between schedule points.
     pub interpolation: Option<Interpolation>,
@@ -397,6 +399,47 @@ pub struct HistoryPoint {
     pub active_target: f64,
 }
 
+/// The steps of a history that shorten the fibres faster than the force–velocity curve's
+/// fastest rate |λ̇_min| ([`crate::active::ForceVelocity::within_range`]): there f_v is
+/// extrapolated, and clamped at 0 where the formula turns negative.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct FastShortening {
+    /// How many steps.
+    steps: usize,
+    /// The first: its time \[s\], its rate λ̇ \[1/s\], λ̇_min \[1/s\] and f_v there [-].
+    first: Option<(f64, f64, f64, f64)>,
+}
+
+impl FastShortening {
+    /// Counts the step ending at time `t` with fibre stretch `lambda` if its rate is beyond the
+    /// curve's range.
+    fn check(&mut self, rate: &StretchRate, lambda: f64, t: f64) {
+        let r = rate.rate(lambda);
+        if !rate.law.within_range(r) {
+            self.steps += 1;
+            self.first
+                .get_or_insert((t, r, rate.law.min_rate, rate.law.factor(r)));
+        }
+    }
+
+    /// The flag in words, if any step was beyond the range (of `total` steps).
+    fn message(&self, total: usize) -> Option<String> {
+        let (t, r, min, fv) = self.first?;
+        Some(format!(
+            "force-velocity beyond its range at {} of {total} steps: from t = {} s the fibre \
+             shortens at {} 1/s, faster than min_rate = {} 1/s, where Böl & Reese's curve ends; \
+             there f_v is extrapolated and clamped at 0 where it would turn negative (f_v = {} at \
+             the first such step), so the active stress never pushes; smaller time steps or a \
+             faster min_rate keep the history inside the curve",
+            self.steps,
+            shortest(t),
+            crate::text::significant(r, 4),
+            shortest(min),
+            crate::text::significant(fv, 4)
+        ))
+    }
+}
+
 /// The history of one model.
 #[derive(Debug, Clone, PartialEq)]
 pub struct History {
@@ -468,7 +511,7 @@ impl HistoryStudy {
         let choices = &self.models;
         ctx.progress
             .start(&self.name, choices.len() * self.times.len());
-        let computed: Vec<Result<(History, Option<Failure>), AppError>> = choices
+        let computed: Vec<Result<(History, Vec<Failure>), AppError>> = choices
             .par_iter()
             .map(|m| self.history(models, *m, ctx))
             .collect();
@@ -476,9 +519,9 @@ impl HistoryStudy {
         let mut histories = Vec::with_capacity(computed.len());
         let mut failures = Vec::new();
         for h in computed {
-            let (history, failure) = h.map_err(|e| e.within(&self.name))?;
+            let (history, failed) = h.map_err(|e| e.within(&self.name))?;
             histories.push(history);
-            failures.extend(failure);
+            failures.extend(failed);
         }
         let points = histories.iter().map(|h| h.points.len()).sum();
         Ok(Outcome {
@@ -500,13 +543,14 @@ impl HistoryStudy {
         })
     }
 
-    /// The history of model `m`, and the failure that ended it early, if any.
+    /// The history of model `m`, with its failures: the one that ended it early, if any, and
+    /// the steps beyond the force–velocity curve's range.
     fn history(
         &self,
         models: &Models,
         m: ModelChoice,
         ctx: &RunContext,
-    ) -> Result<(History, Option<Failure>), AppError> {
+    ) -> Result<(History, Vec<Failure>), AppError> {
         let mut muscle = models.muscle(m)?;
         let passive = models.passive();
         let label = models.label(&m);
@@ -517,15 +561,15 @@ impl HistoryStudy {
         let every = (self.times.len() / 20).max(1);
         // The fibre stretch and time of the previous step, for the force–velocity rate.
         let mut previous: Option<(f64, f64)> = None;
+        let mut fast = FastShortening::default();
+        let mut stopped = None;
         for (i, &t) in self.times.iter().enumerate() {
             if let Some(reason) = ctx.stop.and_then(|s| s.reason()) {
-                let failure = Failure {
-                    model: label,
-                    message: format!(
-                        "{reason}: stopped before t = {t} s; the steps solved before are kept"
-                    ),
-                };
-                return Ok((history, Some(failure)));
+                stopped = Some(format!(
+                    "{reason}: stopped before t = {} s; the steps solved before are kept",
+                    shortest(t)
+                ));
+                break;
             }
             let level = self.activation.level(t);
             let rate = match (models.force_velocity, previous) {
@@ -536,40 +580,23 @@ impl HistoryStudy {
                 }),
                 _ => None,
             };
-            let step = muscle.set_activation(level).and_then(|()| {
-                muscle.set_rate(rate)?;
-                let p = state(models, &muscle, &self.loading, t)?;
-                let passive = models
-                    .uniaxial(&passive, Direction::Along, p.lambda)?
-                    .stress;
-                Ok((p, passive))
-            });
-            let (p, passive_stress) = match step {
-                Ok(s) => s,
+            let step = self.step(models, (&mut muscle, &passive), t, level, rate);
+            let (point, fibre_stretch) = match step {
+                Ok(step) => step,
                 Err(e) => {
-                    let failure = Failure {
-                        model: label,
-                        message: format!(
-                            "at t = {t} s (a = {level}): {e}; the history stops there"
-                        ),
-                    };
-                    return Ok((history, Some(failure)));
+                    stopped = Some(format!(
+                        "at t = {} s (a = {}): {e}; the history stops there",
+                        shortest(t),
+                        shortest(level)
+                    ));
+                    break;
                 }
             };
-            let point = HistoryPoint {
-                t,
-                schedule: self.activation.schedule().value(t),
-                level,
-                lambda: p.lambda,
-                gamma: p.gamma,
-                stress: p.stress,
-                cauchy: p.cauchy,
-                volume: p.lambda * p.lateral[0] * p.lateral[1],
-                passive: passive_stress,
-                active_target: muscle.drive().target(&models.curve, p.lambda),
-            };
+            if let Some(rate) = rate {
+                fast.check(&rate, fibre_stretch, t);
+            }
             history.points.push(point);
-            previous = Some((t, p.fibre_stretch));
+            previous = Some((t, fibre_stretch));
             if i % every == 0 || i + 1 == self.times.len() {
                 ctx.progress.point(&format!(
                     "{}: {label}: t = {t} s ({}/{}), a = {level:.4}, lambda = {:.5}, P = {:.4} kPa",
@@ -583,6 +610,45 @@ impl HistoryStudy {
                 ctx.progress.advance(1);
             }
         }
-        Ok((history, None))
+        let failures = fast
+            .message(self.times.len())
+            .into_iter()
+            .chain(stopped)
+            .map(|message| Failure {
+                model: label.clone(),
+                message,
+            })
+            .collect();
+        Ok((history, failures))
+    }
+
+    /// One step of a history: the state of the muscle (and its passive counterpart) at time `t`
+    /// with activation level `level` (and the stretch rate of the step, with force–velocity),
+    /// and its fibre stretch.
+    fn step(
+        &self,
+        models: &Models,
+        (muscle, passive): (&mut Muscle<Energy>, &Muscle<Energy>),
+        t: f64,
+        level: f64,
+        rate: Option<StretchRate>,
+    ) -> crate::Result<(HistoryPoint, f64)> {
+        muscle.set_activation(level)?;
+        muscle.set_rate(rate)?;
+        let p = state(models, muscle, &self.loading, t)?;
+        let passive = models.uniaxial(passive, Direction::Along, p.lambda)?.stress;
+        let point = HistoryPoint {
+            t,
+            schedule: self.activation.schedule().value(t),
+            level,
+            lambda: p.lambda,
+            gamma: p.gamma,
+            stress: p.stress,
+            cauchy: p.cauchy,
+            volume: p.lambda * p.lateral[0] * p.lateral[1],
+            passive,
+            active_target: muscle.drive().target(&models.curve, p.lambda),
+        };
+        Ok((point, p.fibre_stretch))
     }
 }

@@ -35,6 +35,7 @@ pub mod fit;
 pub mod history;
 pub mod outputs;
 pub mod shear;
+pub mod size;
 pub mod spec;
 pub mod stability;
 pub mod table;

@@ -254,8 +254,9 @@ impl ShearStudy {
         let failure = first.map(|(k, why)| Failure {
             model: format!("{label}, θ = {angle}°"),
             message: format!(
-                "{failed} of {} amounts of shear failed; first at k = {k}: {why}",
-                self.shear.len()
+                "{failed} of {} amounts of shear failed; first at k = {}: {why}",
+                self.shear.len(),
+                crate::text::shortest(k)
             ),
         });
         Ok((

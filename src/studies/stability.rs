@@ -284,12 +284,13 @@ impl StabilityStudy {
         let failure = first.map(|(l, e)| Failure {
             model: "stability".into(),
             message: format!(
-                "{}{}: {failed} of {} stretches failed; first at lambda = {l}: {e}",
+                "{}{}: {failed} of {} stretches failed; first at lambda = {}: {e}",
                 curve.label(),
                 curve
                     .damage()
                     .map_or(String::new(), |d| format!(", d = {d}")),
-                self.stretches.len()
+                self.stretches.len(),
+                crate::text::shortest(l)
             ),
         });
         (curve, failure)

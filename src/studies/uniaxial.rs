@@ -236,8 +236,9 @@ impl UniaxialStudy {
         }
         let message = first.map(|(lambda, why)| {
             format!(
-                "{failed} of {} stretches failed; first at lambda = {lambda}: {why}",
-                self.stretches.len()
+                "{failed} of {} stretches failed; first at lambda = {}: {why}",
+                self.stretches.len(),
+                crate::text::shortest(lambda)
             )
         });
         (points, message)

@@ -141,3 +141,52 @@ fn a_table_range_the_exact_law_cannot_meet_is_refused() {
     assert!(!e.contains("0000000000"), "{e}");
     accepted(&scene("[0.3, 3.0]"));
 }
+
+#[test]
+fn a_fit_start_outside_the_default_bounds_is_refused_at_its_key() {
+    let scene = |start: &str| {
+        format!(
+            "[[study]]\nkind = \"fit\"\nfit = \"damage\"\ntrue_damage = [0.3]\n\
+             stretch = {{ from = 0.8, to = 1.4, step = 0.05 }}\n{start}"
+        )
+    };
+    // No bounds given: the damage's admissible range [0, 1] bounds the fit.
+    let e = refused(&scene("start = { d = 1.5 }\n"));
+    assert_has(&e, &["start.d", "1.5", "[0, 1]"]);
+    accepted(&scene("start = { d = 0.9 }\n"));
+    // Given bounds widen it (the fit runs within them).
+    accepted(&scene("start = { d = 0.9 }\nbounds = { d = [0.0, 1.0] }\n"));
+    // A passive fit's default bounds are the energy's parameter ranges (w0 ∈ (0, 1)).
+    let e = refused(
+        "[[study]]\nkind = \"fit\"\nfit = \"passive\"\nreference = { energy = \"ehret-bol-itskov\" }\n\
+         free = [\"w0\"]\nstart = { w0 = 1.5 }\n",
+    );
+    assert_has(&e, &["start.w0", "1.5"]);
+}
+
+#[test]
+fn a_volumetric_energy_stiffer_than_f64_resolves_is_refused_when_read() {
+    let scene = |kind: &str, kappa: &str| {
+        format!(
+            "[incompressibility]\nkind = \"{kind}\"\nkappa = {kappa}\n\
+             [[study]]\nkind = \"uniaxial\"\nstretch = [0.8, 1.0, 1.2]\n"
+        )
+    };
+    // The chapter's energy has E₀ = dP/dλ(1) ≈ 0.42 kPa along the fibres: at most 1e10 E₀.
+    for kappa in ["1e300", "1e16", "1e10"] {
+        let e = refused(&scene("quadratic", kappa));
+        assert_has(
+            &e,
+            &["incompressibility.kappa", "1e10 times", "E₀ = 0.4223 kPa"],
+        );
+        assert!(!e.contains("0000000000000"), "{e}");
+    }
+    let e = refused(&scene("4c-giantesio", "1e300"));
+    assert_has(&e, &["incompressibility.kappa", "1e300"]);
+    // Just below the bound the scene is accepted and every stretch runs.
+    let text = scene("quadratic", "4e9");
+    let results = Scene::parse(&text, "scene.toml")
+        .unwrap()
+        .run(&activemuscle::scene::RunOptions::default());
+    assert!(results.complete(), "{:?}", results.studies[0].failures);
+}

@@ -134,7 +134,13 @@ impl<E: StrainEnergy> EnergyLaw<E> {
         let passive = self.map.fibre_path_energy(&self.energy, lambda, 0.0);
         first_activation_root(
             self.map.upper_bound(),
-            || format!("energy-consistent activation law at lambda = {lambda}, d = {damage}"),
+            || {
+                format!(
+                    "energy-consistent activation law at lambda = {}, d = {}",
+                    crate::text::shortest(lambda),
+                    crate::text::shortest(damage)
+                )
+            },
             |g| {
                 let (w, w_g) = first_derivative(
                     |g| {

@@ -146,8 +146,9 @@ impl ExplicitLaw {
                 quantity: "explicit activation gamma",
                 value: gamma.re(),
                 context: format!(
-                    "at lambda = {}, d = {damage}: eq. (14) left its domain (a logarithm or square root of a non-positive number)",
-                    lambda.re()
+                    "at lambda = {}, d = {}: eq. (14) left its domain (a logarithm or square root of a non-positive number)",
+                    crate::text::shortest(lambda.re()),
+                    crate::text::shortest(damage)
                 ),
             });
         }

@@ -84,7 +84,13 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
         let damage = drive.damage();
         first_activation_root(
             self.map.upper_bound(),
-            || format!("implicit activation law at lambda = {lambda}, d = {damage}"),
+            || {
+                format!(
+                    "implicit activation law at lambda = {}, d = {}",
+                    crate::text::shortest(lambda),
+                    crate::text::shortest(damage)
+                )
+            },
             |g| {
                 let (p, dp) = fibre_stress_and_slope(&self.energy, self.map, lambda, g);
                 (p - p_pas - t, dp)
@@ -111,7 +117,12 @@ impl<E: StrainEnergy> ActivationLaw for ImplicitLaw<E> {
             return Err(crate::Error::NonFinite {
                 quantity: "implicit activation slope",
                 value: slope,
-                context: format!("at lambda = {lambda}, gamma = {gamma}: dP_tot/dgamma = {f_g}"),
+                context: format!(
+                    "at lambda = {}, gamma = {}: dP_tot/dgamma = {}",
+                    crate::text::shortest(lambda),
+                    crate::text::shortest(gamma),
+                    crate::text::shortest(f_g)
+                ),
             });
         }
         Ok((gamma, slope))

@@ -575,7 +575,11 @@ fn errors_at<E: StrainEnergy>(
         Err(Error::NonFinite {
             quantity: "tabulated law error",
             value: e.frozen + e.consistent + e.gamma,
-            context: format!("at lambda = {lambda}, d = {damage} (exp overflow in the range?)"),
+            context: format!(
+                "at lambda = {}, d = {} (exp overflow in the range?)",
+                crate::text::shortest(lambda),
+                crate::text::shortest(damage)
+            ),
         })
     }
 }

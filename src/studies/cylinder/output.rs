@@ -143,6 +143,7 @@ impl KindOutput for CylinderResult {
         fe_table(h, studies);
         points_table(h, studies);
         centre_note(h, cx, studies);
+        super::volume::volume_note(h, studies);
         Ok(())
     }
 }

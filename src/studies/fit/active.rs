@@ -35,6 +35,11 @@ impl Problem for ActiveCurveFit {
             kind: FitKind::ActiveCurve,
             names: c.parameters().iter().map(|p| p.name.to_string()).collect(),
             values: c.parameter_values(),
+            bounds: c
+                .parameters()
+                .iter()
+                .map(|p| crate::fit::Bounds::new(p.range.0, p.range.1))
+                .collect(),
             default_free: c
                 .parameters()
                 .iter()

@@ -24,6 +24,7 @@ impl Problem for DamageFit {
             kind: FitKind::Damage,
             names: vec!["d".into()],
             values: vec![0.0],
+            bounds: vec![crate::fit::Bounds::UNIT],
             default_free: vec!["d".into()],
             y_label: "P_total [kPa]",
             reference_label: "healthy muscle (d = 0)",

@@ -25,6 +25,7 @@ impl Problem for ExplicitLawFit {
             kind: FitKind::ExplicitLaw,
             names: vec!["a".into(), "b".into()],
             values: vec![a, b],
+            bounds: vec![crate::fit::COEFFICIENT_BOUNDS; 2],
             default_free: vec!["a".into(), "b".into()],
             y_label: "activation γ [-]",
             reference_label: "chapter's (a, b)",

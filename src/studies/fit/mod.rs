@@ -134,6 +134,7 @@ pub struct FitSpec {
     /// Starting values by parameter name (default: the model's values).
     pub start: Option<BTreeMap<String, f64>>,
     /// Bounds [lower, upper] by parameter name (default: the admissible range).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub bounds: Option<BTreeMap<String, [f64; 2]>>,
     /// `gauss-newton` (default) or `nelder-mead`.
     pub method: Option<Method>,
@@ -275,6 +276,8 @@ pub struct Model {
     pub names: Vec<String>,
     /// The model's own values of all parameters (the default starts).
     pub values: Vec<f64>,
+    /// The default bounds of each parameter (its admissible range), in the order of `names`.
+    pub bounds: Vec<crate::fit::Bounds>,
     /// The parameters freed when the scene does not say.
     pub default_free: Vec<String>,
     /// y-axis label of the figure, with unit.

@@ -32,6 +32,7 @@ impl Problem for Passive {
                 .collect(),
             names: names.iter().map(|n| n.to_string()).collect(),
             values: self.energy.parameter_values(),
+            bounds: crate::fit::parameter_bounds(&self.energy),
             y_label: "P_pas [kPa]",
             reference_label: "scene's material",
             unit: "kPa",

@@ -8,6 +8,7 @@ use crate::fit::{Bounds, FitError, FitOptions, FitSetup, Weights};
 use crate::random::Sampler;
 use crate::studies::spec::fmt_list;
 use crate::text::shortest;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The solver settings and the noise of synthetic data, checked.
@@ -192,26 +193,7 @@ pub(super) fn setup(
         }
     }
     for (name, &v) in spec.start.iter().flatten() {
-        let key = format!("start.{name}");
-        if !free.contains(name) {
-            return Err(SpecError::new(
-                key,
-                v,
-                format!("not a free parameter; free = {free:?}"),
-            ));
-        }
-        if !v.is_finite() {
-            return Err(SpecError::new(key, v, "a starting value must be finite"));
-        }
-        if let Some(b) = bounds.get(name) {
-            if !(b[0] <= v && v <= b[1]) {
-                return Err(SpecError::new(
-                    key,
-                    v,
-                    format!("must lie within bounds.{name} = {}", fmt_list(b)),
-                ));
-            }
-        }
+        check_start(name, v, &bounds, model, free)?;
         setup = setup.start(name, v);
     }
     Ok(setup)
@@ -262,4 +244,53 @@ pub(super) fn case_weights(kind: WeightsKind, data: &CaseData) -> Result<Weights
     };
     weights.scales(&observed)?;
     Ok(weights)
+}
+
+/// Checks `start.<name> = v`: a free parameter, finite, within its bounds (given, else the
+/// model's default bounds, its admissible range: a start outside them would fail at run).
+fn check_start(
+    name: &str,
+    v: f64,
+    bounds: &BTreeMap<String, [f64; 2]>,
+    model: &Model,
+    free: &[String],
+) -> Result<(), SpecError> {
+    let key = format!("start.{name}");
+    if !free.iter().any(|f| f.as_str() == name) {
+        return Err(SpecError::new(
+            key,
+            v,
+            format!("not a free parameter; free = {free:?}"),
+        ));
+    }
+    if !v.is_finite() {
+        return Err(SpecError::new(key, v, "a starting value must be finite"));
+    }
+    if let Some(b) = bounds.get(name) {
+        if !(b[0] <= v && v <= b[1]) {
+            return Err(SpecError::new(
+                key,
+                v,
+                format!("must lie within bounds.{name} = {}", fmt_list(b)),
+            ));
+        }
+    } else if let Some(b) = model
+        .names
+        .iter()
+        .position(|n| *n == name)
+        .and_then(|i| model.bounds.get(i))
+    {
+        if !b.contains(v) {
+            return Err(SpecError::new(
+                key,
+                v,
+                format!(
+                    "must lie within the default bounds of {name}, its admissible range {}: \
+                     give a start within it, or bounds.{name}",
+                    fmt_list(&[b.lower, b.upper])
+                ),
+            ));
+        }
+    }
+    Ok(())
 }

@@ -482,6 +482,7 @@ pub struct TradeoffSpec {
     /// Option groups to measure (default all).
     pub options: Option<Vec<OptionGroup>>,
     /// Meshes `[nr, nz]` of the mesh option, coarse to fine (the last is the reference).
+    #[serde(default, deserialize_with = "crate::fixed_length::exact")]
     pub meshes: Option<Vec<[i64; 2]>>,
     /// Newton tolerances of the tolerance option, loose to tight (the last is the reference).
     pub tolerances: Option<Vec<f64>>,
@@ -740,15 +741,17 @@ impl TradeoffStudy {
         ));
         let results = run_until(models, &self.options, ctx.progress, ctx.stop)
             .map_err(|e| e.within(&self.name))?;
-        let measured = results.rows.iter().filter(|r| r.measured()).count();
         let mut details = results.findings.clone();
         details.extend(results.rows.iter().map(Measurement::line));
+        // The rule of `activemuscle tradeoff`, so that both commands exit alike: a variant that
+        // did not converge is a measured result (its row says so); a group or a reference that
+        // could not be measured is a failure.
         let failures = results.failed();
         Ok(Outcome {
             name: self.name.clone(),
             kind: StudyKind::Tradeoff,
             models: results.rows.len(),
-            points: measured,
+            points: results.rows.len(),
             requested: results.rows.len(),
             elapsed: Default::default(),
             details,

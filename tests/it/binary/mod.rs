@@ -3,6 +3,11 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
+/// A trade-off study of one option, one stretch and a 1 × 4 mesh: seconds to run.
+pub const SMALL_TRADEOFF: &str =
+    "[[study]]\nkind = \"tradeoff\"\noptions = [\"newton-tolerance\"]\n\
+    stretch = [1.1]\nnr = 1\nnz = 4\ntolerances = [1e-6, 1e-10]\n";
+
 /// `activemuscle run [SCENE] --out OUT --quiet` (the embedded paper scene without `scene`);
 /// asserts that it succeeds and returns its output.
 pub fn run_quiet(scene: Option<&Path>, out: &Path) -> Output {
@@ -31,4 +36,16 @@ pub fn run_args<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
         .args(args)
         .output()
         .expect("run binary")
+}
+
+/// `activemuscle COMMAND SCENE --out OUT --quiet` (`run` or `tradeoff`) without any assertion:
+/// its output, status included.
+pub fn quietly(command: &str, scene: &Path, out: &Path) -> Output {
+    run_args(&[
+        command.as_ref(),
+        scene.as_os_str(),
+        "--out".as_ref(),
+        out.as_os_str(),
+        "--quiet".as_ref(),
+    ])
 }
