@@ -64,7 +64,7 @@ impl<R: Residuals> Residuals for Weighted<'_, R> {
     fn residuals<T: Scalar>(&self, theta: &[T]) -> crate::Result<Vec<T>> {
         let mut r = self.problem.residuals(theta)?;
         for (x, s) in r.iter_mut().zip(self.sigma) {
-            *x = *x / *s;
+            *x /= *s;
         }
         Ok(r)
     }

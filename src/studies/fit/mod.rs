@@ -44,6 +44,7 @@ use active::ActiveCurveFit;
 use damage::DamageFit;
 use explicit::ExplicitLawFit;
 use passive::Passive;
+pub use points::rows_of as fit_points_rows;
 use serde::{Deserialize, Serialize};
 use setup::{check_keys, enough_points, free_parameters, setup, solver};
 pub use source::DataSource;

@@ -3,7 +3,7 @@
 //! needs to judge a fit beside `fits.csv`'s numbers: where the residuals are, whether they are
 //! noise or a shape the model misses.
 
-use super::{FitKind, FitOutcome};
+use super::{CaseData, FitCase, FitKind, FitOutcome};
 use crate::studies::table::Table;
 
 /// One row: which fit, which stress, a datum or a point of the curve.
@@ -60,6 +60,19 @@ fn rows(f: &FitOutcome) -> Vec<Row<'_>> {
         }
     }
     out
+}
+
+/// The rows [`points_table`] writes for `cases` (what a scene's size estimate counts): each
+/// datum of each stress, and the fitted curve of each (201 stretches of a uniaxial case, the
+/// rows of a biaxial one, whose two stresses each have a datum and a model per row).
+pub fn rows_of(cases: &[FitCase]) -> usize {
+    cases
+        .iter()
+        .map(|c| match &c.data {
+            CaseData::Uniaxial(d) => d.len() + c.data.grid().len(),
+            CaseData::Biaxial(b) => 4 * b.len(),
+        })
+        .sum()
 }
 
 /// The table of a fit study's outcomes.
