@@ -1,7 +1,8 @@
 //! A user-defined energy: implement one generic method and get stress, tangent, activation laws,
 //! both couplings and the FE solver for free.
 //!
-//! Run with `cargo run --release --example user_energy`.
+//! Run with `cargo run --release --example user_energy`. It ends with the Taylor test of the
+//! tangents the solver would use for this energy (`activemuscle::tangent_check`).
 //!
 //! The energy here is a transversely isotropic Mooney–Rivlin-type material with an exponential
 //! fibre term (Holzapfel-like):
@@ -9,8 +10,10 @@
 
 use activemuscle::active::{ActiveCurve, Coupling, FrozenTangent, ImplicitLaw, Law};
 use activemuscle::energy::Invariants;
+use activemuscle::tangent_check::{halvings, taylor_test, MusclePoint};
 use activemuscle::uniaxial::along_fibres;
 use activemuscle::{Muscle, Scalar, StrainEnergy};
+use nalgebra::{Matrix3, Vector3};
 
 /// Parameters in kPa (c₁, c₂, k₁) and dimensionless (k₂).
 #[derive(Debug, Clone)]
@@ -74,5 +77,45 @@ fn main() -> activemuscle::Result<()> {
     // Frozen coupling reproduces the target by construction. The consistent model's stress is the
     // derivative of the energy along the law, d/dλ W(λ, γ(λ)) = ∂W/∂λ + (∂W/∂γ) γ′(λ): it differs
     // from the target by (∂W/∂γ) γ′(λ), which vanishes only where γ does not change with λ.
+    check_tangents(&frozen, &consistent)
+}
+
+/// The Taylor test of both models' tangents at a sheared stretch along the fibre e₁: the
+/// remainder r₁(h) = |P(F + hΔF) − P(F) − h A:ΔF| falls as h² (order 2) where A is the
+/// derivative of P; central differences of P agree with A; the frozen tangent is not symmetric
+/// (its stress is not a gradient), and how far its symmetric approximation is from it.
+fn check_tangents(
+    frozen: &Muscle<FibreReinforced>,
+    consistent: &Muscle<FibreReinforced>,
+) -> activemuscle::Result<()> {
+    let f = Matrix3::new(1.15, 0.05, -0.02, 0.03, 0.94, 0.04, -0.01, 0.02, 0.93);
+    let df = Matrix3::new(0.3, -0.2, 0.1, 0.25, -0.35, 0.15, -0.1, 0.2, 0.4);
+    let h = halvings(2f64.powi(-6), 2f64.powi(-20))?;
+    println!("\nTaylor test at a sheared stretch of 1.15 along the fibres, h = 2^-6 ... 2^-20");
+    for (name, muscle) in [("frozen", frozen), ("consistent", consistent)] {
+        let point = MusclePoint::new(muscle.clone(), Vector3::x())?;
+        let report = taylor_test(&point, &f, &df, &h)?;
+        let (r, s) = (&report.remainders, &report.state);
+        let order = |o: Option<f64>| o.map_or("-".to_string(), |o| format!("{o:.3}"));
+        println!(
+            "{name:>10}: order of r0 {}, of r1 {}; central differences {:.1e}; asymmetry {:.3}{}",
+            order(r.order_0),
+            order(r.order_1),
+            s.fd_error.unwrap_or(f64::NAN),
+            s.asymmetry,
+            s.asymmetry_reason
+                .as_ref()
+                .map_or(String::new(), |why| format!(" ({why})"))
+        );
+        for (approximation, error) in &s.approximations {
+            println!(
+                "{:>10}  the {approximation} tangent: |A_approx − A|/|A| = {error:.3}",
+                ""
+            );
+        }
+        if let Some(flag) = &r.flag {
+            println!("{:>10}  flagged: {}", "", flag.reason());
+        }
+    }
     Ok(())
 }

@@ -95,81 +95,97 @@ pub fn planar<E: StrainEnergy>(
         });
     }
     match volumetric {
-        None => {
-            let f = deformation(g, 1.0 / det2);
-            let (dpsi, gamma, fibre_stretch, _) = respond(muscle, &f, m, false)?;
-            let sigma_hat = dpsi * f.transpose();
-            let p = sigma_hat[(2, 2)];
-            let cauchy = sigma_hat - Matrix3::identity() * p;
-            let f_inv_t = f
-                .try_inverse()
-                .ok_or(Error::NonPositiveJacobian {
-                    det: 0.0,
-                    f: f.into(),
-                })?
-                .transpose();
-            Ok(PlanarState {
-                f,
-                gamma,
-                fibre_stretch,
-                nominal: dpsi - f_inv_t * p,
-                cauchy,
-            })
-        }
-        Some(v) => {
-            // P₃₃(λ₃) = ∂Ψ/∂F₃₃ + U′(J) det₂ with J = det₂ λ₃, increasing in λ₃.
-            let residual = |l3: f64| -> (f64, f64) {
-                let f = deformation(g, l3);
-                match (respond(muscle, &f, m, true), v.derivatives(det2 * l3)) {
-                    (Ok((dpsi, _, _, a33)), Ok([_, du, ddu])) => {
-                        (dpsi[(2, 2)] + du * det2, a33 + ddu * det2 * det2)
-                    }
-                    _ => (f64::NAN, f64::NAN),
-                }
-            };
-            let start = 1.0 / det2;
-            let (mut lo, mut hi) = (start, start);
-            for _ in 0..60 {
-                if residual(lo).0 < 0.0 {
-                    break;
-                }
-                lo *= 0.8;
-            }
-            for _ in 0..60 {
-                if residual(hi).0 > 0.0 {
-                    break;
-                }
-                hi *= 1.25;
-            }
-            let l3 =
-                newton_bisection(residual, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
-                    equation: format!(
-                        "zero traction on the faces normal to e3 (P33 = 0) at det F_plane = {det2}"
-                    ),
-                    reason,
-                })?;
-            let f = deformation(g, l3);
-            let (dpsi, gamma, fibre_stretch, _) = respond(muscle, &f, m, false)?;
-            let j = f.determinant();
-            let [_, du, _] = v.derivatives(j)?;
-            let cof = f
-                .try_inverse()
-                .ok_or(Error::NonPositiveJacobian {
-                    det: j,
-                    f: f.into(),
-                })?
-                .transpose()
-                * j;
-            let nominal = dpsi + cof * du;
-            Ok(PlanarState {
-                f,
-                gamma,
-                fibre_stretch,
-                nominal,
-                cauchy: nominal * f.transpose() / j,
-            })
-        }
+        None => planar_exact(muscle, g, m, det2),
+        Some(v) => planar_near(muscle, v, g, m, det2),
     }
+}
+
+/// [`planar`] exactly incompressible: λ₃ = 1/det₂, the pressure from σ₃₃ = 0.
+fn planar_exact<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    g: &Matrix2<f64>,
+    m: &Vector3<f64>,
+    det2: f64,
+) -> Result<PlanarState> {
+    let f = deformation(g, 1.0 / det2);
+    let (dpsi, gamma, fibre_stretch, _) = respond(muscle, &f, m, false)?;
+    let sigma_hat = dpsi * f.transpose();
+    let p = sigma_hat[(2, 2)];
+    let cauchy = sigma_hat - Matrix3::identity() * p;
+    let f_inv_t = f
+        .try_inverse()
+        .ok_or(Error::NonPositiveJacobian {
+            det: 0.0,
+            f: f.into(),
+        })?
+        .transpose();
+    Ok(PlanarState {
+        f,
+        gamma,
+        fibre_stretch,
+        nominal: dpsi - f_inv_t * p,
+        cauchy,
+    })
+}
+
+/// [`planar`] with the volumetric energy `v`: λ₃ from zero traction P₃₃ = 0.
+fn planar_near<E: StrainEnergy>(
+    muscle: &Muscle<E>,
+    v: &Volumetric,
+    g: &Matrix2<f64>,
+    m: &Vector3<f64>,
+    det2: f64,
+) -> Result<PlanarState> {
+    // P₃₃(λ₃) = ∂Ψ/∂F₃₃ + U′(J) det₂ with J = det₂ λ₃, increasing in λ₃.
+    let residual = |l3: f64| -> (f64, f64) {
+        let f = deformation(g, l3);
+        match (respond(muscle, &f, m, true), v.derivatives(det2 * l3)) {
+            (Ok((dpsi, _, _, a33)), Ok([_, du, ddu])) => {
+                (dpsi[(2, 2)] + du * det2, a33 + ddu * det2 * det2)
+            }
+            _ => (f64::NAN, f64::NAN),
+        }
+    };
+    let start = 1.0 / det2;
+    let (mut lo, mut hi) = (start, start);
+    for _ in 0..60 {
+        if residual(lo).0 < 0.0 {
+            break;
+        }
+        lo *= 0.8;
+    }
+    for _ in 0..60 {
+        if residual(hi).0 > 0.0 {
+            break;
+        }
+        hi *= 1.25;
+    }
+    let l3 = newton_bisection(residual, lo, hi, 1e-15).map_err(|reason| Error::NoSolution {
+        equation: format!(
+            "zero traction on the faces normal to e3 (P33 = 0) at det F_plane = {det2}"
+        ),
+        reason,
+    })?;
+    let f = deformation(g, l3);
+    let (dpsi, gamma, fibre_stretch, _) = respond(muscle, &f, m, false)?;
+    let j = f.determinant();
+    let [_, du, _] = v.derivatives(j)?;
+    let cof = f
+        .try_inverse()
+        .ok_or(Error::NonPositiveJacobian {
+            det: j,
+            f: f.into(),
+        })?
+        .transpose()
+        * j;
+    let nominal = dpsi + cof * du;
+    Ok(PlanarState {
+        f,
+        gamma,
+        fibre_stretch,
+        nominal,
+        cauchy: nominal * f.transpose() / j,
+    })
 }
 
 /// Simple shear F = I + k e₁⊗e₂ with the fibre in the shear plane at `angle` degrees to e₁.

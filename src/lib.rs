@@ -16,6 +16,7 @@
 //! - [`oracle`]: the slow reference route (dual numbers over F's nine entries).
 //! - [`fem`]: the axisymmetric mixed finite-element solver.
 //! - [`fit`]: least squares with dual-number Jacobians.
+//! - [`tangent_check`]: Taylor tests of any material's tangent, at a point and assembled.
 //!
 //! The application layer, imports in one direction: [`models`] (laws, couplings, muscles and
 //! energies from choices) → [`studies`] (uniaxial, cylinder, fit, stability, tradeoff: spec,
@@ -44,6 +45,7 @@ pub mod scalar;
 pub mod scene;
 pub mod stability;
 pub mod studies;
+pub mod tangent_check;
 pub mod testing;
 pub mod text;
 pub mod uniaxial;

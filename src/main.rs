@@ -96,6 +96,34 @@ enum Command {
         /// Write into DIR even if it holds files that no activemuscle run wrote.
         #[arg(long)]
         force: bool,
+        /// Stop after this many seconds of wall time as an interruption does (the group
+        /// measuring then is finished, the groups after it are listed as not run, what was
+        /// measured is written), and exit 3.
+        #[arg(long, value_name = "SECONDS")]
+        max_seconds: Option<f64>,
+    },
+    /// Check the tangents of a scene's own material: the Taylor test of every model it can build.
+    ///
+    /// Runs one `kind = "tangent"` study with its defaults on the scene's material and activation
+    /// (every law the material supports, both couplings, the scene's damages; states along and
+    /// across the fibres, in shear, equibiaxial, random, near λ_min and at large fibre stretch)
+    /// and, if the scene has a cylinder study, the finite-element level on a small mesh of its
+    /// geometry; the scene's own studies are not run. Writes into DIR as `run` does:
+    /// tangent_summary.csv (one row per model and state: orders, flags and why), tangent.csv
+    /// (every remainder), the figures, report.html and scene.toml (the tangent study that ran).
+    #[command(after_help = EXIT_STATUS)]
+    Tangent {
+        /// Scene file (TOML). Omit to check the chapter's (scenes/paper.toml, embedded).
+        scene: Option<PathBuf>,
+        /// Output directory (created if missing).
+        #[arg(long, short, value_name = "DIR", default_value = "out/tangent")]
+        out: PathBuf,
+        /// No progress lines; print only the summary.
+        #[arg(long, short)]
+        quiet: bool,
+        /// Write into DIR even if it holds files that no activemuscle run wrote.
+        #[arg(long)]
+        force: bool,
     },
     /// Validate a scene and print it with every default resolved (nothing is computed).
     Check {
@@ -147,6 +175,11 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
     }
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
+    }
+    for s in &results.studies {
+        for l in &s.left_domain {
+            say!("OUTSIDE: {} — {}: {}", s.name, l.model, l.message);
+        }
     }
     for s in &results.studies {
         if s.failures.is_empty() && s.points < s.requested {
@@ -468,11 +501,15 @@ fn tradeoff_command(
     out: &Path,
     quiet: bool,
     force: bool,
+    max_seconds: Option<f64>,
 ) -> Result<Ended, AppError> {
     let started = Instant::now();
     let stop = Stop::new();
     on_interrupt(&stop);
     let scene = load(scene)?;
+    if let Some(seconds) = max_seconds {
+        time_limit(&stop, seconds)?;
+    }
     // The output directory is taken before computing: a refusal costs nothing.
     let mut staging = Staging::open(out, Writer::Tradeoff, force)?;
     if let Some(space) = simulated_disk() {
@@ -514,15 +551,89 @@ fn tradeoff_command(
         say!("FAILED: {}: {}", f.model, f.message);
     }
     let signal = STOPPED_BY.load(Ordering::SeqCst);
-    if signal != 0 {
-        say!(
-            "STOPPED: {}; what was measured before is written",
-            interrupted(signal)
-        );
+    // A time limit reached after the last group is no stop.
+    let reason = stop.reason().filter(|_| signal != 0 || !failed.is_empty());
+    if let Some(reason) = reason {
+        say!("STOPPED: {reason}; what was measured before is written");
     }
     Ok(if signal != 0 {
         Ended::Interrupted(signal)
     } else if failed.is_empty() {
+        Ended::Complete
+    } else {
+        Ended::Incomplete
+    })
+}
+
+/// `scene` with its studies replaced by the tangent study of its material
+/// ([`activemuscle::studies::tangent::for_scene`]); its source, written as scene.toml, is that
+/// study's scene with every default written out.
+fn tangent_scene(mut scene: Scene) -> Result<Scene, AppError> {
+    let (study, spec) = {
+        let choices = scene.resolved.activation.defaults();
+        let defaults = activemuscle::studies::spec::Defaults {
+            models: &scene.models,
+            approach: choices.approach,
+            law: choices.law,
+            coupling: choices.coupling,
+            damage: &choices.damage,
+            base: Path::new(&scene.file).parent().unwrap_or(Path::new("")),
+        };
+        activemuscle::studies::tangent::for_scene(&scene.studies, &defaults)
+            .map_err(|e| AppError::Invalid(format!("{}: the tangent study: {e}", scene.file)))?
+    };
+    scene.studies = vec![activemuscle::studies::Study::Tangent(study)];
+    scene.resolved.studies = vec![activemuscle::studies::StudySpec::Tangent(spec)];
+    scene.source = format!(
+        "# The tangent study `activemuscle tangent` ran on the material of {}.\n{}",
+        scene.file,
+        scene.resolved_toml()?
+    );
+    Ok(scene)
+}
+
+fn tangent_command(
+    scene: Option<&Path>,
+    out: &Path,
+    quiet: bool,
+    force: bool,
+) -> Result<Ended, AppError> {
+    let started = Instant::now();
+    let scene = tangent_scene(load(scene)?)?;
+    let mut staging = Staging::open(out, Writer::Run, force)?;
+    let stop = Stop::new();
+    on_interrupt(&stop);
+    let options = RunOptions {
+        verbose: !quiet,
+        progress: std::io::stdout().is_terminal(),
+        vtk_dir: None,
+        stop: Some(stop.clone()),
+    };
+    let results = scene.run(&options);
+    let meta = RunMeta {
+        command: command_line(),
+        started,
+        rustc: rustc_version(),
+    };
+    write_run(&mut staging, &scene, &results, &meta)?;
+    staging.commit()?;
+    for s in &results.studies {
+        for line in s.result.console(&s.name) {
+            say!("{line}");
+        }
+    }
+    for (study, f) in results.failures() {
+        say!("FAILED: {study} — {}: {}", f.model, f.message);
+    }
+    say!(
+        "outputs in {} (report.html, tangent_summary.csv: why each flagged state is flagged); wall time {:.1} s",
+        out.display(),
+        started.elapsed().as_secs_f64()
+    );
+    let signal = STOPPED_BY.load(Ordering::SeqCst);
+    Ok(if signal != 0 {
+        Ended::Interrupted(signal)
+    } else if results.complete() {
         Ended::Complete
     } else {
         Ended::Incomplete
@@ -553,12 +664,19 @@ fn main() -> ExitCode {
             max_seconds,
         }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
         Some(Command::Check { scene }) => check(scene),
+        Some(Command::Tangent {
+            scene,
+            out,
+            quiet,
+            force,
+        }) => tangent_command(scene.as_deref(), out, *quiet, *force),
         Some(Command::Tradeoff {
             scene,
             out,
             quiet,
             force,
-        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force),
+            max_seconds,
+        }) => tradeoff_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
     };
     match outcome {
         Ok(Ended::Complete) => ExitCode::SUCCESS,

@@ -4,7 +4,7 @@ use crate::active::approach::Approach;
 use crate::active::coupling::{invariant_slopes, Coupling, FrozenTangent};
 use crate::active::curve::ActiveCurve;
 use crate::active::drive::{check_damage, Drive, StretchRate};
-use crate::active::law::{ActivationLaw, Law, LawValue};
+use crate::active::law::{ActivationLaw, Law, LawValue, OutsideDomain};
 use crate::active::map::ActivationMap;
 use crate::energy::StrainEnergy;
 use crate::invariants::{axial_fibre, axisymmetric_f, Entries, Kinematics, AXISYMMETRIC};
@@ -192,6 +192,13 @@ impl<E: StrainEnergy> Muscle<E> {
     /// γ with its λ-derivatives at fibre stretch `lambda`.
     pub fn activation(&self, lambda: f64) -> Result<LawValue> {
         self.law.evaluate(lambda, self.drive)
+    }
+
+    /// Where the law at fibre stretch `fibre_stretch` under this muscle's drive is outside the
+    /// domain it holds on, if it is ([`ActivationLaw::outside`]: the explicit law's
+    /// 0.7 ≤ λ_f ≤ 1.5, d_eff ≤ 0.5).
+    pub fn outside_domain(&self, fibre_stretch: f64) -> Option<OutsideDomain> {
+        self.law.outside(fibre_stretch, self.drive)
     }
 
     /// γ at the fibre stretch with the derivatives `order` needs under this coupling, the others

@@ -45,6 +45,8 @@ pub enum Scale {
     /// Linear x, logarithmic y (labels in powers of ten): curves that grow exponentially, side
     /// by side over many decades; values ≤ 0 are not drawn.
     LogY,
+    /// Linear x and y, x counting states (1, 2, 3, …): tick labels at whole numbers only.
+    Counted,
 }
 
 /// One curve.
@@ -213,11 +215,48 @@ impl Panel {
         }
     }
 
+    /// The pairs of series (earlier, later) the panel cannot tell apart: the same x values and
+    /// the largest |Δy| within `fraction` of the larger |y| of the two (the later one, drawn on
+    /// top, hides the earlier), with that largest |Δy|.
+    pub fn coinciding(&self, fraction: f64) -> Vec<(usize, usize, f64)> {
+        let mut pairs = Vec::new();
+        for (i, a) in self.series.iter().enumerate() {
+            for (j, b) in self.series.iter().enumerate().skip(i + 1) {
+                if a.points.is_empty() || a.points.len() != b.points.len() {
+                    continue;
+                }
+                let (mut diff, mut scale, mut same_x) = (0.0_f64, 0.0_f64, true);
+                for (p, q) in a.points.iter().zip(&b.points) {
+                    same_x &= p.0 == q.0;
+                    diff = diff.max((p.1 - q.1).abs());
+                    scale = scale.max(p.1.abs()).max(q.1.abs());
+                }
+                if same_x && diff <= fraction * scale {
+                    pairs.push((i, j, diff));
+                }
+            }
+        }
+        pairs
+    }
+
+    /// [a, b] widened by the fraction `f` of its width each way. A range narrower than a
+    /// millionth of its magnitude (a constant series) would print the same tick label
+    /// everywhere: it is opened to ±10 % of the value (±1 around 0).
+    fn pad(a: f64, b: f64, f: f64) -> (f64, f64) {
+        let m = a.abs().max(b.abs());
+        if (b - a).abs() <= 1e-6 * m || m == 0.0 {
+            let h = if m > 0.0 { 0.1 * m } else { 1.0 };
+            return (a - h, b + h);
+        }
+        let w = (b - a).abs();
+        (a - f * w, b + f * w)
+    }
+
     /// The ranges the panel is drawn on. x: the data's (padded 2 %) unless fixed. y, unless fixed:
     /// on a log axis the positive data's; on a linear axis the data's (padded 5 %), cut where
     /// curves blow up (see `limit`), never so that y = 0 leaves the frame.
     pub fn frame(&self) -> Frame {
-        let log = self.scale != Scale::Linear;
+        let log = matches!(self.scale, Scale::LogLog | Scale::LogY);
         let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
         // Every series' sorted values, and whether it is a line (markers often mark parts of
         // other curves: only lines set where the axis is cut, unless there are none).
@@ -253,18 +292,7 @@ impl Panel {
             .iter()
             .map(|c| c.0[c.0.len() - 1])
             .fold(f64::NEG_INFINITY, f64::max);
-        // A range narrower than a millionth of its magnitude (a constant series) would print
-        // the same tick label everywhere: it is opened to ±10 % of the value (±1 around 0).
-        let pad = |a: f64, b: f64, f: f64| {
-            let m = a.abs().max(b.abs());
-            if (b - a).abs() <= 1e-6 * m || m == 0.0 {
-                let h = if m > 0.0 { 0.1 * m } else { 1.0 };
-                return (a - h, b + h);
-            }
-            let w = (b - a).abs();
-            (a - f * w, b + f * w)
-        };
-        let x = self.x_range.unwrap_or_else(|| pad(x0, x1, 0.02));
+        let x = self.x_range.unwrap_or_else(|| Self::pad(x0, x1, 0.02));
         if let Some(y) = self.y_range {
             return Frame {
                 x,
@@ -293,7 +321,7 @@ impl Panel {
             .map(|c| c.iter().rev().map(|y| -y).collect())
             .collect();
         let bottom = limit(&negated).map(|b| -b).filter(|&b| lo < b);
-        let (a, b) = pad(bottom.unwrap_or(lo), top.unwrap_or(hi), 0.05);
+        let (a, b) = Self::pad(bottom.unwrap_or(lo), top.unwrap_or(hi), 0.05);
         Frame {
             x,
             y: (bottom.unwrap_or(a), top.unwrap_or(b)),
@@ -650,13 +678,25 @@ fn draw_panel<DB: DrawingBackend>(
         .x_label_area_size(48)
         .y_label_area_size(78);
     match panel.scale {
-        Scale::Linear => {
+        Scale::Linear | Scale::Counted => {
             let mut chart: ChartContext<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>> =
                 builder.build_cartesian_2d(x0..x1, y0..y1).map_err(e)?;
             // A tick at 0 computed as y0 + k·step may come out as −1.4e-17: written 0.
             let span = (y1 - y0).abs();
             let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
-            mesh(&mut chart, panel, None, Some(&tick))?;
+            let whole = |v: &f64| {
+                let n = v.round();
+                if (v - n).abs() < 1e-9 {
+                    short(n)
+                } else {
+                    String::new()
+                }
+            };
+            let x_format: Option<&dyn Fn(&f64) -> String> = match panel.scale {
+                Scale::Counted => Some(&whole),
+                _ => None,
+            };
+            mesh(&mut chart, panel, x_format, Some(&tick))?;
             draw_series(&mut chart, panel, y0, y1)?;
             // A cut axis says so on the figure itself, along the cut edge, in the corner the
             // curves usually do not cross there (they blow up at large λ and dive at small λ).

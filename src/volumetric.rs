@@ -61,14 +61,25 @@ impl VolumetricForm {
 
     /// The form with its parameters, as report captions write it (`(κ/2)(J − 1)², κ = 1000 kPa`).
     pub fn formula(&self) -> String {
+        format!("{}, {}", self.expression(), self.parameters())
+    }
+
+    /// The form's expression (`(κ/2)(J − 1)²`).
+    pub fn expression(&self) -> &'static str {
+        match self {
+            VolumetricForm::Quadratic { .. } => "(κ/2)(J − 1)²",
+            VolumetricForm::Logarithmic { .. } => "(κ/4)(J² − 1 − 2 ln J)",
+            VolumetricForm::Giantesio4C { .. } => "μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio)",
+        }
+    }
+
+    /// The form's parameters with their values (`κ = 1000 kPa`).
+    pub fn parameters(&self) -> String {
         match *self {
-            VolumetricForm::Quadratic { kappa } => format!("(κ/2)(J − 1)², κ = {kappa} kPa"),
-            VolumetricForm::Logarithmic { kappa } => {
-                format!("(κ/4)(J² − 1 − 2 ln J), κ = {kappa} kPa")
+            VolumetricForm::Quadratic { kappa } | VolumetricForm::Logarithmic { kappa } => {
+                format!("κ = {kappa} kPa")
             }
-            VolumetricForm::Giantesio4C { kappa, mu } => {
-                format!("μ/(4κ) J^(−2κ) (4C MAT_Muscle_Giantesio), κ = {kappa}, μ = {mu} kPa")
-            }
+            VolumetricForm::Giantesio4C { kappa, mu } => format!("κ = {kappa}, μ = {mu} kPa"),
         }
     }
 
@@ -139,6 +150,22 @@ impl Volumetric {
     /// The form.
     pub fn form(&self) -> VolumetricForm {
         self.form
+    }
+
+    /// U(J) with its parameters, as report captions write it: the form, its linear term
+    /// `c (J − 1)` where c ≠ 0, then the parameters
+    /// (`(κ/2)(J − 1)² − 0.07995 kPa (J − 1), κ = 1000 kPa`).
+    pub fn formula(&self) -> String {
+        let linear = match self.shift {
+            0.0 => String::new(),
+            c if c > 0.0 => format!(" + {c} kPa (J − 1)"),
+            c => format!(" − {} kPa (J − 1)", -c),
+        };
+        format!(
+            "{}{linear}, {}",
+            self.form.expression(),
+            self.form.parameters()
+        )
     }
 
     /// The linear term's coefficient c \[kPa\] (0 for 4C's form with 4C's energy, or a

@@ -37,9 +37,14 @@ class Study:
     column's unit and meaning is in the run's ``datapackage.json``. ``named_points`` (cylinder
     studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise; ``fit_points``
     (fit studies): the rows of ``fit_points.csv`` (each datum with the fitted model and the
-    residual, then the fitted curve).
-    ``failures``: columns ``model`` and ``message``. ``vtk``: the VTK files written (under
-    ``out``; none without it): a ``.vtu`` per stretch asked for and a ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
+    residual, then the fitted curve). A tangent
+    study's ``table`` is tangent_summary.csv; ``remainders``, ``fe_remainders`` and ``newton``
+    are tangent.csv, tangent_fe.csv and tangent_newton.csv (the last two with its ``fe`` level).
+    ``failures``: columns ``model`` and ``message``. ``outside_domain``: the models evaluated
+    outside their law's domain (the explicit law's, docs/explicit_law.md), columns ``model`` and
+    ``message``; their rows are computed all the same, ``in_domain`` false. ``vtk``: the VTK
+    files written (under ``out``; none without it): a ``.vtu`` per stretch asked for and a
+    ``.pvd`` series per sweep. ``findings``: what a trade-off study found."""
 
     name: str
     kind: str
@@ -54,7 +59,11 @@ class Study:
     findings: List[str] = field(default_factory=list)
     named_points: Dict[str, Any] = field(default_factory=dict)
     fit_points: Dict[str, Any] = field(default_factory=dict)
+    remainders: Dict[str, Any] = field(default_factory=dict)
+    fe_remainders: Dict[str, Any] = field(default_factory=dict)
+    newton: Dict[str, Any] = field(default_factory=dict)
     files: Dict[str, str] = field(default_factory=dict)
+    outside_domain: Dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass

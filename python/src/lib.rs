@@ -520,6 +520,47 @@ impl Material {
         Ok(d)
     }
 
+    /// The Taylor test of the tangent at one state (`activemuscle::tangent_check`): F and the
+    /// direction dF as 3 × 3 (dF scaled to unit Frobenius norm), the reference fibre, the steps
+    /// h (default 2^-6 … 2^-20, each in (0, 1)), and with table=True a comparison with the law in
+    /// its other representation (a table build). Returns a dict: "h", "r0" = |P(F + h dF) − P(F)|
+    /// and "r1" = |P(F + h dF) − P(F) − h A:dF| [kPa] (numpy arrays, masked where the material
+    /// cannot be evaluated at F + h dF), "orders_0", "orders_1" (per pair of steps, masked below
+    /// the rounding floor "floor"), "order_0", "order_1" (medians), "least_order_1", "fd_error"
+    /// (|A_fd − A|/|A| by central differences), "asymmetry" (|A − Aᵀ|/|A|), "fd_asymmetry",
+    /// "asymmetry_reason", "approximations" ({name: |Ã − A|/|A|}), "ellipticity" (least
+    /// a·Q(N)a/|A|), "flag" and "reason" (why an order drops, or None), "notes".
+    #[pyo3(signature = (f, df, fibre = [1.0, 0.0, 0.0], *, h = None, table = false))]
+    fn taylor_test<'py>(
+        &self,
+        py: Python<'py>,
+        f: [[f64; 3]; 3],
+        df: [[f64; 3]; 3],
+        fibre: [f64; 3],
+        h: Option<Vec<f64>>,
+        table: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use activemuscle::tangent_check::{halvings, taylor_test, MusclePoint};
+        let (f, df) = (
+            Matrix3::from_fn(|i, j| f[i][j]),
+            Matrix3::from_fn(|i, j| df[i][j]),
+        );
+        let report = py
+            .detach(|| {
+                let h = match h {
+                    Some(h) => h,
+                    None => halvings(2f64.powi(-6), 2f64.powi(-20))?,
+                };
+                let mut point = MusclePoint::new(self.muscle.clone(), Vector3::from(fibre))?;
+                if table {
+                    point = point.with_table_comparison(Default::default())?;
+                }
+                taylor_test(&point, &f, &df, &h)
+            })
+            .map_err(|e| py_error(&e, ""))?;
+        taylor_dict(py, &report)
+    }
+
     /// Homogeneous uniaxial tension along the fibres at each stretch λ (lateral faces
     /// traction-free; incompressible, or nearly so with a `Volumetric` energy): a dict of arrays
     /// "stretch", "stress" (nominal P [kPa]), "gamma".
@@ -550,6 +591,55 @@ impl Material {
         d.set_item("gamma", numpy::PyArray1::from_vec(py, gamma))?;
         Ok(d)
     }
+}
+
+/// A float array masked where a value is missing (`numpy.ma`, never a NaN).
+fn masked<'py>(py: Python<'py>, values: &[Option<f64>]) -> PyResult<Bound<'py, PyAny>> {
+    let data: Vec<f64> = values.iter().map(|v| v.unwrap_or(0.0)).collect();
+    let mask: Vec<bool> = values.iter().map(Option::is_none).collect();
+    let kwargs = PyDict::new(py);
+    kwargs.set_item("mask", numpy::PyArray1::from_vec(py, mask))?;
+    py.import("numpy.ma")?.call_method(
+        "masked_array",
+        (numpy::PyArray1::from_vec(py, data),),
+        Some(&kwargs),
+    )
+}
+
+/// A Taylor report as Python's dict (see `Material.taylor_test`).
+fn taylor_dict<'py>(
+    py: Python<'py>,
+    report: &activemuscle::tangent_check::TaylorReport,
+) -> PyResult<Bound<'py, PyDict>> {
+    let (r, s) = (&report.remainders, &report.state);
+    let d = PyDict::new(py);
+    d.set_item("h", numpy::PyArray1::from_vec(py, r.h.clone()))?;
+    d.set_item("r0", masked(py, &r.r0)?)?;
+    d.set_item("r1", masked(py, &r.r1)?)?;
+    d.set_item("orders_0", masked(py, &r.orders_0)?)?;
+    d.set_item("orders_1", masked(py, &r.orders_1)?)?;
+    d.set_item("order_0", r.order_0)?;
+    d.set_item("order_1", r.order_1)?;
+    d.set_item("least_order_1", r.least_order_1)?;
+    d.set_item("floor", r.floor)?;
+    d.set_item("fd_error", s.fd_error)?;
+    d.set_item("asymmetry", s.asymmetry)?;
+    d.set_item("fd_asymmetry", s.fd_asymmetry)?;
+    d.set_item("asymmetry_reason", s.asymmetry_reason.clone())?;
+    let approximations = PyDict::new(py);
+    for (name, error) in &s.approximations {
+        approximations.set_item(name, error)?;
+    }
+    d.set_item("approximations", approximations)?;
+    d.set_item("ellipticity", s.ellipticity.map(|e| e.relative))?;
+    d.set_item("flag", r.flag.as_ref().map(|f| f.kind()))?;
+    d.set_item("reason", r.flag.as_ref().map(|f| f.reason()))?;
+    let mut notes = s.notes.clone();
+    if let Some((h, why)) = &r.unevaluable {
+        notes.push(format!("not evaluable at h = {h}: {why}"));
+    }
+    d.set_item("notes", notes)?;
+    Ok(d)
 }
 
 /// The convention of an F of `shape`: given, or read from the shape.

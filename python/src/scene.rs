@@ -12,6 +12,7 @@
 use activemuscle::app_error::AppError;
 use activemuscle::output::{self, RunMeta, Staging, Writer};
 use activemuscle::scene::{Results, RunOptions, Scene};
+use activemuscle::studies::domain::LeftDomain;
 use activemuscle::studies::table::{Table, Values};
 use activemuscle::studies::{Failure, Outcome};
 use numpy::PyArray1;
@@ -157,7 +158,8 @@ fn columns<'py>(py: Python<'py>, table: &Table, origin: &str) -> PyResult<Bound<
     Ok(dict)
 }
 
-/// One study: its summary, its failures (columns `model`, `message`), its tables by key
+/// One study: its summary, its failures and the models that left their law's domain (columns
+/// `model`, `message`: `failures`, `outside_domain`), its tables by key
 /// (`table`: its rows, as its CSV file holds them; `named_points` for a cylinder that names
 /// points) with the CSV file of each (`files`), the VTK files it wrote (under `out`) and what it
 /// found.
@@ -177,6 +179,13 @@ fn study<'py>(py: Python<'py>, s: &Outcome, out: Option<&Path>) -> PyResult<Boun
     failures.set_item("model", words(py, &text(|f| &f.model))?)?;
     failures.set_item("message", words(py, &text(|f| &f.message))?)?;
     d.set_item("failures", failures)?;
+    let outside = PyDict::new(py);
+    let left = |f: fn(&LeftDomain) -> &String| -> Vec<Option<String>> {
+        s.left_domain.iter().map(|x| Some(f(x).clone())).collect()
+    };
+    outside.set_item("model", words(py, &left(|l| &l.model))?)?;
+    outside.set_item("message", words(py, &left(|l| &l.message))?)?;
+    d.set_item("outside_domain", outside)?;
     // A study that stopped with an error has no table: its failures say why.
     d.set_item("table", PyDict::new(py))?;
     let files = PyDict::new(py);

@@ -97,6 +97,21 @@ def test_uniaxial_study_reproduces_the_closed_form_of_the_implicit_law():
     assert len(r["along"].failures["message"]) == 0
 
 
+def test_the_explicit_law_beyond_its_fitted_stretches_is_flagged_row_by_row():
+    # Its domain is 0.7 <= λ_f <= 1.5 (docs/explicit_law.md): 0.65 and 1.6 are computed and flagged.
+    r = am.run_scene(
+        '[[study]]\nkind = "uniaxial"\nname = "u"\nstretch = [0.65, 1.0, 1.6]\n'
+        'laws = ["explicit"]\ncouplings = ["frozen"]\ndamage = [0.0]\n'
+    )
+    s = r["u"]
+    explicit = s.table["law"] == "explicit"
+    lam = s.table["lambda"][explicit]
+    inside = np.ma.getdata(s.table["in_domain"])[explicit]
+    assert list(inside) == [bool(0.7 <= x <= 1.5) for x in lam] and len(lam) == 3
+    assert len(s.outside_domain["model"]) == 1
+    assert "2 of 3 points outside the explicit law's domain" in s.outside_domain["message"][0]
+
+
 def test_sliding_cylinder_equals_the_homogeneous_curve():
     t = am.run_scene(TEXT)["sliding cylinder"].table
     lam = t["lambda"]

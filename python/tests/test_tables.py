@@ -86,6 +86,16 @@ approaches = ["active-stress"]
 damage = [0.0]
 
 [[study]]
+kind = "tangent"
+name = "tangent"
+uniaxial_along = [1.1]
+random_directions = 1
+laws = ["explicit"]
+couplings = ["frozen"]
+h = { largest = 0.015625, smallest = 0.0009765625 }
+fe = { nr = 1, nz = 2, elements = ["Q1/P0"], bases = ["sliding"], stretch = 1.05 }
+
+[[study]]
 kind = "tradeoff"
 options = ["activation-law"]
 stretch = [1.0, 1.1]
@@ -129,6 +139,7 @@ def test_every_kind_writes_a_file_and_every_study_knows_its_file(run):
     assert set(described) == {
         "curves.csv", "fits.csv", "stability.csv", "history.csv", "shear.csv",
         "biaxial.csv", "tradeoff.csv", "points_sliding_cylinder.csv", "fit_points.csv",
+        "tangent_summary.csv", "tangent.csv", "tangent_fe.csv", "tangent_newton.csv",
     }
     for s in r:
         assert not s.failures["message"].size, (s.name, s.failures)

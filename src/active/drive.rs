@@ -245,6 +245,16 @@ impl Drive {
         self.damage + (1.0 - self.damage) * (1.0 - self.level)
     }
 
+    /// d_eff at fibre stretch λ with the force–velocity factor: 1 − (1 − d)·a·f_v(λ̇(λ)) [-],
+    /// the damage a quasi-static law at a = 1 would need for the same target there; without a
+    /// stretch rate [`effective_damage`](Self::effective_damage) exactly.
+    pub fn effective_damage_at(&self, lambda: f64) -> f64 {
+        match &self.velocity {
+            None => self.effective_damage(),
+            Some(_) => 1.0 - self.scale() * self.velocity_factor(lambda),
+        }
+    }
+
     /// s = (1 − d)·a = 1 − d_eff [-]: the quasi-static scale of the active curve.
     pub fn scale(&self) -> f64 {
         1.0 - self.effective_damage()

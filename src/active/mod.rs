@@ -17,8 +17,9 @@ pub use coupling::{Coupling, CouplingKind, FrozenTangent};
 pub use curve::{ActiveCurve, CurveEntry, CURVES};
 pub use drive::{Drive, ForceVelocity, StretchRate};
 pub use law::{
-    ActivationLaw, BelowMinimum, ConstantLaw, EnergyLaw, ExplicitLaw, ImplicitLaw, Law, LawKind,
-    LawRepresentation, LawValue, SolvedLaw, TableComparison, TableReport, TableSpec, TabulatedLaw,
+    ActivationLaw, BelowMinimum, ConstantLaw, Domain, EnergyLaw, ExplicitLaw, ImplicitLaw, Law,
+    LawKind, LawRepresentation, LawValue, OutsideDomain, SolvedLaw, TableComparison, TableReport,
+    TableSpec, TabulatedLaw,
 };
 pub use map::{fibre_path_invariants, ActivationMap};
 pub use strain::{active_energy, check_activation, fibre_path_energy};

@@ -284,16 +284,27 @@ impl MaterialSpec {
     pub fn build(&self) -> Result<(Energy, [f64; 3]), SpecError> {
         let energy = self.energy.build()?;
         let fibre = self.fibre.unwrap_or([1.0, 0.0, 0.0]);
-        let norm = fibre.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(norm.is_finite() && norm > 1e-12) {
+        // A direction: scaled by its largest component first, so that neither [1e-300, 0, 0]
+        // underflows nor [1e300, 1e300, 0] overflows on the way to its norm.
+        let largest = fibre.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let rule = if fibre.iter().any(|x| !x.is_finite()) {
+            Some("the fibre direction must have finite components")
+        } else if largest == 0.0 {
+            Some("the fibre direction must be a non-zero vector")
+        } else {
+            None
+        };
+        if let Some(rule) = rule {
             let shown: Vec<String> = fibre.iter().map(|x| shortest(*x)).collect();
             return Err(SpecError::new(
                 "fibre",
                 format!("[{}]", shown.join(", ")),
-                "the fibre direction must be a finite, non-zero vector",
+                rule,
             ));
         }
-        Ok((energy, fibre.map(|x| x / norm)))
+        let scaled = fibre.map(|x| x / largest);
+        let norm = scaled.iter().map(|x| x * x).sum::<f64>().sqrt();
+        Ok((energy, scaled.map(|x| x / norm)))
     }
 }
 

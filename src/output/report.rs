@@ -91,6 +91,7 @@ pub fn html(
 
     studies_table(&mut h, results);
     failures(&mut h, results);
+    left_domain(&mut h, results);
     models_table(&mut h, scene, results);
     StudyResult::report(&results.studies, &super::figures::context(scene), &mut h)?;
 
@@ -151,6 +152,29 @@ fn failures(h: &mut String, results: &Results) {
     }
 }
 
+/// The models computed outside the domain their law holds on (none: no section).
+fn left_domain(h: &mut String, results: &Results) {
+    let e = escape;
+    let notes: Vec<_> = results
+        .studies
+        .iter()
+        .flat_map(|s| s.left_domain.iter().map(move |l| (&s.name, l)))
+        .collect();
+    if notes.is_empty() {
+        return;
+    }
+    h.push_str("<h2>Where a law left its domain</h2>\n<p>Computed and written all the same, each row flagged <code>in_domain = false</code> in its table (see <code>docs/explicit_law.md</code>).</p>\n");
+    for (study, l) in notes {
+        let _ = writeln!(
+            h,
+            "<div class=\"note\"><b>{}</b> — {}:<br>{}</div>",
+            e(study),
+            e(&l.model),
+            e(&l.message)
+        );
+    }
+}
+
 /// What a run used: the energies (the material's first), the (approach, model) pairs of every
 /// study, whether a constant activation ([`crate::studies::outputs::KindOutput::used`]).
 fn used(scene: &Scene, results: &Results) -> Used {
@@ -171,15 +195,15 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
     let mut rows = energy_rows(scene, &used.energies);
     rows.extend(model_rows(scene, &used));
     if let Some(v) = &scene.models.volumetric {
-        let form = v.form().formula();
         rows.push((
             format!("incompressibility: {}", v.form().name()),
             format!(
-                "nearly incompressible: Ŵ + U(J), U = {form}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
-                match v.shift() {
-                    0.0 => String::new(),
-                    c if c > 0.0 => format!(" + {c} kPa (J − 1) (stress-free reference)"),
-                    c => format!(" − {} kPa (J − 1) (stress-free reference)", -c),
+                "nearly incompressible: Ŵ + U(J), U = {}{}, bulk modulus U″(1) = {} kPa; uniaxial, cylinder and activation-in-time studies (fit and stability: exact)",
+                v.formula(),
+                if v.shift() == 0.0 {
+                    ""
+                } else {
+                    " (the linear term makes the reference stress free)"
                 },
                 v.bulk_modulus()
             ),
@@ -343,7 +367,7 @@ fn law_rows(m: &crate::models::Models, chosen: &[ModelChoice], constant: bool) -
         rows.push((
             "explicit law".into(),
             format!(
-                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min)",
+                "the closed-form approximation of the implicit law, γ(λ; a, b) with a = {}, b = {} (γ = 0 for λ ≤ λ_min), on its domain 0.7 ≤ λ_f ≤ 1.5, d_eff = d + (1 − d)(1 − a) ≤ 0.5 only (docs/explicit_law.md)",
                 m.explicit.0, m.explicit.1
             ),
             "eq. (14)".into(),

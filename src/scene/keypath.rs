@@ -18,14 +18,7 @@ pub fn key_path(text: &str, offset: usize) -> String {
         }
         if let Some(name) = body.strip_prefix("[[").and_then(|s| s.split("]]").next()) {
             // `[[study.regions]]` after the i-th `[[study]]` is an element of study[i].regions.
-            let name = name.trim();
-            let name = name
-                .split_once('.')
-                .and_then(|(first, rest)| {
-                    let (_, c) = counts.iter().find(|(n, _)| n == first.trim())?;
-                    Some(format!("{}[{}].{}", first.trim(), c - 1, rest.trim()))
-                })
-                .unwrap_or_else(|| name.to_string());
+            let name = nested(name.trim(), &counts);
             let i = match counts.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, c)) => {
                     *c += 1;
@@ -40,14 +33,7 @@ pub fn key_path(text: &str, offset: usize) -> String {
             last_key_line = None;
         } else if let Some(name) = body.strip_prefix('[').and_then(|s| s.split(']').next()) {
             // `[study.points]` after the i-th `[[study]]` is a table of that element: study[i].points.
-            let name = name.trim();
-            header = name
-                .split_once('.')
-                .and_then(|(first, rest)| {
-                    let (_, c) = counts.iter().find(|(n, _)| n == first.trim())?;
-                    Some(format!("{}[{}].{}", first.trim(), c - 1, rest.trim()))
-                })
-                .unwrap_or_else(|| name.to_string());
+            header = nested(name.trim(), &counts);
             last_key_line = None;
         } else if body.contains('=') && !starts_inside_value(body) {
             last_key_line = Some((line_start, line));
@@ -67,26 +53,8 @@ pub fn key_path(text: &str, offset: usize) -> String {
             .trim_matches('"');
         push(&mut path, top);
         let within = offset.saturating_sub(start).min(line.len());
-        let prefix = line.get(..within).unwrap_or("");
-        if let Some(brace) = prefix.find('{') {
-            // Innermost key of an inline table: the key at the offset, or the last `key =` before it.
-            let rest = line.get(within..).unwrap_or("");
-            let word: String = rest
-                .chars()
-                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '-')
-                .collect();
-            let after = rest.get(word.len()..).unwrap_or("").trim_start();
-            if !word.is_empty() && after.starts_with('=') {
-                push(&mut path, &word);
-            } else if let Some(inner) = prefix
-                .get(brace + 1..)
-                .and_then(|s| s.rsplit(',').next())
-                .and_then(|s| s.split('=').next())
-                .map(str::trim)
-                .filter(|s| !s.is_empty() && !s.contains(' '))
-            {
-                push(&mut path, inner);
-            }
+        if let Some(inner) = inline_key(line, within) {
+            push(&mut path, &inner);
         }
     }
     if path.is_empty() {
@@ -94,6 +62,40 @@ pub fn key_path(text: &str, offset: usize) -> String {
     } else {
         path
     }
+}
+
+/// `first.rest` of a table header, with `first` an array of tables already counted in `counts`
+/// (its i-th element open): `study[i].rest`; else `name` as it is.
+fn nested(name: &str, counts: &[(String, usize)]) -> String {
+    name.split_once('.')
+        .and_then(|(first, rest)| {
+            let (_, c) = counts.iter().find(|(n, _)| n == first.trim())?;
+            Some(format!("{}[{}].{}", first.trim(), c - 1, rest.trim()))
+        })
+        .unwrap_or_else(|| name.to_string())
+}
+
+/// The innermost key of an inline table in `line` at byte `within`: the key at the offset, or
+/// the last `key =` before it; `None` outside an inline table.
+fn inline_key(line: &str, within: usize) -> Option<String> {
+    let prefix = line.get(..within).unwrap_or("");
+    let brace = prefix.find('{')?;
+    let rest = line.get(within..).unwrap_or("");
+    let word: String = rest
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '-')
+        .collect();
+    let after = rest.get(word.len()..).unwrap_or("").trim_start();
+    if !word.is_empty() && after.starts_with('=') {
+        return Some(word);
+    }
+    prefix
+        .get(brace + 1..)
+        .and_then(|s| s.rsplit(',').next())
+        .and_then(|s| s.split('=').next())
+        .map(str::trim)
+        .filter(|s| !s.is_empty() && !s.contains(' '))
+        .map(String::from)
 }
 
 /// The line (1-based) of `text` that writes `key` (`study[1].damage[2]`), or else the nearest

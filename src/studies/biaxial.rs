@@ -6,10 +6,11 @@
 
 mod output;
 
+use super::domain::{in_domain, lines, Tally, Words, IN_DOMAIN};
 use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
-use crate::active::Approach;
+use crate::active::{Approach, OutsideDomain};
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::planar_biaxial;
 use crate::models::{CouplingKind, LawKind, Models};
@@ -163,6 +164,9 @@ pub struct BiaxialPoint {
     pub nominal: [f64; 2],
     /// Cauchy stresses σ₁₁, σ₂₂ \[kPa\].
     pub cauchy: [f64; 2],
+    /// Where the law at λ_f = λ₁ is outside its domain, if it is (the explicit law's:
+    /// [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// One curve: a model along the path.
@@ -172,6 +176,18 @@ pub struct BiaxialCurve {
     pub model: ApproachModel,
     /// The states that could be computed, in the order of the path.
     pub points: Vec<BiaxialPoint>,
+}
+
+impl BiaxialCurve {
+    /// Where its points left its law's domain (`None`: passive, or a law that holds
+    /// everywhere).
+    fn tally(&self) -> Option<Tally> {
+        let mut tally = Tally::of(self.model.model.as_ref()?)?;
+        for p in &self.points {
+            tally.add(p.stretches[0], p.outside, None);
+        }
+        Some(tally)
+    }
 }
 
 /// What a biaxial study computed.
@@ -209,12 +225,20 @@ impl BiaxialStudy {
             .collect();
         ctx.progress.finish();
         let mut curves = Vec::with_capacity(computed.len());
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for c in computed {
             let (curve, failure) = c?;
+            tallies.extend(curve.tally().map(|t| (curve.model.label(models), t)));
             curves.push(curve);
             failures.extend(failure);
         }
+        let words = Words {
+            points: "points",
+            x: "λ₁",
+            unit: "",
+            target: "",
+            file: output::FILE,
+        };
         let points = curves.iter().map(|c| c.points.len()).sum();
         Ok(Outcome {
             name: self.name.clone(),
@@ -225,6 +249,7 @@ impl BiaxialStudy {
             elapsed: Default::default(),
             details: vec![self.describe()],
             failures,
+            left_domain: lines(tallies, &words),
             result: StudyResult::Biaxial(BiaxialResult {
                 path: self.path,
                 energy: models.energy.name().to_string(),
@@ -252,6 +277,7 @@ impl BiaxialStudy {
                     gamma: s.gamma,
                     nominal: [s.nominal[(0, 0)], s.nominal[(1, 1)]],
                     cauchy: [s.cauchy[(0, 0)], s.cauchy[(1, 1)]],
+                    outside: muscle.outside_domain(s.fibre_stretch),
                 }),
                 Err(e) => {
                     failed += 1;
@@ -304,5 +330,6 @@ impl BiaxialResult {
             .number("P_22", "kPa", "nominal stress across the fibres", at(|p| p.nominal[1]))
             .number("sigma_11", "kPa", "Cauchy stress along the fibres", at(|p| p.cauchy[0]))
             .number("sigma_22", "kPa", "Cauchy stress across the fibres", at(|p| p.cauchy[1]))
+            .boolean("in_domain", IN_DOMAIN, rows.iter().map(|(c, p)| in_domain(c.model.model.as_ref(), p.outside)))
     }
 }

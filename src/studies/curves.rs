@@ -5,6 +5,7 @@
 use crate::active::Approach;
 use crate::plot::CurveId;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
+use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::outputs::{model_cells, OwnTable};
 use crate::studies::table::Table;
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint, UniaxialResult};
@@ -61,6 +62,9 @@ pub struct Row<'a> {
     pub element: Option<&'static str>,
     /// The cylinder's regions in words (cylinder with regions).
     pub regions: Option<String>,
+    /// Whether the law holds at the point (`None`: a law that holds everywhere; see
+    /// [`crate::studies::domain`]).
+    pub in_domain: Option<bool>,
 }
 
 impl Row<'_> {
@@ -107,6 +111,10 @@ pub fn uniaxial_row<'a>(
     p: &CurvePoint,
 ) -> Row<'a> {
     let ([approach, law, coupling], d) = model_of(approach, c.model);
+    let active = match &c.model {
+        CurveModel::Active(m) => Some(m),
+        _ => None,
+    };
     Row {
         study,
         model: "uniaxial",
@@ -129,6 +137,7 @@ pub fn uniaxial_row<'a>(
         dofs: None,
         element: None,
         regions: None,
+        in_domain: in_domain(active, p.outside),
     }
 }
 
@@ -163,6 +172,7 @@ pub fn sweep_row<'a>(
         dofs: Some(sweep.dofs),
         element: Some(c.element.name()),
         regions: c.regions_in_words(),
+        in_domain: in_domain(Some(&m), p.outside[0].or(p.outside[1])),
     }
 }
 
@@ -179,6 +189,7 @@ pub fn uniaxial_curve(study: &str, of: (Direction, Approach), c: &Curve) -> Curv
         passive: None,
         active_target: None,
         volume: None,
+        outside: None,
     });
     uniaxial_row(study, of, c, &p).curve()
 }
@@ -194,6 +205,7 @@ pub fn sweep_curve(study: &str, c: &CylinderResult, sweep: &Sweep) -> CurveId {
         stress_0d: None,
         passive_0d: None,
         active_0d: 0.0,
+        outside: [None; 2],
     });
     sweep_row(study, c, sweep, &p).curve()
 }
@@ -224,7 +236,8 @@ pub fn own_table(rows: &[Row]) -> OwnTable {
 }
 
 /// The columns of `curves.csv` over `rows` (none: the header alone). The approach is the last
-/// column, so that readers of the columns before it by position keep working.
+/// column but one, `in_domain` the last, so that readers of the columns before them by position
+/// keep working.
 pub fn table(rows: &[Row]) -> Table {
     let text = |f: for<'r> fn(&'r Row<'r>) -> Option<&'r str>| {
         rows.iter().map(move |r| f(r).map(String::from))
@@ -280,4 +293,5 @@ pub fn table(rows: &[Row]) -> Table {
             "activation approach, active-strain, active-stress or structural (empty: a passive curve)",
             text(|r| r.approach.as_deref()),
         )
+        .boolean("in_domain", IN_DOMAIN, rows.iter().map(|r| r.in_domain))
 }

@@ -5,13 +5,17 @@
 mod output;
 mod volume;
 
+use super::domain::{lines, Tally, Words};
 use super::spec::StretchSpec;
 use super::spec::{cell_count, grading, positive, required_stretches, Defaults, ModelKeys};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
+use crate::active::OutsideDomain;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
+use crate::fem::material::axial_stretch;
 use crate::fem::solver::MIN_TOLERANCE;
+use crate::fem::QuadraturePoint;
 use crate::fem::{
     AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, FemError, Mesh,
     Progress as FemProgress, Region, Regions, SolverOptions, Stepping, VtkOutput,
@@ -201,6 +205,43 @@ fn regions(specs: &[RegionSpec]) -> Result<Vec<StudyRegion>, SpecError> {
     Ok(out)
 }
 
+/// Refuses a region that takes a model whose law has a domain ([`LawKind::domain`]: the
+/// explicit law's) outside it: d_eff = d + (1 − d)(1 − a) ∉ [0, 0.5] and ≠ 1 inside the region
+/// for one of the sweeps' damages (`models`), as a weakly recruited core does.
+fn regions_in_domain(regions: &[StudyRegion], models: &[ModelChoice]) -> Result<(), SpecError> {
+    for m in models {
+        let Some(domain) = m.activation_law().and_then(|(law, _)| law.domain()) else {
+            continue;
+        };
+        for (i, g) in regions.iter().enumerate() {
+            let d = g.damage.unwrap_or(m.damage);
+            let d_eff = d + (1.0 - d) * (1.0 - g.activation);
+            if domain.holds_at_damage(d_eff) {
+                continue;
+            }
+            let key = if g.activation < 1.0 {
+                "activation"
+            } else {
+                "damage"
+            };
+            return Err(SpecError::new(
+                format!("regions[{i}].{key}"),
+                if g.activation < 1.0 { g.activation } else { d },
+                format!(
+                    "inside it (d = {d}, a = {}) the {} law would see d_eff = d + (1 − d)(1 − a) = {}, and it holds for {} ({}): keep (1 − d)·a in [{}, 1] or at 0, or use the implicit or the energy law",
+                    g.activation,
+                    m.law.name(),
+                    crate::text::significant(d_eff, 6),
+                    domain.describe(),
+                    domain.why,
+                    1.0 - domain.effective_damage[1],
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Refuses a region that governs no quadrature point of `mesh` (none lies inside it, or later
 /// regions cover all that do): its damage and activation would have no effect on the solve.
 fn regions_take_effect(
@@ -382,6 +423,7 @@ pub fn resolve(
     let coupling = set.couplings.as_ref().and_then(|c| c.first().copied());
     let vtk = vtk_stretches(spec.vtk.as_deref().unwrap_or_default(), &stretches)?;
     let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
+    regions_in_domain(&regions, &set.choices)?;
     let name = spec.name.clone().unwrap_or_else(|| {
         let model = match (law, coupling) {
             (Some(law), Some(coupling)) => format!("{} {}", law.name(), coupling.name()),
@@ -527,6 +569,9 @@ pub struct SweepPoint {
     pub passive_0d: Option<f64>,
     /// The target active stress (1 − d) P_act(λ) \[kPa\].
     pub active_0d: f64,
+    /// The lowest and the highest fibre stretch over the quadrature points at which the law
+    /// there is outside its domain, if any is (the explicit law's: [`crate::active::Domain`]).
+    pub outside: [Option<OutsideDomain>; 2],
 }
 
 /// The sweep of one model.
@@ -612,14 +657,68 @@ impl CylinderResult {
     }
 }
 
-/// How far a sweep is from its 0D curve, in words: the largest |P_FE − P_0D| in kPa and where,
-/// the same number the report's table "FE vs homogeneous (0D) tension" gives over all
-/// stretches; "no stretch converged" when there is nothing to compare.
-fn against_0d(sweep: &Sweep) -> String {
+/// The lowest and the highest fibre stretch among the quadrature points `qps` at which the law
+/// of the muscle there (`muscle_at` their reference (r, z)) leaves its domain.
+fn outside_domain<'m>(
+    qps: &[QuadraturePoint],
+    muscle_at: impl Fn([f64; 2]) -> &'m Muscle<Energy>,
+) -> [Option<OutsideDomain>; 2] {
+    let value = |o: &OutsideDomain| match *o {
+        OutsideDomain::Stretch(v) | OutsideDomain::EffectiveDamage(v) => v,
+    };
+    let outside: Vec<OutsideDomain> = qps
+        .iter()
+        .filter_map(|q| muscle_at([q.r, q.z]).outside_domain(axial_stretch(&q.f)))
+        .collect();
+    [
+        outside
+            .iter()
+            .copied()
+            .min_by(|a, b| value(a).total_cmp(&value(b))),
+        outside
+            .iter()
+            .copied()
+            .max_by(|a, b| value(a).total_cmp(&value(b))),
+    ]
+}
+
+/// How a cylinder study's line names its points.
+const WORDS: Words = Words {
+    points: "stretches with quadrature points",
+    x: "λ",
+    unit: "",
+    target: "",
+    file: super::curves::FILE,
+};
+
+/// Where the quadrature points of `sweep` left its law's domain (`None`: a law that holds
+/// everywhere).
+fn sweep_tally(sweep: &Sweep) -> Option<Tally> {
+    let mut tally = Tally::of(&sweep.model)?;
+    for p in &sweep.points {
+        tally.add(p.lambda, p.outside.into_iter().flatten(), None);
+    }
+    Some(tally)
+}
+
+/// How far a sweep is from its 0D curve, in words: what the two are (a body with `bases`, with
+/// regions or not, against homogeneous tension), the largest |P_FE − P_0D| in kPa and where, the
+/// same number the report's table "FE vs homogeneous (0D) tension" gives over all stretches;
+/// "no stretch converged" when there is nothing to compare.
+fn against_0d(sweep: &Sweep, bases: Bases, regions: bool) -> String {
+    let what = match (regions, bases) {
+        (true, _) => {
+            "the body with its regions against the uniform model's homogeneous tension (0D)"
+        }
+        (false, Bases::Clamped) => {
+            "the clamped body against homogeneous tension (0D), the end effect"
+        }
+        (false, Bases::Sliding) => "sliding bases against homogeneous tension (0D), a verification",
+    };
     match sweep.worst_against_0d() {
         None => "no stretch converged: nothing to compare with the 0D curve".into(),
         Some((difference, lambda, zero)) => format!(
-            "largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
+            "{what}: largest |P_FE − P_0D| = {} kPa at λ = {lambda} ({} % of |P_0D| there)",
             crate::text::significant(difference, 4),
             crate::text::significant(100.0 * difference / zero.abs().max(1e-300), 4)
         ),
@@ -718,7 +817,7 @@ impl CylinderStudy {
             dimensions: [self.radius, self.length],
             nearly_incompressible: models.volumetric.is_some(),
         };
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         let mut details = self.geometry_details();
         for (s, m) in sweeps.into_iter().zip(choices) {
             // A sweep that cannot start (model, mesh, memory) costs only its own model.
@@ -738,6 +837,7 @@ impl CylinderStudy {
             };
             details.push(self.sweep_detail(&sweep, !stops.is_empty()));
             failures.extend(stops);
+            tallies.extend(sweep_tally(&sweep).map(|t| (sweep.label.clone(), t)));
             result.sweeps.push(sweep);
         }
         let points = result.sweeps.iter().map(|s| s.points.len()).sum();
@@ -750,6 +850,7 @@ impl CylinderStudy {
             elapsed: Default::default(),
             details,
             failures,
+            left_domain: lines(tallies, &WORDS),
             result: StudyResult::Cylinder(result),
         })
     }
@@ -763,7 +864,7 @@ impl CylinderStudy {
             sweep.points.len(),
             self.stretches.len(),
             sweep.dofs,
-            against_0d(sweep),
+            against_0d(sweep, self.bases, !self.regions.is_empty()),
             if stopped {
                 " (stopped: see \"Where a model stopped\")"
             } else {
@@ -823,6 +924,35 @@ impl CylinderStudy {
         Ok(Some(Regions::new(base, (m.damage, 1.0), out)))
     }
 
+    /// A progress line for each stretch the sweep of model `label` solved.
+    fn solved(&self, ctx: &RunContext, label: &str, p: FemProgress<'_>) {
+        if let FemProgress::Stretch(r) = p {
+            ctx.progress.point(&format!(
+                "{}: {label}: lambda = {} solved, P = {:.4} kPa",
+                self.name, r.stretch, r.nominal_stress
+            ));
+        }
+    }
+
+    /// The nodal displacements (u_r, u_z) of the named points at each stretch `sweep` solved.
+    fn displacements(
+        &self,
+        solver: &AxisymmetricSolver<'_, impl AxisymmetricMaterial + ?Sized>,
+        sweep: &crate::fem::solver::Sweep,
+    ) -> Vec<Vec<[f64; 2]>> {
+        let node_u = &solver.dofs().node_u;
+        sweep
+            .results
+            .iter()
+            .map(|r| {
+                self.points
+                    .iter()
+                    .map(|p| node_u[p.node].map(|g| r.state.x[g as usize]))
+                    .collect()
+            })
+            .collect()
+    }
+
     /// The sweep of model `m`, with the failures of the directions that stopped.
     fn sweep(
         &self,
@@ -848,30 +978,20 @@ impl CylinderStudy {
         let mut solver = AxisymmetricSolver::new(mesh, self.bases, material, options)?;
         let dofs = solver.n_free_dofs();
         let label = models.label(m);
-        let sweep = solver.sweep_with(&self.stretches, &mut |p| {
-            if let FemProgress::Stretch(r) = p {
-                ctx.progress.point(&format!(
-                    "{}: {label}: lambda = {} solved, P = {:.4} kPa",
-                    self.name, r.stretch, r.nominal_stress
-                ));
-            }
-        })?;
+        let sweep = solver.sweep_with(&self.stretches, &mut |p| self.solved(ctx, &label, p))?;
         let passive = models.passive();
-        let node_u = &solver.dofs().node_u;
-        let displacements: Vec<Vec<[f64; 2]>> = sweep
-            .results
-            .iter()
-            .map(|r| {
-                self.points
-                    .iter()
-                    .map(|p| node_u[p.node].map(|g| r.state.x[g as usize]))
-                    .collect()
-            })
-            .collect();
+        let displacements = self.displacements(&solver, &sweep);
+        // Where the law (of the region) at each quadrature point leaves its domain.
+        let bounded = m.activation_law().and_then(|(l, _)| l.domain()).is_some();
+        let outside = |r: &crate::fem::StretchResult| match (bounded, &regional) {
+            (false, _) => [None; 2],
+            (true, None) => outside_domain(&solver.quadrature_points(&r.state), |_| &muscle),
+            (true, Some(g)) => outside_domain(&solver.quadrature_points(&r.state), |at| g.at(at).0),
+        };
         let points = sweep
             .results
             .iter()
-            .map(|r| sweep_point(models, m, (&muscle, &passive), r))
+            .map(|r| sweep_point(models, m, (&muscle, &passive), r, outside(r)))
             .collect();
         let failures = sweep_failures(&sweep, ctx, &muscle, &label);
         Ok((
@@ -920,12 +1040,14 @@ impl CylinderStudy {
 }
 
 /// The point of a sweep at the solved stretch `r` of model `m`, with the homogeneous (0D)
-/// stresses of its muscle and passive counterpart there.
+/// stresses of its muscle and passive counterpart there, and where its law left its domain
+/// (`outside`: [`outside_domain`]).
 fn sweep_point(
     models: &Models,
     m: &ModelChoice,
     (muscle, passive): (&Muscle<Energy>, &Muscle<Energy>),
     r: &crate::fem::StretchResult,
+    outside: [Option<OutsideDomain>; 2],
 ) -> SweepPoint {
     let stress = |muscle| {
         models
@@ -942,6 +1064,7 @@ fn sweep_point(
         stress_0d: stress(muscle),
         passive_0d: stress(passive),
         active_0d: Drive::from(m.damage).target(&models.curve, r.stretch),
+        outside,
     }
 }
 

@@ -16,17 +16,18 @@
 
 mod output;
 
+use super::domain::{lines, Tally, Words};
 use super::spec::{Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
-use crate::active::StretchRate;
+use crate::active::{OutsideDomain, StretchRate};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::fixed_length::Exactly;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
 use crate::text::shortest;
 use crate::uniaxial::{Direction, UniaxialPoint};
-use crate::volumetric::{Volumetric, VolumetricForm};
+use crate::volumetric::Volumetric;
 use crate::Muscle;
 use rayon::prelude::*;
 use serde::de::{self, SeqAccess, Visitor};
@@ -215,7 +216,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         "[0, 0] for a muscle at rest",
     )?;
     let activation = ActivationInTime::new(schedule, motor_units(spec.motor_units.as_deref())?);
-    bounded_activation(&activation, &times)?;
+    let levels = bounded_activation(&activation, &times)?;
     let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
     let loading = loading(&loading_spec, &times)?;
     let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
@@ -223,6 +224,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         &[d.law],
         &[d.coupling],
     )?;
+    levels_in_domain(&set.choices, &activation, &times, &levels)?;
     let name = spec
         .name
         .clone()
@@ -279,9 +281,18 @@ fn motor_units(units: Option<&[MotorUnitSpec]>) -> Result<Option<MotorUnits>, Sp
     })
 }
 
-/// Refuses an activation whose twitch sum over `times` would exceed [`MAX_TWITCH_TERMS`], or
-/// whose level is not finite and ≥ 0 at one of them.
-fn bounded_activation(activation: &ActivationInTime, times: &[f64]) -> Result<(), SpecError> {
+/// The key that sets a(t): `motor_units` when there are, else `schedule`.
+fn activation_key(activation: &ActivationInTime) -> &'static str {
+    if activation.motor_units().is_some() {
+        "motor_units"
+    } else {
+        "schedule"
+    }
+}
+
+/// The level a(t) at each of `times`; refuses an activation whose twitch sum over `times` would
+/// exceed [`MAX_TWITCH_TERMS`], or whose level is not finite and ≥ 0 at one of them.
+fn bounded_activation(activation: &ActivationInTime, times: &[f64]) -> Result<Vec<f64>, SpecError> {
     let last = times.last().copied().unwrap_or(0.0);
     let terms = activation.stimuli_before(last) * times.len() as f64;
     if terms > MAX_TWITCH_TERMS {
@@ -291,20 +302,55 @@ fn bounded_activation(activation: &ActivationInTime, times: &[f64]) -> Result<()
             format!("the twitch sum over all time steps would take more than {MAX_TWITCH_TERMS:e} terms (steps × stimuli): use fewer time steps or longer interstimulus intervals"),
         ));
     }
+    let mut levels = Vec::with_capacity(times.len());
     for &t in times {
         let a = activation.level(t);
         if !(a.is_finite() && a >= 0.0) {
-            let key = if activation.motor_units().is_some() {
-                "motor_units"
-            } else {
-                "schedule"
-            };
             return Err(SpecError::new(
-                key,
+                activation_key(activation),
                 format!("a({} s) = {}", shortest(t), shortest(a)),
                 "the activation level must be finite and >= 0",
             ));
         }
+        levels.push(a);
+    }
+    Ok(levels)
+}
+
+/// Refuses an activation that takes a model whose law has a domain ([`LawKind::domain`]: the
+/// explicit law's) outside it at some time step: d_eff = d + (1 − d)(1 − a(t)) ∉ [0, 0.5] and ≠ 1,
+/// as a ramp from rest or a level below 0.5 does (`levels`: a(t) at each of `times`).
+fn levels_in_domain(
+    models: &[ModelChoice],
+    activation: &ActivationInTime,
+    times: &[f64],
+    levels: &[f64],
+) -> Result<(), SpecError> {
+    for m in models {
+        let Some(domain) = m.activation_law().and_then(|(law, _)| law.domain()) else {
+            continue;
+        };
+        // As the drive writes it (crate::active::Drive::effective_damage).
+        let d_eff = |a: f64| m.damage + (1.0 - m.damage) * (1.0 - a);
+        let Some(i) = levels
+            .iter()
+            .position(|&a| !domain.holds_at_damage(d_eff(a)))
+        else {
+            continue;
+        };
+        return Err(SpecError::new(
+            activation_key(activation),
+            format!("a({} s) = {}", shortest(times[i]), shortest(levels[i])),
+            format!(
+                "with d = {} the {} law would see d_eff = d + (1 − d)(1 − a) = {} there, and it holds for {} ({}): keep (1 − d)·a in [{}, 1] or at 0 at every time step, or use the implicit or the energy law",
+                m.damage,
+                m.law.name(),
+                crate::text::significant(d_eff(levels[i]), 6),
+                domain.describe(),
+                domain.why,
+                1.0 - domain.effective_damage[1],
+            ),
+        ));
     }
     Ok(())
 }
@@ -395,8 +441,16 @@ pub struct HistoryPoint {
     pub volume: f64,
     /// Passive stress P_pas(λ) \[kPa\].
     pub passive: f64,
-    /// Target active stress (1 − d)·a·P_act(λ) \[kPa\].
+    /// Target active stress (1 − d)·a·f_v·P_act(λ) \[kPa\].
     pub active_target: f64,
+    /// The fibre stretch rate λ̇ of the step \[1/s\] (backward Euler; 0 at the first step), in
+    /// a scene with force–velocity.
+    pub rate: Option<f64>,
+    /// The force–velocity factor f_v(λ̇) [-] of the step, in a scene with force–velocity.
+    pub velocity_factor: Option<f64>,
+    /// Where the law at the step is outside its domain, if it is (the explicit law's:
+    /// [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// The steps of a history that shorten the fibres faster than the force–velocity curve's
@@ -449,6 +503,28 @@ pub struct History {
     pub points: Vec<HistoryPoint>,
 }
 
+/// How an activation-in-time study's line names its points.
+const WORDS: Words = Words {
+    points: "time steps",
+    x: "t",
+    unit: " s",
+    target: "P_pas + (1 − d)·a·f_v·P_act",
+    file: output::FILE,
+};
+
+impl History {
+    /// Where the steps of this history left its law's domain, with the distance of the stress
+    /// from the target P_pas + (1 − d)·a·f_v·P_act (`None`: a law that holds everywhere).
+    fn tally(&self) -> Option<Tally> {
+        let mut tally = Tally::of(&self.model)?;
+        for p in &self.points {
+            let distance = p.stress - (p.passive + p.active_target);
+            tally.add(p.t, p.outside, Some(distance));
+        }
+        Some(tally)
+    }
+}
+
 /// What an activation-in-time study computed.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HistoryResult {
@@ -459,7 +535,7 @@ pub struct HistoryResult {
     /// The activation approach.
     pub approach: crate::active::Approach,
     /// The volumetric energy of a nearly incompressible block (`None`: exactly incompressible).
-    pub volumetric: Option<VolumetricForm>,
+    pub volumetric: Option<Volumetric>,
     /// One history per damage value.
     pub histories: Vec<History>,
 }
@@ -517,9 +593,10 @@ impl HistoryStudy {
             .collect();
         ctx.progress.finish();
         let mut histories = Vec::with_capacity(computed.len());
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for h in computed {
             let (history, failed) = h.map_err(|e| e.within(&self.name))?;
+            tallies.extend(history.tally().map(|t| (models.label(&history.model), t)));
             histories.push(history);
             failures.extend(failed);
         }
@@ -533,11 +610,12 @@ impl HistoryStudy {
             elapsed: Default::default(),
             details: vec![self.describe()],
             failures,
+            left_domain: lines(tallies, &WORDS),
             result: StudyResult::ActivationInTime(HistoryResult {
                 loading: self.loading.name(),
                 energy: crate::StrainEnergy::name(&models.energy).to_string(),
                 approach: self.approach,
-                volumetric: models.volumetric.as_ref().map(Volumetric::form),
+                volumetric: models.volumetric,
                 histories,
             }),
         })
@@ -648,6 +726,14 @@ impl HistoryStudy {
             volume: p.lambda * p.lateral[0] * p.lateral[1],
             passive,
             active_target: muscle.drive().target(&models.curve, p.lambda),
+            rate: models.force_velocity.map(|_| {
+                let rate = muscle.drive().rate();
+                rate.map_or(0.0, |r| r.rate(p.fibre_stretch))
+            }),
+            velocity_factor: models
+                .force_velocity
+                .map(|_| muscle.drive().velocity_factor(p.fibre_stretch)),
+            outside: muscle.outside_domain(p.fibre_stretch),
         };
         Ok((point, p.fibre_stretch))
     }

@@ -13,6 +13,7 @@
 //! | `activation-in-time` | [`history`] | a 0D block driven in time by a(t) |
 //! | `shear` | [`shear`] | simple shear per approach and fibre angle |
 //! | `biaxial` | [`biaxial`] | planar biaxial stretch per approach |
+//! | `tangent` | [`tangent`] | Taylor tests of every model's tangent at chosen states |
 //!
 //! Adding a kind: a module with its spec, study and result types, `impl KindSpec` for the spec
 //! and `impl KindStudy` for the study, `impl outputs::KindOutput` for the result (in the
@@ -31,6 +32,7 @@
 pub mod biaxial;
 pub mod curves;
 pub mod cylinder;
+pub mod domain;
 pub mod fit;
 pub mod history;
 pub mod outputs;
@@ -39,6 +41,7 @@ pub mod size;
 pub mod spec;
 pub mod stability;
 pub mod table;
+pub mod tangent;
 pub mod tradeoff;
 pub mod uniaxial;
 
@@ -369,6 +372,8 @@ study_kinds! {
     Shear("shear", shear::ShearSpec, shear::ShearStudy, shear::ShearResult, shear::HINTS),
     /// Homogeneous planar biaxial stretch.
     Biaxial("biaxial", biaxial::BiaxialSpec, biaxial::BiaxialStudy, biaxial::BiaxialResult, biaxial::HINTS),
+    /// Tangent accuracy: Taylor remainders of every model at chosen states.
+    Tangent("tangent", tangent::TangentSpec, tangent::TangentStudy, tangent::TangentResult, tangent::HINTS),
 }
 
 /// `impl KindSpec` and `impl KindStudy` for a kind whose module has `resolve(spec, defaults)` and
@@ -437,6 +442,11 @@ plain_kind!(
             spec::ApproachModel::approaches(&self.models)
         }
     }
+);
+plain_kind!(
+    tangent::TangentSpec,
+    tangent::TangentStudy,
+    tangent::resolve
 );
 
 impl KindSpec for fit::FitSpec {
@@ -563,6 +573,9 @@ pub struct Outcome {
     pub details: Vec<String>,
     /// What could not be computed, and why.
     pub failures: Vec<Failure>,
+    /// The models computed outside the domain their law holds on, one line each (the points
+    /// are computed and written all the same: [`domain`]).
+    pub left_domain: Vec<domain::LeftDomain>,
     /// The result.
     pub result: StudyResult,
 }
@@ -583,6 +596,7 @@ impl Outcome {
                 model: "the whole study".into(),
                 message,
             }],
+            left_domain: Vec::new(),
             result: StudyResult::Nothing,
         }
     }

@@ -9,10 +9,11 @@
 
 mod output;
 
+use super::domain::{in_domain, lines, Tally, Words, IN_DOMAIN};
 use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
-use crate::active::Approach;
+use crate::active::{Approach, OutsideDomain};
 use crate::app_error::{AppError, SpecError};
 use crate::homogeneous::simple_shear;
 use crate::models::{CouplingKind, LawKind, Models};
@@ -97,6 +98,20 @@ pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec)
             "must be finite (degrees)",
         ));
     }
+    for (j, a) in angles.iter().enumerate() {
+        // θ and θ + 180° give the same fibre tensor M = a⊗a: the same curve twice.
+        let same = |b: &f64| {
+            let r = (a - b).rem_euclid(180.0);
+            r.min(180.0 - r) < 1e-9
+        };
+        if let Some(i) = angles[..j].iter().position(same) {
+            return Err(SpecError::new(
+                format!("fibre_angles[{j}]"),
+                a,
+                format!("fibre_angles[{i}] = {} is the same fibre (θ and θ + 180° give the same M = a⊗a): each angle is one curve per model, give it once", angles[i]),
+            ));
+        }
+    }
     if d.models.volumetric.is_some() {
         return Err(SpecError::new(
             "kind",
@@ -144,6 +159,9 @@ pub struct ShearPoint {
     pub fibre_stretch: f64,
     /// Cauchy stresses σ₁₂, σ₁₁, σ₂₂, σ₃₃ \[kPa\].
     pub sigma: [f64; 4],
+    /// Where the law at λ_f is outside its domain, if it is (the explicit law's:
+    /// [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// One curve: a model at one fibre angle.
@@ -155,6 +173,18 @@ pub struct ShearCurve {
     pub angle: f64,
     /// The amounts of shear that could be computed.
     pub points: Vec<ShearPoint>,
+}
+
+impl ShearCurve {
+    /// Where its points left its law's domain (`None`: passive, or a law that holds
+    /// everywhere).
+    fn tally(&self) -> Option<Tally> {
+        let mut tally = Tally::of(self.model.model.as_ref()?)?;
+        for p in &self.points {
+            tally.add(p.k, p.outside, None);
+        }
+        Some(tally)
+    }
 }
 
 /// What a shear study computed.
@@ -180,6 +210,20 @@ impl ShearStudy {
         )
     }
 
+    /// The study in words, and, for a scene whose `material.fibre` is not e₁, that simple shear
+    /// sets its own fibres.
+    fn details(&self, models: &Models) -> Vec<String> {
+        let mut details = vec![self.describe()];
+        if models.fibre != [1.0, 0.0, 0.0] {
+            let shown: Vec<String> = models.fibre.iter().map(|x| format!("{x:.4}")).collect();
+            details.push(format!(
+                "material.fibre = [{}] does not apply: simple shear sets the fibre in the shear plane at the fibre angles to the shear direction e₁",
+                shown.join(", ")
+            ));
+        }
+        details
+    }
+
     /// Every curve, in parallel; a state that cannot be computed is counted in a failure.
     pub fn run(&self, models: &Models, ctx: &RunContext) -> Result<Outcome, AppError> {
         ctx.progress.log(&self.describe());
@@ -196,12 +240,23 @@ impl ShearStudy {
             .collect();
         ctx.progress.finish();
         let mut curves = Vec::with_capacity(computed.len());
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for c in computed {
             let (curve, failure) = c?;
+            tallies.extend(curve.tally().map(|t| {
+                let label = format!("{}, θ = {}°", curve.model.label(models), curve.angle);
+                (label, t)
+            }));
             curves.push(curve);
             failures.extend(failure);
         }
+        let words = Words {
+            points: "points",
+            x: "k",
+            unit: "",
+            target: "",
+            file: output::FILE,
+        };
         let points = curves.iter().map(|c| c.points.len()).sum();
         Ok(Outcome {
             name: self.name.clone(),
@@ -210,8 +265,9 @@ impl ShearStudy {
             points,
             requested: jobs.len() * self.shear.len(),
             elapsed: Default::default(),
-            details: vec![self.describe()],
+            details: self.details(models),
             failures,
+            left_domain: lines(tallies, &words),
             result: StudyResult::Shear(ShearResult {
                 energy: models.energy.name().to_string(),
                 curves,
@@ -244,6 +300,7 @@ impl ShearStudy {
                         s.cauchy[(1, 1)],
                         s.cauchy[(2, 2)],
                     ],
+                    outside: muscle.outside_domain(s.fibre_stretch),
                 }),
                 Err(e) => {
                     failed += 1;
@@ -279,6 +336,13 @@ impl ShearResult {
             .flat_map(|c| c.points.iter().map(move |p| (c, p)))
             .collect();
         let cell = |i: usize| rows.iter().map(move |(c, _)| c.model.cells()[i].clone());
+        let at = |f: fn(&ShearPoint) -> f64| rows.iter().map(move |(_, p)| Some(f(p)));
+        let sigma = |i: usize| rows.iter().map(move |(_, p)| Some(p.sigma[i]));
+        let damage = rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage));
+        let angle = rows.iter().map(|(c, _)| Some(c.angle));
+        let domain = rows
+            .iter()
+            .map(|(c, p)| in_domain(c.model.model.as_ref(), p.outside));
         Table::default()
             .text("study", "the study's name", every_row(study, rows.len()))
             .text(
@@ -293,59 +357,40 @@ impl ShearResult {
                 cell(1),
             )
             .text("coupling", "coupling", cell(2))
-            .number(
-                "d",
-                "-",
-                "damage",
-                rows.iter().map(|(c, _)| c.model.model.map(|m| m.damage)),
-            )
+            .number("d", "-", "damage", damage)
             .number(
                 "fibre_angle",
                 "degree",
                 "fibre angle θ to the shear direction e₁",
-                rows.iter().map(|(c, _)| Some(c.angle)),
+                angle,
             )
             .number(
                 "shear",
                 "-",
                 "amount of shear k, F = I + k e₁⊗e₂",
-                rows.iter().map(|(_, p)| Some(p.k)),
+                at(|p| p.k),
             )
             .number(
                 "gamma",
                 "-",
                 "activation γ (ω for the structural approach)",
-                rows.iter().map(|(_, p)| Some(p.gamma)),
+                at(|p| p.gamma),
             )
             .number(
                 "fibre_stretch",
                 "-",
                 "fibre stretch λ_f = |F m|",
-                rows.iter().map(|(_, p)| Some(p.fibre_stretch)),
+                at(|p| p.fibre_stretch),
             )
-            .number(
-                "sigma_12",
-                "kPa",
-                "Cauchy shear stress σ₁₂",
-                rows.iter().map(|(_, p)| Some(p.sigma[0])),
-            )
-            .number(
-                "sigma_11",
-                "kPa",
-                "Cauchy normal stress σ₁₁",
-                rows.iter().map(|(_, p)| Some(p.sigma[1])),
-            )
-            .number(
-                "sigma_22",
-                "kPa",
-                "Cauchy normal stress σ₂₂",
-                rows.iter().map(|(_, p)| Some(p.sigma[2])),
-            )
+            .number("sigma_12", "kPa", "Cauchy shear stress σ₁₂", sigma(0))
+            .number("sigma_11", "kPa", "Cauchy normal stress σ₁₁", sigma(1))
+            .number("sigma_22", "kPa", "Cauchy normal stress σ₂₂", sigma(2))
             .number(
                 "sigma_33",
                 "kPa",
                 "Cauchy normal stress σ₃₃ (0: traction free)",
-                rows.iter().map(|(_, p)| Some(p.sigma[3])),
+                sigma(3),
             )
+            .boolean("in_domain", IN_DOMAIN, domain)
     }
 }

@@ -171,7 +171,59 @@ pub fn size_of(study: &Study) -> Size {
             tables: 1,
             ..Size::default()
         },
+        Study::Tangent(t) => tangent(t),
     }
+}
+
+/// Tangents the FE level solves with (exact, symmetric frozen, central differences), and the
+/// states of its Taylor tests (the predictor, the converged state).
+const FE_TANGENTS: usize = 3;
+const FE_TAYLOR_STATES: usize = 2;
+
+/// A tangent study: a row per model, stretch rate, state, direction and step (tangent.csv) and
+/// per model, rate and state (tangent_summary.csv), a figure of the remainders; with the FE
+/// level, per configuration a row per Taylor state, tangent and step (tangent_fe.csv) and per
+/// tangent and Newton iteration (tangent_newton.csv), a figure, and as work two exact solves,
+/// Newton with each tangent (five iterations counted as one target stretch) and the Taylor
+/// tests' assemblies (about twenty solves' worth).
+fn tangent(t: &super::tangent::TangentStudy) -> Size {
+    let tests = t.models.len() * t.rates.as_ref().map_or(1, |r| r.0.len()) * t.sources.len();
+    let mut size = Size {
+        rows: (tests * (1 + t.directions.len() * t.h.len())) as u64,
+        figures: 1,
+        tables: 2,
+        ..Size::default()
+    };
+    if let Some(fe) = &t.fe {
+        let per_element = fe.bases.len() * fe.forms.len();
+        let configs = (fe.elements.len() * per_element) as u64;
+        let newton_rows = FE_TANGENTS * (fe.max_iterations + 1);
+        let taylor_rows = FE_TAYLOR_STATES * FE_TANGENTS * t.h.len();
+        let solves = 2.0 + (FE_TANGENTS * fe.max_iterations) as f64 / 5.0 + 20.0;
+        let mut work = 0.0f64;
+        let mut memory = 0.0f64;
+        for &element in &fe.elements {
+            let m = MemoryEstimate::structured(
+                fe.cells.0,
+                fe.cells.1,
+                element,
+                SolverOptions::default().linear_solver,
+            );
+            work += m.dofs * solves * per_element as f64;
+            memory = memory.max(m.bytes);
+        }
+        size = size
+            + Size {
+                rows: configs * (newton_rows + taylor_rows) as u64,
+                figures: 1,
+                tables: 2,
+                sweeps: configs,
+                fe_work: work,
+                fe_memory: memory,
+                ..Size::default()
+            };
+    }
+    size
 }
 
 /// A uniaxial study: a row per curve and stretch; a figure of its passive curves, one of its

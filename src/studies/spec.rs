@@ -388,6 +388,13 @@ impl<'a> ModelKeys<'a> {
             .approaches
             .map_or_else(|| vec![d.approach], <[_]>::to_vec);
         for (j, &a) in approaches.iter().enumerate() {
+            if let Some(i) = approaches[..j].iter().position(|b| *b == a) {
+                return Err(SpecError::new(
+                    format!("approaches[{j}]"),
+                    format!("{:?}", a.name()),
+                    format!("approaches[{i}] is the same approach: each approach is one set of models and curves, give it once"),
+                ));
+            }
             d.models.activation_map(a).map_err(|rule| {
                 SpecError::new(
                     self.key("approaches", "approach", j),
@@ -436,6 +443,7 @@ impl<'a> ModelKeys<'a> {
             .couplings
             .map_or_else(|| default_couplings.to_vec(), <[_]>::to_vec);
         couplings_for(&laws, &couplings)?;
+        self.damages_in_domain(&laws, &damage)?;
         let choices = product(&approaches, &laws, &couplings, &damage);
         Ok(ModelSet {
             approaches,
@@ -444,6 +452,37 @@ impl<'a> ModelKeys<'a> {
             damage,
             choices,
         })
+    }
+
+    /// Refuses a damage outside the domain of one of `laws` ([`LawKind::domain`]: the explicit
+    /// law's d ≤ 0.5, or 1): every point of such a model would leave it.
+    fn damages_in_domain(&self, laws: &[LawKind], damage: &[f64]) -> Result<(), SpecError> {
+        for law in laws {
+            let Some(domain) = law.domain() else {
+                continue;
+            };
+            if let Some(i) = damage.iter().position(|&d| !domain.holds_at_damage(d)) {
+                let (key, value) = match self.damage {
+                    Some(_) => (format!("damage[{i}]"), crate::text::shortest(damage[i])),
+                    None => (
+                        "damage".to_string(),
+                        format!("{} (left out: activation.damage)", damage[i]),
+                    ),
+                };
+                return Err(SpecError::new(
+                    key,
+                    value,
+                    format!(
+                        "the {} law holds for {} ({}): give it d ≤ {} (d = 1, no activation, is exact), or use the implicit or the energy law",
+                        law.name(),
+                        domain.describe(),
+                        domain.why,
+                        domain.effective_damage[1]
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Refuses `laws` and `couplings` given to a study none of whose `approaches` has a law.

@@ -4,9 +4,11 @@
 
 mod output;
 
+use super::domain::{lines, Tally, Words};
 use super::spec::StretchSpec;
 use super::spec::{optional_stretches, Defaults, ModelKeys};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
+use crate::active::OutsideDomain;
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, LawKind, ModelChoice, Models};
@@ -142,6 +144,9 @@ pub struct StabilityPoint {
     pub relative: f64,
     /// Strongly elliptic (relative > −1e-12).
     pub elliptic: bool,
+    /// Where the law at λ is outside its domain, if it is (the explicit law's:
+    /// [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// The stability of one model along the fibres.
@@ -163,6 +168,16 @@ impl StabilityCurve {
             Some((m, None)) => m.approach.name().to_string(),
             None => "passive".to_string(),
         }
+    }
+
+    /// Where its points left its law's domain (`None`: passive, or a law that holds
+    /// everywhere).
+    fn tally(&self) -> Option<Tally> {
+        let mut tally = Tally::of(self.model.as_ref()?)?;
+        for p in &self.points {
+            tally.add(p.lambda, p.outside, None);
+        }
+        Some(tally)
     }
 
     /// The damage of the model (none for the passive material).
@@ -225,12 +240,25 @@ impl StabilityStudy {
             })
             .collect();
         let mut curves = Vec::with_capacity(computed.len());
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for c in computed {
             let (curve, failure) = c.map_err(|e| e.within(&self.name))?;
+            tallies.extend(
+                curve
+                    .tally()
+                    .zip(curve.model)
+                    .map(|(t, m)| (models.label(&m), t)),
+            );
             curves.push(curve);
             failures.extend(failure);
         }
+        let words = Words {
+            points: "points",
+            x: "λ",
+            unit: "",
+            target: "",
+            file: output::FILE,
+        };
         let points = curves.iter().map(|c| c.points.len()).sum();
         Ok(Outcome {
             name: self.name.clone(),
@@ -247,6 +275,7 @@ impl StabilityStudy {
                 self.normals
             )],
             failures,
+            left_domain: lines(tallies, &words),
             result: StudyResult::Stability(curves),
         })
     }
@@ -274,6 +303,7 @@ impl StabilityStudy {
                     least: p.ellipticity.least,
                     relative: p.ellipticity.relative,
                     elliptic: p.ellipticity.holds(),
+                    outside: muscle.outside_domain(l),
                 }),
                 Err(e) => {
                     failed += 1;

@@ -4,10 +4,11 @@
 
 mod figures;
 
+use super::domain::{lines, Tally, Words};
 use super::spec::{required_stretches, Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
-use crate::active::Approach;
+use crate::active::{Approach, OutsideDomain};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
 use crate::models::{CouplingKind, EnergySpec, LawKind, ModelChoice, Models};
@@ -174,6 +175,9 @@ pub struct CurvePoint {
     pub active_target: Option<f64>,
     /// Volume ratio J = λ λ₂ λ₃ [-] of a nearly incompressible scene (`None`: J = 1 exactly).
     pub volume: Option<f64>,
+    /// Where the law at the point's fibre stretch is outside its domain, if it is (the explicit
+    /// law's: [`crate::active::Domain`]).
+    pub outside: Option<OutsideDomain>,
 }
 
 /// One computed curve.
@@ -224,6 +228,7 @@ impl UniaxialStudy {
                         passive: extra.map(|e| e.0),
                         active_target: extra.map(|e| e.1),
                         volume: volumetric.map(|_| lambda * p.lateral[0] * p.lateral[1]),
+                        outside: muscle.outside_domain(p.fibre_stretch),
                     })
                 });
             match point {
@@ -280,7 +285,7 @@ impl UniaxialStudy {
         }
         ctx.progress
             .start(&self.name, curves.len() * self.stretches.len());
-        let computed: Vec<Result<(Curve, Option<Failure>), AppError>> = curves
+        let computed: Vec<Result<CurveOutcome, AppError>> = curves
             .par_iter()
             .map(|&(model, energy)| self.curve(models, model, energy, ctx))
             .collect();
@@ -290,12 +295,20 @@ impl UniaxialStudy {
             approach: self.approach,
             curves: Vec::with_capacity(computed.len()),
         };
-        let mut failures = Vec::new();
+        let (mut failures, mut tallies) = (Vec::new(), Vec::new());
         for c in computed {
-            let (curve, failure) = c?;
+            let (curve, failure, tally) = c?;
             result.curves.push(curve);
             failures.extend(failure);
+            tallies.extend(tally);
         }
+        let words = Words {
+            points: "points",
+            x: "λ",
+            unit: "",
+            target: "P_pas + (1 − d) P_act",
+            file: super::curves::FILE,
+        };
         let points = result.curves.iter().map(|c| c.points.len()).sum();
         let mut details = vec![format!(
             "{} curves × {} stretches in [{}, {}], {} the fibres",
@@ -315,18 +328,20 @@ impl UniaxialStudy {
             elapsed: Default::default(),
             details,
             failures,
+            left_domain: lines(tallies, &words),
             result: StudyResult::Uniaxial(result),
         })
     }
 
-    /// The curve of `model` on `energy`, and the failure of the stretches it could not compute.
+    /// The curve of `model` on `energy`, the failure of the stretches it could not compute and
+    /// the points outside its law's domain.
     fn curve(
         &self,
         models: &Models,
         model: CurveModel,
         energy: &Energy,
         ctx: &RunContext,
-    ) -> Result<(Curve, Option<Failure>), AppError> {
+    ) -> Result<CurveOutcome, AppError> {
         let muscle = match model {
             CurveModel::Passive => Muscle::passive(energy.clone()),
             CurveModel::Constant(g) => models
@@ -366,13 +381,35 @@ impl UniaxialStudy {
             },
             message,
         });
+        let tally = match model {
+            CurveModel::Active(m) => tally(&m, &points).map(|t| (label(models, &model, energy), t)),
+            _ => None,
+        };
         let curve = Curve {
             model,
             energy: energy.name().to_string(),
             points,
         };
-        Ok((curve, failure))
+        Ok((curve, failure, tally))
     }
+}
+
+/// A computed curve, the failure of the stretches it could not compute, and, for a law with a
+/// domain, the tally of its points (with the model's label).
+type CurveOutcome = (Curve, Option<Failure>, Option<(String, Tally)>);
+
+/// Where the `points` of model `m` are outside its law's domain, with their distance from the
+/// target P_pas + (1 − d) P_act along the fibres (`None`: a law that holds everywhere).
+fn tally(m: &ModelChoice, points: &[CurvePoint]) -> Option<Tally> {
+    let mut tally = Tally::of(m)?;
+    for p in points {
+        let distance = p
+            .passive
+            .zip(p.active_target)
+            .map(|(pas, act)| p.stress - (pas + act));
+        tally.add(p.lambda, p.outside, distance);
+    }
+    Some(tally)
 }
 
 /// A curve in words: `giantesio-musesti, passive`, `…, constant gamma = 0.2`, or the model.

@@ -47,7 +47,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations,cauchy,J,P_0d,dofs,element,regions,approach")
+        Some("study,model,direction,bases,energy,law,coupling,d,lambda,gamma,P,P_pas,P_act,newton_iterations,cauchy,J,P_0d,dofs,element,regions,approach,in_domain")
     );
     let gm = GiantesioMusesti::paper();
     let energy = Energy::GiantesioMusesti(gm);
@@ -59,7 +59,7 @@ fn small_scene_matches_the_library_and_writes_every_output() {
         // The study's name first (the scene's defaults); the other columns as they were.
         let study = line.split(',').next().unwrap_or_default();
         let c: Vec<&str> = line.split(',').skip(1).collect();
-        assert_eq!(c.len(), 20, "{line}");
+        assert_eq!(c.len(), 21, "{line}");
         let expected_study = match c[0] {
             "uniaxial" => "uniaxial along fibres",
             _ => "cylinder sliding explicit frozen",

@@ -255,6 +255,7 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
             least: 1.0,
             relative: 1.0,
             elliptic: true,
+            outside: None,
         }],
     };
     let e = written(vec![curve].tables("map"))

@@ -25,7 +25,7 @@ fn a_stability_study_writes_its_table_csv_and_figure() {
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],
-        "study,law,coupling,d,lambda,P,dP_dlambda,ellipticity_min,ellipticity_relative,strongly_elliptic,softening,cauchy,approach"
+        "study,law,coupling,d,lambda,P,dP_dlambda,ellipticity_min,ellipticity_relative,strongly_elliptic,softening,cauchy,approach,in_domain"
     );
     // Passive and implicit/frozen, 26 stretches each.
     assert_eq!(lines.len(), 1 + 2 * 26, "{csv}");

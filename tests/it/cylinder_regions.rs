@@ -84,7 +84,8 @@ fn regions_with_the_models_own_damage_give_the_uniform_cylinder() {
 
 #[test]
 fn one_region_over_the_sliding_cylinder_is_the_0d_curve_at_the_effective_damage() {
-    let (d, a) = (0.2, 0.6);
+    // d_eff = 0.2 + 0.8 · 0.25 = 0.4: inside the explicit law's domain (d_eff ≤ 0.5).
+    let (d, a) = (0.2, 0.75);
     let d_eff = Drive::new(d, a).unwrap().effective_damage();
     let regions = format!("[[study.regions]]\nactivation = {a}\n");
     let c = run(
@@ -170,7 +171,7 @@ fn vtk_carries_damage_and_activation_cell_fields_with_regions_only() {
         std::fs::read_to_string(&file).unwrap()
     };
     let vtu =
-        read("vtk = [1.1]\n[[study.regions]]\nr = [0.8, 1.0]\ndamage = 0.5\nactivation = 0.4\n");
+        read("vtk = [1.1]\n[[study.regions]]\nr = [0.8, 1.0]\ndamage = 0.2\nactivation = 0.7\n");
     let field = |name: &str| -> Vec<f64> {
         let start = vtu
             .find(&format!("Name=\"{name}\""))
@@ -189,7 +190,7 @@ fn vtk_carries_damage_and_activation_cell_fields_with_regions_only() {
     let near =
         |p: &(f64, f64), q: (f64, f64)| (p.0 - q.0).abs() < 1e-14 && (p.1 - q.1).abs() < 1e-14;
     assert_eq!(
-        pairs.iter().filter(|p| near(p, (0.5, 0.4))).count(),
+        pairs.iter().filter(|p| near(p, (0.2, 0.7))).count(),
         4,
         "{pairs:?}"
     );

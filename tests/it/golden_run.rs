@@ -58,16 +58,24 @@ use scratch::scratch;
 /// Columns the current outputs have and the golden files do not (issue 11 adds `study` to
 /// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
 /// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 42 the activation `approach` of
-/// every row that names a law, issue 43 the fit's `termination`, which Python's table had;
-/// issue 44 the fits' `at_bound` and `weights`).
+/// every row that names a law and whether the law is `in_domain`, issue 43 the fit's
+/// `termination`, which Python's table had; issue 44 the fits' `at_bound` and `weights`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
     (
         "curves.csv",
         &[
-            "study", "cauchy", "J", "P_0d", "dofs", "element", "regions", "approach",
+            "study",
+            "cauchy",
+            "J",
+            "P_0d",
+            "dofs",
+            "element",
+            "regions",
+            "approach",
+            "in_domain",
         ],
     ),
-    ("stability.csv", &["cauchy", "approach"]),
+    ("stability.csv", &["cauchy", "approach", "in_domain"]),
     (
         "fits.csv",
         &["termination", "approach", "at_bound", "weights"],

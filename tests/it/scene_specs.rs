@@ -245,7 +245,7 @@ fn studies_without_their_own_damage_take_the_activation_s() {
     let scene = Scene::parse(
         r#"
 [activation]
-damage = [0.0, 0.3, 0.9]
+damage = [0.0, 0.3, 0.5]
 
 [[study]]
 kind = "uniaxial"
@@ -271,7 +271,7 @@ normals = 4
             .iter()
             .map(|v| v.as_float().unwrap())
             .collect();
-        assert_eq!(damage, [0.0, 0.3, 0.9], "{study}");
+        assert_eq!(damage, [0.0, 0.3, 0.5], "{study}");
     }
 }
 

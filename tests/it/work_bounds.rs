@@ -129,6 +129,8 @@ fn the_estimated_rows_are_the_rows_each_kind_writes() {
         [[study]]\nkind = \"activation-in-time\"\nname = \"h\"\ntime = [0, 0.5, 1]\n\
         [[study]]\nkind = \"shear\"\nname = \"sh\"\nshear = [0.1, 0.2]\nfibre_angles = [0, 90]\n\
         [[study]]\nkind = \"biaxial\"\nname = \"b\"\npairs = [[1.1, 1.0], [1.2, 1.1]]\n\
+        [[study]]\nkind = \"tangent\"\nname = \"t\"\nuniaxial_along = [1.1]\nrandom_directions = 1\n\
+        h = { largest = 0.015625, smallest = 0.001953125 }\n\
         [[study]]\nkind = \"fit\"\nname = \"f\"\nfit = \"damage\"\ntrue_damage = [0.2, 0.4]\n\
         stretch = { from = 0.8, to = 1.4, step = 0.1 }\n";
     let scene = Scene::parse(text, "scene.toml").unwrap();

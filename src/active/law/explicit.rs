@@ -1,4 +1,4 @@
-use super::{ActivationLaw, LawValue};
+use super::{ActivationLaw, Domain, LawValue, OutsideDomain};
 use crate::active::curve::ActiveCurve;
 use crate::active::drive::Drive;
 use crate::active::strain::check_activation;
@@ -23,10 +23,26 @@ use num_dual::{first_derivative, second_derivative};
 /// at λ = 1.2 a stress 56 % above the passive one). Just above λ_min, where the chapter's P_act
 /// underflows to 0 but the drive is on, the formula is kept: it tends to 0 there continuously.
 ///
-/// Valid (within ≈ 1e-3 of the implicit law) on 0.8 ≲ λ ≲ 1.5; fast: one formula, derivatives by
-/// dual numbers. As printed, γ stays positive up to λ ≈ 1.73 (the chapter says 1.6); beyond its
-/// zero crossing this implementation returns γ = 0 ("one can even neglect the activation for
-/// large stretches"), so the law has a kink there.
+/// Fast: one formula, derivatives by dual numbers. As printed, γ stays positive up to λ ≈ 1.73
+/// (the chapter says 1.6); beyond its zero crossing this implementation returns γ = 0 ("one can
+/// even neglect the activation for large stretches"), so the law has a kink there.
+///
+/// **Its domain** ([`ExplicitLaw::DOMAIN`]) is what it was fitted on and what the chapter uses
+/// it for: 0.7 ≤ λ_f ≤ 1.5 (the chapter fits a, b at d = 0 on "0.7 < λ < 1.5"; the fit redone
+/// in `scenes/paper.toml` includes both ends) and 0 ≤ d_eff ≤ 0.5 (the chapter scales P_act by
+/// (1 − d) for d ≤ 0.5), with d_eff = 1 − (1 − d)·a·f_v: activation levels, regions and the
+/// force–velocity factor enter as damage does. There (frozen, d = 0 and 0.5, measured on a
+/// grid of 0.005) it follows the implicit γ within 0.021 (0.004 on [0.8, 1.5]) and its stress
+/// within 3.1 kPa up to λ = 1.3 and 13.4 kPa (2.3 %) at λ = 1.5. Outside it the formula is evaluated all the same, but it is no
+/// approximation of the implicit law: as the target vanishes (d_eff → 1) it keeps γ ≈ 0.19,
+/// so a block at a = 1e-6 contracts freely to λ = 0.736 (the implicit law: 0.9999) and at
+/// d = 0.999999 P(1) = 0.25 kPa where the target is 6.3e-5 kPa; exactly at d_eff = 1 it gives
+/// γ = 0, a jump. Hence ([`ExplicitLaw::outside`]) the scenes refuse what is bound to leave the
+/// domain (a damage in (0.5, 1), an activation schedule or a region with d_eff in (0.5, 1) or
+/// below 0) and flag every computed point that leaves it on the way (a stretch outside
+/// [0.7, 1.5], a force–velocity factor that moves d_eff out): the `in_domain` column, an
+/// OUTSIDE line in the summary and the report (`docs/explicit_law.md`). Where it gives γ = 0
+/// exactly as every law does (λ_f ≤ λ_min, d_eff = 1) it holds everywhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExplicitLaw {
     a: f64,
@@ -39,6 +55,25 @@ pub struct ExplicitLaw {
 }
 
 impl ExplicitLaw {
+    /// Where eq. (14) holds: 0.7 ≤ λ_f ≤ 1.5 and 0 ≤ d_eff ≤ 0.5 (see the type's doc).
+    pub const DOMAIN: Domain = Domain {
+        stretch: [0.7, 1.5],
+        effective_damage: [0.0, 0.5],
+        why: "eq. (14) is fitted at d = 0 on 0.7 < λ < 1.5 and the chapter uses it up to \
+              d = 0.5; outside, it keeps γ ≈ 0.19 as the target vanishes: at d = 0.999999, \
+              P(1) = 0.25 kPa where the target is 6.3e-5 kPa",
+    };
+
+    /// Where γ at `lambda` under `drive` leaves [`Self::DOMAIN`], if it does; `None` where the
+    /// law gives γ = 0 exactly (λ ≤ λ_min, no activation), whatever λ and d_eff.
+    pub fn outside(&self, lambda: f64, drive: impl Into<Drive>) -> Option<OutsideDomain> {
+        let drive = drive.into();
+        if lambda <= self.curve.lambda_min() || drive.is_off() {
+            return None;
+        }
+        Self::DOMAIN.outside(lambda, &drive)
+    }
+
     /// a [-] > 0, b [-] > 0, the chapter's energy parameters and the active curve.
     pub fn new(a: f64, b: f64, passive: GiantesioMusesti, curve: ActiveCurve) -> Result<Self> {
         let mut law = Self {
@@ -66,6 +101,11 @@ impl ExplicitLaw {
     /// Fitting parameters (a, b).
     pub fn coefficients(&self) -> (f64, f64) {
         (self.a, self.b)
+    }
+
+    /// The active curve the law reproduces.
+    pub fn curve(&self) -> &ActiveCurve {
+        &self.curve
     }
 
     /// P_pas(λ) of eq. D:Ppas \[kPa\].
@@ -182,5 +222,9 @@ impl ActivationLaw for ExplicitLaw {
 
     fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
         ExplicitLaw::gamma(self, lambda, drive)
+    }
+
+    fn outside(&self, lambda: f64, drive: impl Into<Drive>) -> Option<OutsideDomain> {
+        ExplicitLaw::outside(self, lambda, drive)
     }
 }

@@ -6,19 +6,21 @@
 //! |---|---|---|
 //! | [`ConstantLaw`] | γ fixed | nothing |
 //! | [`ImplicitLaw`] | P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (eq. D:eqgammaesplicita) | a bracketed Newton solve |
-//! | [`ExplicitLaw`] | the chapter's closed form (eq. D:gamma) | a formula |
+//! | [`ExplicitLaw`] | the chapter's closed form (eq. D:gamma), an approximation on its [`Domain`] 0.7 ≤ λ_f ≤ 1.5, d_eff ≤ 0.5 only | a formula |
 //! | [`EnergyLaw`] | Ŵ(λ, γ) = W_pas(λ) + (1 − d) ∫ P_act (truly hyperelastic fit) | a quadrature and a bracketed Newton solve |
 //! | [`TabulatedLaw`] | the implicit or energy law as a checked piecewise Chebyshev table per damage | a table lookup |
 //!
 //! [`Law::represented`] turns a law into its tabulated (or back into its exact) representation.
 
 mod constant;
+mod domain;
 mod energy_fit;
 mod explicit;
 mod implicit;
 mod tabulated;
 
 pub use constant::ConstantLaw;
+pub use domain::{Domain, OutsideDomain};
 pub use energy_fit::{BelowMinimum, EnergyLaw};
 pub use explicit::ExplicitLaw;
 pub use implicit::ImplicitLaw;
@@ -72,6 +74,13 @@ pub trait ActivationLaw {
     fn gamma<T: Scalar>(&self, lambda: T, drive: impl Into<Drive>) -> Result<T> {
         Ok(self.evaluate(lambda.re(), drive)?.lift(lambda))
     }
+
+    /// Where γ at `lambda` under `drive` is outside the domain the law holds on, if it is
+    /// ([`Domain`]): `None` for the laws that solve their equation (they hold wherever they
+    /// have a root) and wherever a law gives γ = 0 exactly (no activation).
+    fn outside(&self, _lambda: f64, _drive: impl Into<Drive>) -> Option<OutsideDomain> {
+        None
+    }
 }
 
 impl LawValue {
@@ -99,6 +108,15 @@ pub enum LawKind {
 impl LawKind {
     /// Every law, in the order of the enum.
     pub const ALL: [LawKind; 3] = [LawKind::Implicit, LawKind::Explicit, LawKind::Energy];
+
+    /// The domain the law holds on, if it has one ([`Domain`]): the explicit law's
+    /// ([`ExplicitLaw::DOMAIN`]); the others solve their equation and hold wherever it has a root.
+    pub fn domain(self) -> Option<Domain> {
+        match self {
+            LawKind::Explicit => Some(ExplicitLaw::DOMAIN),
+            LawKind::Implicit | LawKind::Energy => None,
+        }
+    }
 
     /// Whether the law solves an equation of Ŵ for γ (implicit, energy): those a table can
     /// represent ([`TabulatedLaw`]).
@@ -244,6 +262,13 @@ impl<E: StrainEnergy> ActivationLaw for Law<E> {
         match self {
             Law::Explicit(l) => l.gamma(lambda, drive),
             _ => Ok(self.evaluate(lambda.re(), drive)?.lift(lambda)),
+        }
+    }
+
+    fn outside(&self, lambda: f64, drive: impl Into<Drive>) -> Option<OutsideDomain> {
+        match self {
+            Law::Explicit(l) => l.outside(lambda, drive),
+            _ => None,
         }
     }
 }

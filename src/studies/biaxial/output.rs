@@ -3,17 +3,20 @@
 
 use super::BiaxialResult;
 use crate::app_error::AppError;
-use crate::plot::{Figure, Panel, Series, Stroke};
+use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
 use crate::studies::outputs::{
     each_study, panel_of, prefixed, Context, KindOutput, Of, OwnTable, Used,
 };
 use crate::text::escape_html as escape;
 use std::fmt::Write;
 
+/// The file.
+pub const FILE: &str = "biaxial.csv";
+
 impl KindOutput for BiaxialResult {
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "biaxial.csv",
+            FILE,
             "one row per biaxial study, model and stretch pair",
             self.table(study),
         )]
@@ -39,7 +42,7 @@ impl KindOutput for BiaxialResult {
 /// Planar biaxial stretch: P₁₁ and P₂₂ along the path, per model.
 pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
     let x = if r.path == "pairs" {
-        "state (index of the (λ₁, λ₂) pair) [-]"
+        "(λ₁, λ₂) pair n, as listed in pairs [-]"
     } else {
         "stretch along the fibres λ₁ [-]"
     };
@@ -55,7 +58,7 @@ pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
                     .enumerate()
                     .map(|(n, p)| {
                         let at = if r.path == "pairs" {
-                            n as f64
+                            (n + 1) as f64
                         } else {
                             p.stretches[0]
                         };
@@ -66,7 +69,7 @@ pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
             })
             .collect()
     };
-    let panels: Vec<Panel> = [
+    let mut panels: Vec<Panel> = [
         panel_of(
             "Nominal stress along the fibres P₁₁",
             x,
@@ -82,18 +85,73 @@ pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
     ]
     .into_iter()
     .flatten()
+    .map(|mut p| {
+        if r.path == "pairs" {
+            p.scale = Scale::Counted;
+        }
+        p
+    })
     .collect();
+    let hidden = hidden_curves(&mut panels);
     (!panels.is_empty()).then(|| {
         Figure::new(
             prefixed("biaxial", study),
             format!("Planar biaxial stretch, {} (study \"{study}\")", r.path),
             format!(
-                "Homogeneous planar biaxial stretch F = diag(λ₁, λ₂, λ₃) of the {} energy, λ₁ along the fibres and λ₂ across, the faces normal to e₃ traction free (λ₃ from incompressibility or the volumetric energy). Cauchy stresses and λ₃ in biaxial.csv.",
+                "Homogeneous planar biaxial stretch F = diag(λ₁, λ₂, λ₃) of the {} energy, λ₁ along the fibres and λ₂ across, the faces normal to e₃ traction free (λ₃ from incompressibility or the volumetric energy).{hidden} Cauchy stresses and λ₃ in biaxial.csv.",
                 r.energy
             ),
             panels,
         )
     })
+}
+
+/// The curves a panel of `panels` cannot tell apart (within 0.5 % of the larger, as active
+/// stress's P₂₂ is the passive one's): a grey legend entry on the panel, and the caption's
+/// sentences.
+fn hidden_curves(panels: &mut [Panel]) -> String {
+    let mut words = String::new();
+    for p in panels {
+        // Each hidden curve under the last curve drawn over it, grouped by that curve.
+        let pairs = p.coinciding(0.005);
+        let mut groups: Vec<(usize, Vec<usize>, f64)> = Vec::new();
+        for &(i, _, _) in &pairs {
+            let Some(&(_, top, _)) = pairs.iter().filter(|q| q.0 == i).max_by_key(|q| q.1) else {
+                continue;
+            };
+            let d = pairs
+                .iter()
+                .filter(|q| q.1 == top)
+                .fold(0.0, |m, q| q.2.max(m));
+            match groups.iter_mut().find(|g| g.0 == top) {
+                Some(g) if !g.1.contains(&i) => g.1.push(i),
+                Some(_) => {}
+                None => groups.push((top, vec![i], d)),
+            }
+        }
+        for (top, hidden, d) in groups {
+            let label = |k: usize| p.series[k].label.clone();
+            let under: Vec<String> = hidden.into_iter().map(label).collect();
+            let over = label(top);
+            let _ = write!(
+                words,
+                " In \"{}\", {} under \"{over}\" (largest difference {} kPa).",
+                p.title,
+                match under.len() {
+                    1 => format!("\"{}\" lies", under[0]),
+                    _ => format!("\"{}\" lie", under.join("\", \"")),
+                },
+                crate::text::significant(d, 2)
+            );
+            p.series.push(Series::new(
+                format!("({}: under {over})", under.join("; ")),
+                Vec::new(),
+                Stroke::Solid,
+                GREY,
+            ));
+        }
+    }
+    words
 }
 
 /// Planar biaxial stretch: the boundary conditions, and both stresses at the last state of the

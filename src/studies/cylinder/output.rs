@@ -115,7 +115,8 @@ impl KindOutput for CylinderResult {
             .collect()
     }
 
-    /// The verification of sliding bases: the largest |P_FE − P_0D| per sweep.
+    /// The verification of sliding bases: the largest |P_FE − P_0D| per sweep (with regions, the
+    /// distance from the uniform model's curve, said so).
     fn console(&self, _study: &str) -> Vec<String> {
         if self.bases != Bases::Sliding {
             return Vec::new();
@@ -123,11 +124,15 @@ impl KindOutput for CylinderResult {
         self.sweeps
             .iter()
             .filter_map(|s| {
-                s.worst_against_0d().map(|(worst, _, _)| {
-                    format!(
+                s.worst_against_0d().map(|(worst, _, _)| match self.regions_in_words() {
+                    None => format!(
                         "verification (sliding bases, {}): max |P_FE − P_0D| = {worst:.2e} kPa",
                         s.label
-                    )
+                    ),
+                    Some(r) => format!(
+                        "sliding bases with regions ({r}), {}: max |P_FE − P_0D| = {worst:.2e} kPa against the uniform model's 0D curve, the regions' own damage or activation (not a verification)",
+                        s.label
+                    ),
                 })
             })
             .collect()
@@ -272,8 +277,13 @@ fn fe_vs_0d(studies: &[Of<CylinderResult>]) -> Option<Figure> {
     };
     let regions: Vec<String> = drawn()
         .filter_map(|(study, c)| {
-            c.regions_in_words()
-                .map(|r| format!("\"{study}\" has regions ({r})"))
+            c.regions_in_words().map(|r| {
+                let bases = match c.bases {
+                    Bases::Sliding => "its sliding bases add no end effect",
+                    _ => "its clamped bases add their end effect",
+                };
+                format!("\"{study}\" has regions ({r}); {bases}")
+            })
         })
         .collect();
     let panels = drawn()
@@ -291,8 +301,15 @@ fn fe_vs_0d(studies: &[Of<CylinderResult>]) -> Option<Figure> {
                     derived(format!("d = {}", w.model.damage), points, Stroke::Solid, i)
                 })
                 .collect();
+            let model = c
+                .sweeps
+                .first()
+                .map_or(String::new(), |w| format!(", {}", model_words(&w.model)));
             panel(
-                format!("{study} ({} bases): P_FE − P_0D", bases_name(c.bases)),
+                format!(
+                    "{study} ({} bases{model}): P_FE − P_0D",
+                    bases_name(c.bases)
+                ),
                 "P_FE − P_0D [kPa]",
                 s,
             )
@@ -307,7 +324,7 @@ fn fe_vs_0d(studies: &[Of<CylinderResult>]) -> Option<Figure> {
                 String::new()
             } else {
                 format!(
-                    " {}: its 0D curve is the uniform model's at the sweep's d, so the difference is mostly the regions' own damage or activation, with the end effect of clamped bases on top.",
+                    " {}: the 0D curve of a study with regions is the uniform model's at the sweep's d, so the difference is mostly the regions' own damage or activation, not a verification.",
                     regions.join("; ")
                 )
             }
@@ -362,15 +379,15 @@ fn points_table(h: &mut String, studies: &[Of<CylinderResult>]) {
                 for ((name, at), u) in c.points.iter().zip(u) {
                     let _ = writeln!(
                         h,
-                        "<tr><td>{}</td><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{:.6e}</td><td>{:.6e}</td></tr>",
+                        "<tr><td>{}</td><td>{}</td><td>({}, {})</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                         e(study),
                         e(name),
                         at[0],
                         at[1],
                         e(&sweep.label),
                         p.lambda,
-                        u[0],
-                        u[1]
+                        crate::text::significant(u[0], 7),
+                        crate::text::significant(u[1], 7)
                     );
                 }
             }

@@ -653,6 +653,7 @@ impl FitStudy {
             elapsed: Default::default(),
             details,
             failures,
+            left_domain: Vec::new(),
             result: StudyResult::Fit(outcomes),
         })
     }

@@ -182,7 +182,21 @@ fn damage_panel(study: &str, fits: &[FitOutcome]) -> Option<Panel> {
     }
     let c = fits.first()?.plot.first()?;
     s.push(reference_series(c, Stroke::Dashed, 7));
-    panel_over(fit_heading(study), &c.x_label, &c.y_label, s)
+    let data = fits.iter().filter_map(|f| f.plot.first());
+    let data: Vec<f64> = data.flat_map(|c| c.data.iter().map(|q| q.1)).collect();
+    panel_over(fit_heading(study), &c.x_label, &c.y_label, s).map(|p| with_data(p, &data))
+}
+
+/// `p` with its y axis widened, where it would cut them, to every `data` value: a fit's data
+/// are what it is judged on (a passive fit's largest stresses are its most informative ones),
+/// and only the model's curves may leave the frame.
+fn with_data(mut p: Panel, data: &[f64]) -> Panel {
+    let (y0, y1) = p.frame().y;
+    let outside = data.iter().any(|v| v.is_finite() && (*v < y0 || *v > y1));
+    if outside {
+        p.y_range = whole_range(data.iter().copied().chain([y0, y1]));
+    }
+    p
 }
 
 /// The panel of one stress of one data set.
@@ -214,7 +228,8 @@ fn case_panel(study: &str, f: &FitOutcome, c: &FitCurves) -> Option<Panel> {
         if c.at_rows {
             p.y_range = whole_range(c.data.iter().chain(&c.fitted).map(|q| q.1));
         }
-        p
+        let data: Vec<f64> = c.data.iter().map(|q| q.1).collect();
+        with_data(p, &data)
     })
 }
 

@@ -4,17 +4,21 @@
 use super::{HistoryPoint, HistoryResult};
 use crate::models::ModelChoice;
 use crate::plot::{Figure, Panel, Series, Stroke, GREY};
+use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::outputs::{
     derived, each_study, figure, model_cells, model_words, prefixed, Context, KindOutput, Of,
     OwnTable, Used, GAMMA, LAMBDA, STRESS,
 };
 use crate::studies::table::{every_row, Table};
 
+/// The file.
+pub const FILE: &str = "history.csv";
+
 impl KindOutput for HistoryResult {
     /// Its rows of `history.csv`.
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "history.csv",
+            FILE,
             "one row per activation-in-time model and time step",
             self.table(study),
         )]
@@ -32,7 +36,8 @@ impl KindOutput for HistoryResult {
 impl HistoryResult {
     /// The table of `history.csv` for study `study`: t [s], the schedule a_s and the activation
     /// level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-], P_pas and the
-    /// target (1 − d)·a·P_act(λ) \[kPa\], per model and time step.
+    /// target (1 − d)·a·f_v·P_act(λ) \[kPa\], λ̇ [1/s] and f_v [-] (with force–velocity), and
+    /// whether the law holds there, per model and time step.
     pub fn table(&self, study: &str) -> Table {
         let rows: Vec<(&super::History, &HistoryPoint)> = self
             .histories
@@ -62,6 +67,9 @@ impl HistoryResult {
             .number("P_pas", "kPa", "passive stress at λ", at(|p| p.passive))
             .number("P_act", "kPa", "target active stress (1 − d)·a·f_v·P_act(λ), f_v the force–velocity factor at the step's stretch rate (1 without [activation.force_velocity])", at(|p| p.active_target))
             .text("approach", "activation approach, active-strain, active-stress or structural", cell(0))
+            .number("lambda_rate", "1/s", "fibre stretch rate λ̇ = (λ − λ_prev)/Δt of the step, backward Euler, 0 at the first step (empty without [activation.force_velocity])", rows.iter().map(|(_, p)| p.rate))
+            .number("f_v", "-", "force–velocity factor f_v(λ̇) of the step (empty without [activation.force_velocity]: f_v = 1)", rows.iter().map(|(_, p)| p.velocity_factor))
+            .boolean("in_domain", IN_DOMAIN, rows.iter().map(|(h, p)| in_domain(Some(&h.model), p.outside)))
     }
 }
 
@@ -86,13 +94,24 @@ fn caption(r: &HistoryResult, m: &ModelChoice, free: bool) -> String {
             v.formula()
         ),
     };
+    // With force–velocity every point has its factor (`HistoryPoint::velocity_factor`).
+    let velocity = r
+        .histories
+        .iter()
+        .flat_map(|h| &h.points)
+        .any(|p| p.velocity_factor.is_some());
     format!(
-        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by (1 − d)·a(t). {} Values per step in history.csv.",
+        "{block} along the fibres, quasi-static in time: {}, {} the active stress scaled by {}. {} Values per step in history.csv.",
         model_words(m),
         if m.activation_law().is_some() {
             "the laws evaluated at each step with"
         } else {
             "no law:"
+        },
+        if velocity {
+            "(1 − d)·a(t)·f_v(λ̇), f_v the force–velocity factor at the step's fibre stretch rate λ̇ (backward Euler, 0 at the first step; columns lambda_rate and f_v)"
+        } else {
+            "(1 − d)·a(t)"
         },
         if free {
             "Zero axial load: the stretch solves P(λ) = 0 at each step."

@@ -4,7 +4,7 @@
 use super::{ShearCurve, ShearResult};
 use crate::active::Approach;
 use crate::app_error::AppError;
-use crate::plot::{Figure, Panel, Series, Stroke};
+use crate::plot::{Figure, Panel, Series, Stroke, GREY};
 use crate::studies::outputs::{
     each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
 };
@@ -14,10 +14,13 @@ use std::fmt::Write;
 const SHEAR: &str = "amount of shear k [-]";
 const CAUCHY: &str = "Cauchy stress [kPa]";
 
+/// The file.
+pub const FILE: &str = "shear.csv";
+
 impl KindOutput for ShearResult {
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "shear.csv",
+            FILE,
             "one row per shear study, approach and amount of shear",
             self.table(study),
         )]
@@ -79,9 +82,14 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             .collect()
     };
     let difference = differences(r, &style);
-    let hidden = coinciding(r);
+    let (hidden, keys) = coinciding(r);
+    // The legend says which curve hides which (panel_of drops series without points).
+    let shear = panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])).map(|mut p| {
+        p.series.extend(keys);
+        p
+    });
     let panels: Vec<Panel> = [
-        panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
+        shear,
         panel_of(
             "σ₁₂ of each activated approach minus that of active stress (same d, same θ)",
             SHEAR,
@@ -161,16 +169,49 @@ fn differences(r: &ShearResult, style: &dyn Fn(&ShearCurve) -> (Stroke, usize)) 
     difference
 }
 
-/// A caption sentence for the activated curves that σ₁₂ cannot tell apart at the figure's scale
-/// (largest |Δσ₁₂| within 2 % of the larger curve's largest |σ₁₂|, same d and θ), since the
-/// curve drawn later hides the other; empty if there are none.
-fn coinciding(r: &ShearResult) -> String {
+/// The activated curves σ₁₂ cannot tell apart at the figure's scale (largest |Δσ₁₂| within 2 %
+/// of the larger curve's largest |σ₁₂|, same d and θ), the curve drawn later hiding the other:
+/// (hidden, on top, largest |Δσ₁₂|, relative, the angles).
+type Coinciding = (String, String, f64, f64, Vec<f64>);
+
+/// A caption sentence per pair of [`coinciding_pairs`] (empty if there are none), and a grey
+/// legend entry each, so that the figure itself says it.
+fn coinciding(r: &ShearResult) -> (String, Vec<Series>) {
+    let pairs = coinciding_pairs(r);
+    let keys = pairs
+        .iter()
+        .map(|(a, b, _, _, angles)| {
+            let at: Vec<String> = angles.iter().map(|a| format!("{a}°")).collect();
+            Series::new(
+                format!("({a}: under {b} at θ = {})", at.join(", ")),
+                Vec::new(),
+                Stroke::Solid,
+                GREY,
+            )
+        })
+        .collect();
+    let words = pairs
+        .iter()
+        .map(|(a, b, diff, rel, angles)| {
+            format!(
+                " In σ₁₂, \"{a}\" and \"{b}\" coincide to within {} kPa ({} % of the larger curve) at θ = {}, so the curve drawn later hides the other.",
+                crate::text::significant(*diff, 2),
+                crate::text::significant(rel * 100.0, 2),
+                angles.iter().map(|a| format!("{a}°")).collect::<Vec<_>>().join(", ")
+            )
+        })
+        .collect();
+    (words, keys)
+}
+
+/// The pairs of activated curves σ₁₂ cannot tell apart ([`Coinciding`]).
+fn coinciding_pairs(r: &ShearResult) -> Vec<Coinciding> {
     let active: Vec<&ShearCurve> = r
         .curves
         .iter()
         .filter(|c| c.model.model.is_some())
         .collect();
-    let mut pairs: Vec<(String, String, f64, f64, Vec<f64>)> = Vec::new();
+    let mut pairs: Vec<Coinciding> = Vec::new();
     for (i, a) in active.iter().enumerate() {
         for b in &active[i + 1..] {
             let damage = |c: &ShearCurve| c.model.model.map(|m| m.damage);
@@ -198,16 +239,6 @@ fn coinciding(r: &ShearResult) -> String {
         }
     }
     pairs
-        .iter()
-        .map(|(a, b, diff, rel, angles)| {
-            format!(
-                " In σ₁₂, \"{a}\" and \"{b}\" coincide to within {} kPa ({} % of the larger curve) at θ = {}, so the curve drawn later hides the other.",
-                crate::text::significant(*diff, 2),
-                crate::text::significant(rel * 100.0, 2),
-                angles.iter().map(|a| format!("{a}°")).collect::<Vec<_>>().join(", ")
-            )
-        })
-        .collect()
 }
 
 /// What differs in simple shear and why: σ₁₂ at the largest amount of shear per model and fibre

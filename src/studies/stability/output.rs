@@ -4,6 +4,7 @@
 use super::StabilityCurve;
 use crate::app_error::{finite, AppError};
 use crate::plot::{Figure, Stroke};
+use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::outputs::{
     coupling_stroke, derived, each_study, figure, law_colour, model_cells, panel, prefixed,
     sorted_unique, Context, KindOutput, Of, OwnTable, Used, STRESS,
@@ -16,7 +17,7 @@ impl KindOutput for Vec<StabilityCurve> {
     /// Its rows of `stability.csv`.
     fn tables(&self, study: &str) -> Vec<OwnTable> {
         vec![OwnTable::rows(
-            "stability.csv",
+            FILE,
             "one row per model and stretch",
             stability_table_of(study, self),
         )]
@@ -38,6 +39,9 @@ impl KindOutput for Vec<StabilityCurve> {
         stability_table(h, studies)
     }
 }
+
+/// The file.
+pub const FILE: &str = "stability.csv";
 
 /// The table of `stability.csv` for the curves of `study`: one row per model and stretch.
 pub fn stability_table_of(study: &str, curves: &[StabilityCurve]) -> Table {
@@ -64,6 +68,7 @@ pub fn stability_table_of(study: &str, curves: &[StabilityCurve]) -> Table {
         .boolean("softening", "whether dP/dλ < 0", rows.iter().map(|(_, p)| Some(p.slope < 0.0)))
         .number("cauchy", "kPa", "Cauchy stress along the stretch", at(|p| p.cauchy))
         .text("approach", "activation approach, active-strain, active-stress or structural (empty: the passive material)", cell(0))
+        .boolean("in_domain", IN_DOMAIN, rows.iter().map(|(c, p)| in_domain(c.model.as_ref(), p.outside)))
 }
 
 /// The figure of a stability study, a panel per damage value: the stress along the fibres of

@@ -97,6 +97,11 @@ pub fn fe_run<M: AxisymmetricMaterial + ?Sized>(
                 gamma_centre[i] = r.gamma_centre;
             }
         }
+        // The results hold the converged stretches only: a sweep that stopped ran the failed
+        // step's iterations too (25 and 50 of them, say), which the solver counted.
+        if !sweep.failures.is_empty() {
+            iterations = iterations.max(t.newton_iterations);
+        }
         Ok(FeRun {
             time: Timing::once(0.0),
             stress,
@@ -292,6 +297,33 @@ fn largest_error(stretches: &[f64], (p, g): Curves2, (p_ref, g_ref): Curves2) ->
     )
 }
 
+/// `, 16 of them outside its domain …` when some of a law's stretches are (`outside`, per
+/// stretch), else nothing.
+fn outside_words(outside: &[bool]) -> String {
+    match outside.iter().filter(|o| **o).count() {
+        0 => String::new(),
+        n => format!(
+            ", {n} of them outside its domain {}",
+            crate::active::ExplicitLaw::DOMAIN.describe()
+        ),
+    }
+}
+
+/// `, inside its domain 13.37 kPa`: the largest |P − P_ref| over the stretches not `outside`
+/// its law's domain, when some are.
+fn inside_error(p_ref: &[f64], p: &[f64], outside: &[bool]) -> String {
+    if !outside.contains(&true) {
+        return String::new();
+    }
+    let inside = p_ref
+        .iter()
+        .zip(p)
+        .zip(outside)
+        .filter(|(_, o)| !**o)
+        .fold(0.0f64, |m, ((a, b), _)| m.max((a - b).abs()));
+    format!(", inside its domain {inside:.2} kPa")
+}
+
 /// P(λ) and γ(λ) of a 0D sweep, borrowed.
 type Curves2<'a> = (&'a [f64], &'a [f64]);
 
@@ -353,7 +385,14 @@ pub(super) fn activation_law(
             findings.push(format!("explicit law (0D) not measured: {why}."));
             continue;
         }
-        let (t, (p, g)) = match muscle(models, o.approach, law, coupling).and_then(|m| curve(&m)) {
+        let measured = muscle(models, o.approach, law, coupling).and_then(|m| {
+            let outside: Vec<bool> = stretches
+                .iter()
+                .map(|&l| m.outside_domain(l).is_some())
+                .collect();
+            Ok((curve(&m)?, outside))
+        });
+        let ((t, (p, g)), outside) = match measured {
             Ok(c) => c,
             Err(e) => {
                 findings.push(format!("{} law (0D): failed: {e}.", law.name()));
@@ -368,11 +407,13 @@ pub(super) fn activation_law(
         if law == LawKind::Explicit {
             r.note = largest_error(stretches, (&p, &g), (&p_ref, &g_ref));
             findings.push(format!(
-                "Explicit law (0D, {} stretches): {}; stress error max {:.2} kPa ({:.1} % rel.), γ error max {:.2e}.",
+                "Explicit law (0D, {} stretches{}): {}; stress error max {:.2} kPa ({:.1} % rel.){}, γ error max {:.2e}.",
                 stretches.len(),
+                outside_words(&outside),
                 t.against(&t_ref, "the implicit law"),
                 e.max_abs,
                 100.0 * e.max_rel,
+                inside_error(&p_ref, &p, &outside),
                 ge
             ));
         }
@@ -997,7 +1038,7 @@ pub(super) fn incompressibility(
     let m = muscle(models, o.approach, o.working_law(), EXACT)?;
     let s0 = crate::uniaxial::reference_stress(&models.energy)?;
     let quadratic = |kappa: f64| Volumetric::new(VolumetricForm::Quadratic { kappa }, s0);
-    incompressibility_0d(&m, &quadratic, o, run, findings)?;
+    incompressibility_0d(models, &m, &quadratic, o, run, findings)?;
     const OPTION_FE: &str = "incompressibility (clamped)";
     let reference = o.clamped(&m, &tight())?;
     run.push(fe_row(
@@ -1028,17 +1069,33 @@ pub(super) fn incompressibility(
         run.push(row);
     }
     findings.push(format!(
-        "Incompressibility (clamped cylinder, {} × {} cells): {}.",
+        "Incompressibility (clamped cylinder, {} × {} cells{}): {}.",
         o.fe_mesh.0,
         o.fe_mesh.1,
+        not_the_scenes(models),
         words.join("; ")
     ));
     Ok(())
 }
 
+/// `, the quadratic U at growing κ, not the scene's 4c-giantesio U = …` where the scene's
+/// volumetric energy is not the quadratic form the incompressibility group measures; else
+/// nothing.
+fn not_the_scenes(models: &Models) -> String {
+    match &models.volumetric {
+        Some(v) if v.form().name() != "quadratic" => format!(
+            ", the quadratic U = (κ/2)(J − 1)² at growing κ, not the scene's {} U = {}",
+            v.form().name(),
+            v.formula()
+        ),
+        _ => String::new(),
+    }
+}
+
 /// The 0D part of [`incompressibility`]: muscle `m` along the fibres, exact against the
 /// `quadratic` volumetric energy of growing κ.
 fn incompressibility_0d(
+    models: &Models,
     m: &Muscle<Energy>,
     quadratic: &dyn Fn(f64) -> crate::Result<Volumetric>,
     o: &Resolved,
@@ -1093,8 +1150,9 @@ fn incompressibility_0d(
         run.push(r);
     }
     findings.push(format!(
-        "Incompressibility (0D, max |P_κ − P_exact| over {} stretches): {}.",
+        "Incompressibility (0D, max |P_κ − P_exact| over {} stretches{}): {}.",
         stretches.len(),
+        not_the_scenes(models),
         words.join("; ")
     ));
     Ok(())

@@ -756,6 +756,7 @@ impl TradeoffStudy {
             elapsed: Default::default(),
             details,
             failures,
+            left_domain: Vec::new(),
             result: StudyResult::Tradeoff(results),
         })
     }

@@ -440,7 +440,8 @@ fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
             if d == 0.0 { chapter(8, &c.energy, u.chapter_material) } else { String::new() }
         ),
         format!(
-            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas{}.",
+            "Top: γ solving P_tot(λ, γ) = P_pas(λ) + (1 − d) P_act(λ) (the implicit law), d = {d}{}, energy {}. Bottom: the resulting total stress P_tot (frozen coupling) with its parts (1 − d) P_act and P_pas{}.",
+            other_damages(u, d),
             run.material,
             match target_gap(c) {
                 Some(g) if g.2 > 1e-8 => format!(
@@ -462,6 +463,23 @@ fn gamma_and_stresses(run: &Run, u: &Uniaxial) -> Option<Figure> {
                 ],
             ),
         ],
+    )
+}
+
+/// `, drawn at the study's first damage only (…)` when the study has others; else nothing.
+fn other_damages(u: &Uniaxial, d: f64) -> String {
+    let others: Vec<String> = u
+        .damages()
+        .into_iter()
+        .filter(|&x| x != d)
+        .map(|x| x.to_string())
+        .collect();
+    if others.is_empty() {
+        return String::new();
+    }
+    format!(
+        " (the study's first damage; its other damages, d = {}, are in curves.csv and in the loss-of-activation figure)",
+        others.join(", ")
     )
 }
 
@@ -614,9 +632,10 @@ fn laws(run: &Run, u: &Uniaxial) -> Option<Figure> {
             u.study
         ),
         format!(
-            "Uniaxial tension {} the fibres, energy {}, d = {d}. {}",
+            "Uniaxial tension {} the fibres, energy {}, d = {d}{}. {}",
             u.dir(),
             run.material,
+            other_damages(u, d),
             laws_caption(u, &pairs, d)
         ),
         vec![
@@ -686,7 +705,7 @@ fn laws_caption(u: &Uniaxial, pairs: &[(LawKind, CouplingKind)], d: f64) -> Stri
         ));
     }
     if has_law(LawKind::Explicit) {
-        words.push("The explicit law is the chapter's closed-form approximation of the implicit one (eq. (14)).".into());
+        words.push("The explicit law is the chapter's closed-form approximation of the implicit one (eq. (14)), on its domain 0.7 ≤ λ_f ≤ 1.5, d_eff ≤ 0.5 only: outside it, in_domain = false in curves.csv.".into());
     }
     if has_law(LawKind::Energy) {
         words.push(format!(
