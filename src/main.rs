@@ -130,6 +130,10 @@ enum Command {
         /// Scene file (TOML).
         scene: PathBuf,
     },
+    /// Print the scene reference: every key a scene file takes, its type and what it is, and
+    /// the shipped energies, curves, approaches and study kinds (Markdown, as
+    /// docs/scene-reference.md).
+    Keys,
 }
 
 fn load(scene: Option<&Path>) -> Result<Scene, AppError> {
@@ -664,6 +668,10 @@ fn main() -> ExitCode {
             max_seconds,
         }) => run_command(scene.as_deref(), out, *quiet, *force, *max_seconds),
         Some(Command::Check { scene }) => check(scene),
+        Some(Command::Keys) => {
+            say!("{}", activemuscle::scene::reference::markdown().trim_end());
+            Ok(Ended::Complete)
+        }
         Some(Command::Tangent {
             scene,
             out,

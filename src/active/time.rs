@@ -1,15 +1,15 @@
 //! Activation in time: the activation level a(t) ∈ [0, 1], the fraction of the optimal active
 //! stress recruited at time t, which scales the active curve like the damage does (the laws see
-//! (1 − d)·a·P_act, see [`crate::active::effective_damage`]).
+//! (1 − d)·a·P_act, see [`crate::active::Drive::effective_damage`]).
 //!
-//! - A [`Schedule`] a_s(t): (t [s], value) points, piecewise constant (the value of the last point
+//! - A [`Schedule`] a_s(t): (t \[s\], value) points, piecewise constant (the value of the last point
 //!   at or before t) or piecewise linear; before the first point and after the last the end
 //!   values hold.
 //! - Optionally [`MotorUnits`]: the twitch superposition of Ehret, Böl & Itskov (2011) as 4C
 //!   computes it (`Mat::Utils::Muscle::evaluate_time_dependent_active_stress_ehret`,
 //!   `src/mat/4C_mat_muscle_utils.cpp`; used by `MAT_Muscle_Giantesio` and
 //!   `MAT_Muscle_Weickenmeier`). Per motor-unit type i a fraction ρ_i, a twitch force F_i [-], a
-//!   twitch contraction time T_i [s] and an interstimulus interval I_i [s]; each schedule
+//!   twitch contraction time T_i \[s\] and an interstimulus interval I_i \[s\]; each schedule
 //!   interval [t_k, t_{k+1}) starts a train of stimuli t_kj = t_k + j I_i (t_kj < min(t, t_{k+1});
 //!   the last interval is open), each weighted by the schedule there, and
 //!
@@ -46,7 +46,7 @@ impl Interpolation {
     }
 }
 
-/// A schedule a_s(t) ∈ [0, 1] from (t [s], value) points with strictly increasing times.
+/// A schedule a_s(t) ∈ [0, 1] from (t \[s\], value) points with strictly increasing times.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Schedule {
     points: Vec<(f64, f64)>,
@@ -66,7 +66,7 @@ pub struct ScheduleError {
 }
 
 impl Schedule {
-    /// Points (t [s], value): at least one, finite times strictly increasing, every value
+    /// Points (t \[s\], value): at least one, finite times strictly increasing, every value
     /// accepted by `admissible`, whose rule `rule` the error states.
     pub fn checked(
         points: Vec<(f64, f64)>,

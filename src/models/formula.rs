@@ -37,10 +37,18 @@ pub struct DeclaredSpec {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub symbol: Option<String>,
     /// Open admissible interval [lower, upper] (default [-inf, inf]).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::fixed_length::exact"
+    )]
     pub range: Option<[f64; 2]>,
     /// Default fit bounds (default: the range).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "crate::fixed_length::exact"
+    )]
     pub bounds: Option<[f64; 2]>,
 }
 

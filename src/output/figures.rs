@@ -2,7 +2,7 @@
 //! drawn in some figure with a legend entry (the series carry its
 //! [`CurveId`](crate::plot::CurveId)), headings and captions name the scene's energy, laws,
 //! couplings and damages, axes follow the data (clipped where a curve blows up, and the caption
-//! says so: [`Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
+//! says so: [`crate::plot::Panel::frame`]). Where a figure shows what one of the chapter's figures shows, its
 //! heading says which.
 //!
 //! | figure | drawn when | shows |

@@ -14,6 +14,7 @@
 
 mod keypath;
 mod parse;
+pub mod reference;
 mod resolve;
 mod run;
 

@@ -57,7 +57,7 @@ pub enum FreeWord {
     Free,
 }
 
-/// The loading: `stretch = 1.1` (constant), `stretch = [[0, 1.0], [1, 1.2]]` ((t [s], λ)
+/// The loading: `stretch = 1.1` (constant), `stretch = [[0, 1.0], [1, 1.2]]` ((t \[s\], λ)
 /// points, linear between them) or `stretch = "free"` (zero axial load).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(untagged)]

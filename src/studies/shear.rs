@@ -61,7 +61,7 @@ pub struct ShearStudy {
     pub name: String,
     /// Amounts of shear, ascending.
     pub shear: Vec<f64>,
-    /// Fibre angles [degrees].
+    /// Fibre angles \[degrees\].
     pub angles: Vec<f64>,
     /// The models, passive first if asked.
     pub models: Vec<ApproachModel>,
@@ -169,7 +169,7 @@ pub struct ShearPoint {
 pub struct ShearCurve {
     /// The model.
     pub model: ApproachModel,
-    /// Fibre angle θ [degrees].
+    /// Fibre angle θ \[degrees\].
     pub angle: f64,
     /// The amounts of shear that could be computed.
     pub points: Vec<ShearPoint>,

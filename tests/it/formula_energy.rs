@@ -338,6 +338,17 @@ fn bad_formulas_are_refused_at_their_key_and_line() {
         ("material.parameters.mu.value", Some(5))
     );
     assert!(rule.contains("must lie in the range (0, inf)"), "{rule}");
+    // A range or fit bounds of three values: refused at their own key, not cut to two.
+    for key in ["range", "bounds"] {
+        let (at, _, rule) = refused(&format!(
+            "energy = \"formula\"\nW = \"mu/2*(I1 - 3)\"\n[material.parameters]\nmu = {{ value = 1, {key} = [0, 5, 10] }}"
+        ));
+        assert!(
+            at.ends_with(&format!("mu.{key}")) || at.ends_with("mu"),
+            "{at}: {rule}"
+        );
+        assert!(rule.contains("exactly 2"), "{rule}");
+    }
     let (key, _, rule) = refused(&format!(
         "energy = \"formula\"\nW = \"mu/2*(I1 - 3)\"\n{mu}\nk = 2.0"
     ));

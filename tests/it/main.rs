@@ -31,6 +31,7 @@ mod cylinder_muscle;
 mod cylinder_points;
 mod cylinder_regions;
 mod datapackage;
+mod docs;
 mod energy_battery;
 mod explicit_law_domain;
 mod extremes;

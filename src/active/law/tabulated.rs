@@ -310,9 +310,9 @@ pub struct TableReport {
     pub damage: f64,
     /// Polynomial pieces.
     pub pieces: usize,
-    /// Memory of the table's pieces and breakpoints [bytes].
+    /// Memory of the table's pieces and breakpoints \[bytes\].
     pub bytes: usize,
-    /// Wall time of the build, checks included [s].
+    /// Wall time of the build, checks included \[s\].
     pub build_seconds: f64,
     /// Exact solves (with derivatives) at piece ends.
     pub solves: usize,
@@ -516,9 +516,9 @@ pub struct TableComparison {
     pub frozen_stress_error: f64,
     /// Largest error of the consistent model's fibre stress \[kPa\].
     pub consistent_stress_error: f64,
-    /// Time per evaluation (γ, γ′, γ″) of the exact law [s].
+    /// Time per evaluation (γ, γ′, γ″) of the exact law \[s\].
     pub exact_seconds: f64,
-    /// Time per evaluation of the table [s].
+    /// Time per evaluation of the table \[s\].
     pub table_seconds: f64,
 }
 

@@ -34,7 +34,7 @@ impl KindOutput for HistoryResult {
 }
 
 impl HistoryResult {
-    /// The table of `history.csv` for study `study`: t [s], the schedule a_s and the activation
+    /// The table of `history.csv` for study `study`: t \[s\], the schedule a_s and the activation
     /// level a [-], λ, γ [-], P, the Cauchy stress σ₁₁, the volume ratio J [-], P_pas and the
     /// target (1 − d)·a·f_v·P_act(λ) \[kPa\], λ̇ [1/s] and f_v [-] (with force–velocity), and
     /// whether the law holds there, per model and time step.
