@@ -4,7 +4,8 @@
 //! and both sides of a ratio are taken at the same moments).
 //!
 //! `cargo bench --bench pairs` prints `A ns, B ns, B/A` per pair; `ROUNDS=400 cargo bench --bench
-//! pairs` for more rounds. Same inputs as `benches/constitutive.rs` (see BENCHMARKS.md).
+//! pairs` for more rounds. Same inputs as `benches/constitutive.rs` (see BENCHMARKS.md). The last
+//! pairs are the chapter's and EBI's energies compiled against the same written as formulas.
 
 mod closed_form;
 mod point;
@@ -192,6 +193,48 @@ fn main() {
             pair(r, &mut || respond(&explicit), &mut || respond(&mu)),
         );
     }
+    formula_pairs(rounds);
     let load = std::fs::read_to_string("/proc/loadavg").unwrap_or_default();
     println!("load average after: {}", load.trim());
+}
+
+/// Convenience against speed (issue 44): each of the chapter's and EBI's energies compiled and
+/// written as a formula (`Energy::as_formula`), both behind the engine's `Energy` enum: the
+/// active-strain response alone, and `Muscle::respond` with the explicit law (frozen).
+fn formula_pairs(rounds: usize) {
+    use activemuscle::energy::{EhretBolItskov, Energy};
+    let (m, f5) = (axial_fibre(), axi_entries());
+    for compiled in [
+        Energy::GiantesioMusesti(GiantesioMusesti::paper()),
+        Energy::EhretBolItskov(EhretBolItskov::paper()),
+    ] {
+        let written = Energy::Formula(compiled.as_formula().unwrap());
+        let response = |e: &Energy| {
+            let kin = Kinematics::new(&axisymmetric_f(black_box(&f5)), &m).unwrap();
+            let r = active_response(e, &kin, black_box(GAMMA), Order::Tangent, &AXISYMMETRIC);
+            black_box(r.unwrap());
+        };
+        let name = activemuscle::StrainEnergy::name(&compiled).to_string();
+        let (a, b) = pair(rounds, || response(&compiled), || response(&written));
+        println!("P + dP/dF + dP/dgamma, axisym, {name}: compiled, formula: {a:.1} ns, {b:.1} ns, ratio {:.3}", b / a);
+        let frozen = Coupling::Frozen(FrozenTangent::Exact);
+        let respond = |mu: &Muscle<Energy>| {
+            let kin = Kinematics::new(&axisymmetric_f(black_box(&f5)), &m).unwrap();
+            black_box(mu.respond(&kin, Order::Tangent, &AXISYMMETRIC).unwrap());
+        };
+        let explicit = |e: &Energy| {
+            let law = Law::Explicit(ExplicitLaw::paper());
+            Muscle::new(e.clone(), law, 0.0, frozen).unwrap()
+        };
+        let (mc, mf) = (explicit(&compiled), explicit(&written));
+        let (a, b) = pair(rounds, || respond(&mc), || respond(&mf));
+        println!("Muscle::respond tangent, axisym, explicit law (frozen), {name}: compiled, formula: {a:.1} ns, {b:.1} ns, ratio {:.3}", b / a);
+        let implicit = |e: &Energy| {
+            let law = Law::Implicit(ImplicitLaw::new(e.clone(), ActiveCurve::paper()));
+            Muscle::new(e.clone(), law, 0.0, frozen).unwrap()
+        };
+        let (mc, mf) = (implicit(&compiled), implicit(&written));
+        let (a, b) = pair(rounds / 10 + 1, || respond(&mc), || respond(&mf));
+        println!("Muscle::respond tangent, axisym, implicit law exact (frozen), {name}: compiled, formula: {a:.1} ns, {b:.1} ns, ratio {:.3}", b / a);
+    }
 }

@@ -59,6 +59,10 @@ pub enum Error {
         /// The map asked for.
         map: &'static str,
     },
+    /// A formula energy that cannot be used with these parameter values (one outside its range,
+    /// or the formula fails its checks at F = I with them).
+    #[error("formula energy: {0}")]
+    Formula(crate::energy::FormulaError),
     /// A combination of model choices that is not defined, and why.
     #[error("{reason}")]
     Unsupported {

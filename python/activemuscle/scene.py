@@ -35,7 +35,9 @@ class Study:
     values: one numpy array per column (float64 numbers, int64 counts, bool flags, object arrays
     of names), values that do not apply to a row masked (``numpy.ma``, missing in pandas); every
     column's unit and meaning is in the run's ``datapackage.json``. ``named_points`` (cylinder
-    studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise. A tangent
+    studies with ``[study.points]``): the rows of ``points_<study>.csv``, likewise; ``fit_points``
+    (fit studies): the rows of ``fit_points.csv`` (each datum with the fitted model and the
+    residual, then the fitted curve). A tangent
     study's ``table`` is tangent_summary.csv; ``remainders``, ``fe_remainders`` and ``newton``
     are tangent.csv, tangent_fe.csv and tangent_newton.csv (the last two with its ``fe`` level).
     ``failures``: columns ``model`` and ``message``. ``outside_domain``: the models evaluated
@@ -56,6 +58,7 @@ class Study:
     vtk: List[Path] = field(default_factory=list)
     findings: List[str] = field(default_factory=list)
     named_points: Dict[str, Any] = field(default_factory=dict)
+    fit_points: Dict[str, Any] = field(default_factory=dict)
     remainders: Dict[str, Any] = field(default_factory=dict)
     fe_remainders: Dict[str, Any] = field(default_factory=dict)
     newton: Dict[str, Any] = field(default_factory=dict)

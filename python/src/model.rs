@@ -12,7 +12,9 @@
 use activemuscle::active::{ConstantLaw, CurveEntry, Law, CURVES};
 use activemuscle::app_error::SpecError;
 use activemuscle::energy::{Energy, ShippedEnergy, SHIPPED};
-use activemuscle::models::{ActivationSpec, LawKind, MaterialSpec, ModelChoice, Models};
+use activemuscle::models::{
+    ActivationSpec, DeclaredSpec, LawKind, MaterialSpec, ModelChoice, Models,
+};
 use activemuscle::Muscle;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -169,8 +171,17 @@ pub struct Choices {
 }
 
 /// The keywords Python reads itself (the others are the `[activation]` keys,
-/// [`ActivationSpec::KEYS`], and the energies' and curves' parameters).
-const OWN: &[&str] = &["energy", "law", "gamma", "damage"];
+/// [`ActivationSpec::KEYS`], and the energies' and curves' parameters); `W`, `name` and
+/// `parameters` are a formula energy's.
+const OWN: &[&str] = &[
+    "energy",
+    "W",
+    "name",
+    "parameters",
+    "law",
+    "gamma",
+    "damage",
+];
 
 fn keyword_error(key: &str, rule: impl Into<String>) -> PyErr {
     PyValueError::new_err(SpecError::new(key, "(given)", rule.into()).to_string())
@@ -209,44 +220,52 @@ impl Choices {
         let err = |e: SpecError| PyValueError::new_err(e.to_string());
         match key {
             "energy" => self.material.energy.energy = value.extract()?,
+            "W" => self.material.energy.formula.formula = Some(value.extract()?),
+            "name" => self.material.energy.formula.name = Some(value.extract()?),
+            "parameters" => self.material.energy.formula.parameters = declared(value)?,
             "law" => self.law = Some(value.extract()?),
             "gamma" => self.gamma = Some(value.extract()?),
             "damage" => self.damage = value.extract()?,
             _ if ActivationSpec::KEYS.contains(&key) => {
                 self.activation.set(key, toml_value(value)?).map_err(err)?
             }
-            _ => {
-                let known = SHIPPED
-                    .iter()
-                    .flat_map(|e| e.parameters.iter())
-                    .chain(CURVES.iter().flat_map(|c| c.parameters.iter()))
-                    .any(|p| p.name == key);
-                if !known {
-                    let mut names: Vec<&str> = SHIPPED
-                        .iter()
-                        .flat_map(|e| e.parameters.iter().map(|p| p.name))
-                        .chain(
-                            CURVES
-                                .iter()
-                                .flat_map(|c| c.parameters.iter().map(|p| p.name)),
-                        )
-                        .collect();
-                    names.sort_unstable();
-                    names.dedup();
-                    let mut options: Vec<&str> = OWN.to_vec();
-                    options.extend(ActivationSpec::KEYS.iter().filter(|k| !OWN.contains(k)));
-                    return Err(keyword_error(
-                        key,
-                        format!(
-                            "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
-                            options.join(", "),
-                            names.join(", ")
-                        ),
-                    ));
-                }
-                self.parameters.push((key.to_string(), value.extract()?));
-            }
+            _ => self.parameter(key, value)?,
         }
+        Ok(())
+    }
+
+    /// A numeric keyword that is no option: a parameter of an energy or a curve, sorted out in
+    /// [`Self::muscle`]; any other name is refused with the list of keywords.
+    fn parameter(&mut self, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+        let known = SHIPPED
+            .iter()
+            .flat_map(|e| e.parameters.iter())
+            .chain(CURVES.iter().flat_map(|c| c.parameters.iter()))
+            .any(|p| p.name == key);
+        if !known {
+            let mut names: Vec<&str> = SHIPPED
+                .iter()
+                .flat_map(|e| e.parameters.iter().map(|p| p.name.as_ref()))
+                .chain(
+                    CURVES
+                        .iter()
+                        .flat_map(|c| c.parameters.iter().map(|p| p.name.as_ref())),
+                )
+                .collect();
+            names.sort_unstable();
+            names.dedup();
+            let mut options: Vec<&str> = OWN.to_vec();
+            options.extend(ActivationSpec::KEYS.iter().filter(|k| !OWN.contains(k)));
+            return Err(keyword_error(
+                key,
+                format!(
+                    "unknown keyword: the keywords are {} and the energies' and curves' parameters ({})",
+                    options.join(", "),
+                    names.join(", ")
+                ),
+            ));
+        }
+        self.parameters.push((key.to_string(), value.extract()?));
         Ok(())
     }
 
@@ -277,4 +296,61 @@ impl Choices {
             self.damage,
         )
     }
+}
+
+/// `parameters = {"mu": 0.2, "k1": {"value": 1.0, "unit": "kPa", "range": [0, inf], "bounds":
+/// [0, 50], "symbol": "k₁"}}`: a formula energy's declared parameters (a number is the value).
+fn declared(value: &Bound<'_, PyAny>) -> PyResult<Vec<(String, DeclaredSpec)>> {
+    let table = value.cast::<PyDict>().map_err(|_| {
+        keyword_error(
+            "parameters",
+            "a dict {name: value or {value, unit, symbol, range, bounds}}",
+        )
+    })?;
+    let mut out = Vec::with_capacity(table.len());
+    for (name, entry) in table.iter() {
+        let name: String = name.extract()?;
+        if let Ok(v) = entry.extract::<f64>() {
+            let spec = DeclaredSpec {
+                value: Some(v),
+                ..DeclaredSpec::default()
+            };
+            out.push((name, spec));
+            continue;
+        }
+        let fields = entry.cast::<PyDict>().map_err(|_| {
+            keyword_error(
+                &format!("parameters.{name}"),
+                "a number (the value) or a dict {value, unit, symbol, range, bounds}",
+            )
+        })?;
+        let mut spec = DeclaredSpec::default();
+        for (field, v) in fields.iter() {
+            let field: String = field.extract()?;
+            let pair = |v: &Bound<'_, PyAny>| -> PyResult<[f64; 2]> {
+                let p: Vec<f64> = v.extract()?;
+                <[f64; 2]>::try_from(p).map_err(|_| {
+                    keyword_error(
+                        &format!("parameters.{name}.{field}"),
+                        "[lower, upper]: two numbers (±inf allowed)",
+                    )
+                })
+            };
+            match field.as_str() {
+                "value" => spec.value = Some(v.extract()?),
+                "unit" => spec.unit = Some(v.extract()?),
+                "symbol" => spec.symbol = Some(v.extract()?),
+                "range" => spec.range = Some(pair(&v)?),
+                "bounds" => spec.bounds = Some(pair(&v)?),
+                _ => {
+                    return Err(keyword_error(
+                        &format!("parameters.{name}.{field}"),
+                        "unknown key: a parameter has value, unit, symbol, range, bounds",
+                    ))
+                }
+            }
+        }
+        out.push((name, spec));
+    }
+    Ok(out)
 }

@@ -138,7 +138,7 @@ def test_every_kind_writes_a_file_and_every_study_knows_its_file(run):
     assert sorted(described) == sorted(p.name for p in out.glob("*.csv"))
     assert set(described) == {
         "curves.csv", "fits.csv", "stability.csv", "history.csv", "shear.csv",
-        "biaxial.csv", "tradeoff.csv", "points_sliding_cylinder.csv",
+        "biaxial.csv", "tradeoff.csv", "points_sliding_cylinder.csv", "fit_points.csv",
         "tangent_summary.csv", "tangent.csv", "tangent_fe.csv", "tangent_newton.csv",
     }
     for s in r:

@@ -96,6 +96,7 @@ impl StrainEnergy for EhretBolItskov {
 
 impl Shipped for EhretBolItskov {
     const NAME: &'static str = "ehret-bol-itskov";
+    const W: Option<&'static str> = Some("Ip = w0/3*tr_c + (1 - w0)*c_m; Kp = w0/3*tr_c_inv + (1 - w0)*c_inv_m; mu/4*(expm1(alpha*(Ip - 1))/alpha + expm1(beta*(Kp - 1))/beta)");
     const FORMULA: &'static str = "the Ehret–Böl–Itskov energy: the K_p − 1 term becomes [e^{β(K_p−1)} − 1]/β";
     const CHAPTER: &'static str = "eq. (4)";
     const PARAMETERS: &'static [Parameter] = &[

@@ -75,6 +75,7 @@ impl StrainEnergy for FourCPassive {
 
 impl Shipped for FourCPassive {
     const NAME: &'static str = "4c-passive";
+    const W: Option<&'static str> = Some("I = w0/3*tr_c + (1 - w0)*c_m; Jc = det_c*(w0/3*tr_c_inv + (1 - w0)*c_inv_m); mu/4*(expm1(alpha*(I - 1))/alpha + expm1(beta*(Jc - 1))/beta)");
     const FORMULA: &'static str = "4C's passive muscle energy (Weickenmeier et al. 2014), W = μ/4 {[e^{α(I−1)} − 1]/α + [e^{β(J−1)} − 1]/β}, I = (w0/3) tr C + (1−w0) C:M, J = det C [(w0/3) tr C⁻¹ + (1−w0) C⁻¹:M]: the Ehret–Böl–Itskov energy with K_p scaled by det C (the same where det C = 1)";
     const CHAPTER: &'static str = "as eq. (4) where det C = 1; not in the chapter";
     const PARAMETERS: &'static [Parameter] = EhretBolItskov::PARAMETERS;

@@ -87,6 +87,7 @@ impl StrainEnergy for GiantesioMusesti {
 
 impl Shipped for GiantesioMusesti {
     const NAME: &'static str = "giantesio-musesti";
+    const W: Option<&'static str> = Some("Ip = w0/3*tr_c + (1 - w0)*c_m; Kp = w0/3*tr_c_inv + (1 - w0)*c_inv_m; mu/4*(expm1(alpha*(Ip - 1))/alpha + Kp - 1)");
     const FORMULA: &'static str = "the chapter's passive energy, W = μ/4 {[e^{α(I_p−1)} − 1]/α + K_p − 1}, I_p = (w0/3) tr C + (1−w0) C:M, K_p = (w0/3) tr C⁻¹ + (1−w0) C⁻¹:M";
     const CHAPTER: &'static str = "eq. (1); parameters Table 1";
     const PARAMETERS: &'static [Parameter] = &[

@@ -5,10 +5,13 @@
 //! and their derivatives with respect to F (see [`crate::invariants`]), so a model never writes a
 //! derivative by hand.
 
+pub mod formula;
+
 pub(crate) use crate::parameter::{open_unit, positive};
 pub use crate::parameter::{Parameter, ScalarWith};
 use crate::Scalar;
 use crate::{Error, Result};
+pub use formula::{FormulaEnergy, FormulaError, FORMULA};
 
 /// e^x − 1 \[-\] for any scalar, with one exponential where that is accurate: a dual number's
 /// derivatives need e^x₀ (x₀ the real part) anyway, and for |x₀| ≥ 1/2 the subtraction e^x₀ − 1
@@ -102,10 +105,10 @@ pub trait StrainEnergy: Clone + Send + Sync {
 
 /// An energy with named parameters that can be read, rebuilt from numbers (validated) and passed
 /// to the energy's one formula as dual numbers (derivatives in the parameters, for fitting).
-/// Every [`Shipped`] energy and [`Energy`] implement it.
+/// Every [`Shipped`] energy, [`FormulaEnergy`] and [`Energy`] implement it.
 pub trait Parametric: StrainEnergy + Sized {
     /// The parameters, in order.
-    fn parameters(&self) -> &'static [Parameter];
+    fn parameters(&self) -> &[Parameter];
 
     /// Current values, in the order of [`parameters`](Self::parameters).
     fn parameter_values(&self) -> Vec<f64>;
@@ -117,8 +120,8 @@ pub trait Parametric: StrainEnergy + Sized {
     fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T;
 
     /// Names of the parameters, in order.
-    fn parameter_names(&self) -> Vec<&'static str> {
-        self.parameters().iter().map(|p| p.name).collect()
+    fn parameter_names(&self) -> Vec<&str> {
+        self.parameters().iter().map(|p| p.name.as_ref()).collect()
     }
 }
 
@@ -135,6 +138,11 @@ pub trait Shipped: StrainEnergy + Sized {
     const CHAPTER: &'static str;
     /// The parameters, in the order of [`values`](Self::values).
     const PARAMETERS: &'static [Parameter];
+    /// The same energy in the formula language ([`formula`]), over the parameters' names, if
+    /// it can be written there: what [`Energy::as_formula`] builds (the trade-off study's
+    /// convenience-against-speed group times the two; a test checks that they agree to
+    /// rounding).
+    const W: Option<&'static str> = None;
     /// The parameter values.
     fn values(&self) -> Vec<f64>;
     /// The energy with these parameter values (in the order of [`PARAMETERS`](Self::PARAMETERS)),
@@ -145,7 +153,7 @@ pub trait Shipped: StrainEnergy + Sized {
 }
 
 impl<E: Shipped> Parametric for E {
-    fn parameters(&self) -> &'static [Parameter] {
+    fn parameters(&self) -> &[Parameter] {
         E::PARAMETERS
     }
     fn parameter_values(&self) -> Vec<f64> {
@@ -170,6 +178,8 @@ pub struct ShippedEnergy {
     pub chapter: &'static str,
     /// Its parameters.
     pub parameters: &'static [Parameter],
+    /// The energy in the formula language, if it has one ([`Shipped::W`]).
+    pub w: Option<&'static str>,
     build: fn(&[f64]) -> Result<Energy>,
 }
 
@@ -194,64 +204,104 @@ impl ShippedEnergy {
 
 /// The shipped energies: `shipped_energies! { file::Type, ... }` declares each energy's module
 /// (`src/energy/file.rs`) and re-exports its type, and generates [`Energy`] (one variant per type,
-/// named as the type), its [`StrainEnergy`] and [`Parametric`] implementations and [`SHIPPED`].
+/// named as the type, and [`Energy::Formula`]), its [`StrainEnergy`] and [`Parametric`]
+/// implementations and [`SHIPPED`].
 macro_rules! shipped_energies {
     ($($(#[$doc:meta])* $file:ident::$energy:ident),* $(,)?) => {
         $(mod $file;
         pub use $file::$energy;)*
 
-        /// Any of the shipped energies, chosen at run time (e.g. from a scene file).
+        /// Any of the shipped energies or a formula, chosen at run time (e.g. from a scene
+        /// file).
         #[derive(Debug, Clone, PartialEq)]
         pub enum Energy {
             $($(#[$doc])* $energy($energy),)*
+            /// An energy written as a formula ([`formula`]).
+            Formula(FormulaEnergy),
         }
 
         impl StrainEnergy for Energy {
             fn energy<T: Scalar>(&self, invariants: &Invariants<T>) -> T {
                 match self {
                     $(Energy::$energy(w) => w.energy(invariants),)*
+                    Energy::Formula(w) => w.energy(invariants),
                 }
             }
 
             fn name(&self) -> &str {
                 match self {
                     $(Energy::$energy(w) => w.name(),)*
+                    Energy::Formula(w) => w.name(),
                 }
             }
 
             fn uses_det_c(&self) -> bool {
                 match self {
                     $(Energy::$energy(w) => w.uses_det_c(),)*
+                    Energy::Formula(w) => w.uses_det_c(),
                 }
             }
 
             fn structural_fibre_weight(&self) -> Option<f64> {
                 match self {
                     $(Energy::$energy(w) => w.structural_fibre_weight(),)*
+                    Energy::Formula(w) => w.structural_fibre_weight(),
                 }
             }
         }
 
         impl Parametric for Energy {
-            fn parameters(&self) -> &'static [Parameter] {
+            fn parameters(&self) -> &[Parameter] {
                 match self {
                     $(Energy::$energy(_) => $energy::PARAMETERS,)*
+                    Energy::Formula(w) => w.parameters(),
                 }
             }
             fn parameter_values(&self) -> Vec<f64> {
                 match self {
                     $(Energy::$energy(w) => w.values(),)*
+                    Energy::Formula(w) => w.parameter_values(),
                 }
             }
             fn rebuilt(&self, values: &[f64]) -> Result<Self> {
                 Ok(match self {
                     $(Energy::$energy(_) => Energy::$energy($energy::from_values(values)?),)*
+                    Energy::Formula(w) => Energy::Formula(w.rebuilt(values)?),
                 })
             }
             fn energy_with<T: Scalar>(&self, parameters: &[T], invariants: &Invariants<T>) -> T {
                 match self {
                     $(Energy::$energy(_) => $energy::energy_of(parameters, invariants),)*
+                    Energy::Formula(w) => w.energy_with(parameters, invariants),
                 }
+            }
+        }
+
+        impl Energy {
+            /// This energy written as a formula: a shipped energy's [`Shipped::W`] with
+            /// its parameters at their values (named `<name> (formula)`); a formula energy is
+            /// itself. An error for a shipped energy without a formula.
+            pub fn as_formula(&self) -> std::result::Result<FormulaEnergy, FormulaError> {
+                let (text, parameters, name) = match self {
+                    $(Energy::$energy(_) => ($energy::W, $energy::PARAMETERS, $energy::NAME),)*
+                    Energy::Formula(f) => return Ok(f.clone()),
+                };
+                let Some(text) = text else {
+                    return Err(FormulaError {
+                        key: "energy".into(),
+                        value: name.into(),
+                        rule: "this energy is not written in the formula language (Shipped::W)".into(),
+                    });
+                };
+                let declared = parameters
+                    .iter()
+                    .zip(self.parameter_values())
+                    .map(|(p, v)| Parameter {
+                        default: Some(v),
+                        ..p.clone()
+                    })
+                    .collect();
+                FormulaEnergy::new(text, declared)?.named(&format!("{name} (formula)"))
             }
         }
 
@@ -262,6 +312,7 @@ macro_rules! shipped_energies {
             formula: $energy::FORMULA,
             chapter: $energy::CHAPTER,
             parameters: $energy::PARAMETERS,
+            w: $energy::W,
             build: |v| Ok(Energy::$energy($energy::from_values(v)?)),
         },)*];
     };

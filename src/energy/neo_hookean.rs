@@ -44,6 +44,7 @@ impl StrainEnergy for NeoHookean {
 
 impl Shipped for NeoHookean {
     const NAME: &'static str = "neo-hookean";
+    const W: Option<&'static str> = Some("mu/2*(I1 - 3)");
     const FORMULA: &'static str = "neo-Hookean reference, W = μ/2 (tr C − 3)";
     const CHAPTER: &'static str = "not in the chapter";
     /// μ has no chapter value: a scene must give it.

@@ -70,11 +70,11 @@ pub fn fit_active_curve(
     setup: &FitSetup,
 ) -> Result<ActiveFit, FitError> {
     let parameters = curve.parameters();
-    let names: Vec<&str> = parameters.iter().map(|p| p.name).collect();
+    let names: Vec<&str> = parameters.iter().map(|p| p.name.as_ref()).collect();
     let values = curve.parameter_values();
     let bounds: Vec<Bounds> = parameters
         .iter()
-        .map(|p| Bounds::new(p.range.0, p.range.1))
+        .map(|p| Bounds::new(p.bounds.0, p.bounds.1))
         .collect();
     let default_free: Vec<&str> = names.iter().copied().filter(|n| *n != "p_opt").collect();
     let selection = setup.resolve(&names, &values, &bounds, &default_free)?;
@@ -83,7 +83,7 @@ pub fn fit_active_curve(
         selection: &selection,
         data,
     };
-    let report = selection.solve(&problem, &setup.options)?;
+    let report = selection.solve(&problem, setup, data.stress())?;
     let v = selection.assemble_values(&report.values);
     let curve = curve.rebuilt(&v)?;
     Ok(ActiveFit { curve, report })

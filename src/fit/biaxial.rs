@@ -84,7 +84,7 @@ impl BiaxialData {
     /// Reads CSV with header `lambda1,lambda2,P11,P22` from any reader, within the limits of
     /// [`super::MAX_DATA_BYTES`] and [`super::MAX_DATA_POINTS`].
     pub fn from_csv_reader(reader: impl Read, source_name: &str) -> Result<Self, FitError> {
-        let (c, locations) = read_columns(reader, source_name, &BIAXIAL_HEADER)?;
+        let (c, locations) = read_columns(reader, source_name, &BIAXIAL_HEADER, &[])?;
         let rows = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(&x, &y)| [x, y]).collect();
         Self::validated(rows(&c[0], &c[1]), rows(&c[2], &c[3]), &locations)
     }
@@ -173,6 +173,7 @@ pub fn fit_passive_biaxial<E: Parametric>(
             selection,
             data,
         };
-        selection.solve(&problem, &setup.options)
+        let observed: Vec<f64> = data.stresses().iter().flat_map(|p| [p[0], p[1]]).collect();
+        selection.solve(&problem, setup, &observed)
     })
 }

@@ -5,8 +5,8 @@
 //! P(λ; d) = P_pas(λ) + (1 − d) P_act(λ),
 //!
 //! so r_i = P_pas(λ_i) + (1 − d) P_act(λ_i) − P_i \[kPa\], linear in d (Gauss–Newton converges in
-//! one step). d ∈ [0, 1]; a best d outside it (a muscle stronger than the reference) is reported
-//! as not converged.
+//! one step). d ∈ [0, 1]; a best d outside it (a muscle stronger than the reference) is held at
+//! the bound and reported so ([`super::AtBound`]).
 
 use super::{Bounds, Data, FitError, FitReport, FitSetup, Residuals};
 use crate::active::ActiveCurve;
@@ -63,7 +63,7 @@ pub fn fit_damage<E: StrainEnergy>(
         active,
         data,
     };
-    let report = selection.solve(&problem, &setup.options)?;
+    let report = selection.solve(&problem, setup, data.stress())?;
     Ok(DamageFit {
         damage: report.values[0],
         report,

@@ -1,6 +1,8 @@
 //! Stress–stretch data: (λ, P) pairs, λ dimensionless and strictly increasing, P the nominal
-//! stress in kPa. Read from CSV with the header `lambda,P`, at most [`MAX_DATA_BYTES`] bytes and
-//! [`MAX_DATA_POINTS`] points (a file beyond either is refused, read no further than the limit).
+//! stress in kPa, and optionally each point's standard deviation σ \[kPa\] (what weighted fits
+//! divide the residuals by, [`super::Weights`]). Read from CSV with the header `lambda,P` or
+//! `lambda,P,sigma`, at most [`MAX_DATA_BYTES`] bytes and [`MAX_DATA_POINTS`] points (a file
+//! beyond either is refused, read no further than the limit).
 
 use super::FitError;
 use std::io::Read;
@@ -14,11 +16,12 @@ pub const MAX_DATA_BYTES: u64 = 64 * 1024 * 1024;
 /// and a Jacobian takes one per free parameter).
 pub const MAX_DATA_POINTS: usize = 100_000;
 
-/// Validated stress–stretch data: λ_i > 0 strictly increasing, all values finite.
+/// Validated stress–stretch data: λ_i > 0 strictly increasing, all values finite, σ_i > 0.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Data {
     lambda: Vec<f64>,
     stress: Vec<f64>,
+    sigma: Option<Vec<f64>>,
 }
 
 impl Data {
@@ -32,7 +35,27 @@ impl Data {
         }
         let locations: Vec<String> = (1..=lambda.len()).map(|i| format!("point {i}")).collect();
         validate(&lambda, &stress, &locations)?;
-        Ok(Self { lambda, stress })
+        Ok(Self {
+            lambda,
+            stress,
+            sigma: None,
+        })
+    }
+
+    /// The same data with each point's standard deviation σ_i \[kPa\] (finite, > 0).
+    pub fn with_sigma(self, sigma: Vec<f64>) -> Result<Self, FitError> {
+        if sigma.len() != self.len() {
+            return Err(FitError::LengthMismatch {
+                stretches: self.len(),
+                stresses: sigma.len(),
+            });
+        }
+        let locations: Vec<String> = (1..=sigma.len()).map(|i| format!("point {i}")).collect();
+        check_sigma(&sigma, &locations)?;
+        Ok(Self {
+            sigma: Some(sigma),
+            ..self
+        })
     }
 
     /// Samples `model` at the given stretches (for synthetic data and reference curves).
@@ -53,24 +76,45 @@ impl Data {
         Self::from_csv_reader(open(path)?, &path.display().to_string())
     }
 
-    /// Reads CSV with header `lambda,P` from any reader; `source_name` appears in errors. Reads
-    /// at most [`MAX_DATA_BYTES`] + 1 bytes and refuses more than [`MAX_DATA_POINTS`] points
-    /// ([`FitError::DataTooLarge`]).
+    /// Reads CSV with header `lambda,P` or `lambda,P,sigma` from any reader; `source_name`
+    /// appears in errors. Reads at most [`MAX_DATA_BYTES`] + 1 bytes and refuses more than
+    /// [`MAX_DATA_POINTS`] points ([`FitError::DataTooLarge`]).
     pub fn from_csv_reader(reader: impl Read, source_name: &str) -> Result<Self, FitError> {
-        let (mut columns, locations) = read_columns(reader, source_name, &["lambda", "P"])?;
+        let (mut columns, locations) =
+            read_columns(reader, source_name, &["lambda", "P"], &["sigma"])?;
+        let sigma = (columns.len() == 3).then(|| columns.pop().unwrap_or_default());
         let stress = columns.pop().unwrap_or_default();
         let lambda = columns.pop().unwrap_or_default();
         validate(&lambda, &stress, &locations)?;
-        Ok(Self { lambda, stress })
+        if let Some(s) = &sigma {
+            check_sigma(s, &locations)?;
+        }
+        Ok(Self {
+            lambda,
+            stress,
+            sigma,
+        })
     }
 
-    /// Writes the data as CSV with header `lambda,P`.
+    /// Writes the data as CSV with header `lambda,P` (`lambda,P,sigma` with standard deviations).
     pub fn to_csv(&self) -> String {
-        let mut out = String::from("lambda,P\n");
-        for (l, p) in self.lambda.iter().zip(&self.stress) {
-            out.push_str(&format!("{l},{p}\n"));
+        let mut out = String::from(if self.sigma.is_some() {
+            "lambda,P,sigma\n"
+        } else {
+            "lambda,P\n"
+        });
+        for (i, (l, p)) in self.lambda.iter().zip(&self.stress).enumerate() {
+            match &self.sigma {
+                Some(s) => out.push_str(&format!("{l},{p},{}\n", s[i])),
+                None => out.push_str(&format!("{l},{p}\n")),
+            }
         }
         out
+    }
+
+    /// Each point's standard deviation σ_i \[kPa\], if the data have them.
+    pub fn sigma(&self) -> Option<&[f64]> {
+        self.sigma.as_deref()
     }
 
     /// Stretches λ_i [-].
@@ -102,9 +146,13 @@ impl Data {
         self.lambda.is_empty()
     }
 
-    /// The same stretches with stresses `stress` (for residual data after a subtraction).
+    /// The same stretches (and standard deviations) with stresses `stress` (for residual data
+    /// after a subtraction).
     pub(crate) fn with_stress(&self, stress: Vec<f64>) -> Result<Self, FitError> {
-        Self::new(self.lambda.clone(), stress)
+        Ok(Self {
+            sigma: self.sigma.clone(),
+            ..Self::new(self.lambda.clone(), stress)?
+        })
     }
 }
 
@@ -117,13 +165,15 @@ pub(crate) fn open(path: &Path) -> Result<std::fs::File, FitError> {
     })
 }
 
-/// The columns of a CSV file whose header is `header` (names compared without regard to ASCII
-/// case), as numbers, with the location of each row ("FILE, line n"). Reads at most
-/// [`MAX_DATA_BYTES`] + 1 bytes and refuses more than [`MAX_DATA_POINTS`] rows.
+/// The columns of a CSV file whose header is `header`, optionally followed by `optional`
+/// (names compared without regard to ASCII case), as numbers, with the location of each row
+/// ("FILE, line n"). Reads at most [`MAX_DATA_BYTES`] + 1 bytes and refuses more than
+/// [`MAX_DATA_POINTS`] rows.
 pub(crate) fn read_columns(
     reader: impl Read,
     source_name: &str,
     header: &[&str],
+    optional: &[&str],
 ) -> Result<(Vec<Vec<f64>>, Vec<String>), FitError> {
     let csv_error = |line: u64, message: String| FitError::Csv {
         source_name: source_name.to_string(),
@@ -152,21 +202,29 @@ pub(crate) fn read_columns(
         .map_err(|e| csv_error(1, e.to_string()))?
         .clone();
     let names: Vec<&str> = found.iter().collect();
-    if names.len() != header.len()
-        || names
-            .iter()
-            .zip(header)
-            .any(|(n, h)| !n.eq_ignore_ascii_case(h))
-    {
+    let full: Vec<&str> = header.iter().chain(optional).copied().collect();
+    let matches = |h: &[&str]| {
+        names.len() == h.len() && names.iter().zip(h).all(|(n, h)| n.eq_ignore_ascii_case(h))
+    };
+    let header: &[&str] = if !optional.is_empty() && matches(&full) {
+        &full
+    } else if matches(header) {
+        header
+    } else {
+        let or = if optional.is_empty() {
+            String::new()
+        } else {
+            format!(" or `{}`", full.join(","))
+        };
         return Err(csv_error(
             1,
             format!(
-                "header must be `{}`, found `{}`",
+                "header must be `{}`{or}, found `{}`",
                 header.join(","),
                 names.join(",")
             ),
         ));
-    }
+    };
     let mut columns = vec![Vec::new(); header.len()];
     let mut locations = Vec::new();
     for record in rdr.records() {
@@ -188,6 +246,17 @@ pub(crate) fn read_columns(
         locations.push(format!("{source_name}, line {line}"));
     }
     Ok((columns, locations))
+}
+
+/// Each σ_i finite and > 0.
+fn check_sigma(sigma: &[f64], locations: &[String]) -> Result<(), FitError> {
+    match sigma.iter().position(|s| !(s.is_finite() && *s > 0.0)) {
+        Some(i) => Err(FitError::NonPositiveSigma {
+            location: locations[i].clone(),
+            sigma: sigma[i],
+        }),
+        None => Ok(()),
+    }
 }
 
 fn validate(lambda: &[f64], stress: &[f64], locations: &[String]) -> Result<(), FitError> {

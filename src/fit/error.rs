@@ -78,7 +78,7 @@ pub enum FitError {
         /// The name asked for.
         name: String,
         /// The model's parameter names.
-        available: Vec<&'static str>,
+        available: Vec<String>,
     },
     /// Nothing to fit.
     #[error("no free parameter selected")]
@@ -132,6 +132,26 @@ pub enum FitError {
         step: Vec<f64>,
         /// The best point found, with its statistics.
         best: Box<FitReport>,
+    },
+    /// The scales σ of weighted residuals: one per residual, each finite and > 0.
+    #[error("{}", scales_text(*.given, *.residuals, *.index, *.value))]
+    BadScales {
+        /// Scales given.
+        given: usize,
+        /// Residuals of the fit.
+        residuals: usize,
+        /// The first bad one (1-based; 0: the count is wrong).
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// A standard deviation of the data (`sigma` column) that is not > 0.
+    #[error("{location}: sigma = {} must be finite and > 0 (a standard deviation)", crate::text::shortest(*.sigma))]
+    NonPositiveSigma {
+        /// Where.
+        location: String,
+        /// The value.
+        sigma: f64,
     },
     /// A data file larger than a fit reads.
     #[error(
@@ -254,6 +274,18 @@ impl std::fmt::Display for NotConverged {
             ),
             NotConverged::Solver { message } => write!(f, "the solver failed: {message}"),
         }
+    }
+}
+
+/// Why scales σ of weighted residuals are refused.
+fn scales_text(given: usize, residuals: usize, index: usize, value: f64) -> String {
+    if index == 0 {
+        format!("{given} scales σ for {residuals} residuals: weights need one per residual")
+    } else {
+        format!(
+            "weights divide residual {index} by σ = {}, which must be finite and > 0 (relative weights divide by the datum itself: leave out a point where it is 0, or give the data a sigma column)",
+            crate::text::shortest(value)
+        )
     }
 }
 

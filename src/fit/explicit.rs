@@ -153,7 +153,7 @@ pub fn fit_explicit_law(
         energy: *energy,
         reference,
     };
-    let report = selection.solve(&problem, &setup.options)?;
+    let report = selection.solve(&problem, setup, &problem.reference)?;
     let v = selection.assemble_values(&report.values);
     let law = ExplicitLaw::new(v[0], v[1], *energy, *curve)?;
     let (max_activation_error, max_stress_error) =

@@ -16,10 +16,13 @@
 //! (one evaluation per free parameter, exact), see [`solver`]. Results are [`FitReport`]s with
 //! the parameters, residual norm, RMS error, standard errors s²(JᵀJ)⁻¹, the correlation matrix,
 //! iterations and the convergence flag; a fit that does not converge is an error
-//! ([`FitError::NotConverged`]) carrying the best point found, never a result.
+//! ([`FitError::NotConverged`]) carrying the best point found, never a result. A minimum on a
+//! bound is a result, with the parameter marked [`AtBound`] ([`bounded`]). Residuals may be
+//! weighted ([`Weights`]: relative, or by each point's standard deviation).
 
 mod active;
 mod biaxial;
+mod bounded;
 mod damage;
 mod data;
 mod error;
@@ -29,10 +32,12 @@ mod parametric;
 mod passive;
 mod problem;
 pub mod solver;
+mod weights;
 
 pub use crate::uniaxial::Direction;
 pub use active::{active_from_total, fit_active_curve, ActiveFit};
 pub use biaxial::{biaxial_stress_with, fit_passive_biaxial, BiaxialData, BIAXIAL_HEADER};
+pub use bounded::{least_squares, AtBound};
 pub use damage::{fit_damage, DamageFit};
 pub use data::{Data, MAX_DATA_BYTES, MAX_DATA_POINTS};
 pub use error::{FitError, NotConverged};
@@ -45,7 +50,8 @@ pub use passive::{
     across_stress_with, default_passive_free, fibre_stress_with, fit_passive, PassiveFit,
 };
 pub use problem::{residuals_and_jacobian, Bounds, Residuals};
-pub use solver::{least_squares, FitOptions, Method};
+pub use solver::{FitOptions, Method};
+pub use weights::Weights;
 
 use crate::Scalar;
 use std::fmt;
@@ -69,10 +75,18 @@ pub struct FitReport {
     pub rms: f64,
     /// Solver iterations (Nelder–Mead plus Levenberg–Marquardt).
     pub iterations: u64,
-    /// True only if the final Gauss–Newton step is negligible (see [`solver`]).
+    /// True only if the final Gauss–Newton step is negligible (see [`solver`]), the parameters
+    /// held at a bound aside ([`bounded`]).
     pub converged: bool,
     /// How the solver(s) stopped.
     pub termination: String,
+    /// Per parameter: the bound it is held at, if the minimum lies beyond it (its standard error
+    /// and correlations are then NaN: it is not estimated).
+    pub at_bound: Vec<Option<AtBound>>,
+    /// The scale σ_i each residual was divided by in the fit (`None`: equal weights); the
+    /// residuals, their norm and RMS above are in the data's unit, the standard errors from
+    /// the weighted residuals ([`Weights`]).
+    pub sigma: Option<Vec<f64>>,
 }
 
 impl FitReport {
@@ -99,11 +113,21 @@ impl fmt::Display for FitReport {
             "parameter", "value", "std. error"
         )?;
         for i in 0..self.names.len() {
-            writeln!(
-                f,
-                "{:<12} {:>14.6} {:>12.3e}",
-                self.names[i], self.values[i], self.standard_errors[i]
-            )?;
+            match self.at_bound.get(i).copied().flatten() {
+                Some(b) => writeln!(
+                    f,
+                    "{:<12} {:>14.6} at its bound {} (the minimum lies beyond, at {})",
+                    self.names[i],
+                    self.values[i],
+                    crate::text::shortest(b.bound),
+                    crate::text::significant(b.beyond, 6)
+                )?,
+                None => writeln!(
+                    f,
+                    "{:<12} {:>14.6} {:>12.3e}",
+                    self.names[i], self.values[i], self.standard_errors[i]
+                )?,
+            }
         }
         if self.names.len() > 1 {
             write!(f, "correlation:")?;
@@ -142,6 +166,8 @@ pub struct FitSetup {
     bounds: Vec<(String, Bounds)>,
     /// Solver settings.
     pub options: FitOptions,
+    /// How the residuals are weighted (default: equally).
+    pub weights: Weights,
 }
 
 impl FitSetup {
@@ -174,17 +200,23 @@ impl FitSetup {
         self
     }
 
+    /// How the residuals are weighted.
+    pub fn weights(mut self, weights: Weights) -> Self {
+        self.weights = weights;
+        self
+    }
+
     /// Resolves the selection against a model's parameters.
     pub(crate) fn resolve(
         &self,
-        names: &[&'static str],
+        names: &[&str],
         values: &[f64],
         bounds: &[Bounds],
         default_free: &[&str],
     ) -> Result<Selection, FitError> {
         let unknown = |name: &str| FitError::UnknownParameter {
             name: name.to_string(),
-            available: names.to_vec(),
+            available: names.iter().map(|n| n.to_string()).collect(),
         };
         let free: Vec<String> = match &self.free {
             Some(f) => f.clone(),
@@ -241,13 +273,28 @@ pub(crate) struct Selection {
 }
 
 impl Selection {
-    /// Fits `problem` over the selected free parameters from their starts within their bounds.
+    /// Fits `problem` over the selected free parameters from their starts within their bounds,
+    /// its residuals weighted as `setup` says (`observed`: the data, one per residual, which
+    /// relative weights divide by).
     pub fn solve<R: Residuals>(
         &self,
         problem: &R,
-        options: &FitOptions,
+        setup: &FitSetup,
+        observed: &[f64],
     ) -> Result<FitReport, FitError> {
-        least_squares(problem, &self.names, &self.start, &self.bounds, options)
+        let (names, start, bounds) = (&self.names, &self.start, &self.bounds);
+        match setup.weights.scales(observed)? {
+            None => least_squares(problem, names, start, bounds, &setup.options),
+            Some(sigma) => {
+                let weighted = weights::Weighted {
+                    problem,
+                    sigma: &sigma,
+                };
+                least_squares(&weighted, names, start, bounds, &setup.options)
+                    .map(|r| weights::unweighted(r, &sigma))
+                    .map_err(|e| weights::unweighted_error(e, &sigma))
+            }
+        }
     }
 
     /// All parameters as scalars: the free ones from θ, the others fixed.

@@ -4,11 +4,11 @@
 use super::Bounds;
 pub use crate::energy::Parametric;
 
-/// The admissible range of each parameter of `energy`, as fit bounds.
+/// The default fit bounds of each parameter of `energy` (its admissible range, or narrower).
 pub fn parameter_bounds<E: Parametric>(energy: &E) -> Vec<Bounds> {
     energy
         .parameters()
         .iter()
-        .map(|p| Bounds::new(p.range.0, p.range.1))
+        .map(|p| Bounds::new(p.bounds.0, p.bounds.1))
         .collect()
 }

@@ -132,7 +132,8 @@ pub fn fit_passive<E: Parametric>(
             selection,
             sets,
         };
-        selection.solve(&problem, &setup.options)
+        let observed: Vec<f64> = sets.iter().flat_map(|(_, d)| d.stress().to_vec()).collect();
+        selection.solve(&problem, setup, &observed)
     })
 }
 

@@ -11,7 +11,9 @@
 //! **Bounds** lower_j ≤ θ_j ≤ upper_j: a step that would cross a bound goes 9/10 of the way to it
 //! (Nelder–Mead: a vertex outside them has infinite cost, as has any point where the model cannot
 //! be evaluated, e.g. exp overflow). A minimum beyond a bound is therefore approached, not
-//! reached, and reported as such ([`NotConverged::BeyondBound`]).
+//! reached: the search stalls there ([`NotConverged::BeyondBound`]), and [`least_squares`] then
+//! holds the parameter at the bound and fits the others ([`super::bounded`]): a minimum on a
+//! bound is a result.
 //!
 //! **Convergence** is decided at the best point θ* found: the Gauss–Newton step there must be
 //! negligible, |δ_j| ≤ step_tolerance (1 + |θ*_j|) for every j, or small next to the standard
@@ -27,7 +29,7 @@
 use super::levenberg::{
     norm, power_of_two_below, GaussNewton, LevenbergMarquardt, Linearisation, Scaled, Stop,
 };
-use super::problem::{Bounds, Residuals};
+use super::problem::{residuals_and_jacobian, Bounds, Residuals};
 use super::{FitError, FitReport, NotConverged};
 use argmin::core::{Executor, Jacobian, State, TerminationReason};
 use argmin::solver::neldermead::NelderMead;
@@ -67,14 +69,16 @@ impl Default for FitOptions {
     }
 }
 
-/// Minimises ‖r(θ)‖² over the free parameters named `names`, from `start`, within `bounds`.
+/// Minimises ‖r(θ)‖² over the free parameters named `names`, from `start`, within `bounds`:
+/// one search, which stalls at a bound beyond which the minimum lies
+/// ([`NotConverged::BeyondBound`]; [`least_squares`] goes on from there).
 ///
 /// Returns the report at a converged point, or [`FitError::NotConverged`] carrying the reason and
 /// the best point found. Errors before the search: [`FitError::NoFreeParameter`],
 /// [`FitError::TooFewPoints`] (m ≤ p), [`FitError::StartOutOfBounds`] (also NaN starts and bounds),
 /// [`FitError::BadStart`] (the model or the residual norm not finite at the start); after it,
 /// [`FitError::Unidentifiable`] (JᵀJ singular at the best point).
-pub fn least_squares<R: Residuals>(
+pub(super) fn search<R: Residuals>(
     problem: &R,
     names: &[String],
     start: &[f64],
@@ -334,6 +338,27 @@ fn statistics<R: Residuals>(
         iterations,
         converged: false,
         termination: String::new(),
+        at_bound: vec![None; p],
+        sigma: None,
     };
     Ok((report, gauss_newton))
 }
+
+/// The residuals at θ and, where JᵀJ is regular there, the standard errors and correlations
+/// (see [`statistics`]; none for no parameter).
+pub(super) fn statistics_at<R: Residuals>(
+    problem: &R,
+    theta: &[f64],
+) -> Result<(Vec<f64>, Option<Errors>), FitError> {
+    let (residuals, jacobian) = residuals_and_jacobian(problem, theta)?;
+    if theta.is_empty() {
+        return Ok((residuals, None));
+    }
+    let scale = power_of_two_below(norm(&residuals));
+    let reduced: Vec<f64> = residuals.iter().map(|r| r / scale).collect();
+    let gn = Linearisation::new(&reduced, jacobian, scale).gauss_newton();
+    Ok((residuals, gn.map(|g| (g.standard_errors, g.correlation))))
+}
+
+/// Standard errors and the correlation matrix of the estimates.
+pub(super) type Errors = (Vec<f64>, Vec<Vec<f64>>);

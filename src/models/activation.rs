@@ -213,8 +213,8 @@ pub fn curve_parameter_names() -> Vec<&'static str> {
     let mut names: Vec<&'static str> = Vec::new();
     for c in CURVES {
         for p in c.parameters {
-            if !names.contains(&p.name) {
-                names.push(p.name);
+            if !names.contains(&p.name.as_ref()) {
+                names.push(p.name.as_ref());
             }
         }
     }
@@ -271,7 +271,7 @@ impl ActivationSpec {
         if let Some((key, value)) = self
             .curve_parameters
             .iter()
-            .find(|(n, _)| !entry.parameters.iter().any(|p| p.name == n))
+            .find(|(n, _)| !entry.parameters.iter().any(|p| p.name == n.as_str()))
         {
             return Err(SpecError::new(
                 format!("activation.{key}"),
@@ -288,7 +288,7 @@ impl ActivationSpec {
             let given = self
                 .curve_parameters
                 .iter()
-                .find(|(n, _)| n == p.name)
+                .find(|(n, _)| *n == p.name)
                 .map(|(_, v)| *v);
             match given.or(p.default) {
                 Some(v) => values.push(v),

@@ -15,9 +15,11 @@
 pub mod activation;
 pub mod choice;
 pub mod factory;
+pub mod formula;
 pub mod spec;
 
 pub use activation::{curve_parameter_names, ActivationSpec, ExplicitSpec, ModelDefaults};
 pub use choice::{product, Approach, CouplingKind, LawKind, ModelChoice, RepresentationKind};
 pub use factory::Models;
+pub use formula::{DeclaredSpec, FormulaSpec};
 pub use spec::{EnergySpec, IncompressibilityKind, IncompressibilitySpec, MaterialSpec};

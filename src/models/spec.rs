@@ -1,14 +1,16 @@
 //! The scene's `[material]` and `[incompressibility]` tables as written ([`MaterialSpec`],
 //! [`IncompressibilitySpec`]) and how they build the [`Models`] with `[activation]`
-//! ([`ActivationSpec`]): an [`EnergySpec`] (a shipped energy by name, parameters by name) builds
-//! an [`Energy`] from the registry [`crate::energy::SHIPPED`].
+//! ([`ActivationSpec`]): an [`EnergySpec`] (a shipped energy by name, parameters by name, or a
+//! formula, [`super::formula`]) builds an [`Energy`] from the registry
+//! [`crate::energy::SHIPPED`].
 
 use super::activation::ActivationSpec;
 use super::choice::RepresentationKind;
 use super::factory::Models;
+use super::formula::{read_parameters, FormulaSpec};
 use crate::active::{ExplicitLaw, LawRepresentation};
 use crate::app_error::SpecError;
-use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, SHIPPED};
+use crate::energy::{Energy, GiantesioMusesti, Parametric, ShippedEnergy, FORMULA, SHIPPED};
 use crate::text::shortest;
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::StrainEnergy;
@@ -19,13 +21,16 @@ use std::fmt;
 
 /// A shipped energy by name with its parameters by name (`{ energy = "ehret-bol-itskov",
 /// alpha = 10.0 }`); a parameter left out takes the chapter's value of that energy
-/// ([`crate::energy::Parameter::default`]).
+/// ([`crate::energy::Parameter::default`]). Or `energy = "formula"` with `W`, its declared
+/// `parameters` and a `name` ([`FormulaSpec`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct EnergySpec {
-    /// Name of a shipped energy (default: the first, the chapter's).
+    /// Name of a shipped energy (default: the first, the chapter's), or `formula`.
     pub energy: String,
-    /// Parameters as given, in the order written.
+    /// Parameters of a shipped energy as given, in the order written.
     pub parameters: Vec<(String, f64)>,
+    /// W, its parameters and its name (`energy = "formula"` only).
+    pub formula: FormulaSpec,
 }
 
 impl Default for EnergySpec {
@@ -33,6 +38,7 @@ impl Default for EnergySpec {
         Self {
             energy: SHIPPED[0].name.to_string(),
             parameters: Vec::new(),
+            formula: FormulaSpec::default(),
         }
     }
 }
@@ -58,18 +64,38 @@ impl EnergySpec {
     /// The energy it describes, validated; errors name the key relative to the spec (`energy`,
     /// `mu`).
     pub fn build(&self) -> Result<Energy, SpecError> {
+        if self.energy == FORMULA {
+            return self.build_formula();
+        }
         let Some(shipped) = ShippedEnergy::find(&self.energy) else {
             let names: Vec<&str> = SHIPPED.iter().map(|e| e.name).collect();
             return Err(SpecError::new(
                 "energy",
                 format!("{:?}", self.energy),
-                format!("unknown energy; the shipped ones are {}", names.join(", ")),
+                format!(
+                    "unknown energy; the shipped ones are {}, or \"formula\" with W = \"...\"",
+                    names.join(", ")
+                ),
             ));
         };
+        if self.formula.is_given() {
+            let key = if self.formula.formula.is_some() {
+                "W"
+            } else if self.formula.name.is_some() {
+                "name"
+            } else {
+                "parameters"
+            };
+            return Err(SpecError::new(
+                key,
+                "(given)",
+                format!("{key} is a key of energy = \"formula\"; the {} energy takes its parameters by name ({})", shipped.name, parameter_list(shipped)),
+            ));
+        }
         if let Some((name, value)) = self
             .parameters
             .iter()
-            .find(|(n, _)| !shipped.parameters.iter().any(|p| p.name == n))
+            .find(|(n, _)| !shipped.parameters.iter().any(|p| p.name == n.as_str()))
         {
             return Err(SpecError::new(
                 name.as_str(),
@@ -83,11 +109,11 @@ impl EnergySpec {
         }
         let mut values = Vec::with_capacity(shipped.parameters.len());
         for p in shipped.parameters {
-            match self.get(p.name).or(p.default) {
+            match self.get(&p.name).or(p.default) {
                 Some(v) => values.push(v),
                 None => {
                     return Err(SpecError::new(
-                        p.name,
+                        p.name.as_ref(),
                         "(missing)",
                         format!(
                             "the {} energy has no chapter value: give {} [{}]",
@@ -100,9 +126,28 @@ impl EnergySpec {
         shipped.build(&values).map_err(|e| SpecError::model("", e))
     }
 
+    /// The formula energy of `energy = "formula"`: no parameter flat beside it.
+    fn build_formula(&self) -> Result<Energy, SpecError> {
+        if let Some((name, value)) = self.parameters.first() {
+            return Err(SpecError::new(
+                name.as_str(),
+                value,
+                format!("a formula energy declares its parameters in a table: parameters = {{ {name} = {{ value = {}, unit = \"kPa\", range = [0, inf] }} }}", crate::text::shortest(*value)),
+            ));
+        }
+        self.formula.build().map(Energy::Formula)
+    }
+
     /// The spec of a built energy: its name and every parameter it holds, given or default (what
     /// a printed scene shows, so that it is the energy that runs).
     pub fn written(e: &Energy) -> Self {
+        if let Energy::Formula(f) = e {
+            return Self {
+                energy: FORMULA.to_string(),
+                parameters: Vec::new(),
+                formula: FormulaSpec::written(f),
+            };
+        }
         Self {
             energy: e.name().to_string(),
             parameters: e
@@ -111,17 +156,25 @@ impl EnergySpec {
                 .zip(e.parameter_values())
                 .map(|(p, v)| (p.name.to_string(), v))
                 .collect(),
+            formula: FormulaSpec::default(),
         }
+    }
+
+    /// Writes the table's entries (`energy`, the parameters, a formula's `W`, `name`,
+    /// `parameters`).
+    fn serialize_entries<M: SerializeMap>(&self, map: &mut M) -> Result<(), M::Error> {
+        map.serialize_entry("energy", &self.energy)?;
+        for (name, value) in &self.parameters {
+            map.serialize_entry(name, value)?;
+        }
+        self.formula.serialize_entries(map)
     }
 }
 
 impl Serialize for EnergySpec {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let mut map = serializer.serialize_map(Some(1 + self.parameters.len()))?;
-        map.serialize_entry("energy", &self.energy)?;
-        for (name, value) in &self.parameters {
-            map.serialize_entry(name, value)?;
-        }
+        let mut map = serializer.serialize_map(None)?;
+        self.serialize_entries(&mut map)?;
         map.end()
     }
 }
@@ -137,6 +190,9 @@ fn visit_energy<'de, A: MapAccess<'de>>(
     while let Some(key) = map.next_key::<String>()? {
         match (key.as_str(), fibre.as_deref_mut()) {
             ("energy", _) => spec.energy = map.next_value()?,
+            ("W", _) => spec.formula.formula = Some(map.next_value()?),
+            ("name", _) => spec.formula.name = Some(map.next_value()?),
+            ("parameters", _) => spec.formula.parameters = read_parameters(&mut map)?,
             ("fibre", Some(slot)) => {
                 *slot = Some(map.next_value::<crate::fixed_length::Exactly<f64, 3>>()?.0)
             }
@@ -152,9 +208,9 @@ fn visit_energy<'de, A: MapAccess<'de>>(
                     Parameter::Number(value) => spec.parameters.push((key, value)),
                     Parameter::Other(_) => {
                         let keys = if fibre.is_some() {
-                            "energy = \"name\", fibre = [x, y, z] and the energy's parameters"
+                            "energy = \"name\", fibre = [x, y, z] and the energy's parameters (a formula: W, name, parameters)"
                         } else {
-                            "energy = \"name\" and the energy's parameters"
+                            "energy = \"name\" and the energy's parameters (a formula: W, name, parameters)"
                         };
                         return Err(serde::de::Error::custom(format!(
                             "{key} is not a number: the keys are {keys}, each a number (a misspelt key?)"
@@ -194,12 +250,8 @@ pub struct MaterialSpec {
 
 impl Serialize for MaterialSpec {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        let e = &self.energy;
-        let mut map = serializer.serialize_map(Some(2 + e.parameters.len()))?;
-        map.serialize_entry("energy", &e.energy)?;
-        for (name, value) in &e.parameters {
-            map.serialize_entry(name, value)?;
-        }
+        let mut map = serializer.serialize_map(None)?;
+        self.energy.serialize_entries(&mut map)?;
         if let Some(f) = &self.fibre {
             map.serialize_entry("fibre", f)?;
         }

@@ -236,6 +236,18 @@ fn energy_rows(scene: &Scene, energies: &[String]) -> Vec<ModelRow> {
                 (e.formula, e.chapter)
             });
         let mut what = what.to_string();
+        if let (true, crate::energy::Energy::Formula(f)) = (*name == m.energy.name(), &m.energy) {
+            let written = crate::models::FormulaSpec::parameters_text(f);
+            rows.push((
+                format!("{name} (energy)"),
+                format!(
+                    "the material: an energy written as a formula in the scene, W = {} [kPa]; with {written}",
+                    f.formula_line()
+                ),
+                "not in the chapter".into(),
+            ));
+            continue;
+        }
         if *name == m.energy.name() {
             let values: Vec<String> = m
                 .energy

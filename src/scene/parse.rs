@@ -172,7 +172,7 @@ fn from_toml(text: &str, file: &str, e: &toml::de::Error, kind: Option<StudyKind
         .map(|(_, list)| list.split('`').skip(1).step_by(2).collect())
         .unwrap_or_default();
     let suggestion = unknown
-        .and_then(|field| closest(field, &expected))
+        .and_then(|field| crate::text::closest(field, &expected))
         .map_or(String::new(), |k| format!(" (did you mean `{k}`?)"));
     match (unknown, kind) {
         (Some(field), Some(kind)) if of_the_study(field) => SceneError {
@@ -202,30 +202,4 @@ fn from_toml(text: &str, file: &str, e: &toml::de::Error, kind: Option<StudyKind
             line,
         },
     }
-}
-
-/// The key of `candidates` nearest to the misspelt `key`, if within two edits (Levenshtein).
-fn closest<'a>(key: &str, candidates: &[&'a str]) -> Option<&'a str> {
-    let distance = |a: &str, b: &str| {
-        let b: Vec<char> = b.chars().collect();
-        let mut row: Vec<usize> = (0..=b.len()).collect();
-        for (i, ca) in a.chars().enumerate() {
-            let mut diagonal = row[0];
-            row[0] = i + 1;
-            for (j, &cb) in b.iter().enumerate() {
-                let above = row[j + 1];
-                row[j + 1] = (above + 1)
-                    .min(row[j] + 1)
-                    .min(diagonal + usize::from(ca != cb));
-                diagonal = above;
-            }
-        }
-        row[b.len()]
-    };
-    candidates
-        .iter()
-        .map(|&c| (distance(key, c), c))
-        .filter(|&(d, _)| d <= 2)
-        .min_by_key(|&(d, _)| d)
-        .map(|(_, c)| c)
 }

@@ -29,6 +29,7 @@ pub const SOURCES: &[&str] = &[
     include_str!("mod.rs"),
     include_str!("../models/activation.rs"),
     include_str!("../models/spec.rs"),
+    include_str!("../models/formula.rs"),
     include_str!("../active/drive.rs"),
     include_str!("../studies/uniaxial.rs"),
     include_str!("../studies/cylinder.rs"),
@@ -393,6 +394,7 @@ fn material_section(h: &mut String) {
          | *its parameters* | number | by name, flat beside `energy`; a parameter left out takes its default |\n\
          | `fibre` | [number, number, number] | fibre direction m in the reference configuration, normalised (default [1, 0, 0]) |\n\n",
     );
+    formula_section(h);
     for e in SHIPPED {
         let _ = writeln!(h, "### `energy = \"{}\"`\n\n{}\n", e.name, cell(e.formula));
         if !e.chapter.is_empty() {
@@ -400,6 +402,36 @@ fn material_section(h: &mut String) {
         }
         parameter_table(h, e.parameters);
         h.push('\n');
+    }
+}
+
+/// `energy = "formula"`: its keys (the fields of `FormulaSpec`, read by hand) and the keys of a
+/// declared parameter.
+fn formula_section(h: &mut String) {
+    let doc = |field_name: &str| {
+        field("FormulaSpec", field_name).map_or(String::new(), |(d, _)| cell(&d))
+    };
+    let _ = writeln!(
+        h,
+        "### `energy = \"{}\"`\n\nYour own energy, written as a formula of the invariants in the \
+         scene ([user-energy.md](user-energy.md)).\n\n| key | type | what |\n|---|---|---|\n\
+         | `W` | string | {} |\n| `name` | string | {} |\n\
+         | `parameters` | table: name = number or {{ … }} | {} |\n",
+        crate::energy::FORMULA,
+        doc("formula"),
+        doc("name"),
+        doc("parameters")
+    );
+    if let Some((spec, keys)) = keys_of::<crate::models::formula::DeclaredSpec>() {
+        h.push_str("A declared parameter, `[material.parameters] name = { … }`:\n\n");
+        key_table(
+            h,
+            &Table {
+                heading: "[material.parameters]".into(),
+                spec,
+                keys,
+            },
+        );
     }
 }
 

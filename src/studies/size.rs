@@ -135,9 +135,11 @@ pub fn size_of(study: &Study) -> Size {
     match study {
         Study::Uniaxial(u) => uniaxial(u),
         Study::Cylinder(c) => cylinder(c),
+        // fits.csv's row per case and parameter, and fit_points.csv's.
         Study::Fit(f) => Size {
-            rows: n(f.cases.len() * f.free.len().max(1)),
+            rows: n(f.cases.len() * f.free.len().max(1) + super::fit::fit_points_rows(&f.cases)),
             figures: 1,
+            tables: 1,
             ..Size::default()
         },
         Study::Stability(s) => Size {

@@ -220,6 +220,10 @@ fn writers_refuse_non_finite_numbers_and_say_where() {
         termination: String::new(),
         extra: vec![],
         plot: Default::default(),
+        at_bound: vec![None],
+        weights: activemuscle::studies::fit::WeightsKind::Equal,
+        sigma: None,
+        residuals: vec![],
     };
     let written = |tables: Vec<activemuscle::studies::outputs::OwnTable>| {
         let t = &tables[0];

@@ -55,3 +55,29 @@ impl activemuscle::StrainEnergy for AllInvariants {
 
 energy_test_battery!(all_invariants_passive, AllInvariants, gamma = 0.0);
 energy_test_battery!(all_invariants_active, AllInvariants, gamma = 0.35);
+
+/// [`AllInvariants`] written as a formula (a parameter-free one: numbers only).
+fn all_invariants_formula() -> activemuscle::energy::FormulaEnergy {
+    activemuscle::energy::FormulaEnergy::new(
+        "0.5*(tr_c - 3) + 0.7*(c_m - 1)^2 + 0.3*(tr_c_inv - 3) + 0.2*(c_inv_m - 1)^2 \
+         - 0.4*ln(det_c) + 1.3*(det_c - 1)^2 + (expm1((c_m - 1)*0.5) - (c_m - 1)*0.5)*sqrt(det_c)",
+        Vec::new(),
+    )
+    .unwrap()
+}
+
+energy_test_battery!(
+    formula_yeoh_fibres_passive,
+    crate::formula_energy::yeoh_fibres(),
+    gamma = 0.0
+);
+energy_test_battery!(
+    formula_yeoh_fibres_active,
+    crate::formula_energy::yeoh_fibres(),
+    gamma = 0.25
+);
+energy_test_battery!(
+    formula_all_invariants_active,
+    all_invariants_formula(),
+    gamma = 0.35
+);

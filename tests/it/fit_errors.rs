@@ -165,9 +165,10 @@ fn a_fit_that_does_not_converge_is_an_error_with_the_best_point() {
     }
 }
 
-/// A best damage outside [0, 1] (a muscle stronger than the reference) is not reported as d = 0.
+/// A best damage outside [0, 1] (a muscle stronger than the reference) is not reported as a plain
+/// d = 0: it is held at its bound 0, and the report says where the minimum lies (d = −0.2).
 #[test]
-fn a_minimum_outside_the_bounds_is_not_reported_as_converged() {
+fn a_minimum_outside_the_bounds_is_reported_at_its_bound() {
     let (energy, curve) = (GiantesioMusesti::paper(), ActiveCurve::paper());
     let lambda: Vec<f64> = (0..20).map(|i| 0.8 + i as f64 * 0.03).collect();
     // 1.2 × the active stress: best d = −0.2.
@@ -176,8 +177,13 @@ fn a_minimum_outside_the_bounds_is_not_reported_as_converged() {
         Ok(activemuscle::uniaxial::along_fibres(&muscle, l)?.stress + 1.2 * curve.value(l))
     })
     .unwrap();
-    assert!(matches!(
-        fit_damage(&energy, &curve, &data, &FitSetup::new()),
-        Err(FitError::NotConverged { .. })
-    ));
+    let report = fit_damage(&energy, &curve, &data, &FitSetup::new())
+        .unwrap()
+        .report;
+    println!("{report}");
+    let held = report.at_bound[0].expect("d at its bound");
+    assert_eq!((held.bound, report.values[0]), (0.0, 0.0));
+    assert!((held.beyond + 0.2).abs() < 1e-9, "{held:?}");
+    assert!(report.standard_errors[0].is_nan());
+    assert!(report.to_string().contains("at its bound 0"));
 }

@@ -59,7 +59,7 @@ use scratch::scratch;
 /// curves.csv, issue 15 the Cauchy stress `cauchy`, issue 24 the volume ratio `J` and the
 /// cylinder's `P_0d`, `dofs`, `element` and `regions`; issue 42 the activation `approach` of
 /// every row that names a law and whether the law is `in_domain`, issue 43 the fit's
-/// `termination`, which Python's table had).
+/// `termination`, which Python's table had; issue 44 the fits' `at_bound` and `weights`).
 const NEW_COLUMNS: &[(&str, &[&str])] = &[
     (
         "curves.csv",
@@ -76,7 +76,10 @@ const NEW_COLUMNS: &[(&str, &[&str])] = &[
         ],
     ),
     ("stability.csv", &["cauchy", "approach", "in_domain"]),
-    ("fits.csv", &["termination", "approach"]),
+    (
+        "fits.csv",
+        &["termination", "approach", "at_bound", "weights"],
+    ),
 ];
 
 /// A CSV file as its header and rows of text cells.

@@ -54,6 +54,8 @@ mod fit_paper;
 mod fit_recovery;
 mod fixed_lengths;
 mod force_velocity_range;
+mod formula_energy;
+mod formula_fit;
 mod four_c_blocks;
 mod four_c_passive;
 mod full_disk;

@@ -129,7 +129,7 @@ fn the_shipped_energies_are_the_registry_s_with_their_chapter_values() {
         let defaults: Vec<(&str, f64)> = shipped
             .parameters
             .iter()
-            .map(|p| (p.name, p.default.expect("a chapter value")))
+            .map(|p| (p.name.as_ref(), p.default.expect("a chapter value")))
             .collect();
         assert_eq!(defaults, values, "{name}");
     }

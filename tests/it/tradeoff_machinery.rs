@@ -735,3 +735,48 @@ fn the_frozen_tangent_group_has_no_failure_when_only_its_symmetric_variants_fail
     }
     assert!(results.failed().is_empty(), "{:?}", results.failed());
 }
+
+/// The convenience-against-speed group: the chapter's energy written as a formula against the
+/// same compiled, per point and per sweep of the clamped cylinder. The two are the same function,
+/// so the errors it reports are rounding (the formula_energy tests compare them independently);
+/// on a material that is itself a formula there is nothing to compare with, and it says so.
+#[test]
+fn the_formula_energy_group_times_the_formula_against_the_compiled_energy_at_rounding_error() {
+    let options = TradeoffOptions {
+        groups: vec![OptionGroup::FormulaEnergy],
+        geometry: Some(geometry()),
+        fe_mesh: Some((1, 4)),
+        fe_stretches: vec![1.0, 1.1],
+        ..TradeoffOptions::default()
+    };
+    let results = run(&Models::paper(), &options, &Silent).unwrap();
+    let rows: Vec<(&str, &str, bool)> = results
+        .rows
+        .iter()
+        .map(|r| (r.option.as_str(), r.variant.as_str(), r.reference))
+        .collect();
+    assert_eq!(
+        rows,
+        [
+            ("formula energy (point)", "compiled", true),
+            ("formula energy (point)", "formula", false),
+            ("formula energy (FE)", "compiled", true),
+            ("formula energy (FE)", "formula", false),
+        ]
+    );
+    for r in &results.rows {
+        assert!(
+            r.error.max_rel <= 1e-12,
+            "{}: {:e}",
+            r.option,
+            r.error.max_rel
+        );
+        assert!(r.time.median > 0.0);
+    }
+    assert!(results.findings[0].contains("giantesio-musesti written as a formula"));
+    let mut written = Models::paper();
+    written.energy = activemuscle::energy::Energy::Formula(written.energy.as_formula().unwrap());
+    let results = run(&written, &options, &Silent).unwrap();
+    assert!(results.rows.is_empty());
+    assert!(results.findings[0].contains("the material is itself a formula"));
+}

@@ -83,20 +83,8 @@ impl ShippedCurve for ChapterCurve {
     const FORMULA: &'static str = "P_opt exp[−k (λ² − λ_opt²)²/(λ − λ_min)]";
     const SOURCE: &'static str = "the chapter's eq. (8)";
     const PARAMETERS: &'static [Parameter] = &[
-        Parameter {
-            name: "lambda_min",
-            symbol: "λ_min",
-            unit: "-",
-            default: Some(Self::PAPER.lambda_min),
-            range: (0.0, 1.0),
-        },
-        Parameter {
-            name: "lambda_opt",
-            symbol: "λ_opt",
-            unit: "-",
-            default: Some(Self::PAPER.lambda_opt),
-            range: (0.5, 2.0),
-        },
+        Parameter::ranged("lambda_min", "λ_min", "-", Some(Self::PAPER.lambda_min), (0.0, 1.0)),
+        Parameter::ranged("lambda_opt", "λ_opt", "-", Some(Self::PAPER.lambda_opt), (0.5, 2.0)),
         Parameter::positive("k", "k", "-", Some(Self::PAPER.k)),
         Parameter::positive("p_opt", "P_opt", "kPa", Some(Self::PAPER.p_opt)),
     ];

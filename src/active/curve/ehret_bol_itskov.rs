@@ -69,20 +69,8 @@ impl ShippedCurve for EhretBolItskovCurve {
         "P_opt (λ − λ_min)/(λ_opt − λ_min) exp[(2λ_min − λ − λ_opt)(λ − λ_opt)/(2(λ_min − λ_opt)²)]";
     const SOURCE: &'static str = "Ehret, Böl & Itskov (2011), as 4C";
     const PARAMETERS: &'static [Parameter] = &[
-        Parameter {
-            name: "lambda_min",
-            symbol: "λ_min",
-            unit: "-",
-            default: Some(Self::DEFAULT.lambda_min),
-            range: (0.0, 1.0),
-        },
-        Parameter {
-            name: "lambda_opt",
-            symbol: "λ_opt",
-            unit: "-",
-            default: Some(Self::DEFAULT.lambda_opt),
-            range: (0.5, 2.0),
-        },
+        Parameter::ranged("lambda_min", "λ_min", "-", Some(Self::DEFAULT.lambda_min), (0.0, 1.0)),
+        Parameter::ranged("lambda_opt", "λ_opt", "-", Some(Self::DEFAULT.lambda_opt), (0.5, 2.0)),
         Parameter::positive("p_opt", "P_opt", "kPa", Some(Self::DEFAULT.p_opt)),
     ];
 

@@ -49,9 +49,9 @@ pub trait ShippedCurve: Copy + PartialEq + std::fmt::Debug + Sized {
 }
 
 /// Checks that every value is finite and > 0 (each value named by its parameter).
-pub(crate) fn check_positive(parameters: &[Parameter], values: &[f64]) -> Result<()> {
+pub(crate) fn check_positive(parameters: &'static [Parameter], values: &[f64]) -> Result<()> {
     for (p, &v) in parameters.iter().zip(values) {
-        crate::parameter::positive(p.name, v)?;
+        crate::parameter::positive(p.name.as_ref(), v)?;
     }
     Ok(())
 }

@@ -33,7 +33,7 @@ impl Problem for ActiveCurveFit {
         let c = &self.curve;
         Model {
             kind: FitKind::ActiveCurve,
-            names: c.parameters().iter().map(|p| p.name).collect(),
+            names: c.parameters().iter().map(|p| p.name.to_string()).collect(),
             values: c.parameter_values(),
             bounds: c
                 .parameters()
@@ -43,8 +43,8 @@ impl Problem for ActiveCurveFit {
             default_free: c
                 .parameters()
                 .iter()
-                .map(|p| p.name)
-                .filter(|n| *n != "p_opt")
+                .map(|p| p.name.to_string())
+                .filter(|n| n != "p_opt")
                 .collect(),
             y_label: "P_act [kPa]",
             reference_label: "scene's active curve",

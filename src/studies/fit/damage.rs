@@ -22,10 +22,10 @@ impl Problem for DamageFit {
     fn model(&self) -> Model {
         Model {
             kind: FitKind::Damage,
-            names: vec!["d"],
+            names: vec!["d".into()],
             values: vec![0.0],
             bounds: vec![crate::fit::Bounds::UNIT],
-            default_free: vec!["d"],
+            default_free: vec!["d".into()],
             y_label: "P_total [kPa]",
             reference_label: "healthy muscle (d = 0)",
             unit: "kPa",

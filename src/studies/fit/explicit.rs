@@ -23,10 +23,10 @@ impl Problem for ExplicitLawFit {
         let (a, b) = ExplicitLaw::paper().coefficients();
         Model {
             kind: FitKind::ExplicitLaw,
-            names: vec!["a", "b"],
+            names: vec!["a".into(), "b".into()],
             values: vec![a, b],
             bounds: vec![crate::fit::COEFFICIENT_BOUNDS; 2],
-            default_free: vec!["a", "b"],
+            default_free: vec!["a".into(), "b".into()],
             y_label: "activation γ [-]",
             reference_label: "chapter's (a, b)",
             unit: match self.residual {

@@ -9,6 +9,11 @@
 //!
 //! `noise` \[kPa\] adds seeded Gaussian noise to synthetic data. Data files are read and checked
 //! when the scene is validated, so a bad file is reported by `check` with its name and line.
+//! `weights` divides each residual by a scale ([`WeightsKind`]: `sigma`, a `sigma` column of the
+//! data, the default where it has one; `relative`, the datum itself; `equal`). A minimum on a
+//! bound is a result, the parameter marked at its bound ([`crate::fit::AtBound`]). Besides the
+//! figures and `fits.csv`, each fit writes its data, the fitted model at each datum and the
+//! residuals, and the fitted curve, to `fit_points.csv` ([`output`]).
 //!
 //! Each kind is a [`Problem`]: the model's parameters (names, values, default free set), how to
 //! fit one data set, and the model's curve at any parameter values; resolution and the run are
@@ -22,6 +27,7 @@ mod damage;
 mod explicit;
 mod output;
 mod passive;
+mod points;
 mod setup;
 mod source;
 
@@ -29,13 +35,16 @@ use super::spec::{optional_stretches, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
 use crate::energy::Energy;
-use crate::fit::{BiaxialData, Data, ExplicitTarget, FitError, FitReport, FitSetup, Method};
+use crate::fit::{
+    AtBound, BiaxialData, Data, ExplicitTarget, FitError, FitReport, FitSetup, Method,
+};
 use crate::models::EnergySpec;
 use crate::uniaxial::Direction;
 use active::ActiveCurveFit;
 use damage::DamageFit;
 use explicit::ExplicitLawFit;
 use passive::Passive;
+pub use points::rows_of as fit_points_rows;
 use serde::{Deserialize, Serialize};
 use setup::{check_keys, enough_points, free_parameters, setup, solver};
 pub use source::DataSource;
@@ -71,10 +80,10 @@ impl FitKind {
     /// The keys only this kind of fit takes (the others take none of them).
     fn own_keys(self) -> &'static [&'static str] {
         match self {
-            FitKind::Passive => &["data", "reference", "direction"],
-            FitKind::ActiveCurve => &["data", "stress"],
+            FitKind::Passive => &["data", "reference", "direction", "weights"],
+            FitKind::ActiveCurve => &["data", "stress", "weights"],
             FitKind::ExplicitLaw => &["residual", "damage"],
-            FitKind::Damage => &["data", "true_damage"],
+            FitKind::Damage => &["data", "true_damage", "weights"],
         }
     }
 }
@@ -118,6 +127,9 @@ pub struct FitSpec {
     pub noise: Option<f64>,
     /// Seed of the noise (default 1).
     pub seed: Option<i64>,
+    /// How residuals are weighted: `sigma` (the data's `sigma` column; the default where the
+    /// data have one), `relative` or `equal` (the default otherwise).
+    pub weights: Option<WeightsKind>,
     /// Free parameters (default: the fit's own choice).
     pub free: Option<Vec<String>>,
     /// Starting values by parameter name (default: the model's values).
@@ -129,6 +141,29 @@ pub struct FitSpec {
     pub method: Option<Method>,
     /// Maximum Levenberg–Marquardt iterations (default 1000).
     pub max_iterations: Option<i64>,
+}
+
+/// How a fit study weights its residuals (`weights = "..."`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum WeightsKind {
+    /// Residuals in kPa, every point alike.
+    Equal,
+    /// Residuals relative to the datum, (model − P_i)/|P_i| (noise proportional to the data).
+    Relative,
+    /// Residuals over each point's standard deviation, the data file's `sigma` column.
+    Sigma,
+}
+
+impl WeightsKind {
+    /// Name in scene files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            WeightsKind::Equal => "equal",
+            WeightsKind::Relative => "relative",
+            WeightsKind::Sigma => "sigma",
+        }
+    }
 }
 
 /// Keys a fit study does not take, and what to write instead.
@@ -239,13 +274,13 @@ pub struct Model {
     /// What is fitted.
     pub kind: FitKind,
     /// Names of all the model's parameters, in order.
-    pub names: Vec<&'static str>,
+    pub names: Vec<String>,
     /// The model's own values of all parameters (the default starts).
     pub values: Vec<f64>,
     /// The default bounds of each parameter (its admissible range), in the order of `names`.
     pub bounds: Vec<crate::fit::Bounds>,
     /// The parameters freed when the scene does not say.
-    pub default_free: Vec<&'static str>,
+    pub default_free: Vec<String>,
     /// y-axis label of the figure, with unit.
     pub y_label: &'static str,
     /// Label of the model at the reference values in the figure.
@@ -288,6 +323,8 @@ pub struct FitStudy {
     pub cases: Vec<FitCase>,
     /// Free parameters, starts, bounds and solver options.
     pub setup: FitSetup,
+    /// How the residuals are weighted (the scales of each case from its data).
+    pub weights: WeightsKind,
     /// Names of the free parameters (resolved).
     pub free: Vec<String>,
     /// What is fitted: parameters and labels.
@@ -305,6 +342,7 @@ impl PartialEq for FitStudy {
             &self.setup,
             &self.free,
             &self.model,
+            self.weights,
         ) == (
             &other.name,
             &other.source,
@@ -312,6 +350,7 @@ impl PartialEq for FitStudy {
             &other.setup,
             &other.free,
             &other.model,
+            other.weights,
         )
     }
 }
@@ -335,6 +374,7 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
     let setup = setup(spec, &model, &free, options)?;
     let (cases, source) = problem.cases(spec, stretches.as_deref(), &mut source)?;
     enough_points(spec, kind, &cases, free.len())?;
+    let weights = setup::weights(spec, &cases)?;
     let name = spec
         .name
         .clone()
@@ -344,6 +384,7 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
         free: Some(free.clone()),
         method: Some(options.method),
         max_iterations: Some(options.max_iterations as i64),
+        weights: (kind != FitKind::ExplicitLaw).then_some(weights),
         reference: spec
             .reference
             .as_ref()
@@ -367,6 +408,7 @@ pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), Spec
         source,
         cases,
         setup,
+        weights,
         free,
         model,
         problem,
@@ -445,6 +487,15 @@ pub struct FitOutcome {
     pub converged: bool,
     /// Solver termination, and why it did not converge.
     pub termination: String,
+    /// Per free parameter: the bound it is held at, if the minimum lies beyond it.
+    pub at_bound: Vec<Option<AtBound>>,
+    /// How the residuals were weighted.
+    pub weights: WeightsKind,
+    /// The scale σ_i each residual was divided by (`None`: equal weights).
+    pub sigma: Option<Vec<f64>>,
+    /// Residuals model − datum at the fitted values, in the data's order (biaxial rows: P₁₁,
+    /// P₂₂ of each row in turn), in the unit of the residuals.
+    pub residuals: Vec<f64>,
     /// Further facts (e.g. the explicit law's max stress error), one line each.
     pub extra: Vec<String>,
     /// Data and curves for the figure, one per stress of the data.
@@ -463,6 +514,9 @@ impl FitOutcome {
             .zip(&self.values)
             .enumerate()
             .map(|(j, (name, v))| {
+                if let Some(b) = self.at_bound.get(j).copied().flatten() {
+                    return format!("{name} = {} (at its bound {})", digits(*v), digits(b.bound));
+                }
                 let error = self.standard_errors.get(j).copied().flatten();
                 format!(
                     "{name} = {} ± {}",
@@ -555,7 +609,14 @@ impl FitStudy {
             })
         };
         for case in &self.cases {
-            match self.problem.fit(case, &self.setup) {
+            let setup = match setup::case_weights(self.weights, &case.data) {
+                Ok(w) => self.setup.clone().weights(w),
+                Err(e) => {
+                    fail(format!("{}: fit failed: {e}", case.label));
+                    continue;
+                }
+            };
+            match self.problem.fit(case, &setup) {
                 Ok((report, extra)) => outcomes.push(self.outcome(case, report, extra, true)),
                 Err(e @ FitError::NotConverged { .. }) => {
                     fail(format!("{}: {e} (reported, NOT a solution)", case.label));
@@ -667,6 +728,10 @@ impl FitStudy {
             converged,
             extra,
             plot,
+            at_bound: report.at_bound,
+            weights: self.weights,
+            sigma: report.sigma,
+            residuals: report.residuals,
             names: report.names,
             values: report.values,
             termination: report.termination,

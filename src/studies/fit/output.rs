@@ -1,5 +1,6 @@
-//! The fit kind's figures (data, the fitted model, the model at the reference values) and its
-//! report table (values ± standard errors, correlations, RMS, convergence).
+//! The fit kind's figures (data, the fitted model, the model at the reference values), its
+//! report table (values ± standard errors, or at a bound; correlations, RMS, weights,
+//! convergence) and its own table, `fit_points.csv` ([`super::points`]).
 
 use super::{correlations, FitCurves, FitKind, FitOutcome};
 use crate::app_error::{finite, AppError};
@@ -12,16 +13,25 @@ use crate::text::escape_html as escape;
 use std::fmt::Write;
 
 impl KindOutput for Vec<FitOutcome> {
-    /// Its rows of `fits.csv`.
+    /// Its rows of `fits.csv`, and of `fit_points.csv` (each datum with the fitted model and
+    /// the residual, then the fitted curve).
     fn tables(&self, study: &str) -> Vec<OwnTable> {
-        vec![OwnTable::rows(
-            "fits.csv",
-            "one row per fitted parameter",
-            fits_table_of(study, self),
-        )]
+        vec![
+            OwnTable::rows(
+                "fits.csv",
+                "one row per fitted parameter",
+                fits_table_of(study, self),
+            ),
+            OwnTable {
+                key: "fit_points",
+                file: "fit_points.csv".into(),
+                rows_are: "one row per datum of a fit (with the fitted model there and the residual) and per point of its fitted curve",
+                table: super::points::points_table(study, self),
+            },
+        ]
     }
 
-    /// Each fitted value with its standard error.
+    /// Each fitted value with its standard error (or its bound).
     fn console(&self, study: &str) -> Vec<String> {
         self.iter()
             .map(|f| format!("{study} — {}", f.summary()))
@@ -74,6 +84,8 @@ pub fn fits_table_of(study: &str, fits: &[FitOutcome]) -> Table {
             "the activation approach whose law is fitted: active-strain for the explicit law (eq. (14)); empty: the fit does not depend on the approach (passive parameters, the active curve and the damage are fitted to the uniaxial target P_pas + (1 − d) P_act along the fibres, which every approach reproduces)",
             rows.iter().map(|(f, _)| approach(f.kind)),
         )
+        .number("at_bound", unit, "the bound the parameter is held at, the least-squares minimum lying beyond it (empty: estimated inside its bounds)", of(|f, j| f.at_bound.get(j).copied().flatten().map(|b| b.bound)))
+        .text("weights", "how the residuals were weighted: equal, relative (to the datum) or sigma (each datum's standard deviation)", words(|f, _| f.weights.name().into()))
 }
 
 /// The correlations of parameter `j` of `f` with the others, five decimals (`n/a` where not
@@ -137,7 +149,11 @@ fn fit_status(f: &FitOutcome) -> String {
         .names
         .iter()
         .zip(&f.values)
-        .map(|(n, v)| format!("{n} = {v:.4}"))
+        .enumerate()
+        .map(|(j, (n, v))| match f.at_bound.get(j).copied().flatten() {
+            Some(b) => format!("{n} = {v:.4} (at its bound {})", b.bound),
+            None => format!("{n} = {v:.4}"),
+        })
         .collect();
     format!(
         "fit: {}{}",
@@ -228,6 +244,38 @@ fn whole_range(y: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     (hi > lo).then_some((lo - pad, hi + pad))
 }
 
+/// ` ± 1.2e-3`, ` at its bound 0 (the minimum lies beyond, at -0.03)` or ` ± (n/a)`: what the
+/// report says of the estimate of parameter `j` of `f`.
+fn error_cell(f: &FitOutcome, j: usize, origin: &dyn Fn() -> String) -> Result<String, AppError> {
+    let held = f.at_bound.get(j).copied().flatten();
+    Ok(match (held, f.standard_errors.get(j).copied().flatten()) {
+        (Some(b), _) => format!(
+            " <b>at its bound</b> {} (the minimum lies beyond, at {})",
+            crate::text::shortest(b.bound),
+            crate::text::significant(b.beyond, 6)
+        ),
+        (None, Some(s)) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
+        (None, None) => " ± (n/a)".into(),
+    })
+}
+
+/// Converged or not (and why), the weights, the fit's further facts.
+fn status_cell(f: &FitOutcome) -> String {
+    let e = escape;
+    let mut status = if f.converged {
+        "converged".to_string()
+    } else {
+        format!("<b>NOT converged</b> ({})", e(&f.termination))
+    };
+    if f.weights != super::WeightsKind::Equal {
+        status.push_str(&format!("<br>residuals weighted: {}", f.weights.name()));
+    }
+    for x in &f.extra {
+        status.push_str(&format!("<br>{}", e(x)));
+    }
+    status
+}
+
 /// Parameters ± standard errors, reference values, correlation, RMS, iterations, convergence.
 fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), AppError> {
     let studies: Vec<(&str, &[FitOutcome])> = studies
@@ -238,7 +286,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
         return Ok(());
     }
     let e = escape;
-    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
+    h.push_str("<h2>Fits</h2>\n<p>Least squares with dual-number Jacobians (<code>fits.csv</code> has the same numbers). Standard errors σ = √(s²(JᵀJ)⁻¹), of the weighted residuals where the fit weights them; a parameter <b>at its bound</b> is held there, the minimum lying beyond it (it has no standard error, the others are fitted with it held); a fit marked <b>NOT converged</b> shows the best point found, which is not a solution. Each datum with the fitted model and the residual, and the fitted curve, are in <code>fit_points.csv</code>.</p>\n<table><tr><th>study</th><th>data</th><th>parameter</th><th>value ± std. error</th><th>reference</th><th>correlation with the others</th><th>RMS</th><th>iterations</th><th>status</th></tr>\n");
     for (study, f) in studies
         .iter()
         .flat_map(|&(s, fits)| fits.iter().map(move |f| (s, f)))
@@ -247,10 +295,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
         let n = f.names.len();
         for j in 0..n {
             let value = finite(f.values[j], "fitted value", origin)?;
-            let se = match f.standard_errors.get(j).copied().flatten() {
-                Some(s) => format!(" ± {:.3e}", finite(s, "standard error", origin)?),
-                None => " ± (n/a)".into(),
-            };
+            let se = error_cell(f, j, &origin)?;
             let reference = match f.reference.get(j).copied().flatten() {
                 Some(r) => finite(r, "reference value", origin)?.to_string(),
                 None => String::new(),
@@ -262,14 +307,7 @@ fn fits_table(h: &mut String, studies: &[Of<Vec<FitOutcome>>]) -> Result<(), App
                 None => String::new(),
             };
             if j == 0 {
-                let mut status = if f.converged {
-                    "converged".to_string()
-                } else {
-                    format!("<b>NOT converged</b> ({})", e(&f.termination))
-                };
-                for x in &f.extra {
-                    status.push_str(&format!("<br>{}", e(x)));
-                }
+                let status = status_cell(f);
                 // Biaxial rows give two stresses each.
                 let points = if f.plot.iter().any(|c| c.at_rows) {
                     "rows of (P₁₁, P₂₂)"

@@ -26,8 +26,11 @@ impl Problem for Passive {
         let names = self.energy.parameter_names();
         Model {
             kind: FitKind::Passive,
-            default_free: default_passive_free(&names),
-            names,
+            default_free: default_passive_free(&names)
+                .iter()
+                .map(|n| n.to_string())
+                .collect(),
+            names: names.iter().map(|n| n.to_string()).collect(),
             values: self.energy.parameter_values(),
             bounds: crate::fit::parameter_bounds(&self.energy),
             y_label: "P_pas [kPa]",

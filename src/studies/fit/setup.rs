@@ -2,9 +2,9 @@
 //! of fit takes, enough data points, the free parameters, their starts and bounds.
 
 use super::source::DataSource;
-use super::{CaseData, FitCase, FitKind, FitSpec, Model};
+use super::{CaseData, FitCase, FitKind, FitSpec, Model, WeightsKind};
 use crate::app_error::SpecError;
-use crate::fit::{Bounds, FitOptions, FitSetup};
+use crate::fit::{Bounds, FitError, FitOptions, FitSetup, Weights};
 use crate::random::Sampler;
 use crate::studies::spec::fmt_list;
 use crate::text::shortest;
@@ -92,6 +92,7 @@ pub(super) fn check_keys(spec: &FitSpec, kind: FitKind) -> Result<(), SpecError>
         ("residual", spec.residual.is_some()),
         ("damage", spec.damage.is_some()),
         ("true_damage", spec.true_damage.is_some()),
+        ("weights", spec.weights.is_some()),
     ];
     for (key, present) in given {
         if present && !kind.own_keys().contains(&key) {
@@ -109,12 +110,12 @@ pub(super) fn check_keys(spec: &FitSpec, kind: FitKind) -> Result<(), SpecError>
 /// The free parameters: given or the fit's default, each a parameter of the model, once.
 pub(super) fn free_parameters(
     spec: &FitSpec,
-    names: &[&str],
-    default_free: &[&str],
+    names: &[String],
+    default_free: &[String],
 ) -> Result<Vec<String>, SpecError> {
     let free: Vec<String> = match &spec.free {
         Some(f) => f.clone(),
-        None => default_free.iter().map(|n| n.to_string()).collect(),
+        None => default_free.to_vec(),
     };
     if free.is_empty() {
         return Err(SpecError::new(
@@ -124,7 +125,7 @@ pub(super) fn free_parameters(
         ));
     }
     for (j, f) in free.iter().enumerate() {
-        if !names.contains(&f.as_str()) {
+        if !names.contains(f) {
             return Err(SpecError::new(
                 format!("free[{j}]"),
                 format!("{f:?}"),
@@ -196,6 +197,53 @@ pub(super) fn setup(
         setup = setup.start(name, v);
     }
     Ok(setup)
+}
+
+/// The weights of the study: given, or `sigma` if every data set has a `sigma` column, else
+/// `equal`; `sigma` without the column and `relative` on a datum of 0 are refused at `weights`.
+pub(super) fn weights(spec: &FitSpec, cases: &[FitCase]) -> Result<WeightsKind, SpecError> {
+    let with_sigma = |c: &FitCase| matches!(&c.data, CaseData::Uniaxial(d) if d.sigma().is_some());
+    let all = !cases.is_empty() && cases.iter().all(with_sigma);
+    let kind = spec.weights.unwrap_or(if all {
+        WeightsKind::Sigma
+    } else {
+        WeightsKind::Equal
+    });
+    let refuse = |rule: String| {
+        Err(SpecError::new(
+            "weights",
+            format!("\"{}\"", kind.name()),
+            rule,
+        ))
+    };
+    if kind == WeightsKind::Sigma && !all {
+        return refuse("weights = \"sigma\" divides each residual by the data's standard deviation: the data file needs a third column, lambda,P,sigma (planar biaxial and synthetic data have none; use \"relative\" or \"equal\")".into());
+    }
+    for c in cases {
+        if let Err(e) = case_weights(kind, &c.data) {
+            return refuse(format!("{}: {e}", c.label));
+        }
+    }
+    Ok(kind)
+}
+
+/// The scale of each residual of `data` under `kind`: the data's σ, |datum| (biaxial rows:
+/// |P₁₁|, |P₂₂| of each row in turn) or none.
+pub(super) fn case_weights(kind: WeightsKind, data: &CaseData) -> Result<Weights, FitError> {
+    let observed: Vec<f64> = match data {
+        CaseData::Uniaxial(d) => d.stress().to_vec(),
+        CaseData::Biaxial(b) => b.stresses().iter().flat_map(|p| [p[0], p[1]]).collect(),
+    };
+    let weights = match (kind, data) {
+        (WeightsKind::Equal, _) => Weights::Equal,
+        (WeightsKind::Relative, _) => Weights::Sigma(observed.iter().map(|p| p.abs()).collect()),
+        (WeightsKind::Sigma, CaseData::Uniaxial(d)) => {
+            Weights::Sigma(d.sigma().map(<[f64]>::to_vec).unwrap_or_default())
+        }
+        (WeightsKind::Sigma, CaseData::Biaxial(_)) => Weights::Sigma(Vec::new()),
+    };
+    weights.scales(&observed)?;
+    Ok(weights)
 }
 
 /// Checks `start.<name> = v`: a free parameter, finite, within its bounds (given, else the

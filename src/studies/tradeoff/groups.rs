@@ -12,6 +12,7 @@
 //! | Newton tolerance (FE) | 1e-6, 1e-8, 1e-10 | 1e-12 | P(λ), centre γ |
 //! | 0D vs FE (sliding bases: homogeneous) | FE | 0D (the exact solution) | P(λ), γ |
 //! | incompressibility (0D along the fibres; FE, clamped) | (κ/2)(J − 1)², κ = 10³, …, 10⁸ kPa (FE: 10³, 10⁵, 10⁷) | exact, J = 1 | P(λ), γ (FE: centre γ) |
+//! | formula energy (convenience against speed: point and FE, clamped) | the material's energy written as a formula | the compiled energy | ∂P/∂F; P(λ), centre γ |
 //!
 //! Times are wall times \[s\]: a whole sweep (FE: mesh, set-up and load path), the whole 0D curve,
 //! or one material-point call.
@@ -30,6 +31,7 @@ use crate::studies::Progress;
 use crate::uniaxial::{along_fibres, Direction};
 use crate::volumetric::{Volumetric, VolumetricForm};
 use crate::Muscle;
+use crate::StrainEnergy;
 use std::time::Instant;
 
 /// Options with the geometry, FE mesh and stretches resolved.
@@ -668,6 +670,23 @@ fn max_rel(a: &nalgebra::SMatrix<f64, 5, 5>, b: &nalgebra::SMatrix<f64, 5, 5>) -
     (a - b).amax() / b.amax()
 }
 
+/// The wall time of one stress-and-tangent call of `m` at the representative point (median of
+/// repeated batches of 200) and the tangent there.
+fn per_point(
+    m: &dyn AxisymmetricMaterial,
+) -> Result<(Timing, nalgebra::SMatrix<f64, 5, 5>), AppError> {
+    const BATCH: usize = 200;
+    let f = representative_point();
+    let (t, k) = time_median(|| -> Result<_, AppError> {
+        let mut last = None;
+        for _ in 0..BATCH {
+            last = Some(m.stress_tangent(std::hint::black_box(&f))?);
+        }
+        Ok(last.map(|v| v.1).unwrap_or_default())
+    })?;
+    Ok((t.per(BATCH), k))
+}
+
 /// Derivative routes at one material point and in the FE.
 pub(super) fn derivative_route(
     models: &Models,
@@ -677,19 +696,6 @@ pub(super) fn derivative_route(
     let fast = muscle(models, o.approach, o.working_law(), EXACT)?;
     let oracle = OracleRoute::new(&fast);
     let fd = FiniteDifferenceTangent::new(&fast, o.fd_step)?;
-    let f = representative_point();
-    const BATCH: usize = 200;
-    let per_point =
-        |m: &dyn AxisymmetricMaterial| -> Result<(Timing, nalgebra::SMatrix<f64, 5, 5>), AppError> {
-            let (t, k) = time_median(|| -> Result<_, AppError> {
-                let mut last = None;
-                for _ in 0..BATCH {
-                    last = Some(m.stress_tangent(std::hint::black_box(&f))?);
-                }
-                Ok(last.map(|v| v.1).unwrap_or_default())
-            })?;
-            Ok((t.per(BATCH), k))
-        };
     const POINT: &str = "derivative route (point)";
     let quantity = &format!(
         "∂P/∂F at one point [kPa] ({} law, frozen exact)",
@@ -1149,5 +1155,73 @@ fn incompressibility_0d(
         not_the_scenes(models),
         words.join("; ")
     ));
+    Ok(())
+}
+
+/// Convenience against speed: the material's energy written as a formula
+/// ([`Energy::as_formula`], parsed and interpreted at run time) against the same energy compiled
+/// (the reference), per material point (stress, tangent and dP/dγ of the working law, frozen,
+/// exact tangent) and per sweep of the clamped cylinder. Not measured for a material that is
+/// itself a formula (it has no compiled twin).
+pub(super) fn formula_energy(
+    models: &Models,
+    o: &Resolved,
+    run: &mut Runner<'_>,
+    findings: &mut Vec<String>,
+) -> Result<(), AppError> {
+    if let Energy::Formula(_) = models.energy {
+        findings.push("Formula energy not measured: the material is itself a formula, with no compiled form to compare with.".into());
+        return Ok(());
+    }
+    let formula = models
+        .energy
+        .as_formula()
+        .map_err(|e| AppError::Invalid(format!("the material's energy as a formula: {e}")))?;
+    let written = Models {
+        energy: Energy::Formula(formula),
+        ..models.clone()
+    };
+    let law = o.working_law();
+    let (compiled, interpreted) = (
+        muscle(models, o.approach, law, EXACT)?,
+        muscle(&written, o.approach, law, EXACT)?,
+    );
+    const POINT: &str = "formula energy (point)";
+    let quantity = format!(
+        "∂P/∂F at one point [kPa] ({} law, frozen exact)",
+        law.name()
+    );
+    let (t_ref, k_ref) = per_point(&compiled)?;
+    run.push(Measurement::new(
+        POINT,
+        "compiled",
+        true,
+        t_ref,
+        &quantity,
+        CurveError::ZERO,
+    ));
+    let (t, k) = per_point(&interpreted)?;
+    let e = CurveError {
+        max_abs: (k - k_ref).amax(),
+        max_rel: max_rel(&k, &k_ref),
+    };
+    run.push(Measurement::new(POINT, "formula", false, t, &quantity, e));
+    const FE: &str = "formula energy (FE)";
+    let reference = o.clamped(&compiled, &tight())?;
+    run.push(fe_row(FE, "compiled", true, &reference, &reference));
+    let sweep = o.clamped(&interpreted, &tight())?;
+    let row = fe_row(FE, "formula", false, &sweep, &reference);
+    findings.push(format!(
+        "Formula energy ({} written as a formula, {} law): per material point (stress, tangent, dP/dγ) {}; per sweep of the clamped cylinder ({} × {} cells) {}; tangent within {:.1e} (relative), nominal stress within {:.1e} kPa.",
+        models.energy.name(),
+        law.name(),
+        t.against(&t_ref, "the compiled energy"),
+        o.fe_mesh.0,
+        o.fe_mesh.1,
+        sweep.time.against(&reference.time, "the compiled energy"),
+        e.max_rel,
+        row.error.max_abs
+    ));
+    run.push(row);
     Ok(())
 }

@@ -19,7 +19,7 @@
 //!
 //! | key | meaning | default |
 //! |---|---|---|
-//! | `options` | option groups: `activation-law`, `activation-law-fe`, `law-representation`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe`, `incompressibility` | all |
+//! | `options` | option groups: `activation-law`, `activation-law-fe`, `law-representation`, `derivative-route`, `frozen-tangent`, `mesh`, `element`, `newton-tolerance`, `zero-d-vs-fe`, `incompressibility`, `formula-energy` | all |
 //! | `stretch` | stretches of every sweep (FE and 0D) | FE: 0.8, 1, 1.17, 1.3; 0D: the first uniaxial study along the fibres, or 0.65:0.01:1.60 |
 //! | `meshes` | `[[nr, nz], ...]` of the mesh option, coarse to fine (the last is the reference) | 2 × 8, 4 × 16, 8 × 32, 16 × 64 |
 //! | `nr`, `nz` | mesh of the other FE options | the first cylinder study's, or 4 × 16 |
@@ -75,11 +75,13 @@ pub enum OptionGroup {
     ZeroDVsFe,
     /// Exact incompressibility versus a quadratic volumetric energy of growing κ (0D and FE).
     Incompressibility,
+    /// The material's energy written as a formula versus compiled (point and FE).
+    FormulaEnergy,
 }
 
 impl OptionGroup {
     /// Every group, in run order.
-    pub const ALL: [Self; 10] = [
+    pub const ALL: [Self; 11] = [
         Self::ActivationLaw,
         Self::ActivationLawFe,
         Self::LawRepresentation,
@@ -90,6 +92,7 @@ impl OptionGroup {
         Self::NewtonTolerance,
         Self::ZeroDVsFe,
         Self::Incompressibility,
+        Self::FormulaEnergy,
     ];
 
     /// Whether the group measures with [`Resolved::working_law`] (every group but those that
@@ -114,6 +117,7 @@ impl OptionGroup {
             Self::NewtonTolerance => "newton-tolerance",
             Self::ZeroDVsFe => "zero-d-vs-fe",
             Self::Incompressibility => "incompressibility",
+            Self::FormulaEnergy => "formula-energy",
         }
     }
 }
@@ -426,6 +430,7 @@ fn measure_group(
         OptionGroup::NewtonTolerance => groups::tolerance(models, plan, run, findings),
         OptionGroup::ZeroDVsFe => groups::zero_d_vs_fe(models, plan, run),
         OptionGroup::Incompressibility => groups::incompressibility(models, plan, run, findings),
+        OptionGroup::FormulaEnergy => groups::formula_energy(models, plan, run, findings),
     }
 }
 
