@@ -22,9 +22,10 @@
 //!
 //! Before the symbolic factorisation f is modelled as [`FILL`] · n (log₂ n)² (a 2D mesh under the
 //! dissection order of [`super::dissection`]); after it, f is exact. Measured (clamped cylinder R = 1, L = 4,
-//! 20 stretches, `cargo run --release --example fem_memory`): the estimate is within a factor
-//! 1.6 of the peak resident memory (VmHWM) from 2.4k to 148k dofs, both elements, symmetric
-//! (neo-Hookean) and non-symmetric (frozen muscle) tangents; see BENCHMARKS.md.
+//! 20 stretches, `cargo run --release --example fem_memory`): the estimate from the counts is
+//! above the peak resident memory (VmHWM) at every size, by 1.41× at 9.4k dofs, 1.55× at 37k and
+//! 1.71× at 148k (frozen muscle, Q2/Q1; after the symbolic factorisation 1.15–1.35×); see
+//! BENCHMARKS.md, "The cost curve".
 
 use super::element::{Element, PressureLayout};
 use super::error::{FemError, FemResult};
