@@ -609,40 +609,14 @@ fn build<E: StrainEnergy>(exact: &SolvedLaw<E>, damage: f64, spec: &TableSpec) -
     let lmin = exact.lambda_min();
     let zero_below = exact.zero_below_minimum();
     let zero_up_to = if zero_below { lmin } else { f64::NEG_INFINITY };
-    // The data: the root branch the pieces follow (for the energy law that jumps, its
-    // continuous variant, whose value at λ_min is the limit from above).
-    let branch = exact.continuous_branch();
-    let mut solves = 0;
-    let mut node = |l: f64| {
-        solves += 1;
-        branch.evaluate(l, damage)
+    let mut builder = Builder {
+        exact,
+        branch: exact.continuous_branch(),
+        damage,
+        spec,
+        zero_up_to,
+        solves: 0,
     };
-    let rise = |lo: f64, hi: f64, node: &mut dyn FnMut(f64) -> Result<LawValue>| {
-        let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
-        GAUSS_5.iter().try_fold(0.0, |sum, &(x, w)| {
-            Ok::<_, Error>(sum + w * half * node(mid + half * x)?.slope)
-        })
-    };
-    let check = |piece: &Piece, lo: f64, hi: f64| -> Result<PointErrors> {
-        [0.25, 0.5, 0.75]
-            .iter()
-            .try_fold(PointErrors::default(), |worst, t| {
-                let l = lo + t * (hi - lo);
-                // The table's own rule decides at and below λ_min.
-                let value = if l <= zero_up_to {
-                    LawValue::default()
-                } else {
-                    piece.evaluate(l)
-                };
-                Ok(worst.max(errors_at(exact, damage, l, value, spec)?))
-            })
-    };
-    // The partition keeps a margin for the node values' final adjustment (step 2).
-    let fits = |e: &PointErrors, margin: f64| {
-        e.gamma <= margin * spec.gamma_tolerance && e.stress_ratio <= margin
-    };
-    // How far a piece misses the tolerances (≤ 1 meets them).
-    let badness = |e: &PointErrors| (e.gamma / spec.gamma_tolerance).max(e.stress_ratio);
     // Intervals left to the exact solve.
     let mut exact_left: Vec<(f64, f64)> = Vec::new();
     // The smooth segments: λ_min is always an end.
@@ -653,116 +627,19 @@ fn build<E: StrainEnergy>(exact: &SolvedLaw<E>, damage: f64, spec: &TableSpec) -
     if spec.lambda_hi > lmin {
         segments.push((spec.lambda_lo.max(lmin), spec.lambda_hi));
     }
-    // 1. Partition: bisect until each piece, with its right value γ(lo) + ∫γ′, meets the
-    //    tolerances at its check points.
     let mut kept: Vec<Kept> = Vec::new();
     for (a, b) in segments {
-        let n = ((b - a) / INITIAL_WIDTH).ceil().max(1.0) as usize;
-        let ends: Vec<f64> = (0..=n)
-            .map(|i| {
-                if i == n {
-                    b
-                } else {
-                    a + (b - a) * i as f64 / n as f64
-                }
-            })
-            .collect();
-        let values = ends.iter().map(|&l| node(l)).collect::<Result<Vec<_>>>()?;
-        // Pieces still to check, the leftmost on top (so that kept pieces come out sorted).
-        let mut todo: Vec<_> = (0..n)
-            .rev()
-            .map(|i| {
-                (
-                    ends[i],
-                    ends[i + 1],
-                    values[i],
-                    values[i + 1],
-                    f64::INFINITY,
-                )
-            })
-            .collect();
-        while let Some((lo, hi, at_lo, at_hi, parent)) = todo.pop() {
-            let r = rise(lo, hi, &mut node)?;
-            let right = LawValue {
-                gamma: at_lo.gamma + r,
-                ..at_hi
-            };
-            let errors = check(&Piece::hermite(lo, hi, &at_lo, &right), lo, hi)?;
-            if fits(&errors, PARTITION_MARGIN) {
-                kept.push(Kept {
-                    lo,
-                    hi,
-                    at_lo,
-                    at_hi,
-                    rise: r,
-                });
-            } else {
-                let miss = badness(&errors);
-                let stalled = hi - lo < STALL_WIDTH && miss * STALL_FACTOR > parent;
-                if stalled || hi - lo <= 2.0 * MIN_WIDTH {
-                    exact_left.push((lo, hi));
-                } else {
-                    let mid = 0.5 * (lo + hi);
-                    let at_mid = node(mid)?;
-                    todo.push((mid, hi, at_mid, at_hi, miss));
-                    todo.push((lo, mid, at_lo, at_mid, miss));
-                }
-            }
-        }
+        builder.partition(a, b, &mut kept, &mut exact_left)?;
     }
-    // 2. Node values along each chain of adjacent pieces: the running sum S of the rises, plus
-    //    the straight line c₀ + c₁ (λ − λ₀) that fits the solved values best (least squares).
-    let mut values = Vec::with_capacity(kept.len() + 1);
-    let mut first = 0;
-    while first < kept.len() {
-        let mut last = first;
-        while last + 1 < kept.len() && kept[last + 1].lo == kept[last].hi {
-            last += 1;
-        }
-        let chain = &kept[first..=last];
-        let lambdas: Vec<f64> = std::iter::once(chain[0].lo)
-            .chain(chain.iter().map(|k| k.hi))
-            .collect();
-        let solved: Vec<f64> = std::iter::once(chain[0].at_lo.gamma)
-            .chain(chain.iter().map(|k| k.at_hi.gamma))
-            .collect();
-        let sums: Vec<f64> = std::iter::once(0.0)
-            .chain(chain.iter().scan(0.0, |s, k| {
-                *s += k.rise;
-                Some(*s)
-            }))
-            .collect();
-        let (c0, c1) = straight_line(&lambdas, &solved, &sums);
-        for (k, piece) in chain.iter().enumerate() {
-            let at = |i: usize, v: &LawValue| LawValue {
-                gamma: sums[i] + c0 + c1 * (lambdas[i] - lambdas[0]),
-                ..*v
-            };
-            values.push((at(k, &piece.at_lo), at(k + 1, &piece.at_hi)));
-        }
-        first = last + 1;
-    }
-    // 3. The final pieces, checked again with their final node values.
-    let mut worst = PointErrors::default();
-    let (mut breaks, mut pieces) = (Vec::new(), Vec::new());
-    for (k, (left, right)) in kept.iter().zip(&values) {
-        let piece = Piece::hermite(k.lo, k.hi, left, right);
-        let errors = check(&piece, k.lo, k.hi)?;
-        if !fits(&errors, FINAL_MARGIN) {
-            exact_left.push((k.lo, k.hi));
-            continue;
-        }
-        worst = worst.max(errors);
-        breaks.push(k.hi);
-        pieces.push(piece);
-    }
+    let values = node_values(&kept);
+    let (worst, breaks, pieces) = builder.final_pieces(&kept, &values, &mut exact_left)?;
     let report = TableReport {
         damage,
         pieces: pieces.len(),
         bytes: pieces.len() * std::mem::size_of::<Piece>()
             + breaks.len() * std::mem::size_of::<f64>(),
         build_seconds: start.elapsed().as_secs_f64(),
-        solves,
+        solves: builder.solves,
         checked_points: 3 * pieces.len(),
         gamma_error: worst.gamma,
         frozen_stress_error: worst.frozen,
@@ -781,6 +658,198 @@ fn build<E: StrainEnergy>(exact: &SolvedLaw<E>, damage: f64, spec: &TableSpec) -
         pieces,
         report,
     })
+}
+
+/// The build of one damage's table: the exact law, the range and tolerances, and the exact
+/// solves spent so far.
+struct Builder<'a, E> {
+    exact: &'a SolvedLaw<E>,
+    /// The data: the root branch the pieces follow (for the energy law that jumps, its
+    /// continuous variant, whose value at λ_min is the limit from above).
+    branch: SolvedLaw<E>,
+    damage: f64,
+    spec: &'a TableSpec,
+    /// γ = 0 at and below this stretch without a table (−∞ if the law has no such rule).
+    zero_up_to: f64,
+    /// Exact solves at piece ends and quadrature nodes.
+    solves: usize,
+}
+
+impl<E: StrainEnergy> Builder<'_, E> {
+    /// The solved value at `l`, counted.
+    fn node(&mut self, l: f64) -> Result<LawValue> {
+        self.solves += 1;
+        self.branch.evaluate(l, self.damage)
+    }
+
+    /// ∫γ′ over [lo, hi] by 5-point Gauss–Legendre.
+    fn rise(&mut self, lo: f64, hi: f64) -> Result<f64> {
+        let (mid, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+        GAUSS_5.iter().try_fold(0.0, |sum, &(x, w)| {
+            Ok::<_, Error>(sum + w * half * self.node(mid + half * x)?.slope)
+        })
+    }
+
+    /// The worst errors of `piece` at ¼, ½ and ¾ of [lo, hi].
+    fn check(&self, piece: &Piece, lo: f64, hi: f64) -> Result<PointErrors> {
+        [0.25, 0.5, 0.75]
+            .iter()
+            .try_fold(PointErrors::default(), |worst, t| {
+                let l = lo + t * (hi - lo);
+                // The table's own rule decides at and below λ_min.
+                let value = if l <= self.zero_up_to {
+                    LawValue::default()
+                } else {
+                    piece.evaluate(l)
+                };
+                Ok(worst.max(errors_at(self.exact, self.damage, l, value, self.spec)?))
+            })
+    }
+
+    /// Whether `e` meets the tolerances times `margin` (the partition keeps a margin for the
+    /// node values' final adjustment, step 2).
+    fn fits(&self, e: &PointErrors, margin: f64) -> bool {
+        e.gamma <= margin * self.spec.gamma_tolerance && e.stress_ratio <= margin
+    }
+
+    /// How far a piece misses the tolerances (≤ 1 meets them).
+    fn badness(&self, e: &PointErrors) -> f64 {
+        (e.gamma / self.spec.gamma_tolerance).max(e.stress_ratio)
+    }
+
+    /// 1. Partition of the smooth segment [a, b]: bisect until each piece, with its right value
+    ///    γ(lo) + ∫γ′, meets the tolerances at its check points. Pieces kept are appended to
+    ///    `kept` in order of λ; those bisection cannot bring under the tolerances, to
+    ///    `exact_left`.
+    fn partition(
+        &mut self,
+        a: f64,
+        b: f64,
+        kept: &mut Vec<Kept>,
+        exact_left: &mut Vec<(f64, f64)>,
+    ) -> Result<()> {
+        let n = ((b - a) / INITIAL_WIDTH).ceil().max(1.0) as usize;
+        let ends: Vec<f64> = (0..=n)
+            .map(|i| {
+                if i == n {
+                    b
+                } else {
+                    a + (b - a) * i as f64 / n as f64
+                }
+            })
+            .collect();
+        let values = ends
+            .iter()
+            .map(|&l| self.node(l))
+            .collect::<Result<Vec<_>>>()?;
+        // Pieces still to check, the leftmost on top (so that kept pieces come out sorted).
+        let mut todo: Vec<_> = (0..n)
+            .rev()
+            .map(|i| {
+                (
+                    ends[i],
+                    ends[i + 1],
+                    values[i],
+                    values[i + 1],
+                    f64::INFINITY,
+                )
+            })
+            .collect();
+        while let Some((lo, hi, at_lo, at_hi, parent)) = todo.pop() {
+            let r = self.rise(lo, hi)?;
+            let right = LawValue {
+                gamma: at_lo.gamma + r,
+                ..at_hi
+            };
+            let errors = self.check(&Piece::hermite(lo, hi, &at_lo, &right), lo, hi)?;
+            if self.fits(&errors, PARTITION_MARGIN) {
+                kept.push(Kept {
+                    lo,
+                    hi,
+                    at_lo,
+                    at_hi,
+                    rise: r,
+                });
+            } else {
+                let miss = self.badness(&errors);
+                let stalled = hi - lo < STALL_WIDTH && miss * STALL_FACTOR > parent;
+                if stalled || hi - lo <= 2.0 * MIN_WIDTH {
+                    exact_left.push((lo, hi));
+                } else {
+                    let mid = 0.5 * (lo + hi);
+                    let at_mid = self.node(mid)?;
+                    todo.push((mid, hi, at_mid, at_hi, miss));
+                    todo.push((lo, mid, at_lo, at_mid, miss));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// 3. The final pieces, checked again with their final node values: the worst errors of
+    ///    those kept, their upper ends and the pieces. One that fails goes to `exact_left`.
+    fn final_pieces(
+        &self,
+        kept: &[Kept],
+        values: &[(LawValue, LawValue)],
+        exact_left: &mut Vec<(f64, f64)>,
+    ) -> Result<(PointErrors, Vec<f64>, Vec<Piece>)> {
+        let mut worst = PointErrors::default();
+        let (mut breaks, mut pieces) = (Vec::new(), Vec::new());
+        for (k, (left, right)) in kept.iter().zip(values) {
+            let piece = Piece::hermite(k.lo, k.hi, left, right);
+            let errors = self.check(&piece, k.lo, k.hi)?;
+            if !self.fits(&errors, FINAL_MARGIN) {
+                exact_left.push((k.lo, k.hi));
+                continue;
+            }
+            worst = worst.max(errors);
+            breaks.push(k.hi);
+            pieces.push(piece);
+        }
+        Ok((worst, breaks, pieces))
+    }
+}
+
+/// 2. Node values (left, right) of each kept piece, along each chain of adjacent pieces.
+fn node_values(kept: &[Kept]) -> Vec<(LawValue, LawValue)> {
+    let mut values = Vec::with_capacity(kept.len() + 1);
+    let mut first = 0;
+    while first < kept.len() {
+        let mut last = first;
+        while last + 1 < kept.len() && kept[last + 1].lo == kept[last].hi {
+            last += 1;
+        }
+        chain_values(&kept[first..=last], &mut values);
+        first = last + 1;
+    }
+    values
+}
+
+/// The node values of one chain of adjacent pieces, appended to `values`: the running sum S of
+/// the rises, plus the straight line c₀ + c₁ (λ − λ₀) that fits the solved values best (least
+/// squares).
+fn chain_values(chain: &[Kept], values: &mut Vec<(LawValue, LawValue)>) {
+    let lambdas: Vec<f64> = std::iter::once(chain[0].lo)
+        .chain(chain.iter().map(|k| k.hi))
+        .collect();
+    let solved: Vec<f64> = std::iter::once(chain[0].at_lo.gamma)
+        .chain(chain.iter().map(|k| k.at_hi.gamma))
+        .collect();
+    let sums: Vec<f64> = std::iter::once(0.0)
+        .chain(chain.iter().scan(0.0, |s, k| {
+            *s += k.rise;
+            Some(*s)
+        }))
+        .collect();
+    let (c0, c1) = straight_line(&lambdas, &solved, &sums);
+    for (k, piece) in chain.iter().enumerate() {
+        let at = |i: usize, v: &LawValue| LawValue {
+            gamma: sums[i] + c0 + c1 * (lambdas[i] - lambdas[0]),
+            ..*v
+        };
+        values.push((at(k, &piece.at_lo), at(k + 1, &piece.at_hi)));
+    }
 }
 
 /// `intervals` sorted, and those that touch joined.
