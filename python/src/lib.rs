@@ -222,6 +222,149 @@ fn output<'py, const C: usize>(
     })
 }
 
+/// The keys `evaluate` returns at `order`.
+fn output_keys(order: Order) -> &'static [&'static str] {
+    match order {
+        Order::Energy => &["gamma", "fibre_stretch", "energy"],
+        Order::Stress => &["gamma", "fibre_stretch", "energy", "stress"],
+        Order::Tangent => &[
+            "gamma",
+            "fibre_stretch",
+            "energy",
+            "stress",
+            "tangent",
+            "dstress_dgamma",
+        ],
+    }
+}
+
+/// Refuses a key of `out` that is not among `keys`.
+fn check_out_keys(out: Option<&Bound<'_, PyDict>>, keys: &[&str]) -> PyResult<()> {
+    if let Some(o) = out {
+        for k in o.keys() {
+            let k: String = k.extract()?;
+            if !keys.contains(&k.as_str()) {
+                return Err(PyValueError::new_err(format!(
+                    "out[{k:?}]: not an output of this evaluation, which returns {keys:?}"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The extents of F's point axes (those that are not its two component axes).
+fn point_shape_of(shape: &[usize], convention: Convention) -> Vec<usize> {
+    let comps = convention.component_axes(shape.len(), 2);
+    (0..shape.len())
+        .filter(|a| !comps.contains(a))
+        .map(|a| shape[a])
+        .collect()
+}
+
+/// Strided access to the fibre directions: one vector (3,) for every point, or one per point in
+/// F's convention and point order.
+fn fibre_input(
+    fibre_view: &numpy::ndarray::ArrayViewD<f64>,
+    convention: Convention,
+    point_shape: &[usize],
+    point_order: PointOrder,
+) -> PyResult<Input<1>> {
+    if fibre_view.shape() == [3] {
+        // No point axes: the point stride is 0, every point reads the one vector.
+        Ok(layout::input(fibre_view, Convention::Trailing, None).0)
+    } else {
+        let expected = convention.shape(point_shape, 1, 3);
+        if fibre_view.shape() != expected.as_slice() {
+            return Err(PyValueError::new_err(format!(
+                "fibre has shape {:?}: must be (3,) or one vector per point, {:?}",
+                fibre_view.shape(),
+                expected
+            )));
+        }
+        Ok(layout::input(fibre_view, convention, Some(point_order)).0)
+    }
+}
+
+/// The output arrays of one `evaluate` (those its order asks for).
+struct BatchOutputs<'py> {
+    gamma: Output<'py, 0>,
+    fibre_stretch: Output<'py, 0>,
+    energy: Output<'py, 0>,
+    stress: Option<Output<'py, 2>>,
+    tangent: Option<Output<'py, 4>>,
+    dstress_dgamma: Option<Output<'py, 2>>,
+}
+
+impl<'py> BatchOutputs<'py> {
+    /// The arrays of `order` over points of `point_shape` (see [`output`]).
+    fn new(
+        py: Python<'py>,
+        out: Option<&Bound<'py, PyDict>>,
+        order: Order,
+        point_shape: &[usize],
+        convention: Convention,
+        point_order: PointOrder,
+    ) -> PyResult<Self> {
+        let tensor_shape = convention.shape(point_shape, 2, 3);
+        let scalar = |key| output::<0>(py, out, key, point_shape, convention, point_order);
+        let tensor = |key| output::<2>(py, out, key, &tensor_shape, convention, point_order);
+        let gamma = scalar("gamma")?;
+        let fibre_stretch = scalar("fibre_stretch")?;
+        let energy = scalar("energy")?;
+        let stress = (order >= Order::Stress)
+            .then(|| tensor("stress"))
+            .transpose()?;
+        let dstress_dgamma = (order == Order::Tangent)
+            .then(|| tensor("dstress_dgamma"))
+            .transpose()?;
+        let tangent = (order == Order::Tangent)
+            .then(|| {
+                let shape = convention.shape(point_shape, 4, 3);
+                output::<4>(py, out, "tangent", &shape, convention, point_order)
+            })
+            .transpose()?;
+        Ok(Self {
+            gamma,
+            fibre_stretch,
+            energy,
+            stress,
+            tangent,
+            dstress_dgamma,
+        })
+    }
+
+    /// Raw strided access to the arrays, for the batch.
+    fn strided(&self) -> Outputs {
+        Outputs {
+            gamma: self.gamma.strided,
+            fibre_stretch: self.fibre_stretch.strided,
+            energy: self.energy.strided,
+            stress: self.stress.as_ref().map(|s| s.strided),
+            tangent: self.tangent.as_ref().map(|s| s.strided),
+            dstress_dgamma: self.dstress_dgamma.as_ref().map(|s| s.strided),
+        }
+    }
+
+    /// The dict `evaluate` returns.
+    fn into_dict(self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        d.set_item("gamma", self.gamma.array)?;
+        d.set_item("fibre_stretch", self.fibre_stretch.array)?;
+        d.set_item("energy", self.energy.array)?;
+        if let Some(a) = self.stress {
+            d.set_item("stress", a.array)?;
+        }
+        if let Some(a) = self.tangent {
+            d.set_item("tangent", a.array)?;
+        }
+        if let Some(a) = self.dstress_dgamma {
+            d.set_item("dstress_dgamma", a.array)?;
+        }
+        Ok(d)
+    }
+}
+
 /// Active skeletal muscle at material points (Giantesio & Musesti): an energy, an activation law,
 /// a damage and a coupling.
 ///
@@ -316,38 +459,11 @@ impl Material {
         out: Option<Bound<'py, PyDict>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let order = parse_order(order)?;
-        let keys: &[&str] = match order {
-            Order::Energy => &["gamma", "fibre_stretch", "energy"],
-            Order::Stress => &["gamma", "fibre_stretch", "energy", "stress"],
-            Order::Tangent => &[
-                "gamma",
-                "fibre_stretch",
-                "energy",
-                "stress",
-                "tangent",
-                "dstress_dgamma",
-            ],
-        };
-        if let Some(o) = &out {
-            for k in o.keys() {
-                let k: String = k.extract()?;
-                if !keys.contains(&k.as_str()) {
-                    return Err(PyValueError::new_err(format!(
-                        "out[{k:?}]: not an output of this evaluation, which returns {keys:?}"
-                    )));
-                }
-            }
-        }
         let out = out.as_ref();
+        check_out_keys(out, output_keys(order))?;
         let f_view = f.as_array();
         let convention = convention_of(f_view.shape(), layout)?;
-        let point_shape: Vec<usize> = {
-            let comps = convention.component_axes(f_view.ndim(), 2);
-            (0..f_view.ndim())
-                .filter(|a| !comps.contains(a))
-                .map(|a| f_view.shape()[a])
-                .collect()
-        };
+        let point_shape = point_shape_of(f_view.shape(), convention);
         let n: usize = point_shape.iter().product();
         let (f_in, point_order): (Input<2>, _) = layout::input(&f_view, convention, None);
         let default_fibre;
@@ -358,53 +474,14 @@ impl Material {
                 default_fibre.view()
             }
         };
-        let fibre_in: Input<1> = if fibre_view.shape() == [3] {
-            // No point axes: the point stride is 0, every point reads the one vector.
-            layout::input(&fibre_view, Convention::Trailing, None).0
-        } else {
-            let expected = convention.shape(&point_shape, 1, 3);
-            if fibre_view.shape() != expected.as_slice() {
-                return Err(PyValueError::new_err(format!(
-                    "fibre has shape {:?}: must be (3,) or one vector per point, {:?}",
-                    fibre_view.shape(),
-                    expected
-                )));
-            }
-            layout::input(&fibre_view, convention, Some(point_order)).0
-        };
-
-        let scalar_shape = &point_shape;
-        let tensor_shape = convention.shape(&point_shape, 2, 3);
-        let scalar = |key| output::<0>(py, out, key, scalar_shape, convention, point_order);
-        let tensor = |key| output::<2>(py, out, key, &tensor_shape, convention, point_order);
-        let gamma = scalar("gamma")?;
-        let lambda = scalar("fibre_stretch")?;
-        let energy = scalar("energy")?;
-        let stress = (order >= Order::Stress)
-            .then(|| tensor("stress"))
-            .transpose()?;
-        let rate = (order == Order::Tangent)
-            .then(|| tensor("dstress_dgamma"))
-            .transpose()?;
-        let tangent = (order == Order::Tangent)
-            .then(|| {
-                let shape = convention.shape(&point_shape, 4, 3);
-                output::<4>(py, out, "tangent", &shape, convention, point_order)
-            })
-            .transpose()?;
+        let fibre_in = fibre_input(&fibre_view, convention, &point_shape, point_order)?;
+        let outputs = BatchOutputs::new(py, out, order, &point_shape, convention, point_order)?;
         let batch = Batch {
             muscle: &self.muscle,
             order,
             f: f_in.strided,
             fibre: fibre_in.strided,
-            out: Outputs {
-                gamma: gamma.strided,
-                fibre_stretch: lambda.strided,
-                energy: energy.strided,
-                stress: stress.as_ref().map(|s| s.strided),
-                tangent: tangent.as_ref().map(|s| s.strided),
-                dstress_dgamma: rate.as_ref().map(|s| s.strided),
-            },
+            out: outputs.strided(),
         };
         py.detach(|| batch.run_all(n, parallel)).map_err(|(p, e)| {
             let index = layout::multi_index(p, &point_shape, point_order);
@@ -412,20 +489,7 @@ impl Material {
         })?;
         drop(f_in);
         drop(fibre_in);
-        let d = PyDict::new(py);
-        d.set_item("gamma", gamma.array)?;
-        d.set_item("fibre_stretch", lambda.array)?;
-        d.set_item("energy", energy.array)?;
-        if let Some(a) = stress {
-            d.set_item("stress", a.array)?;
-        }
-        if let Some(a) = tangent {
-            d.set_item("tangent", a.array)?;
-        }
-        if let Some(a) = rate {
-            d.set_item("dstress_dgamma", a.array)?;
-        }
-        Ok(d)
+        outputs.into_dict(py)
     }
 
     /// The core's answer at one point, by the single-point Rust API (no batch machinery):
