@@ -99,30 +99,8 @@ pub(super) fn search<R: Residuals>(
         iterations += its;
         stages.push(note);
     }
-    let search = Executor::new(
-        scaled.clone(),
-        LevenbergMarquardt::new(bounds, scaled.scale, options.step_tolerance),
-    )
-    .configure(|s| s.param(theta.clone()).max_iters(options.max_iterations))
-    .ctrlc(false)
-    .run();
-    let stop = match search {
-        Ok(mut res) => {
-            iterations += res.state().get_iter();
-            if let Some(best) = res.state.take_param() {
-                theta = best;
-            }
-            match res.solver.stop {
-                Some(stop) => Ok(stop),
-                None => Err(NotConverged::IterationCap {
-                    iterations: options.max_iterations,
-                }),
-            }
-        }
-        Err(e) => Err(NotConverged::Solver {
-            message: e.to_string(),
-        }),
-    };
+    let (stop, its) = levenberg_marquardt(&scaled, options, &mut theta);
+    iterations += its;
     let (mut report, gauss_newton) = statistics(&scaled, names, &theta, iterations)?;
     let gn = match gauss_newton {
         Ok(Some(gn)) => gn,
@@ -151,8 +129,64 @@ pub(super) fn search<R: Residuals>(
         report.converged = true;
         return Ok(report);
     }
+    let reason = unconverged_reason(&gn, &theta, bounds, names, stop);
+    stages.push(format!("Levenberg-Marquardt: {reason}"));
+    report.termination = stages.join("; ");
+    Err(FitError::NotConverged {
+        reason,
+        step: gn.step,
+        best: Box::new(report),
+    })
+}
+
+/// The Levenberg–Marquardt search from `theta` (argmin): why it stopped, and the iterations it
+/// took; `theta` becomes the best point it found.
+fn levenberg_marquardt<R: Residuals>(
+    scaled: &Scaled<R>,
+    options: &FitOptions,
+    theta: &mut Vec<f64>,
+) -> (Result<Stop, NotConverged>, u64) {
+    let search = Executor::new(
+        scaled.clone(),
+        LevenbergMarquardt::new(scaled.bounds, scaled.scale, options.step_tolerance),
+    )
+    .configure(|s| s.param(theta.clone()).max_iters(options.max_iterations))
+    .ctrlc(false)
+    .run();
+    match search {
+        Ok(mut res) => {
+            let iterations = res.state().get_iter();
+            if let Some(best) = res.state.take_param() {
+                *theta = best;
+            }
+            let stop = match res.solver.stop {
+                Some(stop) => Ok(stop),
+                None => Err(NotConverged::IterationCap {
+                    iterations: options.max_iterations,
+                }),
+            };
+            (stop, iterations)
+        }
+        Err(e) => (
+            Err(NotConverged::Solver {
+                message: e.to_string(),
+            }),
+            0,
+        ),
+    }
+}
+
+/// Why the search did not converge at `theta`, where the Gauss–Newton step `gn` is not
+/// negligible, given how it stopped.
+fn unconverged_reason(
+    gn: &GaussNewton,
+    theta: &[f64],
+    bounds: &[Bounds],
+    names: &[String],
+    stop: Result<Stop, NotConverged>,
+) -> NotConverged {
     let stalled = matches!(stop, Ok(Stop::NoDecrease { .. }));
-    let reason = match (gn.beyond(&theta, bounds), stop) {
+    match (gn.beyond(theta, bounds), stop) {
         // Stuck because the step that would lower the cost leaves the bounds.
         (Some((j, target, bound)), _) if stalled => NotConverged::BeyondBound {
             name: names[j].clone(),
@@ -168,7 +202,7 @@ pub(super) fn search<R: Residuals>(
                 last,
             }),
         ) if infeasible == tries => NotConverged::NonFiniteCost {
-            at: theta.clone(),
+            at: theta.to_vec(),
             last,
             tries,
         },
@@ -178,26 +212,19 @@ pub(super) fn search<R: Residuals>(
                 tries, infeasible, ..
             }),
         ) => NotConverged::NoDecrease {
-            at: theta.clone(),
+            at: theta.to_vec(),
             tries,
             infeasible,
         },
         (_, Ok(Stop::Jacobian(reason))) => NotConverged::Jacobian {
-            at: theta.clone(),
+            at: theta.to_vec(),
             reason,
         },
         (_, Ok(Stop::Converged)) => NotConverged::Solver {
             message: "the search stopped as converged at a point where the check fails".into(),
         },
         (_, Err(reason)) => reason,
-    };
-    stages.push(format!("Levenberg-Marquardt: {reason}"));
-    report.termination = stages.join("; ");
-    Err(FitError::NotConverged {
-        reason,
-        step: gn.step,
-        best: Box::new(report),
-    })
+    }
 }
 
 /// Checks the request and the start; returns the residual scale s, the power of two at or
