@@ -448,30 +448,79 @@ pub fn nearly_incompressible_with_slope<E: StrainEnergy>(
         Direction::Along => (0usize, [1usize, 2usize]),
         Direction::Across => (1, [0, 2]),
     };
-    let diagonal = |x: [f64; 2]| {
-        let mut d = Vector3::zeros();
-        d[axis] = lambda;
-        d[lat[0]] = x[0];
-        d[lat[1]] = x[1];
-        d
+    let test = LateralTest {
+        muscle,
+        volumetric,
+        direction,
+        lambda,
+        axis,
+        lat,
     };
-    // Residual (P_ii of both lateral axes), the diagonal Hessian H_ab = ∂P_aa/∂F_bb (all three
-    // axes), the loaded axis' P_kk, γ and λ_f.
-    type Lateral = ([f64; 2], [[f64; 3]; 3], f64, f64, f64);
-    let evaluate = |x: [f64; 2], tangent: bool| -> Result<Lateral> {
-        let d = diagonal(x);
+    let mut x = start.lateral;
+    for iteration in 0..MAX_LATERAL_ITERATIONS {
+        let state = test.evaluate(x, true)?;
+        let dx = test.newton_step(&state, x, iteration)?;
+        let next = test.backtrack(x, dx, state.residual);
+        let moved = (next[0] - x[0]).abs().max((next[1] - x[1]).abs());
+        x = next;
+        if moved <= 4.0 * f64::EPSILON * x[0].abs().max(x[1].abs()) {
+            return test.point(x, slope);
+        }
+    }
+    Err(test.failure(format!(
+        "no convergence in {MAX_LATERAL_ITERATIONS} Newton iterations (last lateral stretches {x:?})"
+    )))
+}
+
+/// One nearly incompressible uniaxial test: the loaded axis k (`axis`) held at `lambda`, the
+/// two lateral axes `lat` free.
+struct LateralTest<'a, E> {
+    muscle: &'a Muscle<E>,
+    volumetric: &'a Volumetric,
+    direction: Direction,
+    lambda: f64,
+    axis: usize,
+    lat: [usize; 2],
+}
+
+/// The state at lateral stretches x: the residual (P_ii of both lateral axes), the diagonal
+/// Hessian H_ab = ∂P_aa/∂F_bb (all three axes; zero without the tangent), the loaded axis' P_kk,
+/// γ and λ_f.
+struct LateralState {
+    residual: [f64; 2],
+    hessian: [[f64; 3]; 3],
+    nominal: f64,
+    gamma: f64,
+    fibre_stretch: f64,
+}
+
+impl<E: StrainEnergy> LateralTest<'_, E> {
+    /// diag(F): λ on the loaded axis, `x` on the lateral ones.
+    fn diagonal(&self, x: [f64; 2]) -> Vector3<f64> {
+        let mut d = Vector3::zeros();
+        d[self.axis] = self.lambda;
+        d[self.lat[0]] = x[0];
+        d[self.lat[1]] = x[1];
+        d
+    }
+
+    /// P_ii = ∂Ŵ/∂F_ii + U′(J) J/F_ii and, with `tangent`,
+    /// H_im = ∂²Ŵ/∂F_ii∂F_mm + U″ (J/F_ii)(J/F_mm) + (i ≠ m) U′ J/(F_ii F_mm).
+    fn evaluate(&self, x: [f64; 2], tangent: bool) -> Result<LateralState> {
+        let (axis, lat) = (self.axis, self.lat);
+        let d = self.diagonal(x);
         let kin = Kinematics::new(&Matrix3::from_diagonal(&d), &fibre())?;
         let order = if tangent {
             Order::Tangent
         } else {
             Order::Stress
         };
-        let r = muscle.respond(&kin, order, &FULL)?;
+        let r = self.muscle.respond(&kin, order, &FULL)?;
         let p = r.stress.unwrap_or_default();
         let j = d[0] * d[1] * d[2];
-        let [_, du, ddu] = volumetric.derivatives(j)?;
+        let [_, du, ddu] = self.volumetric.derivatives(j)?;
         let cof = |i: usize| j / d[i];
-        let res = [
+        let residual = [
             p[4 * lat[0]] + du * cof(lat[0]),
             p[4 * lat[1]] + du * cof(lat[1]),
         ];
@@ -485,68 +534,84 @@ pub fn nearly_incompressible_with_slope<E: StrainEnergy>(
             }
         }
         let nominal = p[4 * axis] + du * cof(axis);
-        Ok((res, hessian, nominal, r.gamma, r.fibre_stretch))
-    };
-    let failure = |reason: String| Error::NoSolution {
-        equation: format!(
-            "lateral equilibrium of the nearly incompressible test {} the fibres at lambda = {}",
-            direction.name(),
-            shortest(lambda)
-        ),
-        reason,
-    };
-    let norm = |r: [f64; 2]| r[0].abs().max(r[1].abs());
-    let mut x = start.lateral;
-    for iteration in 0..MAX_LATERAL_ITERATIONS {
-        let (r, hessian, _, _, _) = evaluate(x, true)?;
-        let jac = lateral_block(&hessian, lat);
+        Ok(LateralState {
+            residual,
+            hessian,
+            nominal,
+            gamma: r.gamma,
+            fibre_stretch: r.fibre_stretch,
+        })
+    }
+
+    /// The Newton step dx = −J⁻¹ r with the 2 × 2 lateral block J of the Hessian (Cramer's
+    /// rule); an error if J is singular.
+    fn newton_step(&self, state: &LateralState, x: [f64; 2], iteration: usize) -> Result<[f64; 2]> {
+        let r = state.residual;
+        let jac = lateral_block(&state.hessian, self.lat);
         let det = jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0];
         if !(det.is_finite() && det != 0.0) {
-            return Err(failure(format!(
+            return Err(self.failure(format!(
                 "singular lateral tangent (det = {det}) at lateral stretches {x:?}, iteration {iteration}"
             )));
         }
-        let dx = [
+        Ok([
             -(jac[1][1] * r[0] - jac[0][1] * r[1]) / det,
             -(-jac[1][0] * r[0] + jac[0][0] * r[1]) / det,
-        ];
-        // Backtracking: stay at positive stretches and do not increase |r| (beyond rounding).
+        ])
+    }
+
+    /// Backtracking from `x` along `dx`: halve the step (at most 30 times) until the stretches
+    /// are positive and |r| does not increase (beyond rounding).
+    fn backtrack(&self, x: [f64; 2], dx: [f64; 2], r: [f64; 2]) -> [f64; 2] {
+        let norm = |r: [f64; 2]| r[0].abs().max(r[1].abs());
         let mut step = 1.0;
         let mut next = [x[0] + dx[0], x[1] + dx[1]];
         for _ in 0..30 {
             let ok = next[0] > 0.0
                 && next[1] > 0.0
-                && evaluate(next, false).is_ok_and(|(rn, ..)| norm(rn) <= norm(r) * (1.0 + 1e-12));
+                && self
+                    .evaluate(next, false)
+                    .is_ok_and(|s| norm(s.residual) <= norm(r) * (1.0 + 1e-12));
             if ok {
                 break;
             }
             step *= 0.5;
             next = [x[0] + step * dx[0], x[1] + step * dx[1]];
         }
-        let moved = (next[0] - x[0]).abs().max((next[1] - x[1]).abs());
-        x = next;
-        if moved <= 4.0 * f64::EPSILON * x[0].abs().max(x[1].abs()) {
-            let (_, hessian, stress, gamma, fibre_stretch) = evaluate(x, slope)?;
-            let point = UniaxialPoint {
-                lambda,
-                stress,
-                // σ = J⁻¹ P Fᵀ on the diagonal: σ_kk = P_kk λ / (λ x₀ x₁).
-                cauchy: stress / (x[0] * x[1]),
-                gamma,
-                fibre_stretch,
-                lateral: x,
-            };
-            let slope = if slope {
-                schur_slope(&hessian, axis, lat)
-            } else {
-                f64::NAN
-            };
-            return Ok((point, slope));
+        next
+    }
+
+    /// The converged point at lateral stretches `x`, and with `slope` dP_kk/dλ (else NaN).
+    fn point(&self, x: [f64; 2], slope: bool) -> Result<(UniaxialPoint, f64)> {
+        let state = self.evaluate(x, slope)?;
+        let point = UniaxialPoint {
+            lambda: self.lambda,
+            stress: state.nominal,
+            // σ = J⁻¹ P Fᵀ on the diagonal: σ_kk = P_kk λ / (λ x₀ x₁).
+            cauchy: state.nominal / (x[0] * x[1]),
+            gamma: state.gamma,
+            fibre_stretch: state.fibre_stretch,
+            lateral: x,
+        };
+        let slope = if slope {
+            schur_slope(&state.hessian, self.axis, self.lat)
+        } else {
+            f64::NAN
+        };
+        Ok((point, slope))
+    }
+
+    /// The error of a lateral solve that failed, saying why.
+    fn failure(&self, reason: String) -> Error {
+        Error::NoSolution {
+            equation: format!(
+                "lateral equilibrium of the nearly incompressible test {} the fibres at lambda = {}",
+                self.direction.name(),
+                shortest(self.lambda)
+            ),
+            reason,
         }
     }
-    Err(failure(format!(
-        "no convergence in {MAX_LATERAL_ITERATIONS} Newton iterations (last lateral stretches {x:?})"
-    )))
 }
 
 /// The 2 × 2 block of the diagonal Hessian on the lateral axes `lat`.
