@@ -65,6 +65,19 @@ fn mirror_node_blocks<const NU: usize>(k: &mut SMatrix<f64, NU, NU>) {
     }
 }
 
+/// (J − J̃(p), 1/U″(J̃)) at J and the pressure p: (J − 1, 0) for the exact constraint
+/// (`volumetric` None).
+#[inline(always)]
+fn constraint(volumetric: Option<&Volumetric>, j: f64, p: f64) -> crate::Result<(f64, f64)> {
+    match volumetric {
+        None => Ok((j - 1.0, 0.0)),
+        Some(v) => {
+            let (jt, compliance) = v.dilatation(p)?;
+            Ok((j - jt, compliance))
+        }
+    }
+}
+
 /// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ElementScale {
@@ -158,76 +171,94 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
         residual: &mut ElementVector<ND>,
         tangent: Option<&mut ElementMatrix<ND>>,
     ) -> crate::Result<ElementScale> {
-        // (J − J̃(p), 1/U″(J̃)) at J and the pressure p: (J − 1, 0) for the exact constraint.
-        let constraint = |j: f64, p: f64| -> crate::Result<(f64, f64)> {
-            match volumetric {
-                None => Ok((j - 1.0, 0.0)),
-                Some(v) => {
-                    let (jt, compliance) = v.dilatation(p)?;
-                    Ok((j - jt, compliance))
-                }
-            }
-        };
-        let mut scale = ElementScale::default();
         match tangent {
-            None => {
-                for (g, m) in geometry.iter().zip(&self.m) {
-                    let f = g.deformation(u);
-                    let pq = m.dot(p);
-                    let pk = material.stress_at(&f, [g.r, g.z])?;
-                    let dj = jacobian_gradient(&f);
-                    let s = pk - dj * pq;
-                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                    let ru = g.transpose_mul::<NU>(&s, g.dv);
-                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let rp = m * (-constraint(jacobian(&f), pq)?.0 * g.dv);
-                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
-                }
+            None => self.add_residual(geometry, u, p, material, volumetric, residual),
+            Some(k) => self.add_residual_tangent(geometry, u, p, material, volumetric, residual, k),
+        }
+    }
+
+    /// The residual alone (R_u, R_p of [`Self::residual_tangent`]), added to `residual`.
+    #[inline(always)]
+    fn add_residual<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        geometry: &[PointGeometry<NN>; NQ],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        residual: &mut ElementVector<ND>,
+    ) -> crate::Result<ElementScale> {
+        let mut scale = ElementScale::default();
+        for (g, m) in geometry.iter().zip(&self.m) {
+            let f = g.deformation(u);
+            let pq = m.dot(p);
+            let pk = material.stress_at(&f, [g.r, g.z])?;
+            let dj = jacobian_gradient(&f);
+            let s = pk - dj * pq;
+            scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+            let ru = g.transpose_mul::<NU>(&s, g.dv);
+            residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+            let rp = m * (-constraint(volumetric, jacobian(&f), pq)?.0 * g.dv);
+            residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+        }
+        Ok(scale)
+    }
+
+    /// The residual and the tangent K of [`Self::residual_tangent`], added to `residual` and `k`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn add_residual_tangent<M: AxisymmetricMaterial + ?Sized>(
+        &self,
+        geometry: &[PointGeometry<NN>; NQ],
+        u: &SVector<f64, NU>,
+        p: &SVector<f64, NP>,
+        material: &M,
+        volumetric: Option<&Volumetric>,
+        residual: &mut ElementVector<ND>,
+        k: &mut ElementMatrix<ND>,
+    ) -> crate::Result<ElementScale> {
+        let mut scale = ElementScale::default();
+        // The node blocks below the diagonal of the points with a symmetric D, if any.
+        let mut kuu_lower = None;
+        for (g, m) in geometry.iter().zip(&self.m) {
+            let f = g.deformation(u);
+            let pq = m.dot(p);
+            let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
+            let dj = jacobian_gradient(&f);
+            let s = pk - dj * pq;
+            scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+            let ru = g.transpose_mul::<NU>(&s, g.dv);
+            residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+            let (c, compliance) = constraint(volumetric, jacobian(&f), pq)?;
+            let rp = m * (-c * g.dv);
+            residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+            if volumetric.is_some() {
+                k.fixed_view_mut::<NP, NP>(NU, NU)
+                    .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
             }
-            Some(k) => {
-                // The node blocks below the diagonal of the points with a symmetric D, if any.
-                let mut kuu_lower = None;
-                for (g, m) in geometry.iter().zip(&self.m) {
-                    let f = g.deformation(u);
-                    let pq = m.dot(p);
-                    let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
-                    let dj = jacobian_gradient(&f);
-                    let s = pk - dj * pq;
-                    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-                    let ru = g.transpose_mul::<NU>(&s, g.dv);
-                    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-                    let (c, compliance) = constraint(jacobian(&f), pq)?;
-                    let rp = m * (-c * g.dv);
-                    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
-                    if volumetric.is_some() {
-                        k.fixed_view_mut::<NP, NP>(NU, NU)
-                            .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
-                    }
-                    // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
-                    // material) only the node blocks below the diagonal, mirrored at the end.
-                    let d = (a - jacobian_hessian(&f) * pq) * g.dv;
-                    if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
-                        let lower = kuu_lower.get_or_insert_with(zeroed::<NU, NU>);
-                        add_btdb::<NN, NU, NU>(lower, g, &d, true);
-                    } else {
-                        add_btdb::<NN, NU, ND>(k, g, &d, false);
-                    }
-                    // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
-                    let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
-                    let kup = bdj * m.transpose();
-                    k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
-                }
-                // K_pu = K_upᵀ, copied once rather than accumulated point by point.
-                for i in 0..NP {
-                    for j in 0..NU {
-                        k[(NU + i, j)] = k[(j, NU + i)];
-                    }
-                }
-                if let Some(mut lower) = kuu_lower {
-                    mirror_node_blocks(&mut lower);
-                    k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&lower);
-                }
+            // K_uu += Bᵀ D B with D = (A − p H) dV; for a symmetric D (a hyperelastic
+            // material) only the node blocks below the diagonal, mirrored at the end.
+            let d = (a - jacobian_hessian(&f) * pq) * g.dv;
+            if (1..5).all(|i| (0..i).all(|j| d[(i, j)] == d[(j, i)])) {
+                let lower = kuu_lower.get_or_insert_with(zeroed::<NU, NU>);
+                add_btdb::<NN, NU, NU>(lower, g, &d, true);
+            } else {
+                add_btdb::<NN, NU, ND>(k, g, &d, false);
             }
+            // K_up = −Bᵀ ∂J/∂F Mᵀ dV, K_pu = −M (∂J/∂F)ᵀ B dV.
+            let bdj = g.transpose_mul::<NU>(&dj, -g.dv);
+            let kup = bdj * m.transpose();
+            k.fixed_view_mut::<NU, NP>(0, NU).add_assign(&kup);
+        }
+        // K_pu = K_upᵀ, copied once rather than accumulated point by point.
+        for i in 0..NP {
+            for j in 0..NU {
+                k[(NU + i, j)] = k[(j, NU + i)];
+            }
+        }
+        if let Some(mut lower) = kuu_lower {
+            mirror_node_blocks(&mut lower);
+            k.fixed_view_mut::<NU, NU>(0, 0).add_assign(&lower);
         }
         Ok(scale)
     }
