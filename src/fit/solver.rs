@@ -11,7 +11,7 @@
 //! **Bounds** lower_j ≤ θ_j ≤ upper_j: a step that would cross a bound goes 9/10 of the way to it
 //! (Nelder–Mead: a vertex outside them has infinite cost, as has any point where the model cannot
 //! be evaluated, e.g. exp overflow). A minimum beyond a bound is therefore approached, not
-//! reached: the search stalls there ([`NotConverged::BeyondBound`]), and [`least_squares`] then
+//! reached: the search stalls there ([`NotConverged::BeyondBound`]), and [`least_squares`](super::least_squares) then
 //! holds the parameter at the bound and fits the others ([`super::bounded`]): a minimum on a
 //! bound is a result.
 //!
@@ -71,7 +71,7 @@ impl Default for FitOptions {
 
 /// Minimises ‖r(θ)‖² over the free parameters named `names`, from `start`, within `bounds`:
 /// one search, which stalls at a bound beyond which the minimum lies
-/// ([`NotConverged::BeyondBound`]; [`least_squares`] goes on from there).
+/// ([`NotConverged::BeyondBound`]; [`least_squares`](super::least_squares) goes on from there).
 ///
 /// Returns the report at a converged point, or [`FitError::NotConverged`] carrying the reason and
 /// the best point found. Errors before the search: [`FitError::NoFreeParameter`],
