@@ -304,6 +304,20 @@ enum Ended {
     DiskFull,
 }
 
+impl Ended {
+    /// How a run ended that was not stopped by a full disk: the signal that stopped it (0: none),
+    /// else whether everything requested was computed.
+    fn from(signal: i32, complete: bool) -> Ended {
+        if signal != 0 {
+            Ended::Interrupted(signal)
+        } else if complete {
+            Ended::Complete
+        } else {
+            Ended::Incomplete
+        }
+    }
+}
+
 /// The signal that stopped the run (0: none). Its exit status is 128 + the signal, the shell's
 /// convention (130 for SIGINT, 143 for SIGTERM, 129 for SIGHUP).
 static STOPPED_BY: AtomicI32 = AtomicI32::new(0);
@@ -491,13 +505,7 @@ fn run_command(
         disk_full(&full, out, &kept);
         return Ok(Ended::DiskFull);
     }
-    Ok(if signal != 0 {
-        Ended::Interrupted(signal)
-    } else if results.complete() {
-        Ended::Complete
-    } else {
-        Ended::Incomplete
-    })
+    Ok(Ended::from(signal, results.complete()))
 }
 
 fn tradeoff_command(
@@ -560,13 +568,7 @@ fn tradeoff_command(
     if let Some(reason) = reason {
         say!("STOPPED: {reason}; what was measured before is written");
     }
-    Ok(if signal != 0 {
-        Ended::Interrupted(signal)
-    } else if failed.is_empty() {
-        Ended::Complete
-    } else {
-        Ended::Incomplete
-    })
+    Ok(Ended::from(signal, failed.is_empty()))
 }
 
 /// `scene` with its studies replaced by the tangent study of its material
@@ -635,13 +637,7 @@ fn tangent_command(
         started.elapsed().as_secs_f64()
     );
     let signal = STOPPED_BY.load(Ordering::SeqCst);
-    Ok(if signal != 0 {
-        Ended::Interrupted(signal)
-    } else if results.complete() {
-        Ended::Complete
-    } else {
-        Ended::Incomplete
-    })
+    Ok(Ended::from(signal, results.complete()))
 }
 
 fn main() -> ExitCode {

@@ -11,9 +11,9 @@
 //! **Bounds** lower_j ≤ θ_j ≤ upper_j: a step that would cross a bound goes 9/10 of the way to it
 //! (Nelder–Mead: a vertex outside them has infinite cost, as has any point where the model cannot
 //! be evaluated, e.g. exp overflow). A minimum beyond a bound is therefore approached, not
-//! reached: the search stalls there ([`NotConverged::BeyondBound`]), and [`least_squares`](super::least_squares) then
-//! holds the parameter at the bound and fits the others ([`super::bounded`]): a minimum on a
-//! bound is a result.
+//! reached: the search stalls there ([`NotConverged::BeyondBound`]), and
+//! [`least_squares`](super::least_squares) then holds the parameter at the bound and fits the
+//! others ([`super::bounded`]): a minimum on a bound is a result.
 //!
 //! **Convergence** is decided at the best point θ* found: the Gauss–Newton step there must be
 //! negligible, |δ_j| ≤ step_tolerance (1 + |θ*_j|) for every j, or small next to the standard

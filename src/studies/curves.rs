@@ -12,7 +12,7 @@ use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint, UniaxialResult};
 use crate::uniaxial::Direction;
 
 /// The file.
-pub const FILE: &str = "curves.csv";
+pub const FILE: &str = super::table::CURVES_FILE;
 
 /// What one row of `curves.csv` is.
 pub const ROWS_ARE: &str = "one row per computed point of a uniaxial curve or a cylinder sweep";

@@ -688,7 +688,7 @@ const WORDS: Words = Words {
     x: "λ",
     unit: "",
     target: "",
-    file: super::curves::FILE,
+    file: super::table::CURVES_FILE,
 };
 
 /// Where the quadrature points of `sweep` left its law's domain (`None`: a law that holds

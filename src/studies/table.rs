@@ -22,6 +22,10 @@
 
 use crate::app_error::AppError;
 
+/// The file of the curves that the uniaxial and cylinder kinds share (one table, a `study`
+/// column naming each row's study).
+pub const CURVES_FILE: &str = "curves.csv";
+
 /// The values of one column, one per row; `None` is an empty cell (a value that does not apply
 /// to the row).
 #[derive(Debug, Clone, PartialEq)]

@@ -307,7 +307,7 @@ impl UniaxialStudy {
             x: "λ",
             unit: "",
             target: "P_pas + (1 − d) P_act",
-            file: super::curves::FILE,
+            file: super::table::CURVES_FILE,
         };
         let points = result.curves.iter().map(|c| c.points.len()).sum();
         let mut details = vec![format!(
