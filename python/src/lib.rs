@@ -59,14 +59,17 @@ fn parse_order(order: &str) -> PyResult<Order> {
 /// The fibre direction, normalised; a finite non-zero vector (as a scene's `material.fibre`).
 #[inline(always)]
 fn unit_fibre(m: Vector3<f64>) -> Result<Vector3<f64>, Error> {
-    let norm = m.norm();
-    if norm.is_finite() && norm > 1e-12 {
-        Ok(m / norm)
+    // Scaled by its largest component first, as a scene's `fibre` is, so that neither
+    // [1e-300, 0, 0] underflows nor [1e300, 1e300, 0] overflows on the way to its norm.
+    let largest = m.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    if m.iter().all(|x| x.is_finite()) && largest > 0.0 {
+        let scaled = m / largest;
+        Ok(scaled / scaled.norm())
     } else {
         Err(Error::InvalidParameter {
             name: "fibre",
-            value: norm,
-            rule: "the fibre direction must be a finite, non-zero vector (its norm is shown)",
+            value: largest,
+            rule: "the fibre direction must be a finite, non-zero vector (its largest component is shown)",
         })
     }
 }

@@ -206,6 +206,19 @@ BAD_INPUT = [
 ]
 
 
+def test_a_fibre_direction_of_any_finite_scale_is_its_unit_vector():
+    # Tiny and huge components: the same direction as the unit vector, neither underflow nor
+    # overflow on the way to its norm.
+    F = np.diag([1.1, 1.0 / np.sqrt(1.1), 1.0 / np.sqrt(1.1)])
+    m = am.Material()
+    for given, unit in [([1e-300, 0.0, 0.0], [1.0, 0.0, 0.0]),
+                        ([1e300, 1e300, 0.0], [np.sqrt(0.5), np.sqrt(0.5), 0.0])]:
+        a = m.evaluate(F, fibre=given)["stress"]
+        b = m.evaluate(F, fibre=unit)["stress"]
+        assert np.all(np.isfinite(a))
+        assert np.allclose(a, b, rtol=1e-14, atol=0.0)
+
+
 @pytest.mark.parametrize("case", BAD_INPUT, ids=lambda c: c[2])
 def test_bad_input_raises_with_a_clear_message(case):
     kwargs, error, message = case
