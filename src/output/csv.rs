@@ -59,7 +59,7 @@ pub fn files(results: &Results) -> Vec<CsvFile> {
         .flat_map(|s| s.result.tables(&s.name))
         .collect();
     let mut files = vec![CsvFile {
-        file: curves::FILE.to_string(),
+        file: crate::studies::table::CURVES_FILE.to_string(),
         rows_are: curves::ROWS_ARE,
         tables: Vec::new(),
     }];

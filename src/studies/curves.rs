@@ -7,12 +7,9 @@ use crate::plot::CurveId;
 use crate::studies::cylinder::{bases_name, CylinderResult, Sweep, SweepPoint};
 use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::outputs::{model_cells, OwnTable};
-use crate::studies::table::Table;
+use crate::studies::table::{Table, CURVES_FILE};
 use crate::studies::uniaxial::{Curve, CurveModel, CurvePoint, UniaxialResult};
 use crate::uniaxial::Direction;
-
-/// The file.
-pub const FILE: &str = super::table::CURVES_FILE;
 
 /// What one row of `curves.csv` is.
 pub const ROWS_ARE: &str = "one row per computed point of a uniaxial curve or a cylinder sweep";
@@ -232,7 +229,7 @@ pub fn cylinder_rows<'a>(study: &'a str, c: &'a CylinderResult) -> Vec<Row<'a>> 
 
 /// `rows` as the study's table of `curves.csv`.
 pub fn own_table(rows: &[Row]) -> OwnTable {
-    OwnTable::rows(FILE, ROWS_ARE, table(rows))
+    OwnTable::rows(CURVES_FILE, ROWS_ARE, table(rows))
 }
 
 /// The columns of `curves.csv` over `rows` (none: the header alone). The approach is the last

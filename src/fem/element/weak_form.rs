@@ -3,7 +3,7 @@
 
 use super::reference::{zeroed, PointGeometry, ReferenceElement};
 use crate::fem::kinematics::{jacobian, jacobian_gradient, jacobian_hessian};
-use crate::fem::material::AxisymmetricMaterial;
+use crate::fem::material::{AxiF, AxisymmetricMaterial};
 use crate::volumetric::Volumetric;
 use nalgebra::{SMatrix, SVector};
 use std::ops::AddAssign;
@@ -76,6 +76,32 @@ fn constraint(volumetric: Option<&Volumetric>, j: f64, p: f64) -> crate::Result<
             Ok((j - jt, compliance))
         }
     }
+}
+
+/// One quadrature point's share of the residual, added to `residual`:
+/// R_u += Bᵀ (P − p ∂J/∂F) dV and R_p += −M c(J, p) dV (c of [`constraint`]), its stress scale
+/// noted in `scale`. Returns ∂J/∂F and the constraint's compliance, which the tangent reuses.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn add_point_residual<const NN: usize, const NU: usize, const NP: usize, const ND: usize>(
+    g: &PointGeometry<NN>,
+    m: &SVector<f64, NP>,
+    f: &AxiF,
+    pq: f64,
+    pk: &AxiF,
+    volumetric: Option<&Volumetric>,
+    residual: &mut ElementVector<ND>,
+    scale: &mut ElementScale,
+) -> crate::Result<(AxiF, f64)> {
+    let dj = jacobian_gradient(f);
+    let s = pk - dj * pq;
+    scale.stress = scale.stress.max(pk.amax()).max(s.amax());
+    let ru = g.transpose_mul::<NU>(&s, g.dv);
+    residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
+    let (c, compliance) = constraint(volumetric, jacobian(f), pq)?;
+    let rp = m * (-c * g.dv);
+    residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+    Ok((dj, compliance))
 }
 
 /// What one element evaluation returns besides its vectors: the stress scale max |P_ij|, |p ∂J/∂F_ij| \[kPa\].
@@ -193,13 +219,9 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
             let f = g.deformation(u);
             let pq = m.dot(p);
             let pk = material.stress_at(&f, [g.r, g.z])?;
-            let dj = jacobian_gradient(&f);
-            let s = pk - dj * pq;
-            scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-            let ru = g.transpose_mul::<NU>(&s, g.dv);
-            residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-            let rp = m * (-constraint(volumetric, jacobian(&f), pq)?.0 * g.dv);
-            residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+            add_point_residual::<NN, NU, NP, ND>(
+                g, m, &f, pq, &pk, volumetric, residual, &mut scale,
+            )?;
         }
         Ok(scale)
     }
@@ -224,14 +246,9 @@ impl<const NN: usize, const NU: usize, const NP: usize, const ND: usize, const N
             let f = g.deformation(u);
             let pq = m.dot(p);
             let (pk, a) = material.stress_tangent_at(&f, [g.r, g.z])?;
-            let dj = jacobian_gradient(&f);
-            let s = pk - dj * pq;
-            scale.stress = scale.stress.max(pk.amax()).max(s.amax());
-            let ru = g.transpose_mul::<NU>(&s, g.dv);
-            residual.fixed_rows_mut::<NU>(0).add_assign(&ru);
-            let (c, compliance) = constraint(volumetric, jacobian(&f), pq)?;
-            let rp = m * (-c * g.dv);
-            residual.fixed_rows_mut::<NP>(NU).add_assign(&rp);
+            let (dj, compliance) = add_point_residual::<NN, NU, NP, ND>(
+                g, m, &f, pq, &pk, volumetric, residual, &mut scale,
+            )?;
             if volumetric.is_some() {
                 k.fixed_view_mut::<NP, NP>(NU, NU)
                     .add_assign(&(m * m.transpose() * (-compliance * g.dv)));
