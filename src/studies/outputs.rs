@@ -408,7 +408,7 @@ pub fn hidden_curves(panels: &mut [Panel]) -> String {
                     1 => format!("\"{}\" lies", under[0]),
                     _ => format!("\"{}\" lie", under.join("\", \"")),
                 },
-                crate::text::significant(d, 2)
+                crate::plot::short(d)
             ));
             p.series.push(Series::new(
                 format!("({}: under {over})", under.join("; ")),
