@@ -124,6 +124,7 @@ pub mod studies;
 pub mod tangent_check;
 pub mod testing;
 pub mod text;
+pub mod threads;
 pub mod uniaxial;
 pub mod user_file;
 pub mod volumetric;

@@ -167,6 +167,15 @@ fn rustc_version() -> Option<String> {
         .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
 }
 
+/// Prints one `OUTSIDE:` line per study, law and coupling that left the law's domain.
+fn outside_lines(results: &Results) {
+    for s in &results.studies {
+        for l in &s.left_domain {
+            say!("OUTSIDE: {} — {}: {}", s.name, l.model, l.message);
+        }
+    }
+}
+
 /// Prints the table of studies, every failure and where the outputs are (`written`: all of
 /// them; else the run stopped writing, said after); says whether the run is complete.
 fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool) {
@@ -180,11 +189,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
     }
-    for s in &results.studies {
-        for l in &s.left_domain {
-            say!("OUTSIDE: {} — {}: {}", s.name, l.model, l.message);
-        }
-    }
+    outside_lines(results);
     for s in &results.studies {
         if s.failures.is_empty() && s.points < s.requested {
             say!(
@@ -195,8 +200,7 @@ fn summary(results: &Results, rows: usize, out: &Path, wall: f64, written: bool)
             );
         }
     }
-    // A scene without a curve study (stability or trade-off only) writes a header-only
-    // curves.csv: not worth a line.
+    // A scene without a curve study (stability or trade-off only) writes no curves.csv.
     let curves = match rows {
         0 => String::new(),
         n => format!("{n} rows in curves.csv; "),
@@ -390,29 +394,11 @@ fn simulated_disk() -> Option<u64> {
         .ok()
 }
 
-/// The most threads the pool may have per available core.
-const THREADS_PER_CORE: usize = 4;
-
-/// Bounds the thread pool: `RAYON_NUM_THREADS` above [`THREADS_PER_CORE`] × the available
-/// cores is replaced by that (with a notice on standard error). Spawning a hundred thousand
-/// threads takes minutes, during which the run does nothing else and a SIGTERM waits.
+/// Bounds the thread pool from the environment ([`activemuscle::threads`]), with a notice on
+/// standard error when the count asked for is cut.
 fn limit_threads() {
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let most = THREADS_PER_CORE * cores;
-    let asked = std::env::var("RAYON_NUM_THREADS")
-        .ok()
-        .and_then(|v| v.trim().parse::<usize>().ok());
-    if let Some(asked) = asked.filter(|&n| n > most) {
-        say_err!(
-            "notice: RAYON_NUM_THREADS={asked} is more than {THREADS_PER_CORE} threads per available \
-             core ({cores} cores): using {most} threads"
-        );
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
-            .num_threads(most)
-            .build_global()
-        {
-            say_err!("warning: the thread pool could not be bounded: {e}");
-        }
+    if let Some(notice) = activemuscle::threads::limit_global_pool() {
+        say_err!("{notice}");
     }
 }
 
@@ -628,6 +614,7 @@ fn tangent_command(
     for (study, f) in results.failures() {
         say!("FAILED: {study} — {}: {}", f.model, f.message);
     }
+    outside_lines(&results);
     say!(
         "outputs in {} (report.html, tangent_summary.csv: why each flagged state is flagged); wall time {:.1} s",
         out.display(),

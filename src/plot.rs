@@ -47,6 +47,9 @@ pub enum Scale {
     LogY,
     /// Linear x and y, x counting states (1, 2, 3, …): tick labels at whole numbers only.
     Counted,
+    /// Logarithmic y as [`Scale::LogY`], x counting (Newton iterations 0, 1, 2, …) as
+    /// [`Scale::Counted`].
+    CountedLogY,
 }
 
 /// One curve.
@@ -256,7 +259,7 @@ impl Panel {
     /// on a log axis the positive data's; on a linear axis the data's (padded 5 %), cut where
     /// curves blow up (see `limit`), never so that y = 0 leaves the frame.
     pub fn frame(&self) -> Frame {
-        let log = matches!(self.scale, Scale::LogLog | Scale::LogY);
+        let log = matches!(self.scale, Scale::LogLog | Scale::LogY | Scale::CountedLogY);
         let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
         // Every series' sorted values, and whether it is a line (markers often mark parts of
         // other curves: only lines set where the axis is cut, unless there are none).
@@ -379,7 +382,7 @@ impl Panel {
                 )
             })
             .collect();
-        if self.scale == Scale::LogY
+        if matches!(self.scale, Scale::LogY | Scale::CountedLogY)
             && self
                 .series
                 .iter()
@@ -401,7 +404,7 @@ impl Panel {
 }
 
 /// The unit of an axis label, with a leading space: `P [kPa]` → ` kPa`; none for `[-]`.
-fn axis_unit(label: &str) -> String {
+pub fn axis_unit(label: &str) -> String {
     match label.split_once('[').and_then(|(_, u)| u.split_once(']')) {
         Some((u, _)) if u != "-" && !u.is_empty() => format!(" {u}"),
         _ => String::new(),
@@ -684,14 +687,6 @@ fn draw_panel<DB: DrawingBackend>(
             // A tick at 0 computed as y0 + k·step may come out as −1.4e-17: written 0.
             let span = (y1 - y0).abs();
             let tick = |v: &f64| short(if v.abs() < 1e-9 * span { 0.0 } else { *v });
-            let whole = |v: &f64| {
-                let n = v.round();
-                if (v - n).abs() < 1e-9 {
-                    short(n)
-                } else {
-                    String::new()
-                }
-            };
             let x_format: Option<&dyn Fn(&f64) -> String> = match panel.scale {
                 Scale::Counted => Some(&whole),
                 _ => None,
@@ -725,13 +720,26 @@ fn draw_panel<DB: DrawingBackend>(
             mesh(&mut chart, panel, Some(&decade), Some(&decade))?;
             draw_series(&mut chart, panel, y0, y1)
         }
-        Scale::LogY => {
+        Scale::LogY | Scale::CountedLogY => {
             let mut chart = builder
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
                 .map_err(e)?;
-            mesh(&mut chart, panel, None, Some(&decade))?;
+            let x_format: Option<&dyn Fn(&f64) -> String> =
+                (panel.scale == Scale::CountedLogY).then_some(&whole);
+            mesh(&mut chart, panel, x_format, Some(&decade))?;
             draw_series(&mut chart, panel, y0, y1)
         }
+    }
+}
+
+/// A tick label on an axis that counts: whole numbers only (`5`, never `5.0`), other ticks
+/// unlabelled.
+fn whole(v: &f64) -> String {
+    let n = v.round();
+    if (v - n).abs() < 1e-9 {
+        short(n)
+    } else {
+        String::new()
     }
 }
 
@@ -944,6 +952,76 @@ mod tests {
             (-0.0, "0"),
         ] {
             assert_eq!(short(x), text, "{x}");
+        }
+    }
+
+    /// The x axis spans the plotted data (padded 2 % of their width each way) and nothing
+    /// else: legend keys without points, and a curve cut off above by the y axis, do not
+    /// widen it; every curve ends within the frame.
+    #[test]
+    fn the_x_range_is_the_extent_of_the_plotted_data() {
+        let steep: Vec<(f64, f64)> = (0..=12)
+            .map(|i| {
+                let l = 0.8 + 0.05 * i as f64;
+                (l, (20.0 * (l - 1.0)).exp())
+            })
+            .collect();
+        let short: Vec<(f64, f64)> = (0..=6).map(|i| (0.9 + 0.05 * i as f64, 1.0)).collect();
+        let panel = Panel::new(
+            "P",
+            "stretch λ [-]",
+            "P [kPa]",
+            vec![
+                Series::new("steep", steep, Stroke::Solid, 0),
+                Series::new("short", short, Stroke::Solid, 1),
+                Series::new("(a key)", Vec::new(), Stroke::Solid, GREY),
+            ],
+        );
+        let f = panel.frame();
+        let (lo, hi) = (0.8, 0.8 + 0.05 * 12.0);
+        let pad = 0.02 * (hi - lo);
+        assert!(
+            (f.x.0 - (lo - pad)).abs() < 1e-12 && (f.x.1 - (hi + pad)).abs() < 1e-12,
+            "{f:?}"
+        );
+        assert!(f.clipped_above, "{f:?}");
+    }
+
+    /// A counting axis (Newton iterations) is labelled in whole numbers, `5`, never `5.0`, also
+    /// beside a log y axis (whose labels are powers of ten).
+    #[test]
+    fn a_counting_axis_has_whole_number_tick_labels() {
+        assert_eq!(whole(&5.0), "5");
+        assert_eq!(whole(&0.0), "0");
+        assert_eq!(whole(&2.5), "");
+        for scale in [Scale::CountedLogY] {
+            let residuals: Vec<(f64, f64)> = (0..7).map(|k| (k as f64, 10f64.powi(-k))).collect();
+            let mut panel = Panel::new(
+                "Newton",
+                "Newton iteration [-]",
+                "residual [-]",
+                vec![Series::new("exact", residuals, Stroke::Solid, 0)],
+            );
+            panel.scale = scale;
+            let figure = Figure::new("f", "f", "caption", vec![panel]);
+            let (_, svg) = render_bytes(&figure).unwrap();
+            // The text of every label: whole-number x ticks are there, decimal ones are not.
+            let labels: Vec<&str> = svg
+                .split("</text>")
+                .filter_map(|t| t.rsplit('>').next().map(str::trim))
+                .collect();
+            for k in 0..=6 {
+                assert!(
+                    labels.contains(&k.to_string().as_str()),
+                    "{scale:?}: {k} in {labels:?}"
+                );
+            }
+            assert!(
+                !labels
+                    .iter()
+                    .any(|l| l.ends_with(".0") || l.ends_with(".5")),
+                "{scale:?}: {labels:?}"
+            );
         }
     }
 

@@ -8,7 +8,8 @@ results as columns of numpy arrays that ``pandas.DataFrame(...)`` takes directly
 
 The scene is validated and resolved by the scene's own parser (names, defaults and messages are
 a scene file's; a dict's errors name the key path, ``study[1].damage``). ``out`` writes the
-outputs the command line writes (curves.csv, fits.csv, figures, report.html, VTK files) into
+outputs the command line writes (the CSV files of the studies the scene has — curves.csv only
+with a uniaxial or cylinder study —, datapackage.json, figures, report.html, VTK files) into
 that directory; without it nothing is written.
 """
 

@@ -746,6 +746,16 @@ fn convention_of(shape: &[usize], layout: Option<&str>) -> PyResult<Convention> 
 /// The extension module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // The pool is bounded before any batch runs on it, as the command line bounds it.
+    if let Some(notice) = activemuscle::threads::limit_global_pool() {
+        let message = std::ffi::CString::new(notice).unwrap_or_default();
+        PyErr::warn(
+            m.py(),
+            &m.py().get_type::<pyo3::exceptions::PyRuntimeWarning>(),
+            &message,
+            1,
+        )?;
+    }
     m.add_class::<Material>()?;
     m.add_class::<volumetric::Volumetric>()?;
     m.add_function(wrap_pyfunction!(scene::run_scene, m)?)?;

@@ -3,6 +3,7 @@ of the implicit law (the chapter's eqs. for the passive curve and eq. (8)), the 
 and as a dict, the scene's own messages, the command line's files."""
 
 import csv
+import json
 
 import numpy as np
 import pytest
@@ -197,6 +198,16 @@ def test_out_writes_the_command_lines_files(tmp_path):
     assert am.run_scene(TEXT)["sliding cylinder"].vtk == []
 
 
+def test_out_writes_no_curves_csv_without_a_study_that_fills_it(tmp_path):
+    out = tmp_path / "run"
+    r = am.run_scene('[[study]]\nkind = "shear"\nname = "s"\nshear = [0.1, 0.2]\n', out=out)
+    assert r["s"].files["table"] == "shear.csv"
+    assert not (out / "curves.csv").exists()
+    package = json.loads((out / "datapackage.json").read_text())
+    assert [res["path"] for res in package["resources"]] == ["shear.csv"]
+    assert sorted(p.name for p in out.glob("*.csv")) == ["shear.csv"]
+
+
 FIT_AND_STABILITY = """
 [[study]]
 kind = "fit"
@@ -363,3 +374,30 @@ def test_shear_and_biaxial_tables_of_a_neo_hookean_block_are_the_closed_forms():
         rtol=1e-10,
     )
     np.testing.assert_allclose(b["P_22"][a], b["P_22"][p], rtol=1e-12, atol=1e-12)
+
+
+def test_a_thread_count_from_the_environment_above_four_per_core_is_bounded_with_a_warning():
+    import os
+    import re
+    import subprocess
+    import sys
+
+    cores = os.cpu_count() or 1
+    too_many = 4 * cores + 3  # a modest excess: a build without the bound must still start them
+    code = (
+        "import warnings\n"
+        "with warnings.catch_warnings(record=True) as w:\n"
+        "    warnings.simplefilter('always')\n"
+        "    import activemuscle\n"
+        "print('|'.join(str(x.message) for x in w if issubclass(x.category, RuntimeWarning)))\n"
+    )
+    env = dict(os.environ, RAYON_NUM_THREADS=str(too_many))
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 0, out.stderr
+    assert f"RAYON_NUM_THREADS={too_many}" in out.stdout, out.stdout
+    # The cores the module counts (its affinity and quota) are at most the machine's.
+    counted = re.search(r"\((\d+) cores\): using (\d+) threads", out.stdout)
+    assert counted, out.stdout
+    assert 1 <= int(counted[1]) <= cores and int(counted[2]) == 4 * int(counted[1])

@@ -1,16 +1,15 @@
 //! The CSV files of a run, from the tables the study kinds own
 //! ([`crate::studies::StudyResult::tables`]): the tables of every study that writes to one file,
 //! appended in scene order under one header. `curves.csv` (uniaxial curves and cylinder sweeps,
-//! one row per point, long "tidy" form) is always written, its header alone without such a
-//! study. A cell that does not apply is empty, never `NaN`; a non-finite number is an error
+//! one row per point, long "tidy" form) comes first; like every file, it is written only
+//! when a study writes to it. A cell that does not apply is empty, never `NaN`; a non-finite number is an error
 //! naming the file, the column and the row.
 
 use super::datapackage::{table_fields, Resource};
 use crate::app_error::AppError;
 use crate::scene::Results;
-use crate::studies::curves;
-use crate::studies::outputs::OwnTable;
 use crate::studies::table::Table;
+use crate::studies::table::CURVES_FILE;
 
 /// One CSV file of a run: the tables of the studies that write to it, in scene order.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,19 +49,15 @@ impl CsvFile {
     }
 }
 
-/// The CSV files of `results`: `curves.csv` first (its header alone if no study writes to it),
-/// then the others in the order of the first study that writes to each.
+/// The CSV files of `results`, each with at least one row-holding study: `curves.csv` first if
+/// a study writes to it, then the others in the order of the first study that writes to each. A
+/// scene without uniaxial or cylinder studies has no `curves.csv` (a header alone says nothing).
 pub fn files(results: &Results) -> Vec<CsvFile> {
-    let own: Vec<OwnTable> = results
+    let mut files: Vec<CsvFile> = Vec::new();
+    let own = results
         .studies
         .iter()
-        .flat_map(|s| s.result.tables(&s.name))
-        .collect();
-    let mut files = vec![CsvFile {
-        file: crate::studies::table::CURVES_FILE.to_string(),
-        rows_are: curves::ROWS_ARE,
-        tables: Vec::new(),
-    }];
+        .flat_map(|s| s.result.tables(&s.name));
     for t in own {
         match files.iter_mut().find(|f| f.file == t.file) {
             Some(f) => f.tables.push(t.table),
@@ -73,9 +68,8 @@ pub fn files(results: &Results) -> Vec<CsvFile> {
             }),
         }
     }
-    if files[0].tables.is_empty() {
-        files[0].tables.push(curves::table(&[]));
-    }
+    // A stable sort: curves.csv first, the others keep their order.
+    files.sort_by_key(|f| f.file != CURVES_FILE);
     files
 }
 

@@ -33,10 +33,10 @@ pub struct RunMeta {
 }
 
 /// Writes every output of a run into `staging` (committed by the caller), the data first so that
-/// a disk that fills up keeps it: the CSV files of the studies' tables (`curves.csv` first),
+/// a disk that fills up keeps it: the CSV files of the studies' tables (`curves.csv` first, if written),
 /// `scene.toml` (the scene as given) and `datapackage.json`; then the VTK files the solver wrote
 /// into `staging`'s `vtk/`, the figures, the trade-off pages and, last, `report.html`. Returns
-/// the number of rows of `curves.csv`. A full disk stops it with [`AppError::DiskFull`]; every
+/// the number of rows of `curves.csv` (0 without it). A full disk stops it with [`AppError::DiskFull`]; every
 /// file staged before is whole, and the caller may commit them ([`Staging::staged`]).
 pub fn write_run(
     staging: &mut Staging,
@@ -95,5 +95,8 @@ pub fn write_run(
     };
     let page = report::html(scene, results, &rendered, &info)?;
     staging.write("report.html", page.as_bytes())?;
-    Ok(tables[0].rows())
+    Ok(tables
+        .iter()
+        .find(|t| t.file == crate::studies::table::CURVES_FILE)
+        .map_or(0, csv::CsvFile::rows))
 }

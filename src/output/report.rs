@@ -210,7 +210,7 @@ fn models_table(h: &mut String, scene: &Scene, results: &Results) {
             "not in the chapter (eq. (2) is exact: det C = 1)".to_string(),
         ));
     }
-    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures, the tables and <code>curves.csv</code> use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
+    h.push_str("<h2>Models and the chapter's equations</h2>\n<p>The names the figures and the CSV files use, what each is, and where the chapter has it (equation, table and figure numbers of the arXiv preprint, see <code>docs/equations.md</code>).</p>\n<table><tr><th>name</th><th>what it is</th><th>chapter</th></tr>\n");
     for (name, what, chapter) in rows {
         let _ = writeln!(
             h,

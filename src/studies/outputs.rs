@@ -362,3 +362,109 @@ pub fn panel_of(title: &str, x_label: &str, y_label: &str, series: Vec<Series>) 
 pub fn strokes(i: usize) -> Stroke {
     [Stroke::Solid, Stroke::Dashed, Stroke::Dotted][i % 3]
 }
+
+/// How close two curves of a panel must be for the panel not to tell them apart: the largest
+/// |Δy| within this fraction of the larger |y| of the two, at the same x values.
+pub const INDISTINCT: f64 = 0.005;
+
+/// The curves each of `panels` cannot tell apart ([`Panel::coinciding`] within [`INDISTINCT`],
+/// as active stress's P₂₂ is the passive one's), among the curves with a legend entry: each
+/// hidden curve named under the last curve drawn over it, in a grey legend entry on the panel, and in the caption's sentences
+/// (returned, each starting with a space; empty where no curve hides another).
+pub fn hidden_curves(panels: &mut [Panel]) -> String {
+    let mut words = String::new();
+    for p in panels {
+        // Only the curves the legend names (markers and guides without a label are not).
+        let named = |k: usize| !p.series[k].label.is_empty();
+        let pairs: Vec<(usize, usize, f64)> = p
+            .coinciding(INDISTINCT)
+            .into_iter()
+            .filter(|&(i, j, _)| named(i) && named(j))
+            .collect();
+        let mut groups: Vec<(usize, Vec<usize>, f64)> = Vec::new();
+        for &(i, _, _) in &pairs {
+            let Some(&(_, top, _)) = pairs.iter().filter(|q| q.0 == i).max_by_key(|q| q.1) else {
+                continue;
+            };
+            let d = pairs
+                .iter()
+                .filter(|q| q.1 == top)
+                .fold(0.0, |m, q| q.2.max(m));
+            match groups.iter_mut().find(|g| g.0 == top) {
+                Some(g) if !g.1.contains(&i) => g.1.push(i),
+                Some(_) => {}
+                None => groups.push((top, vec![i], d)),
+            }
+        }
+        let unit = crate::plot::axis_unit(&p.y_label);
+        for (top, hidden, d) in groups {
+            let label = |k: usize| p.series[k].label.clone();
+            let under: Vec<String> = hidden.into_iter().map(label).collect();
+            let over = label(top);
+            words.push_str(&format!(
+                " In \"{}\", {} under \"{over}\" (largest difference {}{unit}).",
+                p.title,
+                match under.len() {
+                    1 => format!("\"{}\" lies", under[0]),
+                    _ => format!("\"{}\" lie", under.join("\", \"")),
+                },
+                crate::plot::short(d)
+            ));
+            p.series.push(Series::new(
+                format!("({}: under {over})", under.join("; ")),
+                Vec::new(),
+                Stroke::Solid,
+                GREY,
+            ));
+        }
+    }
+    words
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{hidden_curves, INDISTINCT};
+    use crate::plot::{Panel, Series, Stroke, GREY};
+
+    fn line(label: &str, ys: &[f64]) -> Series {
+        let points = ys.iter().enumerate().map(|(i, &y)| (i as f64, y)).collect();
+        Series::new(label, points, Stroke::Solid, 0)
+    }
+
+    fn panel(title: &str, series: Vec<Series>) -> Panel {
+        Panel::new(title, "x [-]", "σ [kPa]", series)
+    }
+
+    /// A curve is said to lie under another exactly when the two coincide within the plotting
+    /// tolerance (|Δy| ≤ INDISTINCT × the larger |y|, same x), in every panel, by the same rule.
+    #[test]
+    fn a_hidden_curve_is_named_in_every_panel_exactly_when_it_coincides_with_a_later_one() {
+        let base = [1.0, 2.0, 4.0, 8.0];
+        let within: Vec<f64> = base.iter().map(|y| y * (1.0 + 0.9 * INDISTINCT)).collect();
+        let beyond: Vec<f64> = base.iter().map(|y| y * (1.0 + 1.1 * INDISTINCT)).collect();
+        let mut panels = vec![
+            panel(
+                "same",
+                vec![line("a", &base), line("b", &base), line("c", &[0.0; 4])],
+            ),
+            panel("within", vec![line("a", &base), line("b", &within)]),
+            panel("beyond", vec![line("a", &base), line("b", &beyond)]),
+            panel("unnamed", vec![line("", &base), line("", &base)]),
+        ];
+        let words = hidden_curves(&mut panels);
+        let keys = |p: &Panel| -> Vec<String> {
+            p.series
+                .iter()
+                .filter(|s| s.colour == GREY && s.points.is_empty())
+                .map(|s| s.label.clone())
+                .collect()
+        };
+        assert_eq!(keys(&panels[0]), ["(a: under b)"]);
+        assert_eq!(keys(&panels[1]), ["(a: under b)"]);
+        assert!(keys(&panels[2]).is_empty());
+        assert!(keys(&panels[3]).is_empty());
+        assert!(words.contains("In \"same\", \"a\" lies under \"b\" (largest difference 0 kPa)."));
+        assert!(words.contains("In \"within\", \"a\" lies under \"b\""));
+        assert!(!words.contains("beyond"), "{words}");
+    }
+}

@@ -50,7 +50,7 @@ pub struct Known<const N: usize> {
     pub fibre: Option<Vector3<f64>>,
     /// Strong ellipticity at the state, where the material can tell.
     pub ellipticity: Option<Ellipticity>,
-    /// What else a user should know of this state (a law outside the range it was fitted on).
+    /// What else a user should know of this state.
     pub notes: Vec<String>,
 }
 

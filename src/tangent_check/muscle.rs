@@ -32,9 +32,6 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 /// Reference normals sampled for strong ellipticity.
 pub const ELLIPTICITY_NORMALS: usize = 256;
 
-/// The range on which the explicit law (eq. (14)) was fitted: 0.7 < λ < 1.5 at d = 0.
-const EXPLICIT_FITTED: (f64, f64) = (0.7, 1.5);
-
 /// A muscle at a material point in 3D: the model, its fibre, its volumetric energy (`None`:
 /// exactly incompressible, the pressure held fixed) and the variants it is compared with.
 #[derive(Debug, Clone)]
@@ -186,24 +183,6 @@ impl<E: StrainEnergy> MusclePoint<E> {
             Some(_) => Ok(unconstrained_ellipticity(a, ELLIPTICITY_NORMALS)),
         }
     }
-
-    /// What a user should know of F: the explicit law outside the range it was fitted on.
-    fn notes(&self, f: &Matrix3<f64>) -> Vec<String> {
-        let Law::Explicit(_) = self.muscle.law() else {
-            return Vec::new();
-        };
-        let lambda = (f * self.fibre).norm();
-        let d = self.muscle.effective_damage();
-        let (lo, hi) = EXPLICIT_FITTED;
-        if lambda > lo && lambda < hi && d == 0.0 {
-            return Vec::new();
-        }
-        vec![format!(
-            "the explicit law (eq. (14)) is a fit on {lo} < λ < {hi} at d = 0; here λ_f = {}, d_eff = {}",
-            crate::text::significant(lambda, 4),
-            crate::text::significant(d, 4)
-        )]
-    }
 }
 
 impl<E: StrainEnergy> TangentMaterial<9> for MusclePoint<E> {
@@ -249,7 +228,8 @@ impl<E: StrainEnergy> TangentMaterial<9> for MusclePoint<E> {
             edges: self.edges.clone(),
             fibre: Some(self.fibre),
             ellipticity: Some(self.ellipticity(f, tangent)?),
-            notes: self.notes(f),
+            // The law's domain is the study's `in_domain` column (crate::studies::domain).
+            notes: Vec::new(),
         })
     }
 }

@@ -110,3 +110,31 @@ fn cylinder_rows_carry_their_0d_stress_dofs_element_and_regions() {
         assert_eq!(r["d"], "0");
     }
 }
+
+/// A scene without uniaxial or cylinder studies writes no `curves.csv` (a header alone says
+/// nothing), and `datapackage.json` describes exactly the CSV files in the directory.
+#[test]
+fn a_shear_only_run_writes_no_curves_csv_and_its_package_lists_the_files_written() {
+    let dir = scratch("datapackage_shear_only");
+    let scene = dir.join("scene.toml");
+    std::fs::write(
+        &scene,
+        "[[study]]\nkind = \"shear\"\nname = \"shear\"\nshear = [0.1, 0.2]\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    binary::run_quiet(Some(&scene), &out);
+    assert!(!out.join("curves.csv").exists());
+    let mut written: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with(".csv"))
+        .collect();
+    written.sort();
+    let mut described = the_data_obey_their_package(&out);
+    described.sort();
+    assert_eq!(described, written);
+    assert_eq!(described, ["shear.csv"]);
+    let report = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(!report.contains("curves.csv"));
+}

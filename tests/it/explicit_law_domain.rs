@@ -259,3 +259,47 @@ fn force_velocity_that_moves_d_eff_out_is_flagged_with_its_rate_and_factor() {
     let report = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
     assert!(report.contains("scaled by (1 − d)·a(t)·f_v(λ̇)"), "{report}");
 }
+
+#[test]
+fn a_tangent_study_flags_its_states_outside_the_explicit_laws_domain_as_the_other_kinds_do() {
+    let dir = scratch("explicit-tangent");
+    let stdout = run(
+        "[[study]]\nkind = \"tangent\"\nname = \"t\"\nuniaxial_along = [0.65, 1.0, 1.6]\n\
+         random_states = 0\nnear_lambda_min = 0\nlarge_fibre_stretch = 0\nrandom_directions = 1\n\
+         h = { largest = 0.015625, smallest = 0.001953125 }\n\
+         approaches = [\"active-strain\"]\nlaws = [\"explicit\", \"implicit\"]\n\
+         couplings = [\"frozen\"]\ndamage = [0.0]\npassive = false\n",
+        &dir,
+    );
+    let summary = rows(&dir.join("out/tangent_summary.csv"));
+    let mut outside = 0;
+    for r in &summary {
+        // λ_f = |F m| with m = e₁, from the state's F as written.
+        let f = |k: &str| r[k].parse::<f64>().unwrap();
+        let fibre_stretch = (f("F11").powi(2) + f("F21").powi(2) + f("F31").powi(2)).sqrt();
+        let expected = match r["law"].as_str() {
+            "explicit" if (0.7..=1.5).contains(&fibre_stretch) => "true",
+            "explicit" => {
+                outside += 1;
+                "false"
+            }
+            _ => "",
+        };
+        assert_eq!(r["in_domain"], expected, "{r:?}");
+    }
+    assert_eq!(outside, 2, "{summary:?}");
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("OUTSIDE: t — "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(
+        line.contains("2 of 3 states outside the explicit law's domain")
+            && line.contains("λ_f below 0.7")
+            && line.contains("λ_f above 1.5")
+            && line.contains("in_domain = false in tangent_summary.csv"),
+        "{line}"
+    );
+    assert_eq!(stdout.matches("OUTSIDE:").count(), 1, "{stdout}");
+    let report = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
+    assert!(report.contains("Where a law left its domain") && report.contains("2 of 3 states"));
+}

@@ -3,9 +3,9 @@
 
 use super::BiaxialResult;
 use crate::app_error::AppError;
-use crate::plot::{Figure, Panel, Scale, Series, Stroke, GREY};
+use crate::plot::{Figure, Panel, Scale, Series, Stroke};
 use crate::studies::outputs::{
-    each_study, panel_of, prefixed, Context, KindOutput, Of, OwnTable, Used,
+    each_study, hidden_curves, panel_of, prefixed, Context, KindOutput, Of, OwnTable, Used,
 };
 use crate::text::escape_html as escape;
 use std::fmt::Write;
@@ -104,54 +104,6 @@ pub fn biaxial_figure(study: &str, r: &BiaxialResult) -> Option<Figure> {
             panels,
         )
     })
-}
-
-/// The curves a panel of `panels` cannot tell apart (within 0.5 % of the larger, as active
-/// stress's P₂₂ is the passive one's): a grey legend entry on the panel, and the caption's
-/// sentences.
-fn hidden_curves(panels: &mut [Panel]) -> String {
-    let mut words = String::new();
-    for p in panels {
-        // Each hidden curve under the last curve drawn over it, grouped by that curve.
-        let pairs = p.coinciding(0.005);
-        let mut groups: Vec<(usize, Vec<usize>, f64)> = Vec::new();
-        for &(i, _, _) in &pairs {
-            let Some(&(_, top, _)) = pairs.iter().filter(|q| q.0 == i).max_by_key(|q| q.1) else {
-                continue;
-            };
-            let d = pairs
-                .iter()
-                .filter(|q| q.1 == top)
-                .fold(0.0, |m, q| q.2.max(m));
-            match groups.iter_mut().find(|g| g.0 == top) {
-                Some(g) if !g.1.contains(&i) => g.1.push(i),
-                Some(_) => {}
-                None => groups.push((top, vec![i], d)),
-            }
-        }
-        for (top, hidden, d) in groups {
-            let label = |k: usize| p.series[k].label.clone();
-            let under: Vec<String> = hidden.into_iter().map(label).collect();
-            let over = label(top);
-            let _ = write!(
-                words,
-                " In \"{}\", {} under \"{over}\" (largest difference {} kPa).",
-                p.title,
-                match under.len() {
-                    1 => format!("\"{}\" lies", under[0]),
-                    _ => format!("\"{}\" lie", under.join("\", \"")),
-                },
-                crate::text::significant(d, 2)
-            );
-            p.series.push(Series::new(
-                format!("({}: under {over})", under.join("; ")),
-                Vec::new(),
-                Stroke::Solid,
-                GREY,
-            ));
-        }
-    }
-    words
 }
 
 /// Planar biaxial stretch: the boundary conditions, and both stresses at the last state of the

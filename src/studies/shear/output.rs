@@ -4,9 +4,9 @@
 use super::{ShearCurve, ShearResult};
 use crate::active::Approach;
 use crate::app_error::AppError;
-use crate::plot::{Figure, Panel, Series, Stroke, GREY};
+use crate::plot::{Figure, Panel, Series, Stroke};
 use crate::studies::outputs::{
-    each_study, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
+    each_study, hidden_curves, panel_of, prefixed, strokes, Context, KindOutput, Of, OwnTable, Used,
 };
 use crate::text::escape_html as escape;
 use std::fmt::Write;
@@ -82,14 +82,8 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
             .collect()
     };
     let difference = differences(r, &style);
-    let (hidden, keys) = coinciding(r);
-    // The legend says which curve hides which (panel_of drops series without points).
-    let shear = panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])).map(|mut p| {
-        p.series.extend(keys);
-        p
-    });
-    let panels: Vec<Panel> = [
-        shear,
+    let mut panels: Vec<Panel> = [
+        panel_of("Shear stress σ₁₂", SHEAR, CAUCHY, of(|s| s[0])),
         panel_of(
             "σ₁₂ of each activated approach minus that of active stress (same d, same θ)",
             SHEAR,
@@ -112,6 +106,8 @@ pub fn shear_figure(study: &str, r: &ShearResult) -> Option<Figure> {
     .into_iter()
     .flatten()
     .collect();
+    // Every panel says which curve hides which, in its legend and in the caption.
+    let hidden = hidden_curves(&mut panels);
     (!panels.is_empty()).then(|| {
         Figure::new(
             prefixed("shear", study),
@@ -167,78 +163,6 @@ fn differences(r: &ShearResult, style: &dyn Fn(&ShearCurve) -> (Stroke, usize)) 
         ));
     }
     difference
-}
-
-/// The activated curves σ₁₂ cannot tell apart at the figure's scale (largest |Δσ₁₂| within 2 %
-/// of the larger curve's largest |σ₁₂|, same d and θ), the curve drawn later hiding the other:
-/// (hidden, on top, largest |Δσ₁₂|, relative, the angles).
-type Coinciding = (String, String, f64, f64, Vec<f64>);
-
-/// A caption sentence per pair of [`coinciding_pairs`] (empty if there are none), and a grey
-/// legend entry each, so that the figure itself says it.
-fn coinciding(r: &ShearResult) -> (String, Vec<Series>) {
-    let pairs = coinciding_pairs(r);
-    let keys = pairs
-        .iter()
-        .map(|(a, b, _, _, angles)| {
-            let at: Vec<String> = angles.iter().map(|a| format!("{a}°")).collect();
-            Series::new(
-                format!("({a}: under {b} at θ = {})", at.join(", ")),
-                Vec::new(),
-                Stroke::Solid,
-                GREY,
-            )
-        })
-        .collect();
-    let words = pairs
-        .iter()
-        .map(|(a, b, diff, rel, angles)| {
-            format!(
-                " In σ₁₂, \"{a}\" and \"{b}\" coincide to within {} kPa ({} % of the larger curve) at θ = {}, so the curve drawn later hides the other.",
-                crate::text::significant(*diff, 2),
-                crate::text::significant(rel * 100.0, 2),
-                angles.iter().map(|a| format!("{a}°")).collect::<Vec<_>>().join(", ")
-            )
-        })
-        .collect();
-    (words, keys)
-}
-
-/// The pairs of activated curves σ₁₂ cannot tell apart ([`Coinciding`]).
-fn coinciding_pairs(r: &ShearResult) -> Vec<Coinciding> {
-    let active: Vec<&ShearCurve> = r
-        .curves
-        .iter()
-        .filter(|c| c.model.model.is_some())
-        .collect();
-    let mut pairs: Vec<Coinciding> = Vec::new();
-    for (i, a) in active.iter().enumerate() {
-        for b in &active[i + 1..] {
-            let damage = |c: &ShearCurve| c.model.model.map(|m| m.damage);
-            if a.angle != b.angle || damage(a) != damage(b) {
-                continue;
-            }
-            let (mut diff, mut scale) = (0.0_f64, 0.0_f64);
-            for p in &a.points {
-                if let Some(q) = b.points.iter().find(|q| q.k == p.k) {
-                    diff = diff.max((p.sigma[0] - q.sigma[0]).abs());
-                    scale = scale.max(p.sigma[0].abs()).max(q.sigma[0].abs());
-                }
-            }
-            if scale > 0.0 && diff <= 0.02 * scale {
-                let (wa, wb) = (a.model.words(), b.model.words());
-                match pairs.iter_mut().find(|p| p.0 == wa && p.1 == wb) {
-                    Some(p) => {
-                        p.2 = p.2.max(diff);
-                        p.3 = p.3.max(diff / scale);
-                        p.4.push(a.angle);
-                    }
-                    None => pairs.push((wa, wb, diff, diff / scale, vec![a.angle])),
-                }
-            }
-        }
-    }
-    pairs
 }
 
 /// What differs in simple shear and why: σ₁₂ at the largest amount of shear per model and fibre

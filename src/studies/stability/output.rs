@@ -3,11 +3,11 @@
 
 use super::StabilityCurve;
 use crate::app_error::{finite, AppError};
-use crate::plot::{Figure, Stroke};
+use crate::plot::{Figure, Series, Stroke, GREY};
 use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::outputs::{
-    coupling_stroke, derived, each_study, figure, law_colour, model_cells, panel, prefixed,
-    sorted_unique, Context, KindOutput, Of, OwnTable, Used, STRESS,
+    coupling_stroke, derived, each_study, figure, hidden_curves, law_colour, model_cells, panel,
+    prefixed, sorted_unique, Context, KindOutput, Of, OwnTable, Used, STRESS,
 };
 use crate::studies::table::{every_row, Table};
 use crate::text::escape_html as escape;
@@ -71,6 +71,9 @@ pub fn stability_table_of(study: &str, curves: &[StabilityCurve]) -> Table {
         .boolean("in_domain", IN_DOMAIN, rows.iter().map(|(c, p)| in_domain(c.model.as_ref(), p.outside)))
 }
 
+/// The palette's pink: the points where strong ellipticity is lost.
+const LOST: usize = 6;
+
 /// The figure of a stability study, a panel per damage value: the stress along the fibres of
 /// each law × coupling (solid frozen, dashed consistent), with markers on the points where the
 /// curve softens (dP/dλ < 0) and, in pink, where strong ellipticity is lost.
@@ -83,7 +86,9 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
     let mut panels = Vec::new();
     for d in &ds {
         let mut s = Vec::new();
-        let (mut soft_labelled, mut lost_labelled) = (false, false);
+        // The markers' legend entries come last, once, after the curves': the legend reads
+        // model by model, then what the circles mean.
+        let (mut softening, mut lost_somewhere) = (false, false);
         for c in curves
             .iter()
             .filter(|c| c.damage().is_none() || c.damage() == Some(*d))
@@ -99,38 +104,45 @@ fn stability_figure(study: &str, curves: &[StabilityCurve]) -> Option<Figure> {
                 .filter(|p| p.slope < 0.0)
                 .map(|p| (p.lambda, p.stress))
                 .collect();
-            let label = if soft.is_empty() || soft_labelled {
-                String::new()
-            } else {
-                soft_labelled = true;
-                "dP/dλ < 0 (circles in the curve's colour)".to_string()
-            };
-            s.push(derived(label, soft, Stroke::Markers, colour(c)));
+            softening |= !soft.is_empty();
+            s.push(derived("", soft, Stroke::Markers, colour(c)));
             let lost: Vec<(f64, f64)> = c
                 .points
                 .iter()
                 .filter(|p| !p.elliptic)
                 .map(|p| (p.lambda, p.stress))
                 .collect();
-            let label = if lost.is_empty() || lost_labelled {
-                String::new()
-            } else {
-                lost_labelled = true;
-                "strong ellipticity lost".to_string()
-            };
-            s.push(derived(label, lost, Stroke::Markers, 6));
+            lost_somewhere |= !lost.is_empty();
+            s.push(derived("", lost, Stroke::Markers, LOST));
         }
-        panels.push(panel(
+        if softening {
+            s.push(Some(Series::new(
+                "dP/dλ < 0 (circles in the curve's colour)",
+                Vec::new(),
+                Stroke::Markers,
+                GREY,
+            )));
+        }
+        if lost_somewhere {
+            s.push(Some(Series::new(
+                "strong ellipticity lost (pink circles)",
+                Vec::new(),
+                Stroke::Markers,
+                LOST,
+            )));
+        }
+        panels.extend(panel(
             format!("Stability along the fibres, d = {d}"),
             STRESS,
             s,
         ));
     }
+    let hidden = hidden_curves(&mut panels);
     figure(
         &prefixed("stability", study),
         format!("Material stability along the fibres (study \"{study}\")"),
-        "Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN). The table above gives the intervals.".into(),
-        panels,
+        format!("Uniaxial tension along the fibres, nominal stress of each law × coupling (solid: frozen, dashed: consistent, dotted: passive). Circles in the curve's colour mark dP/dλ < 0 (softening: the homogeneous state is unstable under load control); pink circles mark the loss of strong ellipticity (a·Q(N)a ≤ 0 for some sampled normal N and a ⊥ F⁻ᵀN).{hidden} The table above gives the intervals."),
+        panels.into_iter().map(Some).collect(),
     )
 }
 

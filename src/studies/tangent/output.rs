@@ -35,7 +35,7 @@ impl KindOutput for TangentResult {
         let mut out = vec![
             table(
                 "table",
-                "tangent_summary.csv",
+                super::tables::SUMMARY_FILE,
                 "one row per tangent study, model and state",
                 self.summary_table(study),
             ),
@@ -437,7 +437,7 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
         "scaled residual [-]",
         newton,
     );
-    iterations.scale = Scale::LogY;
+    iterations.scale = Scale::CountedLogY;
     let panels = vec![
         iterations,
         log_log(

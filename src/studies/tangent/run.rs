@@ -5,10 +5,11 @@
 
 use super::states::NamedState;
 use super::{FeResult, TangentStudy};
-use crate::active::{FrozenTangent, LawRepresentation, StretchRate, TableSpec};
+use crate::active::{FrozenTangent, LawRepresentation, OutsideDomain, StretchRate, TableSpec};
 use crate::app_error::AppError;
 use crate::energy::Energy;
 use crate::models::Models;
+use crate::studies::domain::{lines, LeftDomain, Tally, Words};
 use crate::studies::spec::ApproachModel;
 use crate::studies::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::tangent_check::taylor::check_state;
@@ -60,6 +61,9 @@ pub struct StateTest {
     pub gamma: f64,
     /// λ_f [-].
     pub fibre_stretch: f64,
+    /// Where the law at λ_f is outside its domain, if it is (the explicit law's:
+    /// [`crate::Muscle::outside_domain`]); the state is tested all the same.
+    pub outside: Option<OutsideDomain>,
     /// What is checked at the state.
     pub report: StateReport,
     /// One entry per direction (`Err`: the test could not be run, and why).
@@ -82,6 +86,7 @@ where
     let known = point.known(f, &a).map_err(text)?;
     let report = state_report(point, f, (&p, &a), &known);
     let (gamma, fibre_stretch) = point.activation(f).map_err(text)?;
+    let outside = point.muscle().outside_domain(fibre_stretch);
     let directions = directions
         .iter()
         .map(|(_, d)| remainders(point, f, (&p, &a), (&known, report.fd_error), d, h).map_err(text))
@@ -89,9 +94,36 @@ where
     Ok(StateTest {
         gamma,
         fibre_stretch,
+        outside,
         report,
         directions,
     })
+}
+
+/// How the tangent kind's `OUTSIDE:` lines name its states. A tangent check compares each
+/// model's derivatives with themselves: no target, no distance from one.
+const WORDS: Words = Words {
+    points: "states",
+    x: "λ_f",
+    unit: "",
+    target: "",
+    file: super::tables::SUMMARY_FILE,
+};
+
+/// One line per law and coupling whose states left the law's domain ([`lines`]), each state
+/// placed at its fibre stretch; states that could not be evaluated are not counted.
+fn left_domain(tests: &[ModelTests]) -> Vec<LeftDomain> {
+    let tallies = tests
+        .iter()
+        .filter_map(|t| {
+            let mut tally = Tally::of(t.model.model.as_ref()?)?;
+            for s in t.states.iter().flatten() {
+                tally.add(s.fibre_stretch, s.outside, None);
+            }
+            Some((t.label.clone(), tally))
+        })
+        .collect();
+    lines(tallies, &WORDS)
 }
 
 /// The muscle of `m` under test: the frozen model with its exact tangent.
@@ -228,8 +260,7 @@ impl TangentStudy {
             elapsed: Default::default(),
             details,
             failures,
-            // A tangent check compares derivatives of each model with themselves: no target.
-            left_domain: Vec::new(),
+            left_domain: left_domain(&tests),
             result: StudyResult::Tangent(TangentResult {
                 energy: models.energy.name().to_string(),
                 volumetric: models.volumetric.map(|v| v.form().formula()),

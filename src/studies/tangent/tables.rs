@@ -8,7 +8,11 @@
 use super::fe::{FeConfig, FeResult};
 use super::run::{ModelTests, StateTest, TangentResult};
 use crate::studies::cylinder::bases_name;
+use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::table::{every_row, Table};
+
+/// The summary's file: one row per model and state.
+pub const SUMMARY_FILE: &str = "tangent_summary.csv";
 
 /// Names of F's entries, row by row.
 const F_ENTRIES: [&str; 9] = [
@@ -224,6 +228,7 @@ impl TangentResult {
             .text("flag", "why an order leaves its band (empty: none)", flags.iter().map(|f| f.0.clone()))
             .text("reason", "the flag in words", flags.iter().map(|f| f.1.clone()))
             .text("note", "what else the test found", flags.iter().map(|f| f.2.clone()))
+            .boolean("in_domain", IN_DOMAIN, rows.iter().map(|r| test(r).and_then(|s| in_domain(r.0.model.model.as_ref(), s.outside))))
     }
 
     /// `tangent_fe.csv`: the assembled residual's remainders (`None` without the FE level).
