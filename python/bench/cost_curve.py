@@ -139,8 +139,9 @@ def measure(args, meshes, record):
         for _ in range(args.repeats):
             for name, code in codes:
                 before = load()
-                run = code(nr, nz, truncated.get((nr, nz)))
-                run.update(code=name, mesh=[nr, nz], full=(nr, nz) not in truncated,
+                stretches = truncated.get((nr, nz))
+                run = code(nr, nz, stretches)
+                run.update(code=name, mesh=[nr, nz], full=stretches is None, stretches=stretches,
                            load=f"{before} → {load()}")
                 print(f"# {nr}x{nz} {name}: {run}", flush=True)
                 record(run)
@@ -150,14 +151,16 @@ def table(runs):
     """The markdown table (medians per code and mesh) and the fitted exponents."""
     groups = {}
     for r in runs:
-        groups.setdefault((r["code"], tuple(r["mesh"]), r["full"]), []).append(r)
+        series = tuple(r.get("stretches") or ())  # () = the whole sweep
+        groups.setdefault((r["code"], tuple(r["mesh"]), series), []).append(r)
     rows = []
     def order(group):  # by mesh, ours first, a full sweep before a truncated one
-        (code, mesh, full), _ = group
-        return mesh, code != "ours", not full
+        (code, mesh, series), _ = group
+        return mesh, code != "ours", series
 
     for _, rs in sorted(groups.items(), key=order):
-        row = dict(rs[0], repeats=len(rs), load=", ".join(r["load"] for r in rs))
+        row = dict(rs[0], repeats=len(rs), load=", ".join(r["load"] for r in rs),
+                   series=tuple(rs[0].get("stretches") or ()))
         for key in ("sweep", "iteration", "peak", "wall"):
             row[key] = statistics.median(r[key] for r in rs)
         rows.append(row)
@@ -170,29 +173,27 @@ def table(runs):
         counts = f"{r['estimate_counts']:.0f} ({r['estimate_counts'] / r['peak']:.2f}×)" \
             if "estimate" in r else "–"
         exact = f"{r['estimate']:.0f} ({r['estimate'] / r['peak']:.2f}×)" if "estimate" in r else "–"
-        reached = r["reached"] + ("" if r["full"] else " truncated")
+        reached = r["reached"] + ("" if r["full"] else
+                                  " truncated: " + ", ".join(f"{l:g}" for l in r["series"]))
         print(f"| {r['mesh'][0]} × {r['mesh'][1]} | {r['code']} | {r['dofs']} | {r['its']} | {reached} "
               f"| {r['sweep']:.2f} | {1e3 * r['iteration']:.1f} | {r['peak']:.0f} | {counts} "
               f"| {exact} | {r['repeats']} | {r['load']} |")
-    print("\nfitted exponent p of time ∝ n^p (n: free dofs), least squares over the meshes")
-    for code in sorted({r["code"] for r in rows}, reverse=True):
-        rs = [r for r in rows if r["code"] == code]
-        full = [r for r in rs if r["full"]]
+    print("\nfitted exponent p of time ∝ n^p (n: free dofs), least squares over the meshes of one "
+          "code and one list of stretches")
+    for code, series in sorted({(r["code"], r["series"]) for r in rows}, key=lambda k: (k[0] != "ours", k[1])):
+        rs = [r for r in rows if r["code"] == code and r["series"] == series]
         n = [r["dofs"] for r in rs]
-        print(f"- {code}: per iteration p = {slope(n, [r['iteration'] for r in rs]):.2f} "
-              f"({len(rs)} meshes), per sweep p = "
-              f"{slope([r['dofs'] for r in full], [r['sweep'] for r in full]):.2f} "
-              f"({len(full)} full sweeps), peak memory p = {slope(n, [r['peak'] for r in rs]):.2f}")
+        what = "the whole sweep" if not series else "truncated to " + ", ".join(f"{l:g}" for l in series)
+        print(f"- {code}, {what}, {len(rs)} meshes: per iteration p = "
+              f"{slope(n, [r['iteration'] for r in rs]):.2f}, per sweep p = "
+              f"{slope(n, [r['sweep'] for r in rs]):.2f}, peak memory p = "
+              f"{slope(n, [r['peak'] for r in rs]):.2f}")
     pairs = [(o, d) for o in rows for d in rows if o["code"] == "ours" and d["code"] == "DOLFINx"
-             and o["mesh"] == d["mesh"] and o["full"] and d["full"]]
-    if pairs:
-        print("- DOLFINx / ours, per sweep: " + ", ".join(
-            f"{o['mesh'][0]} × {o['mesh'][1]} {d['sweep'] / o['sweep']:.1f}×" for o, d in pairs))
-    pairs = [(o, d) for o in rows for d in rows if o["code"] == "ours" and d["code"] == "DOLFINx"
-             and o["mesh"] == d["mesh"]]
-    if pairs:
-        print("- DOLFINx / ours, per Newton iteration: " + ", ".join(
-            f"{o['mesh'][0]} × {o['mesh'][1]} {d['iteration'] / o['iteration']:.1f}×" for o, d in pairs))
+             and o["mesh"] == d["mesh"] and o["series"] == d["series"]]
+    for o, d in pairs:
+        what = "whole sweep" if not o["series"] else "truncated"
+        print(f"- DOLFINx / ours, {o['mesh'][0]} × {o['mesh'][1]} ({what}): per sweep "
+              f"{d['sweep'] / o['sweep']:.1f}×, per Newton iteration {d['iteration'] / o['iteration']:.1f}×")
 
 
 def main(argv):
