@@ -7,6 +7,7 @@
 mod output;
 
 use super::domain::{in_domain, lines, Tally, Words, IN_DOMAIN};
+use super::rules::{non_empty, required};
 use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
@@ -85,13 +86,7 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
             ))
         }
         (Some(pairs), None, None) => {
-            if pairs.is_empty() {
-                return Err(SpecError::new(
-                    "pairs",
-                    "[]",
-                    "give at least one [λ₁, λ₂] pair",
-                ));
-            }
+            non_empty("pairs", pairs, "give at least one [λ₁, λ₂] pair")?;
             for (j, p) in pairs.iter().enumerate() {
                 if !p.iter().all(|x| x.is_finite() && *x > 0.0) {
                     return Err(SpecError::new(
@@ -105,16 +100,12 @@ pub fn resolve(spec: &BiaxialSpec, d: &Defaults) -> Result<(BiaxialStudy, Biaxia
         }
         (None, path, stretch) => {
             let path = path.unwrap_or(BiaxialPath::Equibiaxial);
-            let l1 = stretch
-                .as_ref()
-                .ok_or_else(|| {
-                    SpecError::new(
-                        "stretch",
-                        "(missing)",
-                        "give the stretches λ₁ along the fibres (or pairs = [[λ₁, λ₂], ...])",
-                    )
-                })?
-                .resolve("stretch")?;
+            let l1 = required(
+                stretch.as_ref(),
+                "stretch",
+                "give the stretches λ₁ along the fibres (or pairs = [[λ₁, λ₂], ...])",
+            )?
+            .resolve("stretch")?;
             match path {
                 BiaxialPath::Equibiaxial => ("equibiaxial", l1.iter().map(|&l| (l, l)).collect()),
                 BiaxialPath::Strip => ("strip", l1.iter().map(|&l| (l, 1.0)).collect()),

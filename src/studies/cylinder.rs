@@ -6,8 +6,9 @@ mod output;
 mod volume;
 
 use super::domain::{lines, Tally, Words};
+use super::rules::{cell_count, grading, positive};
 use super::spec::StretchSpec;
-use super::spec::{cell_count, grading, positive, required_stretches, Defaults, ModelKeys};
+use super::spec::{required_stretches, Defaults, ModelKeys};
 use super::{slug, Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
 use crate::active::OutsideDomain;
@@ -408,19 +409,14 @@ pub fn resolve(
     d: &Defaults,
 ) -> Result<(CylinderStudy, CylinderSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
-    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
-        d,
-        &[d.law],
-        &[d.coupling],
-    )?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).of_scene(d)?;
     let radius = positive("radius", spec.radius.unwrap_or(1.0))?;
     let length = positive("length", spec.length.unwrap_or(4.0))?;
     let nr = cell_count("nr", spec.nr.unwrap_or(6))?;
     let nz = cell_count("nz", spec.nz.unwrap_or(24))?;
     let grading = grading("grading", spec.grading.unwrap_or(1.0))?;
     let tolerance = tolerance(spec.tolerance.unwrap_or(1e-10))?;
-    let law = set.laws.as_ref().and_then(|l| l.first().copied());
-    let coupling = set.couplings.as_ref().and_then(|c| c.first().copied());
+    let (law, coupling) = set.single();
     let vtk = vtk_stretches(spec.vtk.as_deref().unwrap_or_default(), &stretches)?;
     let regions = regions(spec.regions.as_deref().unwrap_or_default())?;
     regions_in_domain(&regions, &set.choices)?;

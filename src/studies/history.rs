@@ -17,6 +17,7 @@
 mod output;
 
 use super::domain::{lines, Tally, Words};
+use super::rules::required;
 use super::spec::{Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::time::{ActivationInTime, Interpolation, MotorUnit, MotorUnits, Schedule};
@@ -197,13 +198,11 @@ fn points(v: &[[f64; 2]]) -> Vec<(f64, f64)> {
 
 /// Validates `spec`; returns the study and the spec with every default written out.
 pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, HistorySpec), SpecError> {
-    let time = spec.time.as_ref().ok_or_else(|| {
-        SpecError::new(
-            "time",
-            "(missing)",
-            "give the time steps in s: time = { from = 0, to = 1, step = 0.01 } or a list",
-        )
-    })?;
+    let time = required(
+        spec.time.as_ref(),
+        "time",
+        "give the time steps in s: time = { from = 0, to = 1, step = 0.01 } or a list",
+    )?;
     let times = time.resolve_times("time")?;
     let written = spec.schedule.clone().unwrap_or_else(|| vec![[0.0, 1.0]]);
     let interpolation = spec.interpolation.unwrap_or_default();
@@ -219,11 +218,7 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
     let levels = bounded_activation(&activation, &times)?;
     let loading_spec = spec.stretch.clone().unwrap_or(LoadingSpec::Constant(1.0));
     let loading = loading(&loading_spec, &times)?;
-    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).resolve(
-        d,
-        &[d.law],
-        &[d.coupling],
-    )?;
+    let set = ModelKeys::one(&spec.law, &spec.coupling, &spec.damage).of_scene(d)?;
     levels_in_domain(&set.choices, &activation, &times, &levels)?;
     let name = spec
         .name
@@ -236,8 +231,8 @@ pub fn resolve(spec: &HistorySpec, d: &Defaults) -> Result<(HistoryStudy, Histor
         interpolation: Some(interpolation),
         motor_units: spec.motor_units.clone(),
         stretch: Some(loading_spec),
-        law: set.laws.as_ref().and_then(|l| l.first().copied()),
-        coupling: set.couplings.as_ref().and_then(|c| c.first().copied()),
+        law: set.single().0,
+        coupling: set.single().1,
         damage: Some(set.damage.clone()),
     };
     Ok((

@@ -36,6 +36,7 @@ pub mod domain;
 pub mod fit;
 pub mod history;
 pub mod outputs;
+pub mod rules;
 pub mod shear;
 pub mod size;
 pub mod spec;

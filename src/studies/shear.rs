@@ -10,6 +10,7 @@
 mod output;
 
 use super::domain::{in_domain, lines, Tally, Words, IN_DOMAIN};
+use super::rules::{each, non_empty, once, required};
 use super::spec::{approach_models, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use super::table::{every_row, Table};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
@@ -69,49 +70,17 @@ pub struct ShearStudy {
 
 /// Validates `spec`; returns the study and the spec with every default written out.
 pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec), SpecError> {
-    let shear = spec
-        .shear
-        .as_ref()
-        .ok_or_else(|| {
-            SpecError::new(
-                "shear",
-                "(missing)",
-                "give the amounts of shear k: shear = { from = 0, to = 0.5, step = 0.05 } or a list",
-            )
-        })?
-        .resolve_amounts("shear")?;
+    let shear = required(
+        spec.shear.as_ref(),
+        "shear",
+        "give the amounts of shear k: shear = { from = 0, to = 0.5, step = 0.05 } or a list",
+    )?
+    .resolve_amounts("shear")?;
     let angles = spec
         .fibre_angles
         .clone()
         .unwrap_or_else(|| vec![0.0, 45.0, 90.0]);
-    if angles.is_empty() {
-        return Err(SpecError::new(
-            "fibre_angles",
-            "[]",
-            "give at least one fibre angle in degrees",
-        ));
-    }
-    if let Some((j, a)) = angles.iter().enumerate().find(|(_, a)| !a.is_finite()) {
-        return Err(SpecError::new(
-            format!("fibre_angles[{j}]"),
-            a,
-            "must be finite (degrees)",
-        ));
-    }
-    for (j, a) in angles.iter().enumerate() {
-        // θ and θ + 180° give the same fibre tensor M = a⊗a: the same curve twice.
-        let same = |b: &f64| {
-            let r = (a - b).rem_euclid(180.0);
-            r.min(180.0 - r) < 1e-9
-        };
-        if let Some(i) = angles[..j].iter().position(same) {
-            return Err(SpecError::new(
-                format!("fibre_angles[{j}]"),
-                a,
-                format!("fibre_angles[{i}] = {} is the same fibre (θ and θ + 180° give the same M = a⊗a): each angle is one curve per model, give it once", angles[i]),
-            ));
-        }
-    }
+    fibre_angles(&angles)?;
     if d.models.volumetric.is_some() {
         return Err(SpecError::new(
             "kind",
@@ -146,6 +115,21 @@ pub fn resolve(spec: &ShearSpec, d: &Defaults) -> Result<(ShearStudy, ShearSpec)
         },
         resolved,
     ))
+}
+
+/// The fibre angles θ: at least one, each finite and each one fibre. θ and θ + 180° give the
+/// same fibre tensor M = a⊗a: the same curve twice.
+fn fibre_angles(angles: &[f64]) -> Result<(), SpecError> {
+    let key = "fibre_angles";
+    non_empty(key, angles, "give at least one fibre angle in degrees")?;
+    each(key, angles, |a| a.is_finite(), "must be finite (degrees)")?;
+    let same = |a: &f64, b: &f64| {
+        let r = (a - b).rem_euclid(180.0);
+        r.min(180.0 - r) < 1e-9
+    };
+    once(key, angles, same, |i| {
+        format!("fibre_angles[{i}] = {} is the same fibre (θ and θ + 180° give the same M = a⊗a): each angle is one curve per model, give it once", angles[i])
+    })
 }
 
 /// One state of simple shear.

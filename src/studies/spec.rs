@@ -2,6 +2,7 @@
 //! cell counts), and the scene-level defaults a study resolves against. Keys in errors are
 //! relative to the study (`stretch.step`, `damage[1]`).
 
+use super::rules::{each, non_empty, once, required, something};
 use crate::active::Approach;
 use crate::app_error::SpecError;
 use crate::models::{product, CouplingKind, LawKind, ModelChoice, Models};
@@ -25,6 +26,19 @@ pub struct Defaults<'a> {
     pub damage: &'a [f64],
     /// The directory data files are named relative to (the scene file's).
     pub base: &'a Path,
+}
+
+impl Defaults<'_> {
+    /// Every law `approach` has that the scene's material supports (a study's default when it
+    /// asks for every law).
+    pub fn supported_laws(&self, approach: Approach) -> Vec<LawKind> {
+        approach
+            .laws()
+            .iter()
+            .copied()
+            .filter(|&l| self.models.supports(approach, l).is_ok())
+            .collect()
+    }
 }
 
 /// Stretches: `[0.8, 1.0, 1.2]` or `{ from = 0.7, to = 1.6, step = 0.05, extra = [1.17] }`.
@@ -216,8 +230,11 @@ pub fn optional_stretches(spec: &Option<StretchSpec>) -> Result<Option<Vec<f64>>
 
 /// The stretches of a required `stretch` key.
 pub fn required_stretches(spec: &Option<StretchSpec>) -> Result<Vec<f64>, SpecError> {
-    optional_stretches(spec)?
-        .ok_or_else(|| SpecError::new("stretch", "(missing)", "every study needs its stretches"))
+    required(
+        optional_stretches(spec)?,
+        "stretch",
+        "every study needs its stretches",
+    )
 }
 
 /// Damage values: at least one, each in [0, 1].
@@ -237,67 +254,21 @@ pub fn damages(key: &str, v: &[f64]) -> Result<Vec<f64>, SpecError> {
             ),
         ));
     }
-    for (i, d) in v.iter().enumerate() {
-        if !(0.0..=1.0).contains(d) {
-            return Err(SpecError::new(
-                format!("{key}[{i}]"),
-                d,
-                "damage d must lie in [0, 1]",
-            ));
-        }
-        if let Some(j) = v[..i].iter().position(|e| e == d) {
-            return Err(SpecError::new(
-                format!("{key}[{i}]"),
-                d,
-                format!("{key}[{j}] is the same damage: each value is one model and one set of outputs, give it once"),
-            ));
-        }
-    }
+    each(
+        key,
+        v,
+        |d| (0.0..=1.0).contains(d),
+        "damage d must lie in [0, 1]",
+    )?;
+    once(
+        key,
+        v,
+        |a, b| a == b,
+        |j| {
+            format!("{key}[{j}] is the same damage: each value is one model and one set of outputs, give it once")
+        },
+    )?;
     Ok(v.to_vec())
-}
-
-/// A list that must not be empty; `rule` says what to give.
-pub fn non_empty<T>(key: &str, v: &[T], rule: &str) -> Result<(), SpecError> {
-    if v.is_empty() {
-        Err(SpecError::new(key, "[]", rule))
-    } else {
-        Ok(())
-    }
-}
-
-/// A length or tolerance: finite and > 0.
-pub fn positive(key: &str, v: f64) -> Result<f64, SpecError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(SpecError::new(key, v, "must be finite and > 0"))
-    }
-}
-
-/// A number of cells along one direction: an integer in [1, 10000].
-pub fn cell_count(key: &str, v: i64) -> Result<usize, SpecError> {
-    if (1..=10_000).contains(&v) {
-        Ok(v as usize)
-    } else {
-        Err(SpecError::new(
-            key,
-            v,
-            "the number of cells must be an integer in [1, 10000]",
-        ))
-    }
-}
-
-/// The middle/base cell-height ratio of a cylinder mesh: finite and ≥ 1.
-pub fn grading(key: &str, v: f64) -> Result<f64, SpecError> {
-    if v.is_finite() && v >= 1.0 {
-        Ok(v)
-    } else {
-        Err(SpecError::new(
-            key,
-            v,
-            "must be finite and ≥ 1 (1 = uniform)",
-        ))
-    }
 }
 
 /// The model keys of a study as written: its approaches, laws, couplings and damages (each
@@ -364,6 +335,12 @@ impl<'a> ModelKeys<'a> {
         }
     }
 
+    /// The study's models against the scene's `defaults`, laws and couplings left out being the
+    /// scene's `activation.law` and `activation.coupling` ([`ModelKeys::resolve`]).
+    pub fn of_scene(&self, d: &Defaults) -> Result<ModelSet, SpecError> {
+        self.resolve(d, &[d.law], &[d.coupling])
+    }
+
     /// The key of a law (`laws[j]`, or `law`).
     fn key(&self, list: &str, one: &str, j: usize) -> String {
         if self.single {
@@ -387,14 +364,19 @@ impl<'a> ModelKeys<'a> {
         let approaches = self
             .approaches
             .map_or_else(|| vec![d.approach], <[_]>::to_vec);
+        let names: Vec<String> = approaches
+            .iter()
+            .map(|a| format!("{:?}", a.name()))
+            .collect();
+        once(
+            "approaches",
+            &names,
+            |a, b| a == b,
+            |i| {
+                format!("approaches[{i}] is the same approach: each approach is one set of models and curves, give it once")
+            },
+        )?;
         for (j, &a) in approaches.iter().enumerate() {
-            if let Some(i) = approaches[..j].iter().position(|b| *b == a) {
-                return Err(SpecError::new(
-                    format!("approaches[{j}]"),
-                    format!("{:?}", a.name()),
-                    format!("approaches[{i}] is the same approach: each approach is one set of models and curves, give it once"),
-                ));
-            }
             d.models.activation_map(a).map_err(|rule| {
                 SpecError::new(
                     self.key("approaches", "approach", j),
@@ -521,6 +503,17 @@ impl<'a> ModelKeys<'a> {
     }
 }
 
+impl ModelSet {
+    /// The one law and one coupling of a study that takes one of each (`law`, `coupling`;
+    /// `None`: its approach has no law).
+    pub fn single(&self) -> (Option<LawKind>, Option<CouplingKind>) {
+        fn first<T: Copy>(v: &Option<Vec<T>>) -> Option<T> {
+            v.as_ref().and_then(|v| v.first().copied())
+        }
+        (first(&self.laws), first(&self.couplings))
+    }
+}
+
 /// The models of a study that compares approaches (shear, biaxial): the passive material first
 /// if `passive`, then every approach × law × coupling × damage of `keys` (approaches left out:
 /// `default_approaches`; laws and couplings: the scene's). `kind` names the study when it asks
@@ -536,33 +529,26 @@ pub fn approach_models(
         approaches: Some(keys.approaches.unwrap_or(default_approaches)),
         ..keys
     };
-    let set = keys.resolve(d, &[d.law], &[d.coupling])?;
+    let set = keys.of_scene(d)?;
     let mut models = Vec::with_capacity(set.choices.len() + 1);
     if passive {
         models.push(ApproachModel::passive(d));
     }
     models.extend(set.choices.iter().copied().map(ApproachModel::of));
-    if models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            format!("a {kind} study needs passive = true or approaches"),
-        ));
-    }
+    something(kind, !models.is_empty(), "passive = true or approaches")?;
     Ok((models, set))
 }
 
 /// Active laws need at least one coupling.
 pub fn couplings_for(laws: &[LawKind], couplings: &[CouplingKind]) -> Result<(), SpecError> {
-    if !laws.is_empty() && couplings.is_empty() {
-        Err(SpecError::new(
-            "couplings",
-            "[]",
-            "active laws need at least one coupling",
-        ))
-    } else {
-        Ok(())
+    if laws.is_empty() {
+        return Ok(());
     }
+    non_empty(
+        "couplings",
+        couplings,
+        "active laws need at least one coupling",
+    )
 }
 
 /// One model of a study that compares activation approaches (`None`: the passive material).

@@ -5,6 +5,7 @@
 mod output;
 
 use super::domain::{lines, Tally, Words};
+use super::rules::{integer_in, something};
 use super::spec::StretchSpec;
 use super::spec::{optional_stretches, Defaults, ModelKeys};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
@@ -73,35 +74,26 @@ pub fn resolve(
         None => stretch.resolve("stretch")?,
     };
     // Left out: every law the scene's approach can have on this material.
-    let every: Vec<LawKind> = d
-        .approach
-        .laws()
-        .iter()
-        .copied()
-        .filter(|l| d.models.supports(d.approach, *l).is_ok())
-        .collect();
+    let every = d.supported_laws(d.approach);
     let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
         d,
         &every,
         &CouplingKind::ALL,
     )?;
     let normals = spec.normals.unwrap_or(300);
-    if !(1..=100_000).contains(&normals) {
-        return Err(SpecError::new(
-            "normals",
-            normals,
-            "the number of sampled normals must be an integer in [1, 100000]",
-        ));
-    }
+    let normals = integer_in(
+        "normals",
+        normals,
+        1..=100_000,
+        "the number of sampled normals",
+    )?;
     let passive = spec.passive.unwrap_or(true);
     let models = set.choices;
-    if !passive && models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a stability study needs passive = true or laws",
-        ));
-    }
+    something(
+        "stability",
+        passive || !models.is_empty(),
+        "passive = true or laws",
+    )?;
     let name = spec
         .name
         .clone()
@@ -113,7 +105,7 @@ pub fn resolve(
         passive: Some(passive),
         laws: set.laws,
         couplings: set.couplings,
-        normals: Some(normals),
+        normals: Some(normals as i64),
     };
     Ok((
         StabilityStudy {
@@ -121,7 +113,7 @@ pub fn resolve(
             stretches,
             passive,
             models,
-            normals: normals as usize,
+            normals,
         },
         resolved,
     ))

@@ -26,6 +26,7 @@ mod tables;
 pub use fe::{FeConfig, FeLevel, FeResult, FeSpec, FeTaylor, NewtonRun};
 pub use run::{ModelTests, StateTest, TangentResult};
 
+use super::rules::{each, something};
 use super::spec::{damages, ApproachModel, Defaults, ModelKeys, StretchSpec};
 use crate::active::Approach;
 use crate::app_error::SpecError;
@@ -254,13 +255,12 @@ fn rates(spec: &mut TangentSpec, models: &Models) -> Result<Option<(Vec<f64>, f6
             "give 1 to 8 stretch rates [1/s]",
         ));
     }
-    if let Some((i, r)) = list.iter().enumerate().find(|(_, r)| !r.is_finite()) {
-        return Err(SpecError::new(
-            format!("stretch_rates[{i}]"),
-            *r,
-            "must be finite [1/s]",
-        ));
-    }
+    each(
+        "stretch_rates",
+        &list,
+        |r| r.is_finite(),
+        "must be finite [1/s]",
+    )?;
     let dt = spec.time_step.unwrap_or(0.01);
     if !(dt.is_finite() && dt > 0.0) {
         return Err(SpecError::new(
@@ -285,12 +285,7 @@ fn models_of(spec: &mut TangentSpec, d: &Defaults) -> Result<Vec<ApproachModel>,
     }
     let (mut laws, mut couplings, mut damage) = (Vec::new(), None, None);
     for (j, approach) in approaches.iter().enumerate() {
-        let supported: Vec<LawKind> = approach
-            .laws()
-            .iter()
-            .copied()
-            .filter(|&l| d.models.supports(*approach, l).is_ok())
-            .collect();
+        let supported = d.supported_laws(*approach);
         let mut keys = ModelKeys {
             approaches: Some(std::slice::from_ref(approach)),
             ..ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage)
@@ -321,13 +316,11 @@ fn models_of(spec: &mut TangentSpec, d: &Defaults) -> Result<Vec<ApproachModel>,
         None => damages("damage", spec.damage.as_deref().unwrap_or(d.damage))?,
     });
     spec.passive = Some(passive);
-    if models.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a tangent study needs passive = true or approaches",
-        ));
-    }
+    something(
+        "tangent",
+        !models.is_empty(),
+        "passive = true or approaches",
+    )?;
     Ok(models)
 }
 

@@ -5,6 +5,7 @@
 mod figures;
 
 use super::domain::{lines, Tally, Words};
+use super::rules::{each, something};
 use super::spec::{required_stretches, Defaults, ModelKeys, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::active::drive::Drive;
@@ -77,11 +78,7 @@ pub fn resolve(
 ) -> Result<(UniaxialStudy, UniaxialSpec), SpecError> {
     let stretches = required_stretches(&spec.stretch)?;
     let direction = spec.direction.unwrap_or_default();
-    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).resolve(
-        d,
-        &[d.law],
-        &[d.coupling],
-    )?;
+    let set = ModelKeys::lists(&spec.laws, &spec.couplings, &spec.damage).of_scene(d)?;
     let mut compare = Vec::new();
     for (j, c) in spec.compare.iter().flatten().enumerate() {
         compare.push(c.build().map_err(|e| e.within(&format!("compare[{j}]")))?);
@@ -98,24 +95,19 @@ pub fn resolve(
             ),
         ));
     }
-    for (j, g) in constant_gamma.iter().enumerate() {
-        if crate::active::ConstantLaw::new(*g).is_err() {
-            return Err(SpecError::new(
-                format!("constant_gamma[{j}]"),
-                g,
-                "activation gamma must lie in [0, 1) (γ = 1 is infinite contraction)",
-            ));
-        }
-    }
+    each(
+        "constant_gamma",
+        &constant_gamma,
+        |g| crate::active::ConstantLaw::new(*g).is_ok(),
+        "activation gamma must lie in [0, 1) (γ = 1 is infinite contraction)",
+    )?;
     let models = set.choices;
     let passive = spec.passive.unwrap_or(true);
-    if !passive && compare.is_empty() && models.is_empty() && constant_gamma.is_empty() {
-        return Err(SpecError::new(
-            "",
-            "(nothing to compute)",
-            "a uniaxial study needs passive = true, compare, laws or constant_gamma",
-        ));
-    }
+    something(
+        "uniaxial",
+        passive || !compare.is_empty() || !models.is_empty() || !constant_gamma.is_empty(),
+        "passive = true, compare, laws or constant_gamma",
+    )?;
     let name = spec
         .name
         .clone()

@@ -12,7 +12,7 @@
 //! floor is 10³ ε √n (n free dofs) in the scaled norm, a bound on the rounding of R whose terms
 //! are at most of the scale σ.
 
-use super::taylor::{orders, FLOOR_EPSILONS};
+use super::taylor::{Remainders, FLOOR_EPSILONS};
 use crate::fem::assembly::Assembler;
 use crate::fem::dofs::DofMap;
 use crate::fem::{AxisymmetricMaterial, Mesh};
@@ -22,56 +22,30 @@ use std::f64::consts::PI;
 /// The stress floor of the solver's force scale \[kPa\] ([`crate::fem::SolverOptions`]).
 const STRESS_FLOOR: f64 = 1e-6;
 
-/// The remainders of one block of rows along one direction.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Rows {
-    /// r₀(h) (`None`: the material refused a state x + hv).
-    pub r0: Vec<Option<f64>>,
-    /// r₁(h).
-    pub r1: Vec<Option<f64>>,
-    /// Order of r₀ on each pair of steps.
-    pub orders_0: Vec<Option<f64>>,
-    /// Order of r₁ on each pair of steps.
-    pub orders_1: Vec<Option<f64>>,
-    /// Median pair order of r₀.
-    pub order_0: Option<f64>,
-    /// Median pair order of r₁.
-    pub order_1: Option<f64>,
-    /// Least pair order of r₁.
-    pub least_order_1: Option<f64>,
-}
-
 /// The remainders of the assembled residual along one direction, for the displacement rows
 /// (where the material's tangent enters) and the pressure rows apart: in one norm the larger
 /// block would hide the other (under the exact constraint the pressure rows, ∫ q (J − 1) dV,
 /// do not see the material at all).
 #[derive(Debug, Clone, PartialEq)]
 pub struct AssembledTaylor {
-    /// The steps h, descending.
-    pub h: Vec<f64>,
-    /// The displacement rows, ‖·‖₂/(σ πR²).
-    pub u: Rows,
+    /// The displacement rows, ‖·‖₂/(σ πR²) (no flag: the causes of [`super::flag`] are a
+    /// material's at one state, not an assembly's).
+    pub u: Remainders,
     /// The pressure rows, ‖·‖₂/(πR²L).
-    pub p: Rows,
+    pub p: Remainders,
     /// The least of the two blocks' median orders of r₁.
     pub order_1: Option<f64>,
-    /// The rounding floor.
-    pub floor: f64,
 }
 
-impl Rows {
-    /// The orders of the remainders `r0`, `r1` above `floor`.
-    fn new(h: &[f64], r0: Vec<Option<f64>>, r1: Vec<Option<f64>>, floor: f64) -> Self {
-        let (orders_0, orders_1, order_0, order_1, least_order_1) = orders(h, &r0, &r1, floor);
-        Self {
-            r0,
-            r1,
-            orders_0,
-            orders_1,
-            order_0,
-            order_1,
-            least_order_1,
-        }
+impl AssembledTaylor {
+    /// The steps h, descending.
+    pub fn h(&self) -> &[f64] {
+        &self.u.h
+    }
+
+    /// The rounding floor of both blocks.
+    pub fn floor(&self) -> f64 {
+        self.u.floor
     }
 }
 
@@ -147,12 +121,14 @@ pub fn assembled_taylor_test<M: AxisymmetricMaterial + ?Sized>(
     // [block][step] remainders.
     let mut r0 = [Vec::new(), Vec::new()];
     let mut r1 = [Vec::new(), Vec::new()];
+    let mut unevaluable = None;
     for &step in &h {
         let mut y = x.to_vec();
         for (yi, vi) in y[..nf].iter_mut().zip(v) {
             *yi += step * vi;
         }
-        if asm.assemble(&y, material, false).is_err() {
+        if let Err(e) = asm.assemble(&y, material, false) {
+            unevaluable.get_or_insert((step, e.to_string()));
             for b in 0..2 {
                 r0[b].push(None);
                 r1[b].push(None);
@@ -177,17 +153,17 @@ pub fn assembled_taylor_test<M: AxisymmetricMaterial + ?Sized>(
     let floor = FLOOR_EPSILONS * f64::EPSILON * (nf as f64).sqrt();
     let [r0_u, r0_p] = r0;
     let [r1_u, r1_p] = r1;
-    let u = Rows::new(&h, r0_u, r1_u, floor);
-    let p = Rows::new(&h, r0_p, r1_p, floor);
+    let u = Remainders {
+        unevaluable: unevaluable.clone(),
+        ..Remainders::of(h.clone(), r0_u, r1_u, floor)
+    };
+    let p = Remainders {
+        unevaluable,
+        ..Remainders::of(h, r0_p, r1_p, floor)
+    };
     let order_1 = [u.order_1, p.order_1]
         .into_iter()
         .flatten()
         .reduce(f64::min);
-    Ok(AssembledTaylor {
-        h,
-        u,
-        p,
-        order_1,
-        floor,
-    })
+    Ok(AssembledTaylor { u, p, order_1 })
 }

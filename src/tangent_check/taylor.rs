@@ -221,23 +221,29 @@ pub fn pair_orders(h: &[f64], r: &[Option<f64>], floor: f64) -> Vec<Option<f64>>
         .collect()
 }
 
-/// The pair orders of `r0` and `r1` over the steps `h` (remainders above `floor`), their
-/// medians and the least pair order of r₁: `(orders_0, orders_1, order_0, order_1, least_order_1)`.
-pub(crate) type Orders = (
-    Vec<Option<f64>>,
-    Vec<Option<f64>>,
-    Option<f64>,
-    Option<f64>,
-    Option<f64>,
-);
-
-/// See [`Orders`].
-pub(crate) fn orders(h: &[f64], r0: &[Option<f64>], r1: &[Option<f64>], floor: f64) -> Orders {
-    let (orders_0, orders_1) = (pair_orders(h, r0, floor), pair_orders(h, r1, floor));
-    let valid = |o: &[Option<f64>]| o.iter().flatten().copied().collect::<Vec<_>>();
-    let (order_0, order_1) = (median(valid(&orders_0)), median(valid(&orders_1)));
-    let least = valid(&orders_1).into_iter().reduce(f64::min);
-    (orders_0, orders_1, order_0, order_1, least)
+impl Remainders {
+    /// The remainders `r0`, `r1` over the steps `h` (descending) with their pair orders above
+    /// `floor`, the orders' medians and the least pair order of r₁; nothing unevaluable noted,
+    /// no flag.
+    pub(crate) fn of(h: Vec<f64>, r0: Vec<Option<f64>>, r1: Vec<Option<f64>>, floor: f64) -> Self {
+        let (orders_0, orders_1) = (pair_orders(&h, &r0, floor), pair_orders(&h, &r1, floor));
+        let valid = |o: &[Option<f64>]| o.iter().flatten().copied().collect::<Vec<_>>();
+        let (order_0, order_1) = (median(valid(&orders_0)), median(valid(&orders_1)));
+        let least_order_1 = valid(&orders_1).into_iter().reduce(f64::min);
+        Self {
+            h,
+            r0,
+            r1,
+            orders_0,
+            orders_1,
+            order_0,
+            order_1,
+            least_order_1,
+            floor,
+            unevaluable: None,
+            flag: None,
+        }
+    }
 }
 
 /// The remainders at F (stress `p`, tangent `a`, what the material says `known`, the
@@ -281,21 +287,16 @@ pub fn remainders<const N: usize, M: TangentMaterial<N> + ?Sized>(
     }
     let floor =
         FLOOR_EPSILONS * f64::EPSILON * (p.norm() + a.norm() * entries_of(material, f).norm());
-    let (orders_0, orders_1, order_0, order_1, least_order_1) = orders(&h, &r0, &r1, floor);
-    let flag = attribute((f, &unit), &h, (&orders_0, &orders_1), known, fd_error);
-    Ok(Remainders {
-        order_0,
-        order_1,
-        least_order_1,
-        h,
-        r0,
-        r1,
-        orders_0,
-        orders_1,
-        floor,
-        unevaluable,
-        flag,
-    })
+    let mut r = Remainders::of(h, r0, r1, floor);
+    r.flag = attribute(
+        (f, &unit),
+        &r.h,
+        (&r.orders_0, &r.orders_1),
+        known,
+        fd_error,
+    );
+    r.unevaluable = unevaluable;
+    Ok(r)
 }
 
 /// Refuses an F with a non-finite entry or det F ≤ 0.

@@ -315,10 +315,21 @@ fn a_tradeoff_study_writes_its_table_and_figures_into_the_run_and_its_report() {
     }
 }
 
+/// The shipped trade-off scene checks, and its comment names every option group a user can ask
+/// for ([`OptionGroup::ALL`]), each on a line of its own.
 #[test]
-fn the_shipped_tradeoff_scene_is_valid() {
+fn the_shipped_tradeoff_scene_is_valid_and_names_every_option_group() {
+    use activemuscle::studies::tradeoff::OptionGroup;
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/tradeoff.toml");
     succeeds(&["check".as_ref(), path.as_ref()]);
+    let text = std::fs::read_to_string(path).unwrap();
+    for group in OptionGroup::ALL {
+        let line = format!("#   \"{}\" ", group.key());
+        assert!(
+            text.contains(&line),
+            "scenes/tradeoff.toml does not describe {line:?}"
+        );
+    }
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! model, state, direction and step; one per model and state), a state no model can evaluate as
 //! a flagged row without a NaN, the FE level's tables, bad input refused at its key.
 
-use crate::binary::run_args;
+use crate::binary::{run_args, run_quiet};
 use crate::scratch::scratch;
 use activemuscle::output::csv::files;
 use activemuscle::scene::{RunOptions, Scene};
@@ -175,9 +175,8 @@ fn bad_input_is_refused_at_its_key() {
     }
 }
 
-#[test]
-fn the_fe_level_tables_hold_newton_with_each_tangent() {
-    let text = r#"
+/// A tangent study with a small FE level: one element, clamped bases, h = 2⁻⁶ … 2⁻¹⁴.
+const FE_SCENE: &str = r#"
 [activation]
 law = "explicit"
 coupling = "frozen"
@@ -191,7 +190,10 @@ laws = ["explicit"]
 h = { largest = 0.015625, smallest = 6.103515625e-5 }
 fe = { nr = 2, nz = 2, elements = ["Q1/P0"], bases = ["clamped"], stretch = 1.06 }
 "#;
-    let scene = Scene::parse(text, FILE).unwrap();
+
+#[test]
+fn the_fe_level_tables_hold_newton_with_each_tangent() {
+    let scene = Scene::parse(FE_SCENE, FILE).unwrap();
     let results = scene.run(&RunOptions::default());
     let StudyResult::Tangent(r) = &results.studies[0].result else {
         panic!("not a tangent result")
@@ -309,4 +311,75 @@ fn the_example_scene_asks_for_every_approach_with_its_own_laws() {
     assert_eq!(active_stress, 2);
     // Its states: 2 given, 4 + 1 + 1 + 1 on paths, 4 + 4 + 2 random.
     assert_eq!(t.sources.len(), 19);
+}
+
+/// `tangent_fe.csv` as readers know it: its columns by name, in order, as its schema in
+/// `datapackage.json` gives them; a row per configuration, state, tangent and step h = 2⁻⁶ …
+/// 2⁻¹⁴; and in r0_u, r1_u the displacement rows' remainders as Taylor's theorem orders them:
+/// r₀ falls as h, r₁ as h² with the exact tangent and as h with the symmetric approximation.
+#[test]
+fn tangent_fe_csv_keeps_its_columns_and_the_remainders_taylor_orders() {
+    let dir = scratch("tangent-fe-columns");
+    let scene = dir.join("fe.toml");
+    std::fs::write(&scene, FE_SCENE).unwrap();
+    let out = dir.join("out");
+    run_quiet(Some(&scene), &out);
+    let resources = crate::datapackage::the_data_obey_their_package(&out);
+    assert!(
+        resources.iter().any(|r| r == "tangent_fe.csv"),
+        "{resources:?}"
+    );
+    let text = std::fs::read_to_string(out.join("tangent_fe.csv")).unwrap();
+    assert_eq!(
+        rows(&text)[0],
+        [
+            "study",
+            "model",
+            "element",
+            "bases",
+            "incompressibility",
+            "state",
+            "tangent",
+            "h",
+            "r0_u",
+            "r1_u",
+            "r0_p",
+            "r1_p"
+        ]
+    );
+    let rows = crate::datapackage::rows_by_name(&out.join("tangent_fe.csv"));
+    let number =
+        |r: &std::collections::HashMap<String, String>, k: &str| -> f64 { r[k].parse().unwrap() };
+    // Two states × three tangents × nine steps.
+    assert_eq!(rows.len(), 2 * 3 * 9);
+    for test in rows.chunks(9) {
+        let (state, tangent) = (&test[0]["state"], &test[0]["tangent"]);
+        assert!(test
+            .iter()
+            .all(|r| (&r["state"], &r["tangent"]) == (state, tangent)));
+        let h: Vec<f64> = test.iter().map(|r| number(r, "h")).collect();
+        let expected: Vec<f64> = (6..=14).map(|k| 0.5_f64.powi(k)).collect();
+        assert_eq!(h, expected, "{state} {tangent}");
+        let order = |k: &str, i: usize| (number(&test[i], k) / number(&test[i + 1], k)).log2();
+        assert!(
+            (order("r0_u", 7) - 1.0).abs() < 0.05,
+            "{state} {tangent}: {}",
+            order("r0_u", 7)
+        );
+        let expected = match tangent.as_str() {
+            "exact" => 2.0,
+            "symmetric frozen" => 1.0,
+            _ => continue,
+        };
+        // The last pair of steps whose r₁ lies well above the rounding floor.
+        let last = (0..8)
+            .rev()
+            .find(|&i| number(&test[i + 1], "r1_u") > 1e-10)
+            .unwrap();
+        let o = order("r1_u", last);
+        assert!(
+            (o - expected).abs() < 0.2,
+            "{state} {tangent}: order {o} at pair {last}"
+        );
+    }
 }

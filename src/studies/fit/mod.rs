@@ -31,6 +31,7 @@ mod points;
 mod setup;
 mod source;
 
+use super::rules::required;
 use super::spec::{optional_stretches, Defaults, StretchSpec};
 use super::{Failure, Outcome, RunContext, StudyKind, StudyResult};
 use crate::app_error::{AppError, SpecError};
@@ -359,13 +360,11 @@ impl PartialEq for FitStudy {
 /// default written out.
 pub fn resolve(spec: &FitSpec, d: &Defaults) -> Result<(FitStudy, FitSpec), SpecError> {
     let stretches = optional_stretches(&spec.stretch)?;
-    let Some(kind) = spec.fit else {
-        return Err(SpecError::new(
-            "fit",
-            "(missing)",
-            "a fit study needs fit = \"passive\" | \"active-curve\" | \"explicit-law\" | \"damage\"",
-        ));
-    };
+    let kind = required(
+        spec.fit,
+        "fit",
+        "a fit study needs fit = \"passive\" | \"active-curve\" | \"explicit-law\" | \"damage\"",
+    )?;
     check_keys(spec, kind)?;
     let (options, mut source) = solver(spec, d.base)?;
     let problem = problem(spec, kind, d)?;

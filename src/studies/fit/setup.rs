@@ -6,6 +6,7 @@ use super::{CaseData, FitCase, FitKind, FitSpec, Model, WeightsKind};
 use crate::app_error::SpecError;
 use crate::fit::{Bounds, FitError, FitOptions, FitSetup, Weights};
 use crate::random::Sampler;
+use crate::studies::rules::{each, integer_in, non_empty, once};
 use crate::studies::spec::fmt_list;
 use crate::text::shortest;
 use std::collections::BTreeMap;
@@ -29,13 +30,7 @@ pub(super) fn solver<'a>(
         return Err(SpecError::new("seed", seed, "must be ≥ 0"));
     }
     let max_iterations = spec.max_iterations.unwrap_or(1000);
-    if !(1..=100_000).contains(&max_iterations) {
-        return Err(SpecError::new(
-            "max_iterations",
-            max_iterations,
-            "must be an integer in [1, 100000]",
-        ));
-    }
+    let max_iterations = integer_in("max_iterations", max_iterations, 1..=100_000, "")?;
     let options = FitOptions {
         method: spec.method.unwrap_or_default(),
         max_iterations: max_iterations as u64,
@@ -117,29 +112,20 @@ pub(super) fn free_parameters(
         Some(f) => f.clone(),
         None => default_free.to_vec(),
     };
-    if free.is_empty() {
-        return Err(SpecError::new(
-            "free",
-            "[]",
-            format!("free at least one parameter of {names:?}"),
-        ));
-    }
-    for (j, f) in free.iter().enumerate() {
-        if !names.contains(f) {
-            return Err(SpecError::new(
-                format!("free[{j}]"),
-                format!("{f:?}"),
-                format!("not a parameter of this fit; it has {names:?}"),
-            ));
-        }
-        if free[..j].contains(f) {
-            return Err(SpecError::new(
-                format!("free[{j}]"),
-                format!("{f:?}"),
-                "freed twice",
-            ));
-        }
-    }
+    non_empty(
+        "free",
+        &free,
+        &format!("free at least one parameter of {names:?}"),
+    )?;
+    let quoted: Vec<String> = free.iter().map(|f| format!("{f:?}")).collect();
+    let known: Vec<String> = names.iter().map(|n| format!("{n:?}")).collect();
+    each(
+        "free",
+        &quoted,
+        |f| known.contains(f),
+        &format!("not a parameter of this fit; it has {names:?}"),
+    )?;
+    once("free", &quoted, |a, b| a == b, |_| "freed twice".into())?;
     Ok(free)
 }
 

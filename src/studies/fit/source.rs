@@ -5,6 +5,7 @@ use super::{CaseData, FitCase, FitKind};
 use crate::app_error::SpecError;
 use crate::fit::{BiaxialData, Data, FitError, BIAXIAL_HEADER};
 use crate::random::Sampler;
+use crate::studies::rules::required;
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 
@@ -111,13 +112,11 @@ impl DataSource<'_> {
 }
 
 pub(super) fn need<'a>(stretches: Option<&'a [f64]>, what: &str) -> Result<&'a [f64], SpecError> {
-    stretches.ok_or_else(|| {
-        SpecError::new(
-            "stretch",
-            "(missing)",
-            format!("{what} needs the stretches at which to sample it"),
-        )
-    })
+    required(
+        stretches,
+        "stretch",
+        format!("{what} needs the stretches at which to sample it"),
+    )
 }
 
 /// A fit with two sources of data given both or neither.

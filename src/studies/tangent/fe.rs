@@ -27,7 +27,8 @@ use crate::fem::{AxisymmetricMaterial, AxisymmetricSolver, Bases, Element, Mesh,
 use crate::models::{product, CouplingKind, IncompressibilitySpec, LawKind, ModelChoice, Models};
 use crate::random::Sampler;
 use crate::studies::cylinder::bases_name;
-use crate::studies::spec::{cell_count, positive, Defaults};
+use crate::studies::rules::{cell_count, integer_in, non_empty, positive};
+use crate::studies::spec::Defaults;
 use crate::studies::{Failure, RunContext};
 use crate::tangent_check::{assembled_taylor_test, AssembledTaylor, CentralDifferences};
 use crate::volumetric::Volumetric;
@@ -101,9 +102,7 @@ fn named<T: Copy>(
     let Some(given) = given else {
         return Ok(known.to_vec());
     };
-    if given.is_empty() {
-        return Err(SpecError::new(key, "[]", "give at least one"));
-    }
+    non_empty(key, given, "give at least one")?;
     let names: Vec<String> = known.iter().map(|k| format!("\"{}\"", name(*k))).collect();
     given
         .iter()
@@ -136,14 +135,10 @@ fn forms(
     d: &Defaults,
 ) -> Result<(Forms, Vec<IncompressibilitySpec>), SpecError> {
     let specs = match given {
-        Some([]) => {
-            return Err(SpecError::new(
-                "incompressibility",
-                "[]",
-                "give at least one",
-            ))
+        Some(g) => {
+            non_empty("incompressibility", g, "give at least one")?;
+            g.to_vec()
         }
-        Some(g) => g.to_vec(),
         None => vec![IncompressibilitySpec::written(d.models.volumetric.as_ref())],
     };
     let mut out = Vec::new();
@@ -217,10 +212,7 @@ pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecErr
     }
     let model = model_of(spec, d)?;
     let max_iterations = spec.max_iterations.unwrap_or(50);
-    if !(1..=500).contains(&max_iterations) {
-        let rule = "must be an integer in [1, 500]";
-        return Err(SpecError::new("max_iterations", max_iterations, rule));
-    }
+    let max_iterations = integer_in("max_iterations", max_iterations, 1..=500, "")?;
     let written = FeSpec {
         radius: Some(size.0),
         length: Some(size.1),
@@ -233,7 +225,7 @@ pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecErr
         law: Some(model.law),
         coupling: Some(model.coupling),
         damage: Some(model.damage),
-        max_iterations: Some(max_iterations),
+        max_iterations: Some(max_iterations as i64),
     };
     let level = FeLevel {
         size,
@@ -243,7 +235,7 @@ pub fn resolve(spec: &FeSpec, d: &Defaults) -> Result<(FeLevel, FeSpec), SpecErr
         forms,
         stretch,
         model,
-        max_iterations: max_iterations as usize,
+        max_iterations,
     };
     Ok((level, written))
 }

@@ -423,7 +423,7 @@ pub fn fe_figure(study: &str, r: &TangentResult) -> Option<Figure> {
             } else {
                 String::new()
             };
-            let points = normalised(&a.h, &a.u.r1, a.floor);
+            let points = normalised(a.h(), &a.u.r1, a.floor());
             let series = Series::new(label, points, stroke, tangent_colour(t.tangent));
             taylor.push((t.tangent, series));
         }

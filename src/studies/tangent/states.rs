@@ -103,15 +103,7 @@ pub fn amounts(key: &str, spec: &Option<StretchSpec>, shear: bool) -> Result<Vec
 
 /// A count of states or directions under `key`: an integer in [0, `max`].
 pub fn count(key: &str, v: i64, max: usize) -> Result<usize, SpecError> {
-    if (0..=max as i64).contains(&v) {
-        Ok(v as usize)
-    } else {
-        Err(SpecError::new(
-            key,
-            v,
-            format!("must be an integer in [0, {max}]"),
-        ))
-    }
+    crate::studies::rules::integer_in(key, v, 0..=max as i64, "")
 }
 
 /// Q = [m n t], the fibre frame of the unit fibre m.

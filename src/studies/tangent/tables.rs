@@ -233,8 +233,8 @@ impl TangentResult {
         for c in &fe.configs {
             for t in &c.taylor {
                 let Ok(r) = &t.outcome else { continue };
-                for k in 0..r.h.len() {
-                    rows.push((c, t, r.h[k], [r.u.r0[k], r.u.r1[k], r.p.r0[k], r.p.r1[k]]));
+                for (k, &h) in r.h().iter().enumerate() {
+                    rows.push((c, t, h, [r.u.r0[k], r.u.r1[k], r.p.r0[k], r.p.r1[k]]));
                 }
             }
         }

@@ -37,9 +37,8 @@ pub use measure::{
 };
 pub use routes::{FiniteDifferenceTangent, OracleRoute};
 
-use super::spec::{
-    cell_count, grading, non_empty, optional_stretches, positive, Defaults, StretchSpec,
-};
+use super::rules::{cell_count, grading, non_empty, once, positive};
+use super::spec::{optional_stretches, Defaults, StretchSpec};
 use super::{Failure, KindSpec, KindStudy, Outcome, RunContext, Study, StudyKind, StudyResult};
 use crate::active::Approach;
 use crate::app_error::{AppError, SpecError};
@@ -522,15 +521,8 @@ pub fn resolve(
             OptionGroup::ALL.map(OptionGroup::key)
         ),
     )?;
-    for (j, g) in groups.iter().enumerate() {
-        if groups[..j].contains(g) {
-            return Err(SpecError::new(
-                format!("options[{j}]"),
-                format!("{:?}", g.key()),
-                "named twice",
-            ));
-        }
-    }
+    let keys: Vec<String> = groups.iter().map(|g| format!("{:?}", g.key())).collect();
+    once("options", &keys, |a, b| a == b, |_| "named twice".into())?;
     let meshes = match &spec.meshes {
         None => defaults.meshes.clone(),
         Some(v) => meshes(v)?,
