@@ -5,9 +5,10 @@
 //! (MiB), the sweep's wall time (s), its Newton iterations (those of curves.csv: summed over
 //! the stretches' load steps) and the time per iteration (ms).
 //!
-//! `cargo run --release --example fem_memory -- NR NZ [neo-hookean|muscle] [Q2Q1|Q1P0]`
-//! (muscle: the chapter's explicit law, frozen exact tangent, clamped, 20 stretches 0.7–1.6 and
-//! 1.17; neo-Hookean: μ = 5 kPa, the same stretches).
+//! `cargo run --release --example fem_memory -- NR NZ [neo-hookean|muscle] [Q2Q1|Q1P0]
+//! [--stretches L1,L2,…]` (muscle: the chapter's explicit law, frozen exact tangent, clamped;
+//! neo-Hookean: μ = 5 kPa; the 20 stretches 0.70, 0.75, …, 1.60 and 1.17 unless `--stretches`
+//! names fewer: a truncated sweep, for the time per iteration and the peak on a large mesh).
 
 use activemuscle::active::{Coupling, ExplicitLaw, FrozenTangent, Law};
 use activemuscle::energy::GiantesioMusesti;
@@ -32,6 +33,7 @@ fn run<M: AxisymmetricMaterial>(
     nr: usize,
     nz: usize,
     element: Element,
+    targets: &[f64],
 ) -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "resident at start: {:.1} MiB",
@@ -63,10 +65,8 @@ fn run<M: AxisymmetricMaterial>(
         exact.nonzeros,
         exact.factor_values
     );
-    let mut targets: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
-    targets.push(1.17);
     let start = std::time::Instant::now();
-    let sweep = solver.sweep(&targets)?;
+    let sweep = solver.sweep(targets)?;
     let seconds = start.elapsed().as_secs_f64();
     let peak = peak_memory_mib().unwrap_or(f64::NAN);
     println!(
@@ -94,9 +94,33 @@ fn run<M: AxisymmetricMaterial>(
     Ok(())
 }
 
+/// The stretches after `--stretches` (comma-separated), else the chapter's 20; the other
+/// arguments in their order.
+fn stretches(mut args: Vec<String>) -> Result<(Vec<f64>, Vec<String>), String> {
+    let Some(at) = args.iter().position(|a| a == "--stretches") else {
+        let mut all: Vec<f64> = (0..=18).map(|k| 0.70 + 0.05 * k as f64).collect();
+        all.push(1.17);
+        return Ok((all, args));
+    };
+    let list = args
+        .get(at + 1)
+        .ok_or("--stretches needs a list, e.g. 1.05,1.1")?;
+    let targets = list
+        .split(',')
+        .map(|l| match l.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+            _ => Err(format!(
+                "--stretches {list}: {l:?} is not a positive stretch"
+            )),
+        })
+        .collect::<Result<Vec<f64>, String>>()?;
+    args.drain(at..at + 2);
+    Ok((targets, args))
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: fem_memory NR NZ [neo-hookean|muscle] [Q2Q1|Q1P0]";
+    let (targets, args) = stretches(std::env::args().collect())?;
+    let usage = "usage: fem_memory NR NZ [neo-hookean|muscle] [Q2Q1|Q1P0] [--stretches L1,L2,…]";
     let (nr, nz): (usize, usize) = (
         args.get(1).ok_or(usage)?.parse()?,
         args.get(2).ok_or(usage)?.parse()?,
@@ -110,9 +134,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 0.0,
                 Coupling::Frozen(FrozenTangent::Exact),
             )?;
-            run(&muscle, nr, nz, element)
+            run(&muscle, nr, nz, element, &targets)
         }
-        Some("neo-hookean") => run(&NeoHookean::new(5.0)?, nr, nz, element),
+        Some("neo-hookean") => run(&NeoHookean::new(5.0)?, nr, nz, element, &targets),
         Some(_) => Err(usage.into()),
     }
 }

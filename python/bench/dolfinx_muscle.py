@@ -42,6 +42,9 @@ Run (Debian's python3-dolfinx, on /usr/bin/python3):
 
     OMP_NUM_THREADS=1 /usr/bin/python3 python/bench/dolfinx_muscle.py --element P2P1 16 64
 
+(`--stretches 1.05,1.1`: only those stretches, a truncated sweep; python/bench/cost_curve.py's
+--truncate, for the time per iteration on a mesh whose whole sweep takes too long.)
+
 Prints as fenics_muscle.py: a line `lambda <λ> P <kPa> newton_its <n>` per reached stretch in the
 order solved, `failed <λ>` per stretch not reached, then `dolfinx <element> <nr>x<nz> dofs <total>
 free <free> stretches <reached>/<asked> its <total> predictors <n> sweep <s> iteration <s> setup
@@ -339,6 +342,17 @@ class Sweep:
         return sorted(failed)
 
 
+def stretch_list(text):
+    """`1.05,1.1` → [1.05, 1.1] (rounded as STRETCHES are), each positive and finite."""
+    try:
+        values = [round(float(v), 10) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a comma-separated list of stretches")
+    if not all(math.isfinite(v) and v > 0 for v in values):
+        raise argparse.ArgumentTypeError(f"{text!r}: every stretch must be positive and finite")
+    return values
+
+
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("nr", type=int)
@@ -350,6 +364,9 @@ def main(argv):
     parser.add_argument("--verbose", action="store_true",
                         help="log every load step and Newton correction to stderr")
     parser.add_argument("--no-warmup", action="store_true", help="skip the JIT warm-up sweep")
+    parser.add_argument("--stretches", type=stretch_list, default=STRETCHES, metavar="L1,L2,...",
+                        help="the stretches to reach (default: the 20 of the sweep; fewer: a "
+                             "truncated sweep, for the time per iteration on a large mesh)")
     args = parser.parse_args(argv[1:])
     if not args.no_warmup:  # compiles the forms (FFCx + CFFI JIT, cached on disk)
         Sweep(args.element, 2, 8, args.degree, args.solver).run([1.0, 1.05], lambda *_: None)
@@ -358,7 +375,7 @@ def main(argv):
     sweep.verbose = args.verbose
     t1 = time.perf_counter()
     rows = []
-    failed = sweep.run(STRETCHES, lambda l, P, n: rows.append((l, P, n)))
+    failed = sweep.run(args.stretches, lambda l, P, n: rows.append((l, P, n)))
     t2 = time.perf_counter()
     for l, P, n in rows:
         print(f"lambda {l:.2f} P {P:.15g} newton_its {n}")
@@ -368,7 +385,7 @@ def main(argv):
     its = sweep.iterations
     print(
         f"dolfinx {args.element} {args.nr}x{args.nz} dofs {sweep.dim} free {sweep.free} "
-        f"stretches {len(rows)}/{len(set(STRETCHES))} its {its} predictors {sweep.predictors} sweep {t2 - t1:.6f} "
+        f"stretches {len(rows)}/{len(set(args.stretches))} its {its} predictors {sweep.predictors} sweep {t2 - t1:.6f} "
         f"iteration {(t2 - t1) / max(its, 1):.6f} setup {t1 - t0:.6f} P(1.17) {p117:.15g} "
         f"solver {args.solver}"
     )
