@@ -184,12 +184,12 @@ impl ShearStudy {
     /// One line for `check`.
     pub fn describe(&self) -> String {
         format!(
-            "{}: {} amounts of shear in [{}, {}], fibre angles {:?}°, {} model(s)",
+            "{}: {} amounts of shear in [{}, {}], fibre angles {}°, {} model(s)",
             self.name,
             self.shear.len(),
             self.shear.first().copied().unwrap_or(f64::NAN),
             self.shear.last().copied().unwrap_or(f64::NAN),
-            self.angles,
+            super::outputs::list(&self.angles),
             self.models.len()
         )
     }
