@@ -35,7 +35,7 @@ impl KindOutput for TangentResult {
         let mut out = vec![
             table(
                 "table",
-                super::tables::SUMMARY_FILE,
+                super::run::SUMMARY_FILE,
                 "one row per tangent study, model and state",
                 self.summary_table(study),
             ),

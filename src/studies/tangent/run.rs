@@ -100,6 +100,9 @@ where
     })
 }
 
+/// The summary's file: one row per model and state (its table: `tables`).
+pub const SUMMARY_FILE: &str = "tangent_summary.csv";
+
 /// How the tangent kind's `OUTSIDE:` lines name its states. A tangent check compares each
 /// model's derivatives with themselves: no target, no distance from one.
 const WORDS: Words = Words {
@@ -107,7 +110,7 @@ const WORDS: Words = Words {
     x: "λ_f",
     unit: "",
     target: "",
-    file: super::tables::SUMMARY_FILE,
+    file: SUMMARY_FILE,
 };
 
 /// One line per law and coupling whose states left the law's domain ([`lines`]), each state

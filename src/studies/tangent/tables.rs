@@ -11,9 +11,6 @@ use crate::studies::cylinder::bases_name;
 use crate::studies::domain::{in_domain, IN_DOMAIN};
 use crate::studies::table::{every_row, Table};
 
-/// The summary's file: one row per model and state.
-pub const SUMMARY_FILE: &str = "tangent_summary.csv";
-
 /// Names of F's entries, row by row.
 const F_ENTRIES: [&str; 9] = [
     "F11", "F12", "F13", "F21", "F22", "F23", "F31", "F32", "F33",
